@@ -1,0 +1,8 @@
+//! tabor: adhesion maps for elastic spheres in contact.
+//!
+//! Layout: [`physics`] (equations), [`solver`] (f64 reference and f32 mirror), `gpu` (wgpu host
+//! code for the WGSL kernels in `shaders/`), `map` (classification), `render` (figures) and the
+//! command line in `src/cli`.
+
+pub mod physics;
+pub mod solver;

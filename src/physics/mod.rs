@@ -1,0 +1,6 @@
+//! The physics: normalisation, the closed-form models and the Maugis-Dugdale curve.
+
+pub mod closed;
+pub mod md;
+pub mod params;
+pub mod real;

@@ -1,0 +1,227 @@
+//! The number types the Maugis-Dugdale formulas are written for.
+//!
+//! The curve formulas in [`super::md`] are generic over [`Real`] so that one text serves the bulk
+//! solves in `f64`, the pull-off search in double-double (whose condition number grows like
+//! lambda^-3 at small lambda) and the `f32` mirror of the shaders.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+pub trait Real:
+    Copy
+    + PartialOrd
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    fn of(x: f64) -> Self;
+    fn to_f64(self) -> f64;
+    fn sqrt(self) -> Self;
+    /// `(atan(mu), mu - atan(mu))` for `mu >= 0`, both to full relative precision: the
+    /// difference is what f1 needs at small mu, where subtracting the two loses every digit.
+    fn atan_parts(self) -> (Self, Self);
+}
+
+/// `t - atan(t)` by its Maclaurin series, `terms` terms; accurate for `t <= 0.1`.
+fn series_mu_minus_atan<T: Real>(t: T, terms: usize) -> T {
+    let z = t * t;
+    let mut acc = T::of(0.0);
+    for k in (1..=terms).rev() {
+        acc = T::of(1.0) / T::of((2 * k + 1) as f64) - z * acc;
+    }
+    t * z * acc
+}
+
+/// Half-angle reduction: `atan(t) = 2 atan(t / (1 + sqrt(1 + t^2)))`, and
+/// `t - atan(t) = t^3/(1+sqrt(1+t^2))^2 + 2 (t' - atan(t'))`: every term is positive, so
+/// `mu - atan(mu)` keeps full precision for all mu up to 2 (beyond, plain subtraction is fine).
+fn reduced_mu_minus_atan<T: Real>(mu: T, terms: usize) -> T {
+    let mut t = mu;
+    let mut weight = 1.0;
+    let mut acc = T::of(0.0);
+    while t > T::of(0.1) {
+        let onem = T::of(1.0) + (T::of(1.0) + t * t).sqrt();
+        acc = acc + T::of(weight) * t * t * t / (onem * onem);
+        t = t / onem;
+        weight *= 2.0;
+    }
+    acc + T::of(weight) * series_mu_minus_atan(t, terms)
+}
+
+impl Real for f64 {
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn atan_parts(self) -> (Self, Self) {
+        let mu = self;
+        if mu < 0.1 {
+            let d = series_mu_minus_atan(mu, 8);
+            (mu - d, d)
+        } else if mu < 2.0 {
+            (mu.atan(), reduced_mu_minus_atan(mu, 8))
+        } else {
+            let at = mu.atan();
+            (at, mu - at)
+        }
+    }
+}
+
+/// Double-double number: the unevaluated sum `hi + lo`, about 32 significant digits, from the
+/// error-free transformations two-sum and two-product (Dekker 1971; Hida, Li and Bailey's QD).
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct Dd {
+    pub hi: f64,
+    pub lo: f64,
+}
+
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    (s, (a - (s - bb)) + (b - bb))
+}
+
+#[inline]
+fn quick_two_sum(a: f64, b: f64) -> Dd {
+    let s = a + b;
+    Dd {
+        hi: s,
+        lo: b - (s - a),
+    }
+}
+
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+impl Add for Dd {
+    type Output = Dd;
+    fn add(self, b: Dd) -> Dd {
+        let (s1, s2) = two_sum(self.hi, b.hi);
+        let (t1, t2) = two_sum(self.lo, b.lo);
+        let r = quick_two_sum(s1, s2 + t1);
+        quick_two_sum(r.hi, r.lo + t2)
+    }
+}
+impl Neg for Dd {
+    type Output = Dd;
+    fn neg(self) -> Dd {
+        Dd {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+impl Sub for Dd {
+    type Output = Dd;
+    fn sub(self, b: Dd) -> Dd {
+        self + (-b)
+    }
+}
+impl Mul for Dd {
+    type Output = Dd;
+    fn mul(self, b: Dd) -> Dd {
+        let (p, e) = two_prod(self.hi, b.hi);
+        quick_two_sum(p, e + (self.hi * b.lo + self.lo * b.hi))
+    }
+}
+impl Div for Dd {
+    type Output = Dd;
+    fn div(self, b: Dd) -> Dd {
+        // Long division with three partial quotients (QD's accurate division).
+        let q1 = self.hi / b.hi;
+        let r = self - b * Dd::of(q1);
+        let q2 = r.hi / b.hi;
+        let r = r - b * Dd::of(q2);
+        let q3 = r.hi / b.hi;
+        quick_two_sum(q1, q2) + Dd::of(q3)
+    }
+}
+
+const HALF_PI_DD: Dd = Dd {
+    hi: 1.5707963267948966,
+    lo: 6.123233995736766e-17,
+};
+
+impl Real for Dd {
+    fn of(x: f64) -> Self {
+        Dd { hi: x, lo: 0.0 }
+    }
+    fn to_f64(self) -> f64 {
+        self.hi + self.lo
+    }
+    fn sqrt(self) -> Self {
+        if self.hi <= 0.0 {
+            return Dd::of(0.0);
+        }
+        // One Newton correction of the f64 root: sqrt(a) = q + (a - q^2) / (2q).
+        let q = self.hi.sqrt();
+        let (p, e) = two_prod(q, q);
+        let r = (self - Dd { hi: p, lo: e }).to_f64();
+        quick_two_sum(q, r / (2.0 * q))
+    }
+    fn atan_parts(self) -> (Self, Self) {
+        let mu = self;
+        if mu > Dd::of(1.0) {
+            let v = Dd::of(1.0) / mu;
+            let atan_v = v - reduced_mu_minus_atan(v, 16);
+            let at = HALF_PI_DD - atan_v;
+            (at, mu - at)
+        } else {
+            let d = reduced_mu_minus_atan(mu, 16);
+            (mu - d, d)
+        }
+    }
+}
+
+/// The shader's arithmetic on the CPU: the same atan polynomial as `shaders/md.wgsl`, so the
+/// f32 mirror and the GPU can be compared term by term.
+impl Real for f32 {
+    #[inline(always)]
+    fn of(x: f64) -> Self {
+        x as f32
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self as f64
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f32::sqrt(self)
+    }
+    #[inline(always)]
+    fn atan_parts(self) -> (Self, Self) {
+        crate::solver::mirror::atan_parts_f32(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn double_double_arithmetic_has_32_digits() {
+        let one = Dd::of(1.0);
+        let three = Dd::of(3.0);
+        assert!((one / three * three - one).to_f64().abs() < 1e-32);
+        let x = Dd::of(538763.6808318263);
+        assert!(((x * x) / x - x).to_f64().abs() < 1e-26);
+        let s = (one + x * x).sqrt();
+        assert!((s * s - (one + x * x)).to_f64().abs() < 1e-20);
+        let r = Dd::of(2.0).sqrt();
+        assert!((r * r - Dd::of(2.0)).to_f64().abs() < 1e-31);
+    }
+}

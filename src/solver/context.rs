@@ -1,0 +1,374 @@
+//! The per-lambda context: pull-offs computed once, then many loads or approaches solved cheaply.
+
+use super::root::{bisect_sign, secant_bracketed, Stop};
+use super::{SolveError, State, Status};
+use crate::physics::md::{curve_point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D};
+use crate::physics::real::{Dd, Real};
+
+/// Newton tolerance on x = ln(mu), relative; the residual's rounding noise stops it earlier.
+const X_TOL: f64 = 1e-15;
+const MAX_ITER: u32 = 100;
+/// Width of the search bracket in x below the pull-off: enough for loads up to 1e12 at every
+/// lambda in 1e-8..1e8.
+const BRACKET: f64 = 60.0;
+const TABLE_NODES: usize = 14;
+
+/// Where a stable branch ends: the jump-out (pull-off) point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PullOff {
+    /// ln(mu) there; `+inf` when the contact is lost at zero radius.
+    pub x: f64,
+    pub load: f64,
+    pub a: f64,
+    pub approach: f64,
+    /// m - 1 there (`inf` at zero radius).
+    pub m_minus_1: f64,
+}
+
+impl PullOff {
+    pub fn at_zero_radius(&self) -> bool {
+        self.x == f64::INFINITY
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct LambdaContext {
+    pub lambda: f64,
+    /// Load-controlled pull-off: the minimum of Pbar along the curve.
+    pub load_pulloff: PullOff,
+    /// Displacement-controlled jump-out: the minimum of Dbar (at A = 0 for lambda <= lambda_D).
+    pub disp_pulloff: PullOff,
+    /// The A -> 0 end of the curve.
+    pub end: ZeroRadiusEnd,
+    /// Pbar + 2 at the load pull-off, evaluated without cancellation.
+    load_plus_2_c: f64,
+    /// The stable load branch tabulated at x = xc - 0.01 * 2^k: (ln(Pbar - Pbar_c), x) per node,
+    /// for a first guess and a bracket (one binary search, then a few Newton steps).
+    load_table: [(f64, f64); TABLE_NODES],
+    /// d2Dbar/dx2 at an interior displacement jump-out.
+    disp_curvature: f64,
+}
+
+#[inline]
+pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
+    curve_point(lambda, x.exp())
+}
+
+fn dload_dx_dd(lambda: f64, x: f64) -> f64 {
+    let mu = x.exp();
+    let p = curve_point(Dd::of(lambda), Dd::of(mu));
+    p.dload_dmu.to_f64() * mu
+}
+
+fn dapproach_dx_dd(lambda: f64, x: f64) -> f64 {
+    let mu = x.exp();
+    let p = curve_point(Dd::of(lambda), Dd::of(mu));
+    p.dapproach_dmu.to_f64() * mu
+}
+
+/// Brackets the sign change of `slope` (negative on the stable side) around `x_est` and bisects.
+/// Returns `None` if no positive slope is found to the right (the minimum is at x = inf).
+fn minimum_of(slope: impl Fn(f64) -> f64, x_est: f64) -> Option<f64> {
+    let (mut lo, mut hi) = (x_est - 2.0, x_est + 2.0);
+    let mut n = 0;
+    while slope(lo) >= 0.0 {
+        hi = lo;
+        lo -= 2.0;
+        n += 1;
+        if n > 40 {
+            return None;
+        }
+    }
+    n = 0;
+    while slope(hi) <= 0.0 {
+        lo = hi;
+        hi += 2.0;
+        n += 1;
+        if n > 20 {
+            return None;
+        }
+    }
+    Some(bisect_sign(slope, lo, hi))
+}
+
+/// The minimum of a curve quantity: bisection on the f64 slope, then secant steps on the
+/// double-double slope where f64 is too coarse (`precise_below`: f64 cannot even bracket it).
+fn minimum_polished(
+    fast: impl Fn(f64) -> f64,
+    precise: impl Fn(f64) -> f64,
+    x_est: f64,
+    polish: bool,
+    precise_only: bool,
+) -> Option<f64> {
+    if precise_only {
+        return minimum_of(precise, x_est);
+    }
+    let x = minimum_of(&fast, x_est)?;
+    if !polish {
+        return Some(x);
+    }
+    let (mut x0, mut x1) = (x, x + 1e-7 * x.abs().max(1.0));
+    let (mut f0, mut f1) = (precise(x0), precise(x1));
+    for _ in 0..10 {
+        if f1 == f0 {
+            break;
+        }
+        let step = -f1 * (x1 - x0) / (f1 - f0);
+        (x0, f0) = (x1, f1);
+        x1 += step;
+        if !(step.abs() > 1e-16 * x1.abs().max(1.0)) {
+            break;
+        }
+        f1 = precise(x1);
+    }
+    // The polish only moves within the f64 noise; anything else means it went astray.
+    if (x1 - x).abs() < 1e-2 {
+        Some(x1)
+    } else {
+        minimum_of(precise, x_est)
+    }
+}
+
+fn second_derivative(slope: impl Fn(f64) -> f64, x: f64) -> f64 {
+    let h = 1e-3;
+    (slope(x + h) - slope(x - h)) / (2.0 * h)
+}
+
+fn pulloff_at(lambda: f64, x: f64) -> PullOff {
+    let p = point(lambda, x);
+    PullOff {
+        x,
+        load: p.load,
+        a: p.a,
+        approach: p.approach,
+        m_minus_1: p.m_minus_1,
+    }
+}
+
+impl LambdaContext {
+    pub fn new(lambda: f64) -> Result<Self, SolveError> {
+        if !(lambda.is_finite() && lambda > 0.0) {
+            return Err(SolveError::Lambda(lambda));
+        }
+        // The slope of Pbar at its minimum is a difference of terms larger by ~lambda^-3
+        // (PHYSICS.md section 5): below lambda = 0.5 it is evaluated in double-double.
+        let load_slope = |x: f64| {
+            let p = point(lambda, x);
+            p.dload_dmu * p.mu
+        };
+        let load_slope_dd = |x: f64| dload_dx_dd(lambda, x);
+        // First guess: the JKR (mu ~ 1.14/lambda) and DMT (mu ~ 0.54 lambda^-1.5) asymptotes.
+        let x_est = (1.1447 / lambda + 0.54 * lambda.powf(-1.5)).ln();
+        let xc = minimum_polished(
+            load_slope,
+            load_slope_dd,
+            x_est,
+            lambda < 0.5,
+            lambda < 1e-3,
+        )
+        .ok_or(SolveError::NoPullOff(lambda))?;
+        let load_pulloff = pulloff_at(lambda, xc);
+        let load_plus_2_c = point(lambda, xc).load_plus_2;
+        let small = lambda < 1.0;
+        let load_table = std::array::from_fn(|k| {
+            let x = xc - 0.01 * 2f64.powi(k as i32) * BRACKET / 81.92;
+            let p = point(lambda, x);
+            let gap = if small {
+                p.load_plus_2 - load_plus_2_c
+            } else {
+                p.load - load_pulloff.load
+            };
+            (gap.ln(), x)
+        });
+        let end = zero_radius_end(lambda);
+
+        let zero_radius = PullOff {
+            x: f64::INFINITY,
+            load: end.load,
+            a: 0.0,
+            approach: end.approach,
+            m_minus_1: f64::INFINITY,
+        };
+        let (disp_pulloff, disp_curvature) = if lambda <= LAMBDA_D {
+            (zero_radius, f64::NAN)
+        } else {
+            let disp_slope = |x: f64| {
+                let p = point(lambda, x);
+                p.dapproach_dmu * p.mu
+            };
+            let disp_slope_dd = |x: f64| dapproach_dx_dd(lambda, x);
+            // JKR jump-out under rigid grips: A = 6^(-1/3), mu ~ 1.65/lambda.
+            let x_est = (1.65 / lambda).ln().min(xc + 2.0);
+            // Just above lambda_D the minimum sits at tiny A, where the f64 slope cancels.
+            let near_d = lambda < 1.2;
+            match minimum_polished(disp_slope, disp_slope_dd, x_est, lambda < 4.0, near_d) {
+                Some(xd) => (pulloff_at(lambda, xd), second_derivative(disp_slope, xd)),
+                None => (zero_radius, f64::NAN),
+            }
+        };
+        Ok(Self {
+            lambda,
+            load_pulloff,
+            disp_pulloff,
+            end,
+            load_plus_2_c,
+            load_table,
+            disp_curvature,
+        })
+    }
+
+    fn state(&self, x: f64, load: f64, approach: f64, iterations: u32, stop: Stop) -> State {
+        let p = point(self.lambda, x);
+        State {
+            lambda: self.lambda,
+            load,
+            approach,
+            a: p.a,
+            m_minus_1: p.m_minus_1,
+            status: match stop {
+                Stop::Converged => Status::Ok,
+                Stop::MaxIterations => Status::NotConverged,
+            },
+            iterations,
+        }
+    }
+
+    /// The state at load `load` (Pbar) on the load-controlled stable branch.
+    pub fn solve_load(&self, load: f64) -> State {
+        let lambda = self.lambda;
+        if !load.is_finite() {
+            return State::failed(lambda, load, f64::NAN, Status::InvalidInput);
+        }
+        let pc = self.load_pulloff;
+        if load < pc.load {
+            return State::failed(lambda, load, f64::NAN, Status::NoContact);
+        }
+        // The residual is written as a difference from the pull-off so that its relative
+        // accuracy does not degrade as the load approaches Pbar_c. On the DMT side the load is
+        // carried as Pbar + 2 (exact in floating point near -2).
+        let small = lambda < 1.0;
+        let gap = if small {
+            (load + 2.0) - self.load_plus_2_c
+        } else {
+            load - pc.load
+        };
+        if gap <= 0.0 {
+            return State {
+                approach: pc.approach,
+                ..self.state(pc.x, load, f64::NAN, 0, Stop::Converged)
+            };
+        }
+        let residual = |x: f64| {
+            let p = point(lambda, x);
+            let r = if small {
+                p.load_plus_2 - (load + 2.0)
+            } else {
+                p.load - load
+            };
+            // F = ln((P - Pc) / (P_target - Pc)): nearly linear in x far from the pull-off and
+            // like 2 ln(xc - x) near it, so the secant converges in a few steps everywhere.
+            let f = (r / gap).ln_1p();
+            if f.is_nan() {
+                f64::NEG_INFINITY
+            } else {
+                f
+            }
+        };
+        let t = gap.ln();
+        let (lo, hi, x0) = self.load_guess(t);
+        let root = secant_bracketed(residual, lo, hi, x0, X_TOL, MAX_ITER);
+        let p = point(lambda, root.x);
+        State {
+            approach: p.approach,
+            ..self.state(root.x, load, f64::NAN, root.iterations, root.stop)
+        }
+    }
+
+    /// Bracket (with residuals) and first guess for ln(Pbar - Pbar_c) = t from the table: linear
+    /// in (t, ln(xc - x)), which is exact near the pull-off, where P - Pc ~ (xc - x)^2.
+    #[allow(clippy::type_complexity)]
+    fn load_guess(&self, t: f64) -> ((f64, f64), (f64, f64), f64) {
+        let xc = self.load_pulloff.x;
+        let tab = &self.load_table;
+        let k = tab.partition_point(|&(tk, _)| tk < t);
+        if k == 0 {
+            let (t0, x0) = tab[0];
+            return (
+                (x0, t0 - t),
+                (xc, f64::NEG_INFINITY),
+                xc - (xc - x0) * ((t - t0) / 2.0).exp(),
+            );
+        }
+        if k == TABLE_NODES {
+            let (t1, x1) = tab[k - 1];
+            return ((xc - 4.0 * BRACKET, f64::INFINITY), (x1, t1 - t), x1 - 1.0);
+        }
+        let ((t0, x0), (t1, x1)) = (tab[k - 1], tab[k]);
+        let w = (t - t0) / (t1 - t0);
+        let y = (xc - x0).ln() * (1.0 - w) + (xc - x1).ln() * w;
+        ((x1, t1 - t), (x0, t0 - t), xc - y.exp())
+    }
+
+    /// The state at approach `approach` (Dbar) on the displacement-controlled stable branch.
+    pub fn solve_approach(&self, approach: f64) -> State {
+        let lambda = self.lambda;
+        if !approach.is_finite() {
+            return State::failed(lambda, f64::NAN, approach, Status::InvalidInput);
+        }
+        let jo = self.disp_pulloff;
+        if approach < jo.approach {
+            return State::failed(lambda, f64::NAN, approach, Status::NoContact);
+        }
+        let gap = approach - jo.approach;
+        if gap == 0.0 {
+            return self.zero_gap_disp_state(approach);
+        }
+        let residual = |x: f64| {
+            let r = point(lambda, x).approach - approach;
+            let f = (r / gap).ln_1p();
+            if f.is_nan() {
+                f64::NEG_INFINITY
+            } else {
+                f
+            }
+        };
+        let (lo, hi, x0) = if jo.at_zero_radius() {
+            let xc = self.load_pulloff.x;
+            (xc - BRACKET, xc + BRACKET, xc)
+        } else {
+            let x0 = jo.x - (2.0 * gap / self.disp_curvature).sqrt();
+            (
+                jo.x - BRACKET,
+                jo.x,
+                if x0.is_finite() { x0 } else { jo.x - 1.0 },
+            )
+        };
+        let mut f_lo = residual(lo);
+        let mut lo = lo;
+        while f_lo <= 0.0 && lo > -1e3 {
+            lo -= BRACKET;
+            f_lo = residual(lo);
+        }
+        let f_hi = if jo.at_zero_radius() {
+            residual(hi).min(0.0)
+        } else {
+            f64::NEG_INFINITY
+        };
+        let root = secant_bracketed(residual, (lo, f_lo), (hi, f_hi), x0, X_TOL, MAX_ITER);
+        let p = point(lambda, root.x);
+        self.state(root.x, p.load, approach, root.iterations, root.stop)
+    }
+
+    fn zero_gap_disp_state(&self, approach: f64) -> State {
+        let jo = self.disp_pulloff;
+        State {
+            lambda: self.lambda,
+            load: jo.load,
+            approach,
+            a: jo.a,
+            m_minus_1: jo.m_minus_1,
+            status: Status::Ok,
+            iterations: 0,
+        }
+    }
+}

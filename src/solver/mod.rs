@@ -1,0 +1,160 @@
+//! Solvers: the exact f64 reference (per-lambda context, batches on all cores) and the f32
+//! mirror of the shaders.
+
+pub mod context;
+pub mod mirror;
+pub mod root;
+
+pub use context::{LambdaContext, PullOff};
+
+use rayon::prelude::*;
+use serde::Serialize;
+use std::collections::HashMap;
+
+/// What a solve is given: the load (dead load) or the approach (rigid grips).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum Control {
+    Load,
+    Displacement,
+}
+
+/// Outcome of one state. The numeric codes are the ones the shaders write.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+#[repr(u32)]
+pub enum Status {
+    Ok = 0,
+    /// The load is below the pull-off, or the approach below the jump-out: no contact.
+    NoContact = 1,
+    /// The iteration limit was reached; the numbers are the best bracketed estimate.
+    NotConverged = 2,
+    /// lambda or the load is not a finite number in range.
+    InvalidInput = 3,
+}
+
+impl Status {
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Ok => "ok",
+            Status::NoContact => "no_contact",
+            Status::NotConverged => "not_converged",
+            Status::InvalidInput => "invalid_input",
+        }
+    }
+    pub fn from_code(code: u32) -> Status {
+        match code {
+            0 => Status::Ok,
+            1 => Status::NoContact,
+            2 => Status::NotConverged,
+            _ => Status::InvalidInput,
+        }
+    }
+}
+
+/// A contact state in the Johnson-Greenwood normalisation. Fields that could not be computed
+/// (no contact, bad input) are NaN and are written as empty fields, never as numbers.
+#[derive(Clone, Copy, Debug)]
+pub struct State {
+    pub lambda: f64,
+    /// Pbar.
+    pub load: f64,
+    /// Dbar.
+    pub approach: f64,
+    /// Contact radius A.
+    pub a: f64,
+    /// m - 1 (c/a - 1), full relative precision.
+    pub m_minus_1: f64,
+    pub status: Status,
+    pub iterations: u32,
+}
+
+impl State {
+    pub fn failed(lambda: f64, load: f64, approach: f64, status: Status) -> State {
+        State {
+            lambda,
+            load,
+            approach,
+            a: f64::NAN,
+            m_minus_1: f64::NAN,
+            status,
+            iterations: 0,
+        }
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum SolveError {
+    #[error("lambda must be a finite number > 0, got {0}")]
+    Lambda(f64),
+    #[error("no load-controlled pull-off found for lambda = {0} (outside the supported range 1e-8..1e8?)")]
+    NoPullOff(f64),
+}
+
+/// The state of one (lambda, value) point; `value` is the load or the approach.
+pub fn solve_one(lambda: f64, value: f64, control: Control) -> State {
+    match LambdaContext::new(lambda) {
+        Ok(ctx) => solve_with(&ctx, value, control),
+        Err(_) => invalid(lambda, value, control),
+    }
+}
+
+fn invalid(lambda: f64, value: f64, control: Control) -> State {
+    match control {
+        Control::Load => State::failed(lambda, value, f64::NAN, Status::InvalidInput),
+        Control::Displacement => State::failed(lambda, f64::NAN, value, Status::InvalidInput),
+    }
+}
+
+#[inline]
+pub fn solve_with(ctx: &LambdaContext, value: f64, control: Control) -> State {
+    match control {
+        Control::Load => ctx.solve_load(value),
+        Control::Displacement => ctx.solve_approach(value),
+    }
+}
+
+/// Contexts for the distinct lambdas of a point list, built in parallel. Invalid lambdas map
+/// to `None`.
+pub fn contexts_for(lambdas: impl Iterator<Item = f64>) -> HashMap<u64, Option<LambdaContext>> {
+    let mut keys: Vec<u64> = lambdas.map(f64::to_bits).collect();
+    keys.sort_unstable();
+    keys.dedup();
+    keys.into_par_iter()
+        .map(|k| (k, LambdaContext::new(f64::from_bits(k)).ok()))
+        .collect()
+}
+
+/// Solves a list of (lambda, value) points on all cores, one context per distinct lambda.
+pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
+    let ctx = contexts_for(points.iter().map(|p| p.0));
+    points
+        .par_iter()
+        .map(|&(lambda, value)| match &ctx[&lambda.to_bits()] {
+            Some(c) => solve_with(c, value, control),
+            None => invalid(lambda, value, control),
+        })
+        .collect()
+}
+
+/// Solves the grid `lambdas x values` (row-major: one row per value, `lambdas.len()` columns),
+/// on all cores.
+pub fn solve_grid(lambdas: &[f64], values: &[f64], control: Control) -> Vec<State> {
+    let ctx: Vec<Option<LambdaContext>> = lambdas
+        .par_iter()
+        .map(|&l| LambdaContext::new(l).ok())
+        .collect();
+    let nx = lambdas.len();
+    let mut out = vec![State::failed(0.0, 0.0, 0.0, Status::InvalidInput); nx * values.len()];
+    out.par_chunks_mut(nx)
+        .zip(values.par_iter())
+        .for_each(|(row, &v)| {
+            for (i, cell) in row.iter_mut().enumerate() {
+                *cell = match &ctx[i] {
+                    Some(c) => solve_with(c, v, control),
+                    None => invalid(lambdas[i], v, control),
+                };
+            }
+        });
+    out
+}
