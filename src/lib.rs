@@ -4,5 +4,8 @@
 //! code for the WGSL kernels in `shaders/`), `map` (classification), `render` (figures) and the
 //! command line in `src/cli`.
 
+pub mod cli;
+pub mod gpu;
+pub mod io;
 pub mod physics;
 pub mod solver;

@@ -11,7 +11,7 @@ const MAX_ITER: u32 = 100;
 /// Width of the search bracket in x below the pull-off: enough for loads up to 1e12 at every
 /// lambda in 1e-8..1e8.
 const BRACKET: f64 = 60.0;
-const TABLE_NODES: usize = 14;
+pub const TABLE_NODES: usize = 14;
 
 /// Where a stable branch ends: the jump-out (pull-off) point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -41,12 +41,12 @@ pub struct LambdaContext {
     /// The A -> 0 end of the curve.
     pub end: ZeroRadiusEnd,
     /// Pbar + 2 at the load pull-off, evaluated without cancellation.
-    load_plus_2_c: f64,
+    pub load_plus_2_c: f64,
     /// The stable load branch tabulated at x = xc - 0.01 * 2^k: (ln(Pbar - Pbar_c), x) per node,
     /// for a first guess and a bracket (one binary search, then a few Newton steps).
-    load_table: [(f64, f64); TABLE_NODES],
+    pub load_table: [(f64, f64); TABLE_NODES],
     /// d2Dbar/dx2 at an interior displacement jump-out.
-    disp_curvature: f64,
+    pub disp_curvature: f64,
 }
 
 #[inline]
@@ -252,6 +252,14 @@ impl LambdaContext {
         } else {
             load - pc.load
         };
+        self.solve_load_gap(gap, load)
+    }
+
+    /// The state at `Pbar - Pbar_c = gap` (exact, however small); `load` is what is reported.
+    pub fn solve_load_gap(&self, gap: f64, load: f64) -> State {
+        let lambda = self.lambda;
+        let pc = self.load_pulloff;
+        let small = lambda < 1.0;
         if gap <= 0.0 {
             return State {
                 approach: pc.approach,
@@ -261,9 +269,9 @@ impl LambdaContext {
         let residual = |x: f64| {
             let p = point(lambda, x);
             let r = if small {
-                p.load_plus_2 - (load + 2.0)
+                (p.load_plus_2 - self.load_plus_2_c) - gap
             } else {
-                p.load - load
+                (p.load - pc.load) - gap
             };
             // F = ln((P - Pc) / (P_target - Pc)): nearly linear in x far from the pull-off and
             // like 2 ln(xc - x) near it, so the secant converges in a few steps everywhere.

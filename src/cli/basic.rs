@@ -1,0 +1,336 @@
+//! `tabor solve`, `tabor pulloff`, `tabor curve`.
+
+use super::Format;
+use crate::io::{fmt17, json_num, read_points, write_output};
+use crate::physics::md::{curve_point, LAMBDA_D};
+use crate::solver::{context::point, Control, LambdaContext, State, Status};
+use anyhow::{bail, Context};
+use clap::Args;
+use serde_json::json;
+use std::fmt::Write as _;
+
+#[derive(Args, Debug)]
+pub struct SolveArgs {
+    /// CSV with a header row and the columns `lambda` and `load` (or `approach`); `-` is stdin.
+    #[arg(long, short)]
+    pub input: Option<String>,
+    /// Output file; `-` (the default) is stdout.
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    /// Maugis parameter of a single state.
+    #[arg(long, conflicts_with = "input")]
+    pub lambda: Option<f64>,
+    /// Normalised load Pbar = P / (pi w R) of a single state (load control).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "input")]
+    pub load: Option<f64>,
+    /// Normalised approach Dbar of a single state (displacement control).
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["input", "load"])]
+    pub approach: Option<f64>,
+    /// What is given: the load (dead load) or the approach (rigid grips).
+    #[arg(long, value_enum, default_value_t = Control::Load)]
+    pub control: Control,
+    /// Output format (default: text for one state, csv for a file).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+}
+
+fn value_column(control: Control) -> &'static str {
+    match control {
+        Control::Load => "load",
+        Control::Displacement => "approach",
+    }
+}
+
+pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
+    if let Some(input) = &a.input {
+        let points = read_points(input, value_column(a.control))?;
+        let states = crate::solver::solve_points(&points, a.control);
+        let text = match a.format.unwrap_or(Format::Csv) {
+            Format::Json => states_json(&states, a.control),
+            _ => states_csv(&states),
+        };
+        return write_output(&a.output, text.as_bytes());
+    }
+    let lambda = a
+        .lambda
+        .context("give --input FILE, or --lambda with --load (or --approach)")?;
+    let (control, value) = match (a.load, a.approach) {
+        (Some(l), None) => (Control::Load, l),
+        (None, Some(d)) => (Control::Displacement, d),
+        _ => bail!("give one of --load or --approach with --lambda"),
+    };
+    if !value.is_finite() {
+        bail!(
+            "the {} must be a finite number, got {value}",
+            value_column(control)
+        );
+    }
+    let ctx = LambdaContext::new(lambda)
+        .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
+    let s = crate::solver::solve_with(&ctx, value, control);
+    let text = match a.format.unwrap_or(Format::Text) {
+        Format::Json => states_json(&[s], control),
+        Format::Csv => states_csv(&[s]),
+        Format::Text => state_text(&ctx, &s, control),
+    };
+    write_output(&a.output, text.as_bytes())
+}
+
+pub fn states_csv(states: &[State]) -> String {
+    let mut out = String::with_capacity(states.len() * 110 + 64);
+    out.push_str("lambda,load,A,approach,m_minus_1,status\n");
+    for s in states {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{}",
+            fmt17(s.lambda),
+            fmt17(s.load),
+            fmt17(s.a),
+            fmt17(s.approach),
+            fmt17(s.m_minus_1),
+            s.status.name()
+        );
+    }
+    out
+}
+
+pub fn state_json(s: &State) -> serde_json::Value {
+    json!({
+        "lambda": s.lambda, "load": json_num(s.load), "A": json_num(s.a),
+        "approach": json_num(s.approach), "m_minus_1": json_num(s.m_minus_1),
+        "status": s.status.name(),
+    })
+}
+
+fn states_json(states: &[State], control: Control) -> String {
+    let results: Vec<_> = states.iter().map(state_json).collect();
+    let doc = json!({
+        "metadata": {"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control},
+        "results": results,
+    });
+    serde_json::to_string_pretty(&doc).expect("json") + "\n"
+}
+
+fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
+        "Maugis-Dugdale state, lambda = {} ({} control)",
+        s.lambda,
+        match control {
+            Control::Load => "load",
+            Control::Displacement => "displacement",
+        }
+    );
+    let _ = writeln!(t, "  status            {}", s.status.name());
+    let _ = writeln!(t, "  load   Pbar       {}", fmt17(s.load));
+    let _ = writeln!(t, "  approach Dbar     {}", fmt17(s.approach));
+    let _ = writeln!(t, "  contact radius A  {}", fmt17(s.a));
+    let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", fmt17(s.m_minus_1));
+    let lp = ctx.load_pulloff;
+    let dp = ctx.disp_pulloff;
+    let _ = writeln!(
+        t,
+        "  pull-off, load control          Pbar_c = {}  at A = {}",
+        fmt17(lp.load),
+        fmt17(lp.a)
+    );
+    let _ = writeln!(
+        t,
+        "  jump-out, displacement control  Pbar   = {}  at A = {}",
+        fmt17(dp.load),
+        fmt17(dp.a)
+    );
+    if s.status == Status::NoContact {
+        let _ = writeln!(t, "  (below the pull-off of this control: no contact)");
+    }
+    t
+}
+
+#[derive(Args, Debug)]
+pub struct PulloffArgs {
+    /// Maugis parameters, comma separated.
+    #[arg(long, value_delimiter = ',', required = true, num_args = 1..)]
+    pub lambda: Vec<f64>,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    pub format: Format,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+}
+
+pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
+    let mut rows = Vec::new();
+    for &l in &a.lambda {
+        let ctx = LambdaContext::new(l)
+            .map_err(|e| anyhow::anyhow!("{e}; every --lambda must be a positive number"))?;
+        rows.push(ctx);
+    }
+    let cols = [
+        "lambda",
+        "load_control_load",
+        "load_control_A",
+        "load_control_approach",
+        "displacement_control_load",
+        "displacement_control_A",
+        "displacement_control_approach",
+        "zero_radius_end_load",
+        "zero_radius_end_approach",
+    ];
+    let vals = |c: &LambdaContext| {
+        [
+            c.lambda,
+            c.load_pulloff.load,
+            c.load_pulloff.a,
+            c.load_pulloff.approach,
+            c.disp_pulloff.load,
+            c.disp_pulloff.a,
+            c.disp_pulloff.approach,
+            c.end.load,
+            c.end.approach,
+        ]
+    };
+    let text = match a.format {
+        Format::Csv => {
+            let mut t = cols.join(",") + "\n";
+            for c in &rows {
+                t += &vals(c)
+                    .iter()
+                    .map(|&v| fmt17(v))
+                    .collect::<Vec<_>>()
+                    .join(",");
+                t.push('\n');
+            }
+            t
+        }
+        Format::Json => {
+            let res: Vec<_> = rows
+                .iter()
+                .map(|c| {
+                    let m: serde_json::Map<_, _> = cols
+                        .iter()
+                        .zip(vals(c))
+                        .map(|(k, v)| (k.to_string(), json_num(v)))
+                        .collect();
+                    serde_json::Value::Object(m)
+                })
+                .collect();
+            serde_json::to_string_pretty(&json!({"results": res}))? + "\n"
+        }
+        Format::Text => {
+            let mut t = format!(
+                "{:>12}  {:>20} {:>12}   {:>20} {:>12}\n",
+                "lambda", "Pbar_c (load ctl)", "A there", "Pbar (displ. ctl)", "A there"
+            );
+            for c in &rows {
+                let _ = writeln!(
+                    t,
+                    "{:>12}  {:>20.15} {:>12.8}   {:>20.15} {:>12.8}{}",
+                    c.lambda,
+                    c.load_pulloff.load,
+                    c.load_pulloff.a,
+                    c.disp_pulloff.load,
+                    c.disp_pulloff.a,
+                    if c.disp_pulloff.at_zero_radius() {
+                        "  (lost at A = 0: lambda <= lambda_D)"
+                    } else {
+                        ""
+                    }
+                );
+            }
+            let _ = writeln!(
+                t,
+                "lambda_D = {LAMBDA_D}: below it the rigid-grip contact shrinks to zero radius."
+            );
+            t
+        }
+    };
+    write_output(&a.output, text.as_bytes())
+}
+
+#[derive(Args, Debug)]
+pub struct CurveArgs {
+    #[arg(long)]
+    pub lambda: f64,
+    /// Largest contact radius A on the curve.
+    #[arg(long, default_value_t = 4.0)]
+    pub a_max: f64,
+    /// Number of points (A uniform from a_max down to 0, then the A = 0 end).
+    #[arg(long, default_value_t = 200)]
+    pub points: usize,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    pub format: Format,
+}
+
+/// x = ln(mu) at which the contact radius equals `a` (A falls strictly with mu).
+pub fn x_at_radius(lambda: f64, a: f64) -> f64 {
+    crate::solver::root::bisect_sign(|x| a - point(lambda, x).a, -80.0, 80.0)
+}
+
+pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
+    let ctx = LambdaContext::new(a.lambda)
+        .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
+    if !(a.a_max.is_finite() && a.a_max > 0.0) || a.points < 2 {
+        bail!("--a-max must be > 0 and --points at least 2");
+    }
+    let mut rows = Vec::new();
+    for i in 0..a.points - 1 {
+        let ar = a.a_max * (1.0 - i as f64 / (a.points - 1) as f64);
+        let x = x_at_radius(a.lambda, ar);
+        let p = curve_point(a.lambda, x.exp());
+        rows.push([
+            p.a,
+            p.load,
+            p.approach,
+            p.m_minus_1,
+            (p.dload_dmu < 0.0) as u8 as f64,
+            (p.dapproach_dmu < 0.0) as u8 as f64,
+        ]);
+    }
+    let e = ctx.end;
+    rows.push([
+        0.0,
+        e.load,
+        e.approach,
+        f64::INFINITY,
+        0.0,
+        (a.lambda <= LAMBDA_D) as u8 as f64,
+    ]);
+    let cols = [
+        "lambda",
+        "A",
+        "load",
+        "approach",
+        "m_minus_1",
+        "load_stable",
+        "displacement_stable",
+    ];
+    let text = match a.format {
+        Format::Json => {
+            let pts: Vec<_> = rows
+                .iter()
+                .map(|r| json!({"A": r[0], "load": r[1], "approach": r[2], "m_minus_1": json_num(r[3]), "load_stable": r[4] == 1.0, "displacement_stable": r[5] == 1.0}))
+                .collect();
+            serde_json::to_string_pretty(&json!({"lambda": a.lambda, "points": pts}))? + "\n"
+        }
+        _ => {
+            let mut t = cols.join(",") + "\n";
+            for r in &rows {
+                let _ = writeln!(
+                    t,
+                    "{},{},{},{},{},{},{}",
+                    fmt17(a.lambda),
+                    fmt17(r[0]),
+                    fmt17(r[1]),
+                    fmt17(r[2]),
+                    fmt17(r[3]),
+                    r[4] as u8,
+                    r[5] as u8
+                );
+            }
+            t
+        }
+    };
+    write_output(&a.output, text.as_bytes())
+}

@@ -1,0 +1,38 @@
+//! The command line: parsing builds the work, the library does it.
+
+mod basic;
+
+use clap::{Parser, Subcommand, ValueEnum};
+
+#[derive(Parser, Debug)]
+#[command(name = "tabor", version, about = "Adhesion maps for elastic spheres: exact Maugis-Dugdale solutions on the GPU and CPU", long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Solve Maugis-Dugdale states: one (--lambda, --load) or a CSV of points (--input).
+    Solve(basic::SolveArgs),
+    /// Pull-off (jump-out) under load and displacement control for one or more lambda.
+    Pulloff(basic::PulloffArgs),
+    /// The whole Maugis-Dugdale curve for one lambda, with stability under both controls.
+    Curve(basic::CurveArgs),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    Text,
+    Csv,
+    Json,
+}
+
+pub fn run() -> anyhow::Result<()> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Solve(a) => basic::solve(a),
+        Command::Pulloff(a) => basic::pulloff(a),
+        Command::Curve(a) => basic::curve(a),
+    }
+}

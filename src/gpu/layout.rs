@@ -1,0 +1,86 @@
+//! The data the kernels read, byte for byte: each struct has a twin in `shaders/md.wgsl`
+//! (checked by `tests/shaders.rs`).
+
+use bytemuck::{Pod, Zeroable};
+
+pub const TABLE_NODES: usize = crate::solver::context::TABLE_NODES;
+pub const CHEB_TERMS: usize = 8;
+
+/// One stable branch (load control or displacement control) of one lambda, prepared in f64 on
+/// the host. WGSL twin: `struct Branch`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct Branch {
+    /// mu at the end of the branch (the jump-out); mu = mu_ref exp(dx).
+    pub mu_ref: f32,
+    /// The branch-end value of the residual's quantity (Pbar_c, Pbar_c + 2 or Dbar_min) as an
+    /// unevaluated f32 pair hi + lo, so that value - end is exact near the end.
+    pub end_hi: f32,
+    pub end_lo: f32,
+    /// Below gap = s_max^2 the state comes from the Chebyshev fit, not the iteration.
+    pub s_max: f32,
+    /// dx(s) = s * sum c_k T_k(2 s / s_max - 1), s = sqrt(gap).
+    pub cheb: [f32; CHEB_TERMS],
+    /// ln(gap) at the table nodes, increasing.
+    pub t: [f32; TABLE_NODES],
+    /// dx = ln(mu / mu_ref) at the table nodes.
+    pub dx: [f32; TABLE_NODES],
+}
+
+/// Everything the kernels need for one lambda. WGSL twin: `struct Lambda`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct GpuLambda {
+    pub lambda: f32,
+    /// 1: the load residual is written as Pbar + 2 (DMT side, lambda < 1).
+    pub small: u32,
+    /// 1: the displacement branch ends at A = 0 (lambda <= lambda_D): its table is linear in dx.
+    pub disp_at_zero: u32,
+    /// 1: this lambda is invalid; every point gets status invalid_input.
+    pub invalid: u32,
+    /// Pbar at the A -> 0 end of the curve (where a zero-radius displacement branch ends).
+    pub end_load: f32,
+    pub _pad: [u32; 3],
+    pub load: Branch,
+    pub disp: Branch,
+}
+
+/// Per-dispatch parameters. WGSL twin: `struct Params`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct Params {
+    /// Grid columns (lambdas); unused by the point kernel.
+    pub nx: u32,
+    /// First point of this dispatch.
+    pub offset: u32,
+    /// Points in this dispatch.
+    pub count: u32,
+    /// 0 load control, 1 displacement control.
+    pub control: u32,
+    /// 1: the grid rows hold the distance above the branch end (gap), not the load.
+    pub rows_are_gaps: u32,
+    /// Variant switches for benchmarks: bit 0 naive formulas (no series), bits 8..15 a fixed
+    /// iteration count (0 = iterate to convergence).
+    pub flags: u32,
+    pub _pad: [u32; 2],
+}
+
+/// One result. WGSL twin: `struct Out`. `code` = status | iterations << 8.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
+pub struct Out {
+    pub a: f32,
+    /// The approach under load control, the load under displacement control.
+    pub other: f32,
+    pub m_minus_1: f32,
+    pub code: u32,
+}
+
+impl Out {
+    pub fn status(&self) -> crate::solver::Status {
+        crate::solver::Status::from_code(self.code & 0xff)
+    }
+    pub fn iterations(&self) -> u32 {
+        self.code >> 8
+    }
+}

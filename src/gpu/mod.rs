@@ -1,0 +1,4 @@
+//! GPU host code: adapter choice, the reusable compute context, chunked dispatches and readback.
+
+pub mod layout;
+pub mod prepare;
