@@ -5,6 +5,7 @@
 //! command line in `src/cli`.
 
 pub mod cli;
+pub mod engine;
 pub mod gpu;
 pub mod io;
 pub mod physics;

@@ -1,6 +1,7 @@
 //! `tabor solve`, `tabor pulloff`, `tabor curve`.
 
 use super::Format;
+use crate::engine::{cross_check, Backend, Engine};
 use crate::io::{fmt17, json_num, read_points, write_output};
 use crate::physics::md::{curve_point, LAMBDA_D};
 use crate::solver::{context::point, Control, LambdaContext, State, Status};
@@ -32,6 +33,70 @@ pub struct SolveArgs {
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
+    /// Where a CSV of points is solved; `auto` takes a GPU if there is one.
+    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = Backend::Cpu)]
+    pub backend: Backend,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct GpuArgs {
+    /// Use the first adapter whose name contains this text (see `tabor info`).
+    #[arg(long, env = "TABOR_ADAPTER")]
+    pub adapter: Option<String>,
+    /// GPU results: re-solve N evenly spaced points (or `all`) on the CPU in f64 and report the
+    /// errors (also written into the JSON metadata).
+    #[arg(long, default_value = "1000")]
+    pub check: CheckCount,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct CheckCount(pub usize);
+
+impl std::str::FromStr for CheckCount {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s == "all" {
+            return Ok(CheckCount(usize::MAX));
+        }
+        s.parse()
+            .map(CheckCount)
+            .map_err(|_| format!("expected a number of points or `all`, got {s:?}"))
+    }
+}
+
+/// The relative error of A the f32 kernels are held to away from pull-off.
+pub const GPU_TOLERANCE: f64 = 1e-5;
+
+/// Solves points on the chosen engine; for GPU results also cross-checks them. Prints the
+/// backend line and the check to stderr.
+pub fn solve_on(
+    backend: Backend,
+    gpu: &GpuArgs,
+    points: &[(f64, f64)],
+    control: Control,
+) -> anyhow::Result<(Vec<State>, serde_json::Value)> {
+    let (engine, line) = Engine::select(backend, gpu.adapter.as_deref())?;
+    eprintln!("{line}");
+    let t = std::time::Instant::now();
+    let states = engine.solve_points(points, control)?;
+    let secs = t.elapsed().as_secs_f64();
+    let mut meta = json!({
+        "tabor_version": env!("CARGO_PKG_VERSION"),
+        "backend": engine.name(),
+        "adapter": engine.adapter(),
+        "precision": engine.precision(),
+        "control": control,
+        "points": points.len(),
+        "solve_seconds": secs,
+    });
+    if let Engine::Gpu(_) = engine {
+        let report = cross_check(points, &states, control, gpu.check.0, GPU_TOLERANCE);
+        eprintln!("{report}");
+        meta["cross_check"] = serde_json::to_value(&report)?;
+    }
+    Ok((states, meta))
 }
 
 fn value_column(control: Control) -> &'static str {
@@ -44,9 +109,9 @@ fn value_column(control: Control) -> &'static str {
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     if let Some(input) = &a.input {
         let points = read_points(input, value_column(a.control))?;
-        let states = crate::solver::solve_points(&points, a.control);
+        let (states, meta) = solve_on(a.backend, &a.gpu, &points, a.control)?;
         let text = match a.format.unwrap_or(Format::Csv) {
-            Format::Json => states_json(&states, a.control),
+            Format::Json => states_json(&states, meta),
             _ => states_csv(&states),
         };
         return write_output(&a.output, text.as_bytes());
@@ -69,7 +134,10 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
     let s = crate::solver::solve_with(&ctx, value, control);
     let text = match a.format.unwrap_or(Format::Text) {
-        Format::Json => states_json(&[s], control),
+        Format::Json => states_json(
+            &[s],
+            json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control}),
+        ),
         Format::Csv => states_csv(&[s]),
         Format::Text => state_text(&ctx, &s, control),
     };
@@ -102,13 +170,18 @@ pub fn state_json(s: &State) -> serde_json::Value {
     })
 }
 
-fn states_json(states: &[State], control: Control) -> String {
+fn states_json(states: &[State], metadata: serde_json::Value) -> String {
     let results: Vec<_> = states.iter().map(state_json).collect();
-    let doc = json!({
-        "metadata": {"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control},
-        "results": results,
-    });
+    let doc = json!({"metadata": metadata, "results": results});
     serde_json::to_string_pretty(&doc).expect("json") + "\n"
+}
+
+fn shown(x: f64) -> String {
+    if x.is_nan() {
+        "(not defined: no contact)".into()
+    } else {
+        fmt17(x)
+    }
 }
 
 fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
@@ -123,10 +196,10 @@ fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
         }
     );
     let _ = writeln!(t, "  status            {}", s.status.name());
-    let _ = writeln!(t, "  load   Pbar       {}", fmt17(s.load));
-    let _ = writeln!(t, "  approach Dbar     {}", fmt17(s.approach));
-    let _ = writeln!(t, "  contact radius A  {}", fmt17(s.a));
-    let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", fmt17(s.m_minus_1));
+    let _ = writeln!(t, "  load   Pbar       {}", shown(s.load));
+    let _ = writeln!(t, "  approach Dbar     {}", shown(s.approach));
+    let _ = writeln!(t, "  contact radius A  {}", shown(s.a));
+    let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", shown(s.m_minus_1));
     let lp = ctx.load_pulloff;
     let dp = ctx.disp_pulloff;
     let _ = writeln!(
@@ -333,4 +406,38 @@ pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
         }
     };
     write_output(&a.output, text.as_bytes())
+}
+
+pub fn info() -> anyhow::Result<()> {
+    let adapters = crate::gpu::list_adapters();
+    println!("tabor {}", env!("CARGO_PKG_VERSION"));
+    if adapters.is_empty() {
+        println!("no GPU adapters: the CPU f64 solver is used (install a Vulkan driver, e.g. `apt-get install mesa-vulkan-drivers`, for the GPU kernels)");
+    }
+    for (i, (a, features, limits)) in adapters.iter().enumerate() {
+        println!("adapter {i}: {}", a.name);
+        println!(
+            "  backend {}, type {}, driver {} {}",
+            a.backend, a.device_type, a.driver, a.driver_info
+        );
+        println!(
+            "  shader f64: {}",
+            features.contains(wgpu::Features::SHADER_F64)
+        );
+        println!(
+            "  max storage buffer binding {} MiB, max buffer {} MiB, workgroups per dimension {}",
+            limits.max_storage_buffer_binding_size >> 20,
+            limits.max_buffer_size >> 20,
+            limits.max_compute_workgroups_per_dimension
+        );
+    }
+    match Engine::select(
+        Backend::Auto,
+        std::env::var("TABOR_ADAPTER").ok().as_deref(),
+    ) {
+        Ok((_, line)) => println!("{line}"),
+        Err(e) => println!("--backend auto: {e}"),
+    }
+    println!("CPU threads: {}", rayon::current_num_threads());
+    Ok(())
 }

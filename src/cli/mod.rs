@@ -19,6 +19,8 @@ pub enum Command {
     Pulloff(basic::PulloffArgs),
     /// The whole Maugis-Dugdale curve for one lambda, with stability under both controls.
     Curve(basic::CurveArgs),
+    /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
+    Info,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -34,5 +36,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Solve(a) => basic::solve(a),
         Command::Pulloff(a) => basic::pulloff(a),
         Command::Curve(a) => basic::curve(a),
+        Command::Info => basic::info(),
     }
 }

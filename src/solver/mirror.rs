@@ -250,7 +250,9 @@ pub fn solve_f32(
         for it in 1..=max_iter {
             iterations = it;
             let fx = residual(g, control, m, gap);
-            if fx == 0.0 {
+            // |F| at the f32 noise level (a relative error of the gap of 8e-7): done. Below it
+            // the secant slope is noise.
+            if fx.abs() <= 8e-7 {
                 done = true;
                 break;
             }
@@ -258,6 +260,10 @@ pub fn solve_f32(
                 (lo, f_lo) = (x, fx);
             } else {
                 (hi, f_hi) = (x, fx);
+            }
+            if hi - lo <= 4e-7 * x.abs().max(1.0) {
+                done = true;
+                break;
             }
             let slope = if f_prev.is_finite() && l_prev != 0.0 {
                 (fx - f_prev) / l_prev

@@ -1,0 +1,343 @@
+// Maugis-Dugdale states in f32: the shared functions of every tabor kernel.
+// Read side by side with src/solver/mirror.rs (the CPU mirror) and src/physics/md.rs.
+// No built-in transcendental is trusted (lavapipe's inverse trigonometry is off by 1.6e-4 and
+// the Vulkan exp bound is 3 + 2|x| ulp): atan, exp and ln below are written out, with the error
+// bounds measured in tests/gpu.rs and src/solver/mirror.rs.
+
+// Twin of gpu::layout::Branch (40 x 4 bytes).
+struct Branch {
+    mu_ref: f32,
+    end_hi: f32,
+    end_lo: f32,
+    s_max: f32,
+    cheb: array<f32, 8>,
+    t: array<f32, 14>,
+    dx: array<f32, 14>,
+}
+
+// Twin of gpu::layout::GpuLambda (88 x 4 bytes).
+struct Lambda {
+    lambda: f32,
+    small: u32,
+    disp_at_zero: u32,
+    invalid: u32,
+    end_load: f32,
+    pad0: u32,
+    pad1: u32,
+    pad2: u32,
+    load: Branch,
+    disp: Branch,
+}
+
+// Twin of gpu::layout::Params.
+struct Params {
+    nx: u32,
+    offset: u32,
+    count: u32,
+    control: u32,
+    rows_are_gaps: u32,
+    flags: u32,
+    pad0: u32,
+    pad1: u32,
+}
+
+// Twin of gpu::layout::Out. code = status | iterations << 8.
+struct Out {
+    a: f32,
+    other: f32,
+    m_minus_1: f32,
+    code: u32,
+}
+
+const STATUS_OK: u32 = 0u;
+const STATUS_NO_CONTACT: u32 = 1u;
+const STATUS_NOT_CONVERGED: u32 = 2u;
+const STATUS_INVALID: u32 = 3u;
+const TABLE_NODES: u32 = 14u;
+const HALF_PI: f32 = 1.5707963267948966;
+const LN2_HI: f32 = 0.69314575;
+const LN2_LO: f32 = 1.4286068e-6;
+const LOG2E: f32 = 1.4426950408889634;
+const INF: f32 = 3.0e38;
+
+// (atan(mu), mu - atan(mu)) from the half-angle reduction and the Maclaurin series only.
+fn atan_parts(mu: f32) -> vec2<f32> {
+    let big = mu > 1.0;
+    var t0 = mu;
+    if big {
+        t0 = 1.0 / mu;
+    }
+    var t = t0;
+    var weight = 1.0;
+    var acc = 0.0;
+    for (var i = 0; i < 8 && t > 0.1; i++) {
+        let onem = 1.0 + sqrt(1.0 + t * t);
+        acc += weight * t * t * t / (onem * onem);
+        t = t / onem;
+        weight *= 2.0;
+    }
+    let z = t * t;
+    let series = t * z * (1.0 / 3.0 - z * (1.0 / 5.0 - z * (1.0 / 7.0 - z * (1.0 / 9.0))));
+    let d0 = acc + weight * series;
+    if big {
+        let at = HALF_PI - (t0 - d0);
+        return vec2<f32>(at, mu - at);
+    }
+    return vec2<f32>(mu - d0, d0);
+}
+
+fn exp_f(x_in: f32) -> f32 {
+    let x = clamp(x_in, -87.0, 88.0);
+    let n = round(x * LOG2E);
+    let r = (x - n * LN2_HI) - n * LN2_LO;
+    let p = 1.0 + r * (1.0 + r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    let ni = i32(n);
+    return ldexp(ldexp(p, ni / 2), ni - ni / 2);
+}
+
+fn ln_f(y: f32) -> f32 {
+    if y <= 0.0 {
+        return -INF;
+    }
+    if y > 3.0e38 {
+        return INF;
+    }
+    let fr = frexp(y);
+    var m = fr.fract;
+    var e = fr.exp;
+    if m < 0.70710678 {
+        m *= 2.0;
+        e -= 1;
+    }
+    let u = (m - 1.0) / (m + 1.0);
+    let z = u * u;
+    let series = 2.0 * u * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0 + z * (1.0 / 11.0))))));
+    return f32(e) * LN2_HI + (f32(e) * LN2_LO + series);
+}
+
+fn log1p_f(q: f32) -> f32 {
+    if abs(q) < 0.25 {
+        let u = q / (2.0 + q);
+        let z = u * u;
+        return 2.0 * u * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0)))));
+    }
+    return ln_f(1.0 + q);
+}
+
+// A curve point: A, Pbar, Pbar + 2, Dbar, m - 1 (src/physics/md.rs, curve_point).
+struct Point {
+    a: f32,
+    load: f32,
+    load_plus_2: f32,
+    approach: f32,
+    m_minus_1: f32,
+}
+
+fn curve_point(lambda: f32, mu: f32) -> Point {
+    let ap = atan_parts(mu);
+    let at = ap.x;
+    let mu2 = mu * mu;
+    let m = sqrt(1.0 + mu2);
+    let m_minus_1 = mu2 / (1.0 + m);
+    let f1 = mu2 * at + ap.y;
+    let f2 = mu * at - m_minus_1;
+    let alpha = 0.5 * lambda * f1;
+    let beta = (4.0 / 3.0) * lambda * lambda * f2;
+    let a = 2.0 / (beta + sqrt(beta * beta + 4.0 * alpha));
+    let g = mu + (1.0 + mu2) * at;
+    var p: Point;
+    p.a = a;
+    p.load = a * a * (a - lambda * g);
+    p.load_plus_2 = a * a * a + (8.0 / 3.0) * lambda * lambda * f2 * a - 2.0 * lambda * a * a * at;
+    p.approach = a * (a - (4.0 / 3.0) * lambda * mu);
+    p.m_minus_1 = m_minus_1;
+    return p;
+}
+
+// The residual's quantity: Pbar + 2 (small lambda) or Pbar under load control, Dbar else.
+fn quantity(c: Lambda, control: u32, mu: f32) -> f32 {
+    let p = curve_point(c.lambda, mu);
+    if control == 1u {
+        return p.approach;
+    }
+    if c.small == 1u {
+        return p.load_plus_2;
+    }
+    return p.load;
+}
+
+fn residual(c: Lambda, b: Branch, control: u32, mu: f32, gap: f32) -> f32 {
+    let r = ((quantity(c, control, mu) - b.end_hi) - b.end_lo) - gap;
+    let q = r / gap;
+    if q <= -1.0 {
+        return -INF;
+    }
+    return log1p_f(q);
+}
+
+fn cheb_eval(b: Branch, u: f32) -> f32 {
+    var b1 = 0.0;
+    var b2 = 0.0;
+    for (var k = 7; k >= 1; k--) {
+        let b0 = 2.0 * u * b1 - b2 + b.cheb[k];
+        b2 = b1;
+        b1 = b0;
+    }
+    return u * b1 - b2 + b.cheb[0];
+}
+
+fn failed(status: u32) -> Out {
+    // NaN is not portable in WGSL constants: the host reads the status and ignores the numbers.
+    return Out(0.0, 0.0, 0.0, status);
+}
+
+// One point, as src/solver/mirror.rs solve_f32: the load (approach) is the pair hi + lo, or the
+// distance above the branch end if is_gap.
+fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32) -> Out {
+    if c.invalid == 1u || !(abs(hi) < INF) {
+        return failed(STATUS_INVALID);
+    }
+    var b = c.load;
+    if control == 1u {
+        b = c.disp;
+    }
+    let zero_end = control == 1u && c.disp_at_zero == 1u;
+    var shift = 0.0;
+    if control == 0u && c.small == 1u {
+        shift = 2.0;
+    }
+    var gap = hi + lo;
+    if !is_gap {
+        gap = ((hi + shift) - b.end_hi) + (lo - b.end_lo);
+    }
+    if gap < 0.0 {
+        return failed(STATUS_NO_CONTACT);
+    }
+    var iterations = 0u;
+    var status = STATUS_OK;
+    var mu = b.mu_ref;
+    if gap == 0.0 {
+        if zero_end {
+            return Out(0.0, c.end_load, INF, STATUS_OK);
+        }
+    } else if sqrt(gap) < b.s_max {
+        let s = sqrt(gap);
+        let dx = s * cheb_eval(b, 2.0 * s / b.s_max - 1.0);
+        mu = b.mu_ref * exp_f(dx);
+    } else {
+        let t = ln_f(gap);
+        let n = TABLE_NODES;
+        var k = 0u;
+        while k < n && b.t[k] < t {
+            k++;
+        }
+        var end_dx = 0.0;
+        if zero_end {
+            end_dx = b.dx[0] + 60.0;
+        }
+        var hi_x = end_dx;
+        var f_hi = -INF;
+        if k >= 2u {
+            hi_x = b.dx[k - 2u];
+            f_hi = b.t[k - 2u] - t;
+        }
+        var lo_x = b.dx[n - 1u] - 120.0;
+        var f_lo = INF;
+        if k + 1u < n {
+            lo_x = b.dx[k + 1u];
+            f_lo = b.t[k + 1u] - t;
+        }
+        var x: f32;
+        if k == 0u {
+            if zero_end {
+                x = b.dx[0] + 1.0;
+            } else {
+                x = b.dx[0] * exp_f(0.5 * (t - b.t[0]));
+            }
+        } else if k == n {
+            x = b.dx[n - 1u] - 1.0;
+        } else {
+            let w = (t - b.t[k - 1u]) / (b.t[k] - b.t[k - 1u]);
+            if zero_end {
+                x = b.dx[k - 1u] + w * (b.dx[k] - b.dx[k - 1u]);
+            } else {
+                let l0 = ln_f(-b.dx[k - 1u]);
+                x = -exp_f(l0 + w * (ln_f(-b.dx[k]) - l0));
+            }
+        }
+        if !(x > lo_x && x < hi_x) {
+            x = 0.5 * (lo_x + hi_x);
+        }
+        var max_iter = max_iter_in;
+        if max_iter == 0u {
+            max_iter = 32u;
+        }
+        var m = b.mu_ref * exp_f(x);
+        var have_prev = false;
+        var f_prev = 0.0;
+        var l_prev = 0.0;
+        var dx_old = hi_x - lo_x;
+        var done = false;
+        for (var it = 1u; it <= max_iter; it++) {
+            iterations = it;
+            let fx = residual(c, b, control, m, gap);
+            // |F| at the f32 noise level: done (below it the secant slope is noise).
+            if abs(fx) <= 8e-7 {
+                done = true;
+                break;
+            }
+            if fx > 0.0 {
+                lo_x = x;
+                f_lo = fx;
+            } else {
+                hi_x = x;
+                f_hi = fx;
+            }
+            if hi_x - lo_x <= 4e-7 * max(abs(x), 1.0) {
+                done = true;
+                break;
+            }
+            var slope: f32;
+            if have_prev && abs(f_prev) < INF && l_prev != 0.0 {
+                slope = (fx - f_prev) / l_prev;
+            } else if fx > 0.0 {
+                slope = (f_hi - fx) / (hi_x - x);
+            } else {
+                slope = (f_lo - fx) / (lo_x - x);
+            }
+            let step = -fx / slope;
+            let finite = abs(step) < INF;
+            if finite && abs(step) <= 2.5e-7 {
+                m *= exp_f(step);
+                done = true;
+                break;
+            }
+            let next = x + step;
+            f_prev = fx;
+            have_prev = true;
+            if finite && next >= lo_x && next <= hi_x && abs(step) < 0.5 * abs(dx_old) {
+                m *= exp_f(step);
+                l_prev = step;
+                dx_old = step;
+                x = next;
+            } else {
+                let mid = 0.5 * (lo_x + hi_x);
+                let m_new = b.mu_ref * exp_f(mid);
+                l_prev = ln_f(m_new / m);
+                dx_old = mid - x;
+                x = mid;
+                m = m_new;
+            }
+        }
+        if !done {
+            status = STATUS_NOT_CONVERGED;
+        }
+        mu = m;
+    }
+    let p = curve_point(c.lambda, mu);
+    var other = p.approach;
+    if control == 1u {
+        other = p.load;
+    }
+    return Out(p.a, other, p.m_minus_1, status | (iterations << 8u));
+}

@@ -1,0 +1,244 @@
+//! Where the work runs: the GPU kernels (f32) or the CPU reference (f64), chosen once, with a
+//! one-line reason, and the cross-check of GPU results against the CPU.
+
+use crate::gpu::layout::Out;
+use crate::gpu::prepare::{prepare_all, split};
+use crate::gpu::{Gpu, GpuError};
+use crate::solver::{self, Control, State, Status};
+use serde::Serialize;
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Backend {
+    /// A hardware GPU, else a software adapter, else the CPU.
+    Auto,
+    /// The WGSL kernels (f32) on a GPU adapter; an error if there is none.
+    Gpu,
+    /// The f64 reference solver on all CPU cores.
+    Cpu,
+}
+
+pub enum Engine {
+    Cpu,
+    Gpu(Box<Gpu>),
+}
+
+impl Engine {
+    /// Chooses the engine; the string says which and why, in one line.
+    pub fn select(backend: Backend, adapter: Option<&str>) -> Result<(Engine, String), GpuError> {
+        let cpu_line = || {
+            format!(
+                "CPU f64 reference solver on {} threads",
+                rayon::current_num_threads()
+            )
+        };
+        match backend {
+            Backend::Cpu => Ok((
+                Engine::Cpu,
+                format!("backend: {} (--backend cpu)", cpu_line()),
+            )),
+            Backend::Gpu => {
+                let g = Gpu::new(adapter)?;
+                let line = format!(
+                    "backend: GPU f32 kernels on {} ({}, {})",
+                    g.adapter.name,
+                    g.adapter.backend,
+                    kind(&g)
+                );
+                Ok((Engine::Gpu(Box::new(g)), line))
+            }
+            Backend::Auto => match Gpu::new(adapter) {
+                Ok(g) => {
+                    let line = format!(
+                        "backend: GPU f32 kernels on {} ({}, {}; chosen by --backend auto)",
+                        g.adapter.name,
+                        g.adapter.backend,
+                        kind(&g)
+                    );
+                    Ok((Engine::Gpu(Box::new(g)), line))
+                }
+                Err(e) => Ok((
+                    Engine::Cpu,
+                    format!("backend: {} (--backend auto: {e})", cpu_line()),
+                )),
+            },
+        }
+    }
+
+    pub fn name(&self) -> &'static str {
+        match self {
+            Engine::Cpu => "cpu",
+            Engine::Gpu(_) => "gpu",
+        }
+    }
+
+    pub fn precision(&self) -> &'static str {
+        match self {
+            Engine::Cpu => "f64",
+            Engine::Gpu(_) => "f32",
+        }
+    }
+
+    pub fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
+        match self {
+            Engine::Cpu => None,
+            Engine::Gpu(g) => Some(&g.adapter),
+        }
+    }
+
+    /// Solves a list of (lambda, value) points.
+    pub fn solve_points(
+        &self,
+        points: &[(f64, f64)],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        match self {
+            Engine::Cpu => Ok(solver::solve_points(points, control)),
+            Engine::Gpu(g) => {
+                let mut index: HashMap<u64, u32> = HashMap::new();
+                let mut lambdas = Vec::new();
+                let pts: Vec<(u32, f32, f32)> = points
+                    .iter()
+                    .map(|&(l, v)| {
+                        let i = *index.entry(l.to_bits()).or_insert_with(|| {
+                            lambdas.push(l);
+                            (lambdas.len() - 1) as u32
+                        });
+                        let (h, lo) = split(v);
+                        (i, h, lo)
+                    })
+                    .collect();
+                let prepared = prepare_all(&lambdas);
+                let out = g.points(&prepared, &pts, control_code(control), 0)?;
+                Ok(points
+                    .iter()
+                    .zip(&out)
+                    .map(|(&(l, v), o)| to_state(l, v, o, control))
+                    .collect())
+            }
+        }
+    }
+
+    /// Solves the grid lambdas x values (row-major, one row per value).
+    pub fn solve_grid(
+        &self,
+        lambdas: &[f64],
+        values: &[f64],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        match self {
+            Engine::Cpu => Ok(solver::solve_grid(lambdas, values, control)),
+            Engine::Gpu(g) => {
+                let prepared = prepare_all(lambdas);
+                let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
+                let out = g.grid(&prepared, &rows, control_code(control), false, 0)?;
+                let nx = lambdas.len();
+                Ok(out
+                    .iter()
+                    .enumerate()
+                    .map(|(i, o)| to_state(lambdas[i % nx], values[i / nx], o, control))
+                    .collect())
+            }
+        }
+    }
+}
+
+fn kind(g: &Gpu) -> &'static str {
+    if g.adapter.software {
+        "software adapter"
+    } else {
+        "hardware"
+    }
+}
+
+pub fn control_code(c: Control) -> u32 {
+    match c {
+        Control::Load => 0,
+        Control::Displacement => 1,
+    }
+}
+
+/// A kernel result as a State; numbers the kernel could not compute become NaN.
+pub fn to_state(lambda: f64, value: f64, o: &Out, control: Control) -> State {
+    let status = o.status();
+    let ok = status == Status::Ok || status == Status::NotConverged;
+    let num = |x: f32| if ok { x as f64 } else { f64::NAN };
+    let (load, approach) = match control {
+        Control::Load => (value, num(o.other)),
+        Control::Displacement => (num(o.other), value),
+    };
+    State {
+        lambda,
+        load,
+        approach,
+        a: num(o.a),
+        m_minus_1: num(o.m_minus_1),
+        status,
+        iterations: o.iterations(),
+    }
+}
+
+/// Agreement of GPU results with the f64 reference on a sample.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct CheckReport {
+    pub checked: usize,
+    pub tolerance: f64,
+    pub max_rel_err_a: f64,
+    pub median_rel_err_a: f64,
+    pub over_tolerance: usize,
+    pub status_mismatches: usize,
+}
+
+impl std::fmt::Display for CheckReport {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "cross-check against CPU f64 on {} points: max rel. error of A {:.2e}, median {:.2e}, {} over {:.0e}, {} status mismatches",
+            self.checked, self.max_rel_err_a, self.median_rel_err_a, self.over_tolerance, self.tolerance, self.status_mismatches
+        )
+    }
+}
+
+/// Re-solves `n` evenly spaced points (all if `n >= len`) on the CPU in f64 and compares.
+pub fn cross_check(
+    points: &[(f64, f64)],
+    states: &[State],
+    control: Control,
+    n: usize,
+    tolerance: f64,
+) -> CheckReport {
+    let len = points.len();
+    let n = n.min(len);
+    if n == 0 {
+        return CheckReport {
+            tolerance,
+            ..Default::default()
+        };
+    }
+    let idx: Vec<usize> = (0..n).map(|k| k * len / n).collect();
+    let sample: Vec<(f64, f64)> = idx.iter().map(|&i| points[i]).collect();
+    let reference = solver::solve_points(&sample, control);
+    let mut errs = Vec::with_capacity(n);
+    let mut mism = 0;
+    for (k, &i) in idx.iter().enumerate() {
+        let (g, r) = (&states[i], &reference[k]);
+        if g.status != r.status {
+            mism += 1;
+            continue;
+        }
+        if r.status == Status::Ok && r.a > 0.0 {
+            errs.push(((g.a - r.a) / r.a).abs());
+        }
+    }
+    errs.sort_by(|a, b| a.total_cmp(b));
+    let over = errs.iter().filter(|&&e| !(e <= tolerance)).count();
+    CheckReport {
+        checked: n,
+        tolerance,
+        max_rel_err_a: errs.last().copied().unwrap_or(0.0),
+        median_rel_err_a: errs.get(errs.len() / 2).copied().unwrap_or(0.0),
+        over_tolerance: over,
+        status_mismatches: mism,
+    }
+}

@@ -1,0 +1,447 @@
+//! The wgpu context: adapter choice, device, pipelines and reusable buffers, and the chunked
+//! dispatch with streamed readback.
+
+use super::layout::{GpuLambda, Out, Params};
+use std::sync::{Arc, Mutex};
+use wgpu::util::DeviceExt;
+
+#[derive(Debug, thiserror::Error)]
+pub enum GpuError {
+    #[error("no GPU adapter was found (is a Vulkan driver installed? `apt-get install mesa-vulkan-drivers` gives a software one)")]
+    NoAdapter,
+    #[error("no adapter name contains {wanted:?}; available: {available}")]
+    NoMatch { wanted: String, available: String },
+    #[error("could not open a device on {adapter}: {err}")]
+    Device { adapter: String, err: String },
+    #[error("the GPU reported an error: {0}")]
+    Runtime(String),
+    #[error("{0}")]
+    TooLarge(String),
+}
+
+/// A short description of an adapter, for `tabor info` and result metadata.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct AdapterSummary {
+    pub name: String,
+    pub backend: String,
+    pub device_type: String,
+    pub driver: String,
+    pub driver_info: String,
+    pub software: bool,
+}
+
+impl AdapterSummary {
+    fn of(info: &wgpu::AdapterInfo) -> Self {
+        AdapterSummary {
+            name: info.name.clone(),
+            backend: format!("{:?}", info.backend),
+            device_type: format!("{:?}", info.device_type),
+            driver: info.driver.clone(),
+            driver_info: info.driver_info.clone(),
+            software: info.device_type == wgpu::DeviceType::Cpu,
+        }
+    }
+}
+
+fn instance() -> wgpu::Instance {
+    wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
+}
+
+/// Every adapter wgpu can see, with its features and limits.
+pub fn list_adapters() -> Vec<(AdapterSummary, wgpu::Features, wgpu::Limits)> {
+    let adapters = pollster::block_on(instance().enumerate_adapters(wgpu::Backends::all()));
+    adapters
+        .iter()
+        .map(|a| (AdapterSummary::of(&a.get_info()), a.features(), a.limits()))
+        .collect()
+}
+
+/// Picks an adapter: the first whose name contains `wanted` (case-insensitive), else a hardware
+/// GPU, else a software one. Only adapters that can run compute shaders (Vulkan, Metal, DX12)
+/// are considered.
+fn choose_adapter(wanted: Option<&str>) -> Result<wgpu::Adapter, GpuError> {
+    let mut adapters = pollster::block_on(instance().enumerate_adapters(wgpu::Backends::all()));
+    adapters.retain(|a| {
+        a.get_downlevel_capabilities()
+            .flags
+            .contains(wgpu::DownlevelFlags::COMPUTE_SHADERS)
+    });
+    if adapters.is_empty() {
+        return Err(GpuError::NoAdapter);
+    }
+    if let Some(w) = wanted.filter(|w| !w.is_empty()) {
+        let wl = w.to_lowercase();
+        let names: Vec<String> = adapters.iter().map(|a| a.get_info().name).collect();
+        return adapters
+            .into_iter()
+            .find(|a| a.get_info().name.to_lowercase().contains(&wl))
+            .ok_or(GpuError::NoMatch {
+                wanted: w.into(),
+                available: names.join(", "),
+            });
+    }
+    let rank = |a: &wgpu::Adapter| match a.get_info().device_type {
+        wgpu::DeviceType::DiscreteGpu => 0,
+        wgpu::DeviceType::IntegratedGpu => 1,
+        wgpu::DeviceType::VirtualGpu | wgpu::DeviceType::Other => 2,
+        wgpu::DeviceType::Cpu => 3,
+    };
+    adapters.sort_by_key(rank);
+    Ok(adapters.remove(0))
+}
+
+/// Device, queue and the two kernels, reused across dispatches.
+pub struct Gpu {
+    pub adapter: AdapterSummary,
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    layout: wgpu::BindGroupLayout,
+    grid: wgpu::ComputePipeline,
+    points: wgpu::ComputePipeline,
+    probe: wgpu::ComputePipeline,
+    params: wgpu::Buffer,
+    /// Points per dispatch: bounded by 65,535 workgroups and the storage binding size.
+    chunk: usize,
+    max_binding: u64,
+    error: Arc<Mutex<Option<String>>>,
+}
+
+const WORKGROUP: usize = 64;
+const OUT_BYTES: usize = std::mem::size_of::<Out>();
+
+impl Gpu {
+    pub fn new(adapter_name: Option<&str>) -> Result<Gpu, GpuError> {
+        let adapter = choose_adapter(adapter_name)?;
+        let info = adapter.get_info();
+        let limits = adapter.limits();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("tabor"),
+            required_limits: wgpu::Limits {
+                max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
+                max_buffer_size: limits.max_buffer_size,
+                ..wgpu::Limits::downlevel_defaults()
+            },
+            ..Default::default()
+        }))
+        .map_err(|e| GpuError::Device {
+            adapter: info.name.clone(),
+            err: e.to_string(),
+        })?;
+        // Errors are collected, never panicked on: they become GpuError::Runtime.
+        let error = Arc::new(Mutex::new(None::<String>));
+        let e2 = error.clone();
+        device.on_uncaptured_error(Arc::new(move |e: wgpu::Error| {
+            e2.lock().unwrap().get_or_insert(e.to_string());
+        }));
+        let e3 = error.clone();
+        device.set_device_lost_callback(move |reason, msg| {
+            e3.lock()
+                .unwrap()
+                .get_or_insert(format!("device lost ({reason:?}): {msg}"));
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("md"),
+            source: wgpu::ShaderSource::Wgsl(super::shader_source().into()),
+        });
+        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only },
+                has_dynamic_offset: false,
+                min_binding_size: None,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("md"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                storage(1, true),
+                storage(2, true),
+                storage(3, false),
+            ],
+        });
+        let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("md"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = |entry: &str| {
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(entry),
+                layout: Some(&pl),
+                module: &module,
+                entry_point: Some(entry),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let (grid, points, probe) = (pipeline("grid"), pipeline("points"), pipeline("probe"));
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("params"),
+            size: std::mem::size_of::<Params>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let max_binding = limits
+            .max_storage_buffer_binding_size
+            .min(limits.max_buffer_size);
+        let by_workgroups = limits.max_compute_workgroups_per_dimension as usize * WORKGROUP;
+        // Input of the point kernel is 16 bytes a point, like the output.
+        let chunk = by_workgroups.min(max_binding as usize / OUT_BYTES);
+        let gpu = Gpu {
+            adapter: AdapterSummary::of(&info),
+            device,
+            queue,
+            layout,
+            grid,
+            points,
+            probe,
+            params,
+            chunk,
+            max_binding,
+            error,
+        };
+        gpu.check()?;
+        Ok(gpu)
+    }
+
+    fn check(&self) -> Result<(), GpuError> {
+        match self.error.lock().unwrap().take() {
+            Some(e) => Err(GpuError::Runtime(e)),
+            None => Ok(()),
+        }
+    }
+
+    /// Solves the grid `lambdas x rows` (row-major, one row per load): `rows` are the loads (or
+    /// the distances above the branch end, with `rows_are_gaps`) as hi/lo pairs.
+    pub fn grid(
+        &self,
+        lambdas: &[GpuLambda],
+        rows: &[(f32, f32)],
+        control: u32,
+        rows_are_gaps: bool,
+        flags: u32,
+    ) -> Result<Vec<Out>, GpuError> {
+        let words: Vec<u32> = rows
+            .iter()
+            .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
+            .collect();
+        let total = lambdas.len() * rows.len();
+        self.run(
+            &self.grid,
+            lambdas,
+            &words,
+            0,
+            total,
+            lambdas.len() as u32,
+            control,
+            rows_are_gaps,
+            flags,
+        )
+    }
+
+    /// Solves a list of points `(lambda index, hi, lo)`.
+    pub fn points(
+        &self,
+        lambdas: &[GpuLambda],
+        points: &[(u32, f32, f32)],
+        control: u32,
+        flags: u32,
+    ) -> Result<Vec<Out>, GpuError> {
+        let words: Vec<u32> = points
+            .iter()
+            .flat_map(|&(c, h, l)| [c, h.to_bits(), l.to_bits(), 0])
+            .collect();
+        self.run(
+            &self.points,
+            lambdas,
+            &words,
+            16,
+            points.len(),
+            0,
+            control,
+            false,
+            flags,
+        )
+    }
+
+    /// Evaluates the kernels' own atan, mu - atan and exp, and the built-in atan, at `xs`:
+    /// returns (atan, mu - atan, exp(-x/4), built-in atan) per argument.
+    pub fn probe(&self, xs: &[f32]) -> Result<Vec<[f32; 4]>, GpuError> {
+        let words: Vec<u32> = xs.iter().map(|x| x.to_bits()).collect();
+        let out = self.run(
+            &self.probe,
+            &[bytemuck::Zeroable::zeroed()],
+            &words,
+            4,
+            xs.len(),
+            0,
+            0,
+            false,
+            0,
+        )?;
+        Ok(out
+            .iter()
+            .map(|o| [o.a, o.other, o.m_minus_1, f32::from_bits(o.code)])
+            .collect())
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        lambdas: &[GpuLambda],
+        input: &[u32],
+        input_stride: usize,
+        total: usize,
+        nx: u32,
+        control: u32,
+        rows_are_gaps: bool,
+        flags: u32,
+    ) -> Result<Vec<Out>, GpuError> {
+        let lam_bytes = std::mem::size_of_val(lambdas) as u64;
+        if lam_bytes > self.max_binding {
+            return Err(GpuError::TooLarge(format!(
+                "{} distinct lambda values need {lam_bytes} bytes, more than this adapter binds ({}); split the input",
+                lambdas.len(),
+                self.max_binding
+            )));
+        }
+        if total == 0 {
+            return Ok(Vec::new());
+        }
+        let d = &self.device;
+        let lam_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("lambdas"),
+            contents: bytemuck::cast_slice(lambdas),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let mut in_words = input.to_vec();
+        if in_words.is_empty() {
+            in_words.push(0);
+        }
+        let in_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("input"),
+            contents: bytemuck::cast_slice(&in_words),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let chunk = self.chunk.min(total);
+        let out_size = (chunk * OUT_BYTES) as u64;
+        let out_buf = d.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("out"),
+            size: out_size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let staging = d.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("staging"),
+            size: out_size,
+            usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        self.check()?;
+        let mut result: Vec<Out> = Vec::with_capacity(total);
+        let mut start = 0usize;
+        while start < total {
+            let n = chunk.min(total - start);
+            let p = Params {
+                nx,
+                offset: start as u32,
+                count: n as u32,
+                control,
+                rows_are_gaps: rows_are_gaps as u32,
+                flags,
+                _pad: [0; 2],
+            };
+            self.queue
+                .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+            // The point kernel sees only this chunk's input; the grid kernel reads its rows whole.
+            let input_binding = if input_stride > 0 {
+                wgpu::BufferBinding {
+                    buffer: &in_buf,
+                    offset: (start * input_stride) as u64,
+                    size: wgpu::BufferSize::new((n * input_stride) as u64),
+                }
+            } else {
+                wgpu::BufferBinding {
+                    buffer: &in_buf,
+                    offset: 0,
+                    size: None,
+                }
+            };
+            let bind = d.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("md"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: self.params.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: lam_buf.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::Buffer(input_binding),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: out_buf.as_entire_binding(),
+                    },
+                ],
+            });
+            let mut enc =
+                d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("md") });
+            {
+                let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("md"),
+                    timestamp_writes: None,
+                });
+                pass.set_pipeline(pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups(n.div_ceil(WORKGROUP) as u32, 1, 1);
+            }
+            let bytes = (n * OUT_BYTES) as u64;
+            enc.copy_buffer_to_buffer(&out_buf, 0, &staging, 0, bytes);
+            self.queue.submit([enc.finish()]);
+            let slice = staging.slice(..bytes);
+            let (tx, rx) = std::sync::mpsc::channel();
+            slice.map_async(wgpu::MapMode::Read, move |r| {
+                let _ = tx.send(r);
+            });
+            d.poll(wgpu::PollType::wait_indefinitely())
+                .map_err(|e| GpuError::Runtime(e.to_string()))?;
+            match rx.recv() {
+                Ok(Ok(())) => {}
+                Ok(Err(e)) => return Err(GpuError::Runtime(format!("reading results back: {e}"))),
+                Err(_) => {
+                    return Err(GpuError::Runtime(
+                        "reading results back: no answer from the device".into(),
+                    ))
+                }
+            }
+            {
+                let view = slice
+                    .get_mapped_range()
+                    .map_err(|e| GpuError::Runtime(format!("reading results back: {e}")))?;
+                result.extend_from_slice(bytemuck::cast_slice(&view));
+            }
+            staging.unmap();
+            self.check()?;
+            start += n;
+        }
+        Ok(result)
+    }
+}

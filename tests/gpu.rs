@@ -1,0 +1,216 @@
+//! The WGSL kernels on whatever adapter exists, against the reference tables and the f64 solver.
+//! Without an adapter these tests skip with a printed reason; with TABOR_REQUIRE_GPU=1 (set by
+//! .ci/run, which installs Mesa's software Vulkan driver) a missing adapter fails them.
+
+mod common;
+use common::*;
+use tabor::engine::{Backend, Engine};
+use tabor::gpu::prepare::{prepare, prepare_all, split};
+use tabor::gpu::Gpu;
+use tabor::solver::{mirror::solve_f32, solve_grid, Control, LambdaContext, Status};
+
+/// The f32 kernels' contract: relative error of A away from pull-off.
+const F32_TOL: f64 = 1e-5;
+
+fn gpu() -> Option<Gpu> {
+    match Gpu::new(std::env::var("TABOR_ADAPTER").ok().as_deref()) {
+        Ok(g) => {
+            eprintln!(
+                "GPU tests on {} ({}, {})",
+                g.adapter.name, g.adapter.backend, g.adapter.device_type
+            );
+            Some(g)
+        }
+        Err(e) => {
+            if std::env::var("TABOR_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+                panic!("TABOR_REQUIRE_GPU=1 but no GPU adapter: {e}");
+            }
+            eprintln!(
+                "SKIPPED: no GPU adapter ({e}); set TABOR_REQUIRE_GPU=1 to make this a failure"
+            );
+            None
+        }
+    }
+}
+
+fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
+        .collect()
+}
+
+#[test]
+fn own_functions_are_accurate_on_this_adapter() {
+    let Some(g) = gpu() else { return };
+    let xs: Vec<f32> = (0..20001)
+        .map(|i| 10f32.powf(-9.0 + 19.0 * i as f32 / 20000.0))
+        .collect();
+    let out = g.probe(&xs).unwrap();
+    let (mut e_at, mut e_d, mut e_exp, mut e_builtin) = (0f64, 0f64, 0f64, 0f64);
+    for (x, o) in xs.iter().zip(&out) {
+        let x = *x as f64;
+        let (at, d) = tabor::physics::real::Real::atan_parts(x);
+        e_at = e_at.max((o[0] as f64 / at - 1.0).abs());
+        e_d = e_d.max((o[1] as f64 / d - 1.0).abs());
+        e_builtin = e_builtin.max((o[3] as f64 / at - 1.0).abs());
+        let xe = (-0.25 * x).max(-87.0);
+        if xe > -80.0 {
+            e_exp = e_exp.max((o[2] as f64 / xe.exp() - 1.0).abs());
+        }
+    }
+    eprintln!("max rel. error: own atan {e_at:.2e}, own mu-atan {e_d:.2e}, own exp {e_exp:.2e}; built-in atan {e_builtin:.2e}");
+    assert!(
+        e_at < 5e-7 && e_d < 1e-6 && e_exp < 5e-7,
+        "atan {e_at:e} mu-atan {e_d:e} exp {e_exp:e}"
+    );
+}
+
+#[test]
+fn reference_points_on_the_gpu() {
+    let Some(g) = gpu() else { return };
+    let rows = table("points.csv");
+    let lambdas: Vec<f64> = rows.iter().map(|r| num(r, "lambda")).collect();
+    let prepared = prepare_all(&lambdas);
+    let pts: Vec<(u32, f32, f32)> = rows
+        .iter()
+        .enumerate()
+        .map(|(i, r)| {
+            let (h, l) = split(num(r, "Pbar"));
+            (i as u32, h, l)
+        })
+        .collect();
+    let out = g.points(&prepared, &pts, 0, 0).unwrap();
+    let mut worst_far = 0f64;
+    for (i, (r, o)) in rows.iter().zip(&out).enumerate() {
+        assert_eq!(o.status(), Status::Ok, "id {i}");
+        let e = rel(o.a as f64, num(r, "A"));
+        let (load, pc) = (num(r, "Pbar"), num(r, "Pbar_pulloff_load"));
+        assert!(e.is_finite());
+        if load - pc >= 1e-4 * pc.abs() {
+            assert!(e <= F32_TOL, "id {i}: {e:e}");
+            worst_far = worst_far.max(e);
+        } else {
+            assert!(e < 1e-4, "id {i} near pull-off: {e:e}");
+        }
+        // The CPU mirror computes the same thing.
+        let m = solve_f32(&prepared[i], pts[i].1, pts[i].2, Control::Load, false, 0);
+        assert!(
+            rel(o.a as f64, m.a as f64) < 2e-5,
+            "id {i}: gpu {} mirror {}",
+            o.a,
+            m.a
+        );
+    }
+    eprintln!("reference points: max rel. error of A (gap >= 1e-4 |Pc|) {worst_far:.2e}");
+}
+
+#[test]
+fn grid_512_agrees_with_cpu_on_every_status() {
+    let Some(g) = gpu() else { return };
+    let lambdas = logspace(-3.0, 3.0, 512);
+    let mut loads = logspace(-3.0, 3.0, 512);
+    loads[0] = -1.7; // rows below some pull-offs too
+    loads[1] = -1.5;
+    let engine = Engine::Gpu(Box::new(g));
+    let gs = engine.solve_grid(&lambdas, &loads, Control::Load).unwrap();
+    let cs = solve_grid(&lambdas, &loads, Control::Load);
+    let mut worst = 0f64;
+    for (i, (a, b)) in gs.iter().zip(&cs).enumerate() {
+        assert_eq!(
+            a.status, b.status,
+            "point {i}: lambda {} load {}",
+            b.lambda, b.load
+        );
+        if b.status == Status::Ok {
+            let e = rel(a.a, b.a);
+            let pc = LambdaContext::new(b.lambda).unwrap().load_pulloff.load;
+            if b.load - pc >= 1e-4 * pc.abs() {
+                worst = worst.max(e);
+            }
+        }
+    }
+    eprintln!("512x512 grid: statuses identical; max rel. error of A {worst:.2e}");
+    assert!(worst <= F32_TOL);
+}
+
+#[test]
+fn extreme_lambdas_and_loads() {
+    let Some(g) = gpu() else { return };
+    // lambda 1e-6..1e6, loads from 1e-8 above pull-off to 1e6: never NaN, never a failure;
+    // lambda 1e-4..1e4 from 1e-4 |Pc| above pull-off: within F32_TOL.
+    let lambdas = logspace(-6.0, 6.0, 97);
+    let ctx: Vec<LambdaContext> = lambdas
+        .iter()
+        .map(|&l| LambdaContext::new(l).unwrap())
+        .collect();
+    let prepared: Vec<_> = lambdas.iter().map(|&l| prepare(l)).collect();
+    let gaps = logspace(-8.0, 6.0, 57);
+    let mut pts = Vec::new();
+    let mut refs = Vec::new();
+    for (i, c) in ctx.iter().enumerate() {
+        for &gap in &gaps {
+            let load = c.load_pulloff.load + gap;
+            let (h, l) = split(load);
+            pts.push((i as u32, h, l));
+            refs.push((i, gap, c.solve_load(load)));
+        }
+    }
+    let out = g.points(&prepared, &pts, 0, 0).unwrap();
+    let mut worst = 0f64;
+    for (o, (i, gap, r)) in out.iter().zip(&refs) {
+        let lambda = lambdas[*i];
+        assert_eq!(o.status(), Status::Ok, "lambda {lambda} gap {gap}");
+        assert!(
+            o.a.is_finite() && o.a > 0.0 && o.other.is_finite() && o.m_minus_1.is_finite(),
+            "lambda {lambda} gap {gap}: {o:?}"
+        );
+        let e = rel(o.a as f64, r.a);
+        if (1e-4..=1e4).contains(&lambda) && *gap >= 1e-4 * ctx[*i].load_pulloff.load.abs() {
+            assert!(e <= F32_TOL, "lambda {lambda} gap {gap}: {e:e}");
+            worst = worst.max(e);
+        }
+    }
+    eprintln!("extreme sweep: max rel. error of A {worst:.2e}");
+}
+
+#[test]
+fn displacement_control_agrees_with_cpu() {
+    let Some(g) = gpu() else { return };
+    let lambdas = logspace(-3.0, 3.0, 64);
+    let approaches: Vec<f64> = (0..64)
+        .map(|k| -1.6 + 0.05 * k as f64)
+        .chain(logspace(0.5, 3.0, 16))
+        .collect();
+    let engine = Engine::Gpu(Box::new(g));
+    let gs = engine
+        .solve_grid(&lambdas, &approaches, Control::Displacement)
+        .unwrap();
+    let cs = solve_grid(&lambdas, &approaches, Control::Displacement);
+    let mut worst = 0f64;
+    let mut mism = 0;
+    for (a, b) in gs.iter().zip(&cs) {
+        if a.status != b.status {
+            mism += 1;
+            continue;
+        }
+        if b.status == Status::Ok && b.a > 1e-3 {
+            worst = worst.max(rel(a.a, b.a));
+        }
+    }
+    eprintln!(
+        "displacement control: {mism} status mismatches of {}, max rel. error of A {worst:.2e}",
+        cs.len()
+    );
+    assert_eq!(mism, 0);
+    assert!(worst < 1e-4, "{worst:e}");
+}
+
+#[test]
+fn auto_backend_reports_its_choice() {
+    if gpu().is_none() {
+        return;
+    }
+    let (engine, line) = Engine::select(Backend::Auto, None).unwrap();
+    assert_eq!(engine.name(), "gpu");
+    assert!(line.contains("GPU"), "{line}");
+}
