@@ -1,14 +1,21 @@
 //! Throughput of the solvers on a lambda x load grid. Run: `cargo bench --bench grid`.
 //! Not a test: it measures, it asserts nothing. Variants are timed in one run and compared as
-//! ratios, since the machine is shared.
+//! ratios, since the machine may be shared. GPU timings include preparing the per-lambda data
+//! and reading every result back.
 
 use std::time::Instant;
+use tabor::engine::Engine;
+use tabor::gpu::Gpu;
 use tabor::solver::{solve_grid, Control};
 
 fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
         .collect()
+}
+
+fn rate(points: usize, secs: f64) -> String {
+    format!("{:>10.3e} solves/s ({secs:.3} s)", points as f64 / secs)
 }
 
 fn main() {
@@ -19,28 +26,50 @@ fn main() {
     let threads = rayon::current_num_threads();
     let t = Instant::now();
     let states = solve_grid(&lambdas, &loads, Control::Load);
-    let all = t.elapsed().as_secs_f64();
+    let cpu_all = t.elapsed().as_secs_f64();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
     let t = Instant::now();
     let _ = pool.install(|| solve_grid(&lambdas, &loads, Control::Load));
-    let one = t.elapsed().as_secs_f64();
+    let cpu_one = t.elapsed().as_secs_f64();
     let iters: u64 = states.iter().map(|s| s.iterations as u64).sum();
-    let pts = (n * n) as f64;
-    println!("cpu-f64 grid {n}x{n} (lambda 1e-3..1e3, load 1e-3..1e3, load control)");
+    println!("grid {n}x{n}: lambda 1e-3..1e3 x load 1e-3..1e3, load control");
+    println!("  cpu f64, {threads} threads   : {}", rate(n * n, cpu_all));
     println!(
-        "  all {threads} threads : {:>10.3e} solves/s ({all:.3} s)",
-        pts / all
+        "  cpu f64, 1 thread    : {}  (mean iterations {:.2})",
+        rate(n * n, cpu_one),
+        iters as f64 / (n * n) as f64
     );
+
+    let gpu = match Gpu::new(std::env::var("TABOR_ADAPTER").ok().as_deref()) {
+        Ok(g) => g,
+        Err(e) => {
+            println!("  gpu: skipped ({e})");
+            return;
+        }
+    };
+    let name = format!("{} ({})", gpu.adapter.name, gpu.adapter.device_type);
+    let engine = Engine::Gpu(Box::new(gpu));
+    let _ = engine
+        .solve_grid(&lambdas[..64], &loads[..64], Control::Load)
+        .unwrap(); // warm-up
+    let t = Instant::now();
+    let _ = engine.solve_grid(&lambdas, &loads, Control::Load).unwrap();
+    let g1 = t.elapsed().as_secs_f64();
     println!(
-        "  1 thread          : {:>10.3e} solves/s ({one:.3} s)",
-        pts / one
+        "  gpu f32 on {name}: {}  = {:.2}x the cpu (all threads)",
+        rate(n * n, g1),
+        cpu_all / g1
     );
+    let big = 4096;
+    let (bl, bp) = (logspace(-3.0, 3.0, big), logspace(-3.0, 3.0, big));
+    let t = Instant::now();
+    let _ = engine.solve_grid(&bl, &bp, Control::Load).unwrap();
+    let g16 = t.elapsed().as_secs_f64();
     println!(
-        "  speed-up          : {:.2}x; mean iterations {:.2}",
-        one / all,
-        iters as f64 / pts
+        "  gpu f32, grid {big}x{big} (16.8M points): {}",
+        rate(big * big, g16)
     );
 }

@@ -49,6 +49,50 @@ struct Out {
     code: u32,
 }
 
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> lambdas: array<Lambda>;
+@group(0) @binding(2) var<storage, read> input: array<u32>;
+@group(0) @binding(3) var<storage, read_write> out: array<Out>;
+
+// Fields of one branch (control 0: load, 1: displacement) of lambdas[i], read in place: copying
+// the 352-byte struct into every invocation costs more than the whole root search.
+fn br_mu_ref(i: u32, control: u32) -> f32 {
+    if control == 1u {
+        return lambdas[i].disp.mu_ref;
+    }
+    return lambdas[i].load.mu_ref;
+}
+fn br_end(i: u32, control: u32) -> vec2<f32> {
+    if control == 1u {
+        return vec2<f32>(lambdas[i].disp.end_hi, lambdas[i].disp.end_lo);
+    }
+    return vec2<f32>(lambdas[i].load.end_hi, lambdas[i].load.end_lo);
+}
+fn br_s_max(i: u32, control: u32) -> f32 {
+    if control == 1u {
+        return lambdas[i].disp.s_max;
+    }
+    return lambdas[i].load.s_max;
+}
+fn br_cheb(i: u32, control: u32, k: i32) -> f32 {
+    if control == 1u {
+        return lambdas[i].disp.cheb[k];
+    }
+    return lambdas[i].load.cheb[k];
+}
+fn br_t(i: u32, control: u32, k: u32) -> f32 {
+    if control == 1u {
+        return lambdas[i].disp.t[k];
+    }
+    return lambdas[i].load.t[k];
+}
+fn br_dx(i: u32, control: u32, k: u32) -> f32 {
+    if control == 1u {
+        return lambdas[i].disp.dx[k];
+    }
+    return lambdas[i].load.dx[k];
+}
+
 const STATUS_OK: u32 = 0u;
 const STATUS_NO_CONTACT: u32 = 1u;
 const STATUS_NOT_CONVERGED: u32 = 2u;
@@ -155,19 +199,19 @@ fn curve_point(lambda: f32, mu: f32) -> Point {
 }
 
 // The residual's quantity: Pbar + 2 (small lambda) or Pbar under load control, Dbar else.
-fn quantity(c: Lambda, control: u32, mu: f32) -> f32 {
-    let p = curve_point(c.lambda, mu);
+fn quantity(lambda: f32, small: bool, control: u32, mu: f32) -> f32 {
+    let p = curve_point(lambda, mu);
     if control == 1u {
         return p.approach;
     }
-    if c.small == 1u {
+    if small {
         return p.load_plus_2;
     }
     return p.load;
 }
 
-fn residual(c: Lambda, b: Branch, control: u32, mu: f32, gap: f32) -> f32 {
-    let r = ((quantity(c, control, mu) - b.end_hi) - b.end_lo) - gap;
+fn residual(lambda: f32, small: bool, end: vec2<f32>, control: u32, mu: f32, gap: f32) -> f32 {
+    let r = ((quantity(lambda, small, control, mu) - end.x) - end.y) - gap;
     let q = r / gap;
     if q <= -1.0 {
         return -INF;
@@ -175,15 +219,15 @@ fn residual(c: Lambda, b: Branch, control: u32, mu: f32, gap: f32) -> f32 {
     return log1p_f(q);
 }
 
-fn cheb_eval(b: Branch, u: f32) -> f32 {
+fn cheb_eval(i: u32, control: u32, u: f32) -> f32 {
     var b1 = 0.0;
     var b2 = 0.0;
     for (var k = 7; k >= 1; k--) {
-        let b0 = 2.0 * u * b1 - b2 + b.cheb[k];
+        let b0 = 2.0 * u * b1 - b2 + br_cheb(i, control, k);
         b2 = b1;
         b1 = b0;
     }
-    return u * b1 - b2 + b.cheb[0];
+    return u * b1 - b2 + br_cheb(i, control, 0);
 }
 
 fn failed(status: u32) -> Out {
@@ -193,76 +237,77 @@ fn failed(status: u32) -> Out {
 
 // One point, as src/solver/mirror.rs solve_f32: the load (approach) is the pair hi + lo, or the
 // distance above the branch end if is_gap.
-fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32) -> Out {
-    if c.invalid == 1u || !(abs(hi) < INF) {
+fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32) -> Out {
+    if lambdas[ci].invalid == 1u || !(abs(hi) < INF) {
         return failed(STATUS_INVALID);
     }
-    var b = c.load;
-    if control == 1u {
-        b = c.disp;
-    }
-    let zero_end = control == 1u && c.disp_at_zero == 1u;
+    let lambda = lambdas[ci].lambda;
+    let small = lambdas[ci].small == 1u;
+    let end = br_end(ci, control);
+    let mu_ref = br_mu_ref(ci, control);
+    let s_max = br_s_max(ci, control);
+    let zero_end = control == 1u && lambdas[ci].disp_at_zero == 1u;
     var shift = 0.0;
-    if control == 0u && c.small == 1u {
+    if control == 0u && small {
         shift = 2.0;
     }
     var gap = hi + lo;
     if !is_gap {
-        gap = ((hi + shift) - b.end_hi) + (lo - b.end_lo);
+        gap = ((hi + shift) - end.x) + (lo - end.y);
     }
     if gap < 0.0 {
         return failed(STATUS_NO_CONTACT);
     }
     var iterations = 0u;
     var status = STATUS_OK;
-    var mu = b.mu_ref;
+    var mu = mu_ref;
     if gap == 0.0 {
         if zero_end {
-            return Out(0.0, c.end_load, INF, STATUS_OK);
+            return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
         }
-    } else if sqrt(gap) < b.s_max {
+    } else if sqrt(gap) < s_max {
         let s = sqrt(gap);
-        let dx = s * cheb_eval(b, 2.0 * s / b.s_max - 1.0);
-        mu = b.mu_ref * exp_f(dx);
+        let dx = s * cheb_eval(ci, control, 2.0 * s / s_max - 1.0);
+        mu = mu_ref * exp_f(dx);
     } else {
         let t = ln_f(gap);
         let n = TABLE_NODES;
         var k = 0u;
-        while k < n && b.t[k] < t {
+        while k < n && br_t(ci, control, k) < t {
             k++;
         }
         var end_dx = 0.0;
         if zero_end {
-            end_dx = b.dx[0] + 60.0;
+            end_dx = br_dx(ci, control, 0) + 60.0;
         }
         var hi_x = end_dx;
         var f_hi = -INF;
         if k >= 2u {
-            hi_x = b.dx[k - 2u];
-            f_hi = b.t[k - 2u] - t;
+            hi_x = br_dx(ci, control, k - 2u);
+            f_hi = br_t(ci, control, k - 2u) - t;
         }
-        var lo_x = b.dx[n - 1u] - 120.0;
+        var lo_x = br_dx(ci, control, n - 1u) - 120.0;
         var f_lo = INF;
         if k + 1u < n {
-            lo_x = b.dx[k + 1u];
-            f_lo = b.t[k + 1u] - t;
+            lo_x = br_dx(ci, control, k + 1u);
+            f_lo = br_t(ci, control, k + 1u) - t;
         }
         var x: f32;
         if k == 0u {
             if zero_end {
-                x = b.dx[0] + 1.0;
+                x = br_dx(ci, control, 0) + 1.0;
             } else {
-                x = b.dx[0] * exp_f(0.5 * (t - b.t[0]));
+                x = br_dx(ci, control, 0) * exp_f(0.5 * (t - br_t(ci, control, 0)));
             }
         } else if k == n {
-            x = b.dx[n - 1u] - 1.0;
+            x = br_dx(ci, control, n - 1u) - 1.0;
         } else {
-            let w = (t - b.t[k - 1u]) / (b.t[k] - b.t[k - 1u]);
+            let w = (t - br_t(ci, control, k - 1u)) / (br_t(ci, control, k) - br_t(ci, control, k - 1u));
             if zero_end {
-                x = b.dx[k - 1u] + w * (b.dx[k] - b.dx[k - 1u]);
+                x = br_dx(ci, control, k - 1u) + w * (br_dx(ci, control, k) - br_dx(ci, control, k - 1u));
             } else {
-                let l0 = ln_f(-b.dx[k - 1u]);
-                x = -exp_f(l0 + w * (ln_f(-b.dx[k]) - l0));
+                let l0 = ln_f(-br_dx(ci, control, k - 1u));
+                x = -exp_f(l0 + w * (ln_f(-br_dx(ci, control, k)) - l0));
             }
         }
         if !(x > lo_x && x < hi_x) {
@@ -272,7 +317,7 @@ fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u
         if max_iter == 0u {
             max_iter = 32u;
         }
-        var m = b.mu_ref * exp_f(x);
+        var m = mu_ref * exp_f(x);
         var have_prev = false;
         var f_prev = 0.0;
         var l_prev = 0.0;
@@ -280,7 +325,7 @@ fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u
         var done = false;
         for (var it = 1u; it <= max_iter; it++) {
             iterations = it;
-            let fx = residual(c, b, control, m, gap);
+            let fx = residual(lambda, small, end, control, m, gap);
             // |F| at the f32 noise level: done (below it the secant slope is noise).
             if abs(fx) <= 8e-7 {
                 done = true;
@@ -322,7 +367,7 @@ fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u
                 x = next;
             } else {
                 let mid = 0.5 * (lo_x + hi_x);
-                let m_new = b.mu_ref * exp_f(mid);
+                let m_new = mu_ref * exp_f(mid);
                 l_prev = ln_f(m_new / m);
                 dx_old = mid - x;
                 x = mid;
@@ -334,7 +379,7 @@ fn solve(c: Lambda, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u
         }
         mu = m;
     }
-    let p = curve_point(c.lambda, mu);
+    let p = curve_point(lambda, mu);
     var other = p.approach;
     if control == 1u {
         other = p.load;

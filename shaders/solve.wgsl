@@ -3,11 +3,6 @@
 //           (2 words per row: hi, lo). Nothing is uploaded per point.
 //   points: a list; `input` holds 4 words per point: lambda index, load hi, load lo, unused.
 
-@group(0) @binding(0) var<uniform> params: Params;
-@group(0) @binding(1) var<storage, read> lambdas: array<Lambda>;
-@group(0) @binding(2) var<storage, read> input: array<u32>;
-@group(0) @binding(3) var<storage, read_write> out: array<Out>;
-
 const WORKGROUP: u32 = 64u;
 
 fn max_iter() -> u32 {
@@ -25,7 +20,7 @@ fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let iy = i / params.nx;
     let hi = bitcast<f32>(input[2u * iy]);
     let lo = bitcast<f32>(input[2u * iy + 1u]);
-    out[local] = solve(lambdas[ix], hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
+    out[local] = solve(ix, hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
 }
 
 @compute @workgroup_size(64)
@@ -37,7 +32,7 @@ fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
     let c = input[4u * local];
     let hi = bitcast<f32>(input[4u * local + 1u]);
     let lo = bitcast<f32>(input[4u * local + 2u]);
-    out[local] = solve(lambdas[c], hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
+    out[local] = solve(c, hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
 }
 
 // Measures the functions the kernels rely on, on this adapter: input = f32 arguments;
