@@ -120,6 +120,33 @@ impl Engine {
         }
     }
 
+    /// Solves the grid lambdas x gaps, load = Pbar_c(lambda) + gap (row-major, one row per gap):
+    /// the tensile range down to the pull-off, with the gap exact however small.
+    pub fn solve_grid_gaps(&self, lambdas: &[f64], gaps: &[f64]) -> Result<Vec<State>, GpuError> {
+        use rayon::prelude::*;
+        match self {
+            Engine::Cpu => {
+                let ctx: Vec<_> = lambdas.par_iter().map(|&l| solver::LambdaContext::new(l).ok()).collect();
+                let nx = lambdas.len();
+                Ok((0..nx * gaps.len())
+                    .into_par_iter()
+                    .map(|i| match &ctx[i % nx] {
+                        Some(c) => c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx]),
+                        None => State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput),
+                    })
+                    .collect())
+            }
+            Engine::Gpu(g) => {
+                let prepared = prepare_all(lambdas);
+                let pulloff: Vec<f64> = lambdas.par_iter().map(|&l| solver::LambdaContext::new(l).map_or(f64::NAN, |c| c.load_pulloff.load)).collect();
+                let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
+                let out = g.grid(&prepared, &rows, 0, true, 0)?;
+                let nx = lambdas.len();
+                Ok(out.iter().enumerate().map(|(i, o)| to_state(lambdas[i % nx], pulloff[i % nx] + gaps[i / nx], o, Control::Load)).collect())
+            }
+        }
+    }
+
     /// Solves the grid lambdas x values (row-major, one row per value).
     pub fn solve_grid(
         &self,

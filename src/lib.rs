@@ -8,5 +8,7 @@ pub mod cli;
 pub mod engine;
 pub mod gpu;
 pub mod io;
+pub mod map;
+pub mod render;
 pub mod physics;
 pub mod solver;

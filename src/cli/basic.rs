@@ -4,7 +4,7 @@ use super::Format;
 use crate::engine::{cross_check, Backend, Engine};
 use crate::io::{fmt17, json_num, read_points, write_output};
 use crate::physics::md::{curve_point, LAMBDA_D};
-use crate::solver::{context::point, Control, LambdaContext, State, Status};
+use crate::solver::{Control, LambdaContext, State, Status};
 use anyhow::{bail, Context};
 use clap::Args;
 use serde_json::json;
@@ -336,11 +336,6 @@ pub struct CurveArgs {
     pub format: Format,
 }
 
-/// x = ln(mu) at which the contact radius equals `a` (A falls strictly with mu).
-pub fn x_at_radius(lambda: f64, a: f64) -> f64 {
-    crate::solver::root::bisect_sign(|x| a - point(lambda, x).a, -80.0, 80.0)
-}
-
 pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
     let ctx = LambdaContext::new(a.lambda)
         .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
@@ -350,7 +345,7 @@ pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
     let mut rows = Vec::new();
     for i in 0..a.points - 1 {
         let ar = a.a_max * (1.0 - i as f64 / (a.points - 1) as f64);
-        let x = x_at_radius(a.lambda, ar);
+        let x = crate::solver::context::x_at_radius(a.lambda, ar);
         let p = curve_point(a.lambda, x.exp());
         rows.push([
             p.a,

@@ -1,6 +1,7 @@
 //! The command line: parsing builds the work, the library does it.
 
 mod basic;
+mod map;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
@@ -19,6 +20,8 @@ pub enum Command {
     Pulloff(basic::PulloffArgs),
     /// The whole Maugis-Dugdale curve for one lambda, with stability under both controls.
     Curve(basic::CurveArgs),
+    /// Render an adhesion map (PNG/SVG) with JSON and NPY tables: the main job.
+    Map(Box<map::MapArgs>),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -37,5 +40,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Pulloff(a) => basic::pulloff(a),
         Command::Curve(a) => basic::curve(a),
         Command::Info => basic::info(),
+        Command::Map(a) => map::run(*a),
     }
 }

@@ -54,6 +54,11 @@ pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
     curve_point(lambda, x.exp())
 }
 
+/// x = ln(mu) at which the contact radius equals `a` (A falls strictly with mu).
+pub fn x_at_radius(lambda: f64, a: f64) -> f64 {
+    bisect_sign(|x| a - point(lambda, x).a, -80.0, 80.0)
+}
+
 fn dload_dx_dd(lambda: f64, x: f64) -> f64 {
     let mu = x.exp();
     let p = curve_point(Dd::of(lambda), Dd::of(mu));
