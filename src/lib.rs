@@ -9,6 +9,6 @@ pub mod engine;
 pub mod gpu;
 pub mod io;
 pub mod map;
-pub mod render;
 pub mod physics;
+pub mod render;
 pub mod solver;

@@ -436,3 +436,48 @@ pub fn info() -> anyhow::Result<()> {
     println!("CPU threads: {}", rayon::current_num_threads());
     Ok(())
 }
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum PlotKind {
+    /// Pull-off load against lambda under both controls.
+    Pulloff,
+    /// Contact radius against load for several lambda, with Hertz, DMT and JKR.
+    Curves,
+}
+
+#[derive(Args, Debug)]
+pub struct PlotArgs {
+    #[arg(value_enum)]
+    pub kind: PlotKind,
+    /// Maugis parameters of the curves.
+    #[arg(long, value_delimiter = ',', default_value = "0.1,1,10")]
+    pub lambda: Vec<f64>,
+    #[arg(long, default_value = "plot.png")]
+    pub out: std::path::PathBuf,
+    #[arg(long)]
+    pub svg: Option<std::path::PathBuf>,
+}
+
+pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
+    use crate::render::plots;
+    if a.lambda.iter().any(|l| !(*l > 0.0 && l.is_finite())) {
+        bail!("every --lambda must be a positive number");
+    }
+    let r = match a.kind {
+        PlotKind::Pulloff => plots::save(
+            Some(&a.out),
+            a.svg.as_deref(),
+            &|r| plots::pulloff(r),
+            &|r| plots::pulloff(r),
+        ),
+        PlotKind::Curves => plots::save(
+            Some(&a.out),
+            a.svg.as_deref(),
+            &|r| plots::curves(r, &a.lambda),
+            &|r| plots::curves(r, &a.lambda),
+        ),
+    };
+    r.map_err(|e| anyhow::anyhow!("drawing the plot: {e}"))?;
+    eprintln!("wrote {}", a.out.display());
+    Ok(())
+}

@@ -93,14 +93,21 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     // GPU maps are cross-checked on a sample of points against the f64 solver.
     let check = if let Engine::Gpu(_) = engine {
         let pts: Vec<(f64, f64)> = data.states.iter().map(|s| (s.lambda, s.load)).collect();
-        let r = cross_check(&pts, &data.states, Control::Load, a.gpu.check.0, super::basic::GPU_TOLERANCE);
+        let r = cross_check(
+            &pts,
+            &data.states,
+            Control::Load,
+            a.gpu.check.0,
+            super::basic::GPU_TOLERANCE,
+        );
         eprintln!("{r}");
         Some(r)
     } else {
         None
     };
     let t = Instant::now();
-    crate::render::map::write(&data, a.quantity, Some(&a.out), a.svg.as_deref()).map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
+    crate::render::map::write(&data, a.quantity, Some(&a.out), a.svg.as_deref())
+        .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
     data.timings.render_s = t.elapsed().as_secs_f64();
     let tm = &data.timings;
     eprintln!(
@@ -111,9 +118,22 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         tm.classify_s,
         tm.render_s,
         a.out.display(),
-        a.svg.as_ref().map(|p| format!(", {}", p.display())).unwrap_or_default()
+        a.svg
+            .as_ref()
+            .map(|p| format!(", {}", p.display()))
+            .unwrap_or_default()
     );
-    let counts: Vec<String> = data.region_counts().iter().map(|(r, n)| format!("{} {:.1}%", r.name(), 100.0 * *n as f64 / data.regions.len() as f64)).collect();
+    let counts: Vec<String> = data
+        .region_counts()
+        .iter()
+        .map(|(r, n)| {
+            format!(
+                "{} {:.1}%",
+                r.name(),
+                100.0 * *n as f64 / data.regions.len() as f64
+            )
+        })
+        .collect();
     eprintln!("regions: {}", counts.join(", "));
     if let Some(p) = &a.json {
         let doc = map_json(&data, &engine, check.as_ref(), a.json_full);
@@ -125,7 +145,12 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-pub fn map_json(d: &MapData, engine: &Engine, check: Option<&crate::engine::CheckReport>, full: bool) -> serde_json::Value {
+pub fn map_json(
+    d: &MapData,
+    engine: &Engine,
+    check: Option<&crate::engine::CheckReport>,
+    full: bool,
+) -> serde_json::Value {
     let mut doc = json!({
         "metadata": {
             "tabor_version": env!("CARGO_PKG_VERSION"),
@@ -158,7 +183,9 @@ pub fn map_json(d: &MapData, engine: &Engine, check: Option<&crate::engine::Chec
     if full {
         let nx = d.spec.nx;
         let rows = |f: &dyn Fn(usize) -> serde_json::Value| -> Vec<Vec<serde_json::Value>> {
-            (0..d.spec.ny).map(|iy| (0..nx).map(|ix| f(iy * nx + ix)).collect()).collect()
+            (0..d.spec.ny)
+                .map(|iy| (0..nx).map(|ix| f(iy * nx + ix)).collect())
+                .collect()
         };
         doc["points"] = json!({
             "region": rows(&|i| json!(d.regions[i].name())),
@@ -176,7 +203,11 @@ fn npy_bytes<T: npyz::AutoSerialize + Copy>(shape: &[u64], data: &[T]) -> anyhow
     use npyz::WriterBuilder;
     let mut buf = Vec::new();
     {
-        let mut w = npyz::WriteOptions::new().default_dtype().shape(shape).writer(&mut buf).begin_nd()?;
+        let mut w = npyz::WriteOptions::new()
+            .default_dtype()
+            .shape(shape)
+            .writer(&mut buf)
+            .begin_nd()?;
         w.extend(data.iter().copied())?;
         w.finish()?;
     }
@@ -188,18 +219,64 @@ fn npy_bytes<T: npyz::AutoSerialize + Copy>(shape: &[u64], data: &[T]) -> anyhow
 pub fn write_npy(d: &MapData, prefix: &str) -> anyhow::Result<()> {
     let (nx, ny) = (d.spec.nx as u64, d.spec.ny as u64);
     let file = |name: &str| PathBuf::from(format!("{prefix}_{name}"));
-    let put = |name: &str, bytes: Vec<u8>| write_atomic(&file(name), &bytes).with_context(|| format!("writing {}", file(name).display()));
+    let put = |name: &str, bytes: Vec<u8>| {
+        write_atomic(&file(name), &bytes)
+            .with_context(|| format!("writing {}", file(name).display()))
+    };
     put("lambda.npy", npy_bytes(&[nx], &d.lambdas)?)?;
     put("load_axis.npy", npy_bytes(&[ny], &d.rows)?)?;
-    let col = |f: &dyn Fn(&crate::solver::State) -> f64| -> Vec<f64> { d.states.iter().map(f).collect() };
+    let col =
+        |f: &dyn Fn(&crate::solver::State) -> f64| -> Vec<f64> { d.states.iter().map(f).collect() };
     put("load.npy", npy_bytes(&[ny, nx], &col(&|s| s.load))?)?;
-    put("A.npy", npy_bytes(&[ny, nx], &col(&|s| if s.status == Status::Ok { s.a } else { f64::NAN }))?)?;
-    put("approach.npy", npy_bytes(&[ny, nx], &col(&|s| if s.status == Status::Ok { s.approach } else { f64::NAN }))?)?;
-    put("m_minus_1.npy", npy_bytes(&[ny, nx], &col(&|s| if s.status == Status::Ok { s.m_minus_1 } else { f64::NAN }))?)?;
+    put(
+        "A.npy",
+        npy_bytes(
+            &[ny, nx],
+            &col(&|s| {
+                if s.status == Status::Ok {
+                    s.a
+                } else {
+                    f64::NAN
+                }
+            }),
+        )?,
+    )?;
+    put(
+        "approach.npy",
+        npy_bytes(
+            &[ny, nx],
+            &col(&|s| {
+                if s.status == Status::Ok {
+                    s.approach
+                } else {
+                    f64::NAN
+                }
+            }),
+        )?,
+    )?;
+    put(
+        "m_minus_1.npy",
+        npy_bytes(
+            &[ny, nx],
+            &col(&|s| {
+                if s.status == Status::Ok {
+                    s.m_minus_1
+                } else {
+                    f64::NAN
+                }
+            }),
+        )?,
+    )?;
     let codes: Vec<u8> = d.regions.iter().map(|&r| r as u8).collect();
     put("region.npy", npy_bytes(&[ny, nx], &codes)?)?;
-    let names: serde_json::Map<_, _> = Region::ALL.iter().map(|r| ((*r as u8).to_string(), json!(r.name()))).collect();
-    put("region_names.json", (serde_json::to_string_pretty(&names)? + "\n").into_bytes())?;
+    let names: serde_json::Map<_, _> = Region::ALL
+        .iter()
+        .map(|r| ((*r as u8).to_string(), json!(r.name())))
+        .collect();
+    put(
+        "region_names.json",
+        (serde_json::to_string_pretty(&names)? + "\n").into_bytes(),
+    )?;
     let _ = Path::new(prefix);
     Ok(())
 }

@@ -22,6 +22,8 @@ pub enum Command {
     Curve(basic::CurveArgs),
     /// Render an adhesion map (PNG/SVG) with JSON and NPY tables: the main job.
     Map(Box<map::MapArgs>),
+    /// Line plots: pull-off against lambda, or A(P) curves with the closed forms.
+    Plot(basic::PlotArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -41,5 +43,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Curve(a) => basic::curve(a),
         Command::Info => basic::info(),
         Command::Map(a) => map::run(*a),
+        Command::Plot(a) => basic::plot(a),
     }
 }

@@ -52,7 +52,15 @@ pub enum Region {
 }
 
 impl Region {
-    pub const ALL: [Region; 7] = [Region::NoContact, Region::Hertz, Region::Rigid, Region::Dmt, Region::Jkr, Region::Md, Region::Failed];
+    pub const ALL: [Region; 7] = [
+        Region::NoContact,
+        Region::Hertz,
+        Region::Rigid,
+        Region::Dmt,
+        Region::Jkr,
+        Region::Md,
+        Region::Failed,
+    ];
     pub fn name(self) -> &'static str {
         match self {
             Region::NoContact => "no_contact",
@@ -149,7 +157,11 @@ pub struct MapData {
 pub fn axis(min: f64, max: f64, n: usize, log: bool) -> Vec<f64> {
     (0..n)
         .map(|i| {
-            let t = if n == 1 { 0.0 } else { i as f64 / (n - 1) as f64 };
+            let t = if n == 1 {
+                0.0
+            } else {
+                i as f64 / (n - 1) as f64
+            };
             if log {
                 10f64.powf(min.log10() + t * (max.log10() - min.log10()))
             } else {
@@ -170,22 +182,44 @@ pub enum MapError {
 impl MapSpec {
     pub fn validate(&self) -> Result<(), MapError> {
         let bad = |m: String| Err(MapError::Spec(m));
-        if !(self.lambda_min > 0.0 && self.lambda_max > self.lambda_min && self.lambda_max.is_finite()) {
-            return bad(format!("--lambda-min/--lambda-max must satisfy 0 < min < max, got {} and {}", self.lambda_min, self.lambda_max));
+        if !(self.lambda_min > 0.0
+            && self.lambda_max > self.lambda_min
+            && self.lambda_max.is_finite())
+        {
+            return bad(format!(
+                "--lambda-min/--lambda-max must satisfy 0 < min < max, got {} and {}",
+                self.lambda_min, self.lambda_max
+            ));
         }
         if self.nx < 2 || self.ny < 2 || self.nx > 16384 || self.ny > 16384 {
-            return bad(format!("--nx and --ny must be in 2..=16384, got {} and {}", self.nx, self.ny));
+            return bad(format!(
+                "--nx and --ny must be in 2..=16384, got {} and {}",
+                self.nx, self.ny
+            ));
         }
-        if !(self.load_max > self.load_min && self.load_min.is_finite() && self.load_max.is_finite()) {
-            return bad(format!("--load-min must be below --load-max, got {} and {}", self.load_min, self.load_max));
+        if !(self.load_max > self.load_min
+            && self.load_min.is_finite()
+            && self.load_max.is_finite())
+        {
+            return bad(format!(
+                "--load-min must be below --load-max, got {} and {}",
+                self.load_min, self.load_max
+            ));
         }
         if self.load_axis != LoadAxis::Linear && self.load_min <= 0.0 {
             return bad(format!("a log load axis needs --load-min > 0 (got {}); use --load-axis linear for tensile loads", self.load_min));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad(format!("--tolerance must be in (0, 1), got {}", self.tolerance));
+            return bad(format!(
+                "--tolerance must be in (0, 1), got {}",
+                self.tolerance
+            ));
         }
-        if self.strength_ratios.iter().any(|r| !(*r > 0.0 && r.is_finite())) {
+        if self
+            .strength_ratios
+            .iter()
+            .any(|r| !(*r > 0.0 && r.is_finite()))
+        {
             return bad("--strength-ratio values must be > 0".into());
         }
         Ok(())
@@ -197,7 +231,12 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
     spec.validate()?;
     let t0 = std::time::Instant::now();
     let lambdas = axis(spec.lambda_min, spec.lambda_max, spec.nx, true);
-    let rows = axis(spec.load_min, spec.load_max, spec.ny, spec.load_axis != LoadAxis::Linear);
+    let rows = axis(
+        spec.load_min,
+        spec.load_max,
+        spec.ny,
+        spec.load_axis != LoadAxis::Linear,
+    );
     let states = match spec.load_axis {
         LoadAxis::AbovePulloff => engine.solve_grid_gaps(&lambdas, &rows)?,
         _ => engine.solve_grid(&lambdas, &rows, crate::solver::Control::Load)?,
@@ -208,11 +247,17 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         .par_iter()
         .map(|&l| LambdaContext::new(l).map_or(f64::NAN, |c| c.load_pulloff.load))
         .collect();
-    let regions: Vec<Region> = states.par_iter().map(|s| classify(s, spec.tolerance)).collect();
+    let regions: Vec<Region> = states
+        .par_iter()
+        .map(|s| classify(s, spec.tolerance))
+        .collect();
     let large_deformation = spec
         .strength_ratios
         .iter()
-        .map(|&q| LargeDeformationLine { strength_ratio: q, points: large_deformation_line(spec, &lambdas, &pulloff, q) })
+        .map(|&q| LargeDeformationLine {
+            strength_ratio: q,
+            points: large_deformation_line(spec, &lambdas, &pulloff, q),
+        })
         .collect();
     let classify_s = t1.elapsed().as_secs_f64();
     Ok(MapData {
@@ -223,12 +268,21 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         states,
         regions,
         large_deformation,
-        timings: Timings { solve_s, classify_s, render_s: 0.0 },
+        timings: Timings {
+            solve_s,
+            classify_s,
+            render_s: 0.0,
+        },
     })
 }
 
 /// a/R = 2 A (s0/K) / lambda = 0.1, i.e. A = 0.05 lambda / (s0/K), on the stable branch.
-fn large_deformation_line(spec: &MapSpec, lambdas: &[f64], pulloff: &[f64], ratio: f64) -> Vec<(f64, f64)> {
+fn large_deformation_line(
+    spec: &MapSpec,
+    lambdas: &[f64],
+    pulloff: &[f64],
+    ratio: f64,
+) -> Vec<(f64, f64)> {
     lambdas
         .par_iter()
         .zip(pulloff)
@@ -239,7 +293,11 @@ fn large_deformation_line(spec: &MapSpec, lambdas: &[f64], pulloff: &[f64], rati
                 return None;
             }
             let load = point(l, x_at_radius(l, a)).load;
-            let y = if spec.load_axis == LoadAxis::AbovePulloff { load - pc } else { load };
+            let y = if spec.load_axis == LoadAxis::AbovePulloff {
+                load - pc
+            } else {
+                load
+            };
             (y >= spec.load_min && y <= spec.load_max).then_some((l, y))
         })
         .collect()

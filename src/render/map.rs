@@ -33,7 +33,7 @@ impl Quantity {
     fn title(self) -> &'static str {
         match self {
             Quantity::A => "Contact radius A (exact Maugis-Dugdale)",
-            Quantity::Approach => "Approach Δ̄ (exact Maugis-Dugdale)",
+            Quantity::Approach => "Approach Δ = δ (K² / (π² w² R))^(1/3) (exact Maugis-Dugdale)",
             Quantity::M => "Cohesive zone c/a − 1 (exact Maugis-Dugdale)",
             Quantity::ErrHertz => "Error of Hertz: |A_Hertz / A − 1|",
             Quantity::ErrDmt => "Error of DMT: |A_DMT / A − 1|",
@@ -42,6 +42,22 @@ impl Quantity {
     }
     fn log(self) -> bool {
         self != Quantity::Approach
+    }
+    /// The colour coordinate: log10 for positive quantities, asinh(v / 0.1) (a signed log that
+    /// is linear within +-0.1) for the approach, which changes sign.
+    fn transform(self, v: f64) -> f64 {
+        if self.log() {
+            v.log10()
+        } else {
+            (v / 0.1).asinh()
+        }
+    }
+    fn inverse(self, t: f64) -> f64 {
+        if self.log() {
+            10f64.powf(t)
+        } else {
+            0.1 * t.sinh()
+        }
     }
     /// The value at a solved point (NaN where undefined), before the log transform.
     fn value(self, d: &MapData, i: usize) -> f64 {
@@ -60,7 +76,10 @@ impl Quantity {
         }
     }
     fn is_error(self) -> bool {
-        matches!(self, Quantity::ErrHertz | Quantity::ErrDmt | Quantity::ErrJkr)
+        matches!(
+            self,
+            Quantity::ErrHertz | Quantity::ErrDmt | Quantity::ErrJkr
+        )
     }
 }
 
@@ -78,13 +97,23 @@ pub fn region_color(r: Region) -> RGBColor {
 }
 
 fn line_color(k: usize) -> RGBColor {
-    [RGBColor(90, 90, 90), RGBColor(160, 140, 0), RGBColor(0, 114, 178), RGBColor(213, 94, 0)][k]
+    [
+        RGBColor(90, 90, 90),
+        RGBColor(160, 140, 0),
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+    ][k]
 }
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
 
 /// Writes the figure as PNG and/or SVG.
-pub fn write(d: &MapData, q: Option<Quantity>, png: Option<&Path>, svg: Option<&Path>) -> Result<(), Err> {
+pub fn write(
+    d: &MapData,
+    q: Option<Quantity>,
+    png: Option<&Path>,
+    svg: Option<&Path>,
+) -> Result<(), Err> {
     fonts();
     if let Some(p) = png {
         let mut rgb = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
@@ -93,7 +122,8 @@ pub fn write(d: &MapData, q: Option<Quantity>, png: Option<&Path>, svg: Option<&
             draw(&root, d, q)?;
             root.present()?;
         }
-        crate::io::write_atomic(p, &super::png_bytes(&rgb, WIDTH, HEIGHT)?).map_err(|e| e.to_string())?;
+        crate::io::write_atomic(p, &super::png_bytes(&rgb, WIDTH, HEIGHT)?)
+            .map_err(|e| e.to_string())?;
     }
     if let Some(p) = svg {
         let mut s = String::new();
@@ -111,14 +141,26 @@ pub fn write(d: &MapData, q: Option<Quantity>, png: Option<&Path>, svg: Option<&
 /// layout cannot place combining marks, so the bar is drawn as a line).
 fn y_label(axis: LoadAxis) -> Vec<(&'static str, bool)> {
     match axis {
-        LoadAxis::AbovePulloff => vec![("load above pull-off  ", false), ("P", true), (" − ", false), ("P", true), ("c", false)],
+        LoadAxis::AbovePulloff => vec![
+            ("load above pull-off  ", false),
+            ("P", true),
+            (" − ", false),
+            ("P", true),
+            ("c", false),
+        ],
         _ => vec![("load  ", false), ("P", true), (" = P / (π w R)", false)],
     }
 }
 
 /// Draws `pieces` rotated (reading upwards), centred at height `cy`, with bars over the barred
 /// pieces.
-fn draw_rotated_label<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, pieces: &[(&str, bool)], x: i32, cy: i32, size: f64) -> Result<(), Err>
+fn draw_rotated_label<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    pieces: &[(&str, bool)],
+    x: i32,
+    cy: i32,
+    size: f64,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
@@ -127,7 +169,10 @@ where
     let all: String = pieces.iter().map(|p| p.0).collect();
     let (w, _) = area.estimate_text_size(&all, &flat)?;
     let y0 = cy + w as i32 / 2;
-    let style = ("sans-serif", size).into_font().transform(FontTransform::Rotate270).color(&BLACK);
+    let style = ("sans-serif", size)
+        .into_font()
+        .transform(FontTransform::Rotate270)
+        .color(&BLACK);
     area.draw(&Text::new(all.clone(), (x, y0), style))?;
     let mut prefix = String::new();
     for (text, barred) in pieces {
@@ -135,22 +180,36 @@ where
         prefix.push_str(text);
         if *barred {
             let (b, _) = area.estimate_text_size(&prefix, &flat)?;
-            area.draw(&PathElement::new(vec![(x + 1, y0 - a as i32 - 2), (x + 1, y0 - b as i32 + 2)], BLACK.stroke_width(2)))?;
+            area.draw(&PathElement::new(
+                vec![(x + 1, y0 - a as i32 - 2), (x + 1, y0 - b as i32 + 2)],
+                BLACK.stroke_width(2),
+            ))?;
         }
     }
     Ok(())
 }
 
-fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, d: &MapData, q: Option<Quantity>) -> Result<(), Err>
+fn draw<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    d: &MapData,
+    q: Option<Quantity>,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
     let (upper, caption_area) = root.split_vertically(HEIGHT - 70);
-    let (plot_area, bar_area) = if q.is_some() { upper.split_horizontally(WIDTH - 190) } else { (upper.clone(), upper.clone()) };
+    let (plot_area, bar_area) = if q.is_some() {
+        upper.split_horizontally(WIDTH - 190)
+    } else {
+        (upper.clone(), upper.clone())
+    };
     let sp = &d.spec;
     let title = match q {
-        None => format!("Adhesion map: simplest adequate model (tolerance {}%)", sp.tolerance * 100.0),
+        None => format!(
+            "Adhesion map: simplest adequate model (tolerance {}%)",
+            sp.tolerance * 100.0
+        ),
         Some(q) => q.title().to_string(),
     };
     let x_range = (sp.lambda_min..sp.lambda_max).log_scale();
@@ -172,7 +231,13 @@ where
         body(&mut chart, d, q)?;
     }
     let (_, ph) = plot_area.dim_in_pixel();
-    draw_rotated_label(&plot_area, &y_label(sp.load_axis), 14, (ph as i32 - 60) / 2 + 40, 28.0)?;
+    draw_rotated_label(
+        &plot_area,
+        &y_label(sp.load_axis),
+        14,
+        (ph as i32 - 60) / 2 + 40,
+        28.0,
+    )?;
     if let Some(q) = q {
         colorbar(&bar_area, d, q)?;
     }
@@ -182,7 +247,11 @@ where
         format!("Bradley (rigid) (πλ/2)·max(A², |approach|) ≤ {tol};  DMT |A_DMT/A − 1| ≤ {tol};  JKR |A_JKR/A − 1| ≤ {tol};  else MD.  White: below the pull-off, no contact.  Dashed: a/R = 0.1."),
     ];
     for (k, l) in lines.iter().enumerate() {
-        caption_area.draw(&Text::new(l.as_str(), (30, 8 + 28 * k as i32), ("sans-serif", 19).into_font().color(&BLACK)))?;
+        caption_area.draw(&Text::new(
+            l.as_str(),
+            (30, 8 + 28 * k as i32),
+            ("sans-serif", 19).into_font().color(&BLACK),
+        ))?;
     }
     Ok(())
 }
@@ -192,7 +261,8 @@ fn to_chart(d: &MapData, fx: f64, fy: f64) -> (f64, f64) {
     let sp = &d.spec;
     let tx = fx / (sp.nx - 1) as f64;
     let ty = fy / (sp.ny - 1) as f64;
-    let l = 10f64.powf(sp.lambda_min.log10() + tx * (sp.lambda_max.log10() - sp.lambda_min.log10()));
+    let l =
+        10f64.powf(sp.lambda_min.log10() + tx * (sp.lambda_max.log10() - sp.lambda_min.log10()));
     let y = if sp.load_axis == LoadAxis::Linear {
         sp.load_min + ty * (sp.load_max - sp.load_min)
     } else {
@@ -207,8 +277,7 @@ fn quantity_range(d: &MapData, q: Quantity) -> (f64, f64) {
     }
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for i in 0..d.states.len() {
-        let v = q.value(d, i);
-        let v = if q.log() { v.log10() } else { v };
+        let v = q.transform(q.value(d, i));
         if v.is_finite() {
             lo = lo.min(v);
             hi = hi.max(v);
@@ -249,8 +318,7 @@ where
             let i = iy * sp.nx + ix;
             let col = match (q, range) {
                 (Some(q), Some((lo, hi))) => {
-                    let v = q.value(d, i);
-                    let v = if q.log() { v.log10() } else { v };
+                    let v = q.transform(q.value(d, i));
                     if d.regions[i] == Region::NoContact {
                         RGBColor(255, 255, 255)
                     } else if v.is_finite() {
@@ -294,7 +362,11 @@ where
                 }
                 let c = criteria(s.lambda, s.load, s.a, s.approach);
                 let v = [c.err_hertz, c.rigid, c.err_dmt, c.err_jkr][k];
-                if v.is_finite() { v } else { 1e9 }
+                if v.is_finite() {
+                    v
+                } else {
+                    1e9
+                }
             })
             .collect();
         let style = ShapeStyle::from(&line_color(k)).stroke_width(3);
@@ -303,19 +375,30 @@ where
             let pts: Vec<(f64, f64)> = path.iter().map(|&(x, y)| to_chart(d, x, y)).collect();
             let series = chart.draw_series(LineSeries::new(pts, style))?;
             if first {
-                series.label(format!("{name} within {}%", sp.tolerance * 100.0)).legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], style));
+                series
+                    .label(format!("{name} within {}%", sp.tolerance * 100.0))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], style));
                 first = false;
             }
         }
     }
-    let contact: Vec<f64> = d.regions.iter().map(|&r| if r == Region::NoContact { 0.0 } else { 1.0 }).collect();
+    let contact: Vec<f64> = d
+        .regions
+        .iter()
+        .map(|&r| if r == Region::NoContact { 0.0 } else { 1.0 })
+        .collect();
     let mut first = true;
     let has_edge = contact.contains(&0.0) && contact.contains(&1.0);
-    for path in contour_paths(&contact, nx, ny, 0.5).into_iter().filter(|_| has_edge) {
+    for path in contour_paths(&contact, nx, ny, 0.5)
+        .into_iter()
+        .filter(|_| has_edge)
+    {
         let pts: Vec<(f64, f64)> = path.iter().map(|&(x, y)| to_chart(d, x, y)).collect();
         let s = chart.draw_series(LineSeries::new(pts, BLACK.stroke_width(3)))?;
         if first {
-            s.label("pull-off (load control)").legend(|(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], BLACK.stroke_width(3)));
+            s.label("pull-off (load control)").legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 30, y)], BLACK.stroke_width(3))
+            });
             first = false;
         }
     }
@@ -326,7 +409,11 @@ where
         let style = ShapeStyle::from(&BLACK).stroke_width(2);
         chart.draw_series(DashedLineSeries::new(line.points.clone(), 12, 8, style))?;
         let (lx, ly) = line.points[line.points.len() * (7 - 2 * k.min(2)) / 10];
-        chart.draw_series(std::iter::once(Text::new(format!("a/R = 0.1, σ0/K = {}", line.strength_ratio), (lx, ly), ("sans-serif", 20).into_font())))?;
+        chart.draw_series(std::iter::once(Text::new(
+            format!("a/R = 0.1, σ0/K = {}", line.strength_ratio),
+            (lx, ly),
+            ("sans-serif", 20).into_font(),
+        )))?;
     }
     if q.is_none() {
         region_labels(chart, d)?;
@@ -343,7 +430,10 @@ where
 
 /// Region names at each region's pole of inaccessibility, found on a coarse grid: the cell of
 /// the region farthest from any other region (and from the frame).
-fn region_labels<'a, DB: DrawingBackend + 'a, Y>(chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>, d: &MapData) -> Result<(), Err>
+fn region_labels<'a, DB: DrawingBackend + 'a, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
+    d: &MapData,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
     Y: Ranged<ValueType = f64>,
@@ -353,7 +443,10 @@ where
     let coarse: Vec<Region> = (0..C * C)
         .map(|k| {
             let (cx, cy) = (k % C, k / C);
-            d.region_at((cx * 2 + 1) * (nx - 1) / (2 * C - 1), (cy * 2 + 1) * (ny - 1) / (2 * C - 1))
+            d.region_at(
+                (cx * 2 + 1) * (nx - 1) / (2 * C - 1),
+                (cy * 2 + 1) * (ny - 1) / (2 * C - 1),
+            )
         })
         .collect();
     for r in Region::ALL {
@@ -361,7 +454,10 @@ where
             continue;
         }
         let mid_y = {
-            let ys: Vec<f64> = (0..C * C).filter(|&k| coarse[k] == r).map(|k| (k / C) as f64).collect();
+            let ys: Vec<f64> = (0..C * C)
+                .filter(|&k| coarse[k] == r)
+                .map(|k| (k / C) as f64)
+                .collect();
             ys.iter().sum::<f64>() / ys.len() as f64
         };
         let mut best = (f64::NEG_INFINITY, 0usize);
@@ -371,7 +467,11 @@ where
             }
             let (x, y) = ((k % C) as f64, (k / C) as f64);
             // Labels are wide: horizontal distance counts a third.
-            let mut dist = (x + 1.0).min(C as f64 - x).min(3.0 * (y + 1.0)).min(3.0 * (C as f64 - y)) / 3.0;
+            let mut dist = (x + 1.0)
+                .min(C as f64 - x)
+                .min(3.0 * (y + 1.0))
+                .min(3.0 * (C as f64 - y))
+                / 3.0;
             for j in 0..C * C {
                 if coarse[j] != r {
                     let (u, v) = ((j % C) as f64, (j / C) as f64);
@@ -387,11 +487,17 @@ where
         let (cx, cy) = (best.1 % C, best.1 / C);
         let fx = ((cx * 2 + 1) * (nx - 1)) as f64 / (2 * C - 1) as f64;
         let fy = ((cy * 2 + 1) * (ny - 1)) as f64 / (2 * C - 1) as f64;
-        let style = ("sans-serif", 30).into_font().color(&BLACK).pos(plotters::style::text_anchor::Pos::new(
-            plotters::style::text_anchor::HPos::Center,
-            plotters::style::text_anchor::VPos::Center,
-        ));
-        chart.draw_series(std::iter::once(Text::new(r.label().to_string(), to_chart(d, fx, fy), style)))?;
+        let style = ("sans-serif", 30).into_font().color(&BLACK).pos(
+            plotters::style::text_anchor::Pos::new(
+                plotters::style::text_anchor::HPos::Center,
+                plotters::style::text_anchor::VPos::Center,
+            ),
+        );
+        chart.draw_series(std::iter::once(Text::new(
+            r.label().to_string(),
+            to_chart(d, fx, fy),
+            style,
+        )))?;
     }
     Ok(())
 }
@@ -407,16 +513,23 @@ pub fn contour_paths(field: &[f64], nx: usize, ny: usize, level: f64) -> Vec<Vec
         for ls in &line.geometry().0 {
             // contour puts sample i at the centre of cell [i, i+1]: shift by half a cell and
             // clamp to the sampled range.
-            let pts: Vec<(f64, f64)> = ls
-                .0
-                .iter()
-                .map(|c| ((c.x - 0.5).clamp(0.0, (nx - 1) as f64), (c.y - 0.5).clamp(0.0, (ny - 1) as f64)))
-                .collect();
+            let pts: Vec<(f64, f64)> =
+                ls.0.iter()
+                    .map(|c| {
+                        (
+                            (c.x - 0.5).clamp(0.0, (nx - 1) as f64),
+                            (c.y - 0.5).clamp(0.0, (ny - 1) as f64),
+                        )
+                    })
+                    .collect();
             // Closed rings run along the frame where the field is below the level at the edge:
             // those segments are not boundaries, so the path is cut there.
             let (xm, ym) = ((nx - 1) as f64, (ny - 1) as f64);
             let on_edge = |a: (f64, f64), b: (f64, f64)| {
-                (a.0 == 0.0 && b.0 == 0.0) || (a.0 == xm && b.0 == xm) || (a.1 == 0.0 && b.1 == 0.0) || (a.1 == ym && b.1 == ym)
+                (a.0 == 0.0 && b.0 == 0.0)
+                    || (a.0 == xm && b.0 == xm)
+                    || (a.1 == 0.0 && b.1 == 0.0)
+                    || (a.1 == ym && b.1 == ym)
             };
             let mut cur: Vec<(f64, f64)> = Vec::new();
             for w in pts.windows(2) {
@@ -440,7 +553,11 @@ pub fn contour_paths(field: &[f64], nx: usize, ny: usize, level: f64) -> Vec<Vec
     out
 }
 
-fn colorbar<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, d: &MapData, q: Quantity) -> Result<(), Err>
+fn colorbar<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    d: &MapData,
+    q: Quantity,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
@@ -471,7 +588,13 @@ where
         .disable_x_axis()
         .y_labels(8)
         .label_style(("sans-serif", 20))
-        .y_label_formatter(&|v| if log { format!("1e{:.1}", v).replace(".0", "") } else { format!("{v:.2}") })
+        .y_label_formatter(&|v| {
+            if log {
+                format!("1e{:.1}", v).replace(".0", "")
+            } else {
+                format!("{:.2}", q.inverse(*v))
+            }
+        })
         .draw()?;
     Ok(())
 }

@@ -2,6 +2,7 @@
 //! output on every machine); the map raster is coloured here and placed as one bitmap.
 
 pub mod map;
+pub mod plots;
 
 use std::sync::Once;
 
@@ -10,7 +11,8 @@ pub fn fonts() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         let bytes: &'static [u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
-        let _ = plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, bytes);
+        let _ =
+            plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, bytes);
     });
 }
 
@@ -36,6 +38,11 @@ pub fn log_label(v: f64) -> String {
 pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, image::ImageError> {
     use image::ImageEncoder;
     let mut out = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut out).write_image(rgb, w, h, image::ExtendedColorType::Rgb8)?;
+    image::codecs::png::PngEncoder::new(&mut out).write_image(
+        rgb,
+        w,
+        h,
+        image::ExtendedColorType::Rgb8,
+    )?;
     Ok(out)
 }

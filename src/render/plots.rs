@@ -1,0 +1,247 @@
+//! Line plots for the gallery: pull-off against lambda, and A(P) curves.
+
+use super::{fonts, log_label, png_bytes};
+use crate::physics::closed::{
+    cos_pulloff, dmt_radius, hertz_radius, jkr_radius, JKR_PULLOFF_DISPLACEMENT, JKR_PULLOFF_LOAD,
+};
+use crate::physics::md::{curve_point, LAMBDA_D};
+use crate::solver::context::x_at_radius;
+use crate::solver::LambdaContext;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+
+type Err = Box<dyn std::error::Error + Send + Sync>;
+pub const W: u32 = 1400;
+pub const H: u32 = 1000;
+
+/// Draws with `f` into a PNG and/or an SVG of W x H.
+pub fn save(
+    png: Option<&Path>,
+    svg: Option<&Path>,
+    f: &dyn Fn(&DrawingArea<BitMapBackend, Shift>) -> Result<(), Err>,
+    g: &dyn Fn(&DrawingArea<SVGBackend, Shift>) -> Result<(), Err>,
+) -> Result<(), Err> {
+    fonts();
+    if let Some(p) = png {
+        let mut rgb = vec![0u8; (W * H * 3) as usize];
+        {
+            let root = BitMapBackend::with_buffer(&mut rgb, (W, H)).into_drawing_area();
+            f(&root)?;
+            root.present()?;
+        }
+        crate::io::write_atomic(p, &png_bytes(&rgb, W, H)?).map_err(|e| e.to_string())?;
+    }
+    if let Some(p) = svg {
+        let mut s = String::new();
+        {
+            let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
+            g(&root)?;
+            root.present()?;
+        }
+        crate::io::write_atomic(p, s.as_bytes()).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+const BLUE_: RGBColor = RGBColor(0, 114, 178);
+const ORANGE_: RGBColor = RGBColor(213, 94, 0);
+const GREEN_: RGBColor = RGBColor(0, 158, 115);
+const GRAY_: RGBColor = RGBColor(120, 120, 120);
+
+/// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
+/// JKR limits and the Johnson-Greenwood fit.
+pub fn pulloff<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let lambdas: Vec<f64> = (0..=400)
+        .map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 400.0))
+        .collect();
+    let ctx: Vec<LambdaContext> = lambdas
+        .iter()
+        .map(|&l| LambdaContext::new(l).expect("lambda in range"))
+        .collect();
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            "Pull-off force against the Maugis parameter",
+            ("sans-serif", 34),
+        )
+        .margin(24)
+        .x_label_area_size(80)
+        .y_label_area_size(100)
+        .build_cartesian_2d((1e-4..1e4f64).log_scale(), -2.1..-0.7f64)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("Maugis parameter  λ")
+        .y_desc("pull-off load  P / (π w R)")
+        .axis_desc_style(("sans-serif", 28))
+        .label_style(("sans-serif", 22))
+        .x_label_formatter(&|v| log_label(*v))
+        .draw()?;
+    let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(4);
+    chart
+        .draw_series(LineSeries::new(
+            lambdas
+                .iter()
+                .zip(&ctx)
+                .map(|(&l, c)| (l, c.load_pulloff.load)),
+            thick(BLUE_),
+        ))?
+        .label("Maugis-Dugdale, load control (dead load)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], thick(BLUE_)));
+    chart
+        .draw_series(LineSeries::new(
+            lambdas
+                .iter()
+                .zip(&ctx)
+                .map(|(&l, c)| (l, c.disp_pulloff.load)),
+            thick(ORANGE_),
+        ))?
+        .label("Maugis-Dugdale, displacement control (rigid grips)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], thick(ORANGE_)));
+    chart
+        .draw_series(DashedLineSeries::new(
+            lambdas.iter().map(|&l| (l, cos_pulloff(l))),
+            10,
+            8,
+            ShapeStyle::from(&GREEN_).stroke_width(3),
+        ))?
+        .label("Johnson-Greenwood fit (COS), load control")
+        .legend(move |(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + 30, y)],
+                ShapeStyle::from(&GREEN_).stroke_width(3),
+            )
+        });
+    let gray = ShapeStyle::from(&GRAY_).stroke_width(2);
+    for (y, text) in [
+        (-2.0, "DMT / Bradley: −2"),
+        (JKR_PULLOFF_LOAD, "JKR, load control: −3/2"),
+        (JKR_PULLOFF_DISPLACEMENT, "JKR, displacement control: −5/6"),
+    ] {
+        chart.draw_series(DashedLineSeries::new(vec![(1e-4, y), (1e4, y)], 6, 6, gray))?;
+        chart.draw_series(std::iter::once(Text::new(
+            text,
+            (2e-4, y + 0.045),
+            ("sans-serif", 20).into_font().color(&GRAY_),
+        )))?;
+    }
+    chart.draw_series(DashedLineSeries::new(
+        vec![(LAMBDA_D, -2.1), (LAMBDA_D, -0.7)],
+        4,
+        6,
+        ShapeStyle::from(&BLACK).stroke_width(1),
+    ))?;
+    chart.draw_series(std::iter::once(Text::new(
+        "λ_D = 0.938: below it, rigid grips lose contact at zero radius",
+        (LAMBDA_D * 1.15, -0.75),
+        ("sans-serif", 20).into_font(),
+    )))?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 22))
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()?;
+    Ok(())
+}
+
+/// A(P) for several lambda: the exact MD curve (stable under load control solid, unstable
+/// dashed) with Hertz, DMT and JKR.
+pub fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, lambdas: &[f64]) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let mut chart = ChartBuilder::on(root)
+        .caption(
+            "Contact radius against load: Maugis-Dugdale and the closed forms",
+            ("sans-serif", 32),
+        )
+        .margin(24)
+        .x_label_area_size(80)
+        .y_label_area_size(90)
+        .build_cartesian_2d(-2.2..4.0f64, 0.0..2.6f64)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("load  P / (π w R)")
+        .y_desc("contact radius  A = a (K / (π w R²))^(1/3)")
+        .axis_desc_style(("sans-serif", 26))
+        .label_style(("sans-serif", 22))
+        .draw()?;
+    let grid: Vec<f64> = (0..=600).map(|i| -2.2 + 6.2 * i as f64 / 600.0).collect();
+    let closed = [
+        ("Hertz", GRAY_, hertz_radius as fn(f64) -> Option<f64>),
+        ("DMT", BLUE_, dmt_radius),
+        ("JKR", ORANGE_, jkr_radius),
+    ];
+    for (name, col, f) in closed {
+        let st = ShapeStyle::from(&col).stroke_width(2);
+        chart
+            .draw_series(DashedLineSeries::new(
+                grid.iter().filter_map(|&p| f(p).map(|a| (p, a))),
+                8,
+                6,
+                st,
+            ))?
+            .label(format!("{name} (closed form)"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+    }
+    let palette = [
+        RGBColor(0, 0, 0),
+        GREEN_,
+        RGBColor(204, 121, 167),
+        RGBColor(86, 180, 233),
+        RGBColor(230, 159, 0),
+    ];
+    for (k, &l) in lambdas.iter().enumerate() {
+        let col = palette[k % palette.len()];
+        let pts: Vec<(f64, f64, bool)> = (1..=400)
+            .map(|i| {
+                let a = 2.6 * i as f64 / 400.0;
+                let p = curve_point(l, x_at_radius(l, a).exp());
+                (p.load, p.a, p.dload_dmu < 0.0)
+            })
+            .filter(|p| p.0 <= 4.0)
+            .collect();
+        let stable: Vec<(f64, f64)> = pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
+        let unstable: Vec<(f64, f64)> = pts.iter().filter(|p| !p.2).map(|p| (p.0, p.1)).collect();
+        let st = ShapeStyle::from(&col).stroke_width(4);
+        chart
+            .draw_series(LineSeries::new(stable, st))?
+            .label(format!("Maugis-Dugdale, λ = {l}"))
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+        chart.draw_series(DashedLineSeries::new(
+            unstable,
+            5,
+            5,
+            ShapeStyle::from(&col).stroke_width(2),
+        ))?;
+        let c = LambdaContext::new(l)?;
+        chart.draw_series(std::iter::once(Circle::new(
+            (c.load_pulloff.load, c.load_pulloff.a),
+            7,
+            col.filled(),
+        )))?;
+    }
+    chart.draw_series(std::iter::once(Text::new(
+        "dots: pull-off under load control; thin dashes: unstable branch",
+        (-2.1, 0.08),
+        ("sans-serif", 20).into_font(),
+    )))?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 22))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    Ok(())
+}

@@ -1,0 +1,133 @@
+//! The command line end to end: real outputs, and bad input giving a clear error, a non-zero
+//! exit and no output file.
+
+use std::process::Command;
+
+fn tabor(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args(args)
+        .env("TABOR_BACKEND", "cpu")
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn solve_file_round_trip() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.csv");
+    std::fs::write(&input, "id,lambda,load\na,1,0.5\nb,0.1,-1.9\nc,10,-1.6\n").unwrap();
+    let out = dir.path().join("out.csv");
+    let o = tabor(&[
+        "solve",
+        "--input",
+        input.to_str().unwrap(),
+        "--output",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "lambda,load,A,approach,m_minus_1,status");
+    assert_eq!(lines.len(), 4);
+    // Row order kept; A at lambda = 1, load 0.5 (f64 solver, 17 digits).
+    let a: f64 = lines[1].split(',').nth(2).unwrap().parse().unwrap();
+    assert!((a - 1.7289400402050878).abs() < 1e-14);
+    assert!(lines[2].ends_with(",ok"));
+    assert!(lines[3].ends_with(",,,,no_contact"), "{}", lines[3]);
+}
+
+#[test]
+fn bad_input_fails_cleanly_without_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.csv");
+    for (content, needle) in [
+        ("lambda,load\n1,0.5\n2,x\n", "line 3"),
+        ("lambda,force\n1,0.5\n", "no column `load`"),
+        ("lambda,load\n0,0.5\n", "must be > 0"),
+        ("lambda,load\n1,nan\n", "finite"),
+        ("", "empty"),
+    ] {
+        let input = dir.path().join("in.csv");
+        std::fs::write(&input, content).unwrap();
+        let o = tabor(&[
+            "solve",
+            "-i",
+            input.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{content:?}");
+        assert!(err.contains(needle), "{content:?}: {err}");
+        assert!(
+            !out.exists(),
+            "a partial output file was left for {content:?}"
+        );
+    }
+    let o = tabor(&["pulloff", "--lambda", "-1"]);
+    assert!(!o.status.success());
+    let png = dir.path().join("m.png");
+    let o = tabor(&["map", "--tolerance", "2", "--out", png.to_str().unwrap()]);
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("--tolerance"));
+    assert!(!png.exists());
+}
+
+#[test]
+fn pulloff_and_curve_outputs() {
+    let o = tabor(&["pulloff", "--lambda", "0.1,1,10", "--format", "csv"]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.starts_with("lambda,load_control_load,load_control_A,"));
+    let row: Vec<f64> = text
+        .lines()
+        .nth(2)
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert!((row[1] - -1.600734911).abs() < 1e-9 && (row[4] - -0.8917414828).abs() < 1e-9);
+    let o = tabor(&[
+        "curve", "--lambda", "1", "--points", "50", "--format", "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["points"].as_array().unwrap().len(), 50);
+    let o = tabor(&[
+        "solve", "--lambda", "1", "--load", "0.5", "--format", "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["results"][0]["status"], "ok");
+}
+
+#[test]
+fn map_writes_json_and_npy() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    let o = tabor(&[
+        "map",
+        "--nx",
+        "40",
+        "--ny",
+        "30",
+        "--out",
+        &p("m.png"),
+        "--json",
+        &p("m.json"),
+        "--json-full",
+        "--npy",
+        &p("m"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p("m.json")).unwrap()).unwrap();
+    assert_eq!(v["metadata"]["backend"], "cpu");
+    assert_eq!(v["metadata"]["tolerance"], 0.05);
+    assert_eq!(v["axes"]["lambda"].as_array().unwrap().len(), 40);
+    assert_eq!(v["thresholds"].as_array().unwrap().len(), 40);
+    let region = v["points"]["region"].as_array().unwrap();
+    assert_eq!(region.len(), 30);
+    assert_eq!(region[0].as_array().unwrap().len(), 40);
+    let bytes = std::fs::read(p("m_A.npy")).unwrap();
+    let npy = npyz::NpyFile::new(&bytes[..]).unwrap();
+    assert_eq!(npy.shape(), &[30, 40]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("solve") && err.contains("render"), "{err}");
+}

@@ -1,0 +1,130 @@
+//! Maps: classification against known limits, figures, tables, determinism, GPU/CPU agreement.
+
+use tabor::engine::Engine;
+use tabor::map::{compute, LoadAxis, MapSpec, Region};
+
+fn spec(nx: usize, ny: usize, axis: LoadAxis) -> MapSpec {
+    let (lo, hi) = if axis == LoadAxis::AbovePulloff {
+        (1e-6, 1e3)
+    } else {
+        (1e-3, 1e3)
+    };
+    MapSpec {
+        lambda_min: 1e-3,
+        lambda_max: 1e3,
+        nx,
+        load_axis: axis,
+        load_min: lo,
+        load_max: hi,
+        ny,
+        tolerance: 0.05,
+        strength_ratios: vec![0.001, 0.01],
+    }
+}
+
+#[test]
+fn regions_and_thresholds_match_known_limits() {
+    let d = compute(&spec(121, 61, LoadAxis::Log), &Engine::Cpu).unwrap();
+    let th = d.thresholds();
+    // lambda = 1e-3: Hertz is within 5% of DMT-like MD once (1 + 2/P)^(1/3) - 1 <= 0.05,
+    // i.e. P >= 2 / (1.05^3 - 1) = 12.6.
+    let h = th[0]["hertz_adequate_above_load"].as_f64().unwrap();
+    assert!((10.0..16.0).contains(&h), "{h}");
+    // lambda = 1e3: JKR is adequate at every load of the axis.
+    let j = th[120]["jkr_adequate_above_load"].as_f64().unwrap();
+    assert_eq!(j, 1e-3);
+    // JKR within 5% at all loads only for lambda >= 1.88, DMT only for lambda <= 0.085
+    // (PHYSICS.md section 6): check the bottom row.
+    for ix in 0..121 {
+        let l = d.lambdas[ix];
+        let r = d.region_at(ix, 0);
+        if l > 2.0 {
+            assert_eq!(r, Region::Jkr, "lambda {l}");
+        }
+        if l < 0.08 && l > 0.03 {
+            assert_eq!(r, Region::Dmt, "lambda {l}");
+        }
+        if (0.1..1.8).contains(&l) {
+            assert_eq!(r, Region::Md, "lambda {l}");
+        }
+    }
+}
+
+#[test]
+fn tensile_map_has_no_contact_only_below_pulloff() {
+    let mut s = spec(64, 64, LoadAxis::Linear);
+    s.load_min = -2.0;
+    s.load_max = 2.0;
+    let d = compute(&s, &Engine::Cpu).unwrap();
+    for (i, st) in d.states.iter().enumerate() {
+        let below = st.load < d.pulloff[i % 64];
+        assert_eq!(d.regions[i] == Region::NoContact, below, "point {i}");
+    }
+}
+
+#[test]
+fn figures_tables_and_determinism() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = compute(&spec(96, 96, LoadAxis::AbovePulloff), &Engine::Cpu).unwrap();
+    let (png, svg) = (dir.path().join("m.png"), dir.path().join("m.svg"));
+    tabor::render::map::write(&d, None, Some(&png), Some(&svg)).unwrap();
+    let img = image::open(&png).unwrap();
+    assert_eq!(
+        (img.width(), img.height()),
+        (tabor::render::map::WIDTH, tabor::render::map::HEIGHT)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(
+        text.starts_with("<svg")
+            && text.contains("width=\"1600\"")
+            && text.contains("Maugis parameter")
+    );
+    // Same input, same bytes.
+    let png2 = dir.path().join("m2.png");
+    tabor::render::map::write(&d, None, Some(&png2), None).unwrap();
+    assert_eq!(std::fs::read(&png).unwrap(), std::fs::read(&png2).unwrap());
+    // A quantity map too.
+    tabor::render::map::write(
+        &d,
+        Some(tabor::render::map::Quantity::ErrJkr),
+        Some(&png2),
+        None,
+    )
+    .unwrap();
+}
+
+#[test]
+fn gpu_and_cpu_maps_agree() {
+    let gpu = match tabor::gpu::Gpu::new(None) {
+        Ok(g) => g,
+        Err(e) => {
+            if std::env::var("TABOR_REQUIRE_GPU").is_ok_and(|v| v == "1") {
+                panic!("TABOR_REQUIRE_GPU=1 but no GPU adapter: {e}");
+            }
+            eprintln!("SKIPPED: no GPU adapter ({e})");
+            return;
+        }
+    };
+    for axis in [LoadAxis::Log, LoadAxis::AbovePulloff] {
+        let s = spec(256, 256, axis);
+        let c = compute(&s, &Engine::Cpu).unwrap();
+        let g = compute(
+            &s,
+            &Engine::Gpu(Box::new(tabor::gpu::Gpu::new(None).unwrap())),
+        )
+        .unwrap();
+        let same = c
+            .regions
+            .iter()
+            .zip(&g.regions)
+            .filter(|(a, b)| a == b)
+            .count();
+        let frac = same as f64 / c.regions.len() as f64;
+        eprintln!(
+            "{axis:?}: GPU and CPU regions agree on {:.4}% of points",
+            100.0 * frac
+        );
+        assert!(frac >= 0.999, "{frac}");
+    }
+    drop(gpu);
+}
