@@ -177,7 +177,34 @@ struct Point {
     m_minus_1: f32,
 }
 
+// Variant switch for benchmarks (Params.flags bit 0): the textbook formulas, which cancel as
+// m -> 1 (src/solver/mirror.rs, curve_point_naive).
+fn naive() -> bool {
+    return (params.flags & 1u) != 0u;
+}
+
+fn curve_point_naive(lambda: f32, mu: f32) -> Point {
+    let at = atan_parts(mu).x;
+    let m = sqrt(1.0 + mu * mu);
+    let m_minus_1 = m - 1.0;
+    let f1 = (m * m - 2.0) * at + mu;
+    let f2 = mu * at - m_minus_1;
+    let alpha = 0.5 * lambda * f1;
+    let beta = (4.0 / 3.0) * lambda * lambda * f2;
+    let a = (-beta + sqrt(beta * beta + 4.0 * alpha)) / (2.0 * alpha);
+    var p: Point;
+    p.a = a;
+    p.load = a * a * a - lambda * a * a * (mu + m * m * at);
+    p.load_plus_2 = p.load + 2.0;
+    p.approach = a * a - (4.0 / 3.0) * lambda * a * mu;
+    p.m_minus_1 = m_minus_1;
+    return p;
+}
+
 fn curve_point(lambda: f32, mu: f32) -> Point {
+    if naive() {
+        return curve_point_naive(lambda, mu);
+    }
     let ap = atan_parts(mu);
     let at = ap.x;
     let mu2 = mu * mu;
@@ -204,14 +231,26 @@ fn quantity(lambda: f32, small: bool, control: u32, mu: f32) -> f32 {
     if control == 1u {
         return p.approach;
     }
-    if small {
+    if small && !naive() {
         return p.load_plus_2;
     }
     return p.load;
 }
 
+// The branch end as one f32 in naive units (Pbar, not Pbar + 2).
+fn naive_end(end: vec2<f32>, small: bool, control: u32) -> f32 {
+    var shift = 0.0;
+    if control == 0u && small {
+        shift = 2.0;
+    }
+    return (end.x - shift) + end.y;
+}
+
 fn residual(lambda: f32, small: bool, end: vec2<f32>, control: u32, mu: f32, gap: f32) -> f32 {
-    let r = ((quantity(lambda, small, control, mu) - end.x) - end.y) - gap;
+    var r = ((quantity(lambda, small, control, mu) - end.x) - end.y) - gap;
+    if naive() {
+        r = (quantity(lambda, small, control, mu) - naive_end(end, small, control)) - gap;
+    }
     let q = r / gap;
     if q <= -1.0 {
         return -INF;
@@ -255,6 +294,12 @@ fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32
     if !is_gap {
         gap = ((hi + shift) - end.x) + (lo - end.y);
     }
+    if naive() {
+        gap = hi;
+        if !is_gap {
+            gap = hi - naive_end(end, small, control);
+        }
+    }
     if gap < 0.0 {
         return failed(STATUS_NO_CONTACT);
     }
@@ -265,7 +310,7 @@ fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32
         if zero_end {
             return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
         }
-    } else if sqrt(gap) < s_max {
+    } else if !naive() && sqrt(gap) < s_max {
         let s = sqrt(gap);
         let dx = s * cheb_eval(ci, control, 2.0 * s / s_max - 1.0);
         mu = mu_ref * exp_f(dx);
@@ -323,9 +368,16 @@ fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32
         var l_prev = 0.0;
         var dx_old = hi_x - lo_x;
         var done = false;
+        // The best iterate so far: what an iteration cap returns.
+        var best_f = INF;
+        var best_m = m;
         for (var it = 1u; it <= max_iter; it++) {
             iterations = it;
             let fx = residual(lambda, small, end, control, m, gap);
+            if abs(fx) < best_f {
+                best_f = abs(fx);
+                best_m = m;
+            }
             // |F| at the f32 noise level: done (below it the secant slope is noise).
             if abs(fx) <= 8e-7 {
                 done = true;
@@ -376,6 +428,7 @@ fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32
         }
         if !done {
             status = STATUS_NOT_CONVERGED;
+            m = best_m;
         }
         mu = m;
     }

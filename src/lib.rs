@@ -4,6 +4,7 @@
 //! code for the WGSL kernels in `shaders/`), `map` (classification), `render` (figures) and the
 //! command line in `src/cli`.
 
+pub mod bench;
 pub mod cli;
 pub mod engine;
 pub mod gpu;

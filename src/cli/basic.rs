@@ -481,3 +481,60 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     eprintln!("wrote {}", a.out.display());
     Ok(())
 }
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A small workload (under a minute on 2 cores).
+    #[arg(long)]
+    pub quick: bool,
+    /// Where bench.png, bench.svg, bench.json and bench.txt go.
+    #[arg(long, default_value = ".")]
+    pub out_dir: std::path::PathBuf,
+    /// Skip the GPU variants even if an adapter exists.
+    #[arg(long)]
+    pub no_gpu: bool,
+    #[command(flatten)]
+    pub gpu: GpuArgs,
+}
+
+pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
+    use crate::bench;
+    let (nl, np) = if a.quick { (120, 60) } else { (600, 300) };
+    let t = std::time::Instant::now();
+    let w = bench::Workload::new(nl, np);
+    eprintln!("workload: {} points (lambda 1e-4..1e4 x {np} gaps 1e-6..1e3 above pull-off, and the 300 reference states); reference solved in {:.2} s", w.points.len(), t.elapsed().as_secs_f64());
+    let gpu = if a.no_gpu {
+        None
+    } else {
+        match crate::gpu::Gpu::new(a.gpu.adapter.as_deref()) {
+            Ok(g) => {
+                eprintln!("GPU variants on {} ({}, {})", g.adapter.name, g.adapter.backend, g.adapter.device_type);
+                Some(g)
+            }
+            Err(e) => {
+                eprintln!("GPU variants skipped: {e}");
+                None
+            }
+        }
+    };
+    let results = bench::run(&w, gpu.as_ref(), &mut |r| eprintln!("  {:<26} {:>10.3e} points/s, max err {:.2e}, {} failed", r.name, r.points_per_second, r.max_rel_err, r.failures));
+    let front = bench::pareto(&results);
+    let text = bench::table(&results);
+    print!("{text}");
+    std::fs::create_dir_all(&a.out_dir)?;
+    let machine = format!("{} CPU threads{}", rayon::current_num_threads(), gpu.as_ref().map(|g| format!(", GPU: {}", g.adapter.name)).unwrap_or_default());
+    let doc = json!({
+        "metadata": {"tabor_version": env!("CARGO_PKG_VERSION"), "machine": machine, "quick": a.quick, "points": w.points.len(),
+                     "adapter": gpu.as_ref().map(|g| g.adapter.clone())},
+        "results": results,
+        "pareto_front": front.iter().map(|&i| results[i].name.clone()).collect::<Vec<_>>(),
+    });
+    crate::io::write_atomic(&a.out_dir.join("bench.json"), (serde_json::to_string_pretty(&doc)? + "\n").as_bytes())?;
+    crate::io::write_atomic(&a.out_dir.join("bench.txt"), format!("{machine}\n{text}").as_bytes())?;
+    let title = format!("Speed against accuracy ({machine})");
+    let (png, svg) = (a.out_dir.join("bench.png"), a.out_dir.join("bench.svg"));
+    crate::render::plots::save(Some(&png), Some(&svg), &|r| crate::render::plots::bench_chart(r, &results, &front, &title), &|r| crate::render::plots::bench_chart(r, &results, &front, &title))
+        .map_err(|e| anyhow::anyhow!("drawing the chart: {e}"))?;
+    eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());
+    Ok(())
+}

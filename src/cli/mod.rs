@@ -24,6 +24,8 @@ pub enum Command {
     Map(Box<map::MapArgs>),
     /// Line plots: pull-off against lambda, or A(P) curves with the closed forms.
     Plot(basic::PlotArgs),
+    /// Speed against accuracy of every solver variant: a table, JSON and a chart.
+    Bench(basic::BenchArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -44,5 +46,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Info => basic::info(),
         Command::Map(a) => map::run(*a),
         Command::Plot(a) => basic::plot(a),
+        Command::Bench(a) => basic::bench(a),
     }
 }

@@ -27,8 +27,8 @@ pub fn log_label(v: f64) -> String {
     }
     let e = e.round() as i32;
     if (-2..=3).contains(&e) {
-        let s = format!("{v}");
-        s.trim_end_matches(".0").to_string()
+        // From the exponent: 10^-2 is not exactly 0.01 in binary.
+        format!("{}", 10f64.powi(e))
     } else {
         format!("1e{e}")
     }

@@ -123,20 +123,52 @@ fn branch(g: &GpuLambda, control: Control) -> &Branch {
     }
 }
 
+/// Variant switch (bit 0 of `flags`): the textbook formulas, to show what the shipped ones avoid.
+pub const FLAG_NAIVE: u32 = 1;
+
+/// The curve point from the formulas as printed: `(m^2 - 2) arcsec m + mu` and `m - 1` by
+/// subtraction, which cancel as m -> 1 (the JKR side). Same atan as the shipped kernel.
+pub fn curve_point_naive(lambda: f32, mu: f32) -> crate::physics::md::CurvePoint<f32> {
+    let (at, _) = atan_parts_f32(mu);
+    let m = (1.0 + mu * mu).sqrt();
+    let m_minus_1 = m - 1.0;
+    let f1 = (m * m - 2.0) * at + mu;
+    let f2 = mu * at - m_minus_1;
+    let alpha = 0.5 * lambda * f1;
+    let beta = 4.0 / 3.0 * lambda * lambda * f2;
+    let a = (-beta + (beta * beta + 4.0 * alpha).sqrt()) / (2.0 * alpha);
+    let load = a * a * a - lambda * a * a * (mu + m * m * at);
+    let approach = a * a - 4.0 / 3.0 * lambda * a * mu;
+    crate::physics::md::CurvePoint { mu, a, m_minus_1, load_plus_2: load + 2.0, load, approach, dload_dmu: f32::NAN, dapproach_dmu: f32::NAN }
+}
+
+fn point_f32(g: &GpuLambda, mu: f32, naive: bool) -> crate::physics::md::CurvePoint<f32> {
+    if naive {
+        curve_point_naive(g.lambda, mu)
+    } else {
+        curve_point(g.lambda, mu)
+    }
+}
+
 /// The residual's quantity: Pbar + 2 (small lambda) or Pbar, or Dbar.
-fn quantity(g: &GpuLambda, control: Control, mu: f32) -> f32 {
-    let p = curve_point(g.lambda, mu);
+fn quantity(g: &GpuLambda, control: Control, mu: f32, naive: bool) -> f32 {
+    let p = point_f32(g, mu, naive);
     match control {
-        Control::Load if g.small == 1 => p.load_plus_2,
+        Control::Load if g.small == 1 && !naive => p.load_plus_2,
         Control::Load => p.load,
         Control::Displacement => p.approach,
     }
 }
 
-/// F = ln(gap(mu) / gap): zero at the root, positive farther from the branch end.
-fn residual(g: &GpuLambda, control: Control, mu: f32, gap: f32) -> f32 {
+/// F = ln(gap(mu) / gap): zero at the root, positive farther from the branch end. The naive
+/// variant subtracts one f32 branch end.
+fn residual(g: &GpuLambda, control: Control, mu: f32, gap: f32, naive: bool) -> f32 {
     let b = branch(g, control);
-    let r = ((quantity(g, control, mu) - b.end_hi) - b.end_lo) - gap;
+    let r = if naive {
+        (quantity(g, control, mu, true) - naive_end(g, control)) - gap
+    } else {
+        ((quantity(g, control, mu, false) - b.end_hi) - b.end_lo) - gap
+    };
     let q = r / gap;
     if q <= -1.0 {
         f32::NEG_INFINITY
@@ -145,19 +177,22 @@ fn residual(g: &GpuLambda, control: Control, mu: f32, gap: f32) -> f32 {
     }
 }
 
+/// The branch end as one f32 in the residual's naive units (Pbar, not Pbar + 2).
+fn naive_end(g: &GpuLambda, control: Control) -> f32 {
+    let b = branch(g, control);
+    let shift = if control == Control::Load && g.small == 1 { 2.0 } else { 0.0 };
+    ((b.end_hi as f64 + b.end_lo as f64) - shift) as f32
+}
+
 /// The f32 solve of one point, exactly as `shaders/md.wgsl` does it. The load (approach) comes
 /// as an unevaluated pair `hi + lo` (about 48 bits), so that its distance from the branch end is
 /// exact: an f32 load near Pbar_c = -2 is already off by 1e-4 of a gap of 1e-3. With `is_gap`
-/// the pair is that distance itself. `max_iter` 0 means the default limit.
-pub fn solve_f32(
-    g: &GpuLambda,
-    hi: f32,
-    lo: f32,
-    control: Control,
-    is_gap: bool,
-    max_iter: u32,
-) -> Out {
+/// the pair is that distance itself. `flags` as the kernels' Params: bit 0 [`FLAG_NAIVE`], bits
+/// 8..15 an iteration limit (0: the default, 32).
+pub fn solve_f32(g: &GpuLambda, hi: f32, lo: f32, control: Control, is_gap: bool, flags: u32) -> Out {
     let value = hi;
+    let naive = flags & FLAG_NAIVE != 0;
+    let max_iter = (flags >> 8) & 0xff;
     let fail = |st: Status| Out {
         a: f32::NAN,
         other: f32::NAN,
@@ -175,7 +210,9 @@ pub fn solve_f32(
         0.0
     };
     // hi + shift - end_hi is exact where it matters (Sterbenz), then the low parts are added.
-    let gap = if is_gap {
+    let gap = if naive {
+        if is_gap { hi } else { hi - naive_end(g, control) }
+    } else if is_gap {
         hi + lo
     } else {
         ((hi + shift) - b.end_hi) + (lo - b.end_lo)
@@ -197,7 +234,7 @@ pub fn solve_f32(
             };
         }
         mu = b.mu_ref;
-    } else if gap.sqrt() < b.s_max {
+    } else if !naive && gap.sqrt() < b.s_max {
         let s = gap.sqrt();
         let dx = s * cheb_eval(&b.cheb, 2.0 * s / b.s_max - 1.0);
         mu = b.mu_ref * exp_f32(dx);
@@ -247,9 +284,15 @@ pub fn solve_f32(
         let (mut f_prev, mut l_prev) = (f32::NAN, 0.0f32);
         let mut dx_old = hi - lo;
         let mut done = false;
+        // The best iterate so far: what an iteration cap returns (a safeguard bisection can be
+        // the last step taken).
+        let (mut best_f, mut best_m) = (f32::INFINITY, m);
         for it in 1..=max_iter {
             iterations = it;
-            let fx = residual(g, control, m, gap);
+            let fx = residual(g, control, m, gap, naive);
+            if fx.abs() < best_f {
+                (best_f, best_m) = (fx.abs(), m);
+            }
             // |F| at the f32 noise level (a relative error of the gap of 8e-7): done. Below it
             // the secant slope is noise.
             if fx.abs() <= 8e-7 {
@@ -299,10 +342,11 @@ pub fn solve_f32(
         }
         if !done {
             status = Status::NotConverged;
+            m = best_m;
         }
         mu = m;
     }
-    let p = curve_point(g.lambda, mu);
+    let p = point_f32(g, mu, naive);
     let other = match control {
         Control::Load => p.approach,
         Control::Displacement => p.load,

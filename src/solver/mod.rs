@@ -3,6 +3,7 @@
 
 pub mod context;
 pub mod mirror;
+pub mod naive;
 pub mod root;
 
 pub use context::{LambdaContext, PullOff};

@@ -1,0 +1,234 @@
+//! `tabor bench`: every solver variant on one workload, timed in one run and measured against
+//! the f64 reference, charted as throughput against error.
+
+use crate::gpu::layout::{GpuLambda, Out};
+use crate::gpu::prepare::{prepare_ctx, split};
+use crate::gpu::Gpu;
+use crate::physics::closed::{cos_radius, dmt_radius, hertz_radius, jkr_radius};
+use crate::solver::mirror::{solve_f32, FLAG_NAIVE};
+use crate::solver::{naive, Control, LambdaContext, Status};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::time::Instant;
+
+/// The points of a benchmark: a grid of lambda 1e-4..1e4 by gaps above the load-controlled
+/// pull-off (1e-6..1e3), plus the 300 reference states, each with its reference A.
+pub struct Workload {
+    pub lambdas: Vec<f64>,
+    pub contexts: Vec<LambdaContext>,
+    /// (lambda index, load, gap above pull-off (NaN: given by the load), reference A).
+    pub points: Vec<(usize, f64, f64, f64)>,
+}
+
+const REFERENCE_POINTS: &str = include_str!("../tests/data/points.csv");
+
+impl Workload {
+    pub fn new(n_lambda: usize, n_load: usize) -> Workload {
+        let mut lambdas: Vec<f64> = crate::map::axis(1e-4, 1e4, n_lambda, true);
+        let grid_n = lambdas.len();
+        let mut rdr = csv::Reader::from_reader(REFERENCE_POINTS.as_bytes());
+        let table: Vec<(f64, f64, f64)> = rdr
+            .records()
+            .map(|r| {
+                let r = r.expect("embedded table");
+                (r[2].parse().unwrap(), r[3].parse().unwrap(), r[4].parse().unwrap())
+            })
+            .collect();
+        lambdas.extend(table.iter().map(|t| t.0));
+        let contexts: Vec<LambdaContext> = lambdas.par_iter().map(|&l| LambdaContext::new(l).expect("lambda in range")).collect();
+        let gaps = crate::map::axis(1e-6, 1e3, n_load, true);
+        let grid: Vec<(usize, f64)> = (0..grid_n).flat_map(|i| gaps.iter().map(move |&g| (i, g))).collect();
+        let mut points: Vec<(usize, f64, f64, f64)> = grid
+            .par_iter()
+            .map(|&(i, g)| {
+                let c = &contexts[i];
+                let load = c.load_pulloff.load + g;
+                (i, load, g, c.solve_load_gap(g, load).a)
+            })
+            .collect();
+        // The reference states are given by their load (gap NaN): solved as a user's input is.
+        for (k, t) in table.iter().enumerate() {
+            points.push((grid_n + k, t.1, f64::NAN, t.2));
+        }
+        Workload { lambdas, contexts, points }
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct VariantResult {
+    pub name: String,
+    pub description: String,
+    pub points: usize,
+    pub seconds: f64,
+    pub points_per_second: f64,
+    pub max_rel_err: f64,
+    pub median_rel_err: f64,
+    pub p99_rel_err: f64,
+    /// Max error over the points at least 1e-4 |Pbar_c| above pull-off (the f32 contract).
+    pub max_rel_err_away: f64,
+    /// No answer, NaN, a failed status, or an answer off by more than 50% (wrong branch).
+    pub failures: usize,
+}
+
+fn summarize(name: &str, description: &str, w: &Workload, seconds: f64, a: &[Option<f64>]) -> VariantResult {
+    let mut errs = Vec::with_capacity(a.len());
+    let mut failures = 0;
+    let mut away = 0f64;
+    for (p, v) in w.points.iter().zip(a) {
+        match v {
+            Some(x) if x.is_finite() => {
+                let e = ((x - p.3) / p.3).abs();
+                if e > 0.5 {
+                    failures += 1;
+                } else {
+                    errs.push(e);
+                    let pc = w.contexts[p.0].load_pulloff.load;
+                    if p.1 - pc >= 1e-4 * pc.abs() {
+                        away = away.max(e);
+                    }
+                }
+            }
+            _ => failures += 1,
+        }
+    }
+    errs.sort_by(|a, b| a.total_cmp(b));
+    let q = |f: f64| errs.get(((errs.len() as f64 - 1.0) * f).round() as usize).copied().unwrap_or(f64::NAN);
+    VariantResult {
+        name: name.into(),
+        description: description.into(),
+        points: a.len(),
+        seconds,
+        points_per_second: a.len() as f64 / seconds,
+        max_rel_err: errs.last().copied().unwrap_or(f64::NAN),
+        median_rel_err: q(0.5),
+        p99_rel_err: q(0.99),
+        max_rel_err_away: away,
+        failures,
+    }
+}
+
+fn f64_solve(w: &Workload, p: &(usize, f64, f64, f64)) -> f64 {
+    let c = &w.contexts[p.0];
+    if p.2.is_nan() {
+        c.solve_load(p.1).a
+    } else {
+        c.solve_load_gap(p.2, p.1).a
+    }
+}
+
+fn out_a(o: &Out, capped: bool) -> Option<f64> {
+    let ok = o.status() == Status::Ok || (capped && o.status() == Status::NotConverged);
+    ok.then_some(o.a as f64)
+}
+
+/// Runs every variant; `progress` gets one line per finished variant.
+pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantResult)) -> Vec<VariantResult> {
+    let mut results = Vec::new();
+    let mut push = |r: VariantResult, results: &mut Vec<VariantResult>| {
+        progress(&r);
+        results.push(r);
+    };
+    let pts = &w.points;
+
+    // CPU f64, all threads and one thread.
+    let t = Instant::now();
+    let a: Vec<Option<f64>> = pts.par_iter().map(|p| Some(f64_solve(w, p))).collect();
+    let s = t.elapsed().as_secs_f64();
+    push(summarize("cpu-f64", &format!("exact solver, f64, {} threads (the reference for the grid)", rayon::current_num_threads()), w, s, &a), &mut results);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+    let t = Instant::now();
+    let a: Vec<Option<f64>> = pool.install(|| pts.iter().map(|p| Some(f64_solve(w, p))).collect());
+    push(summarize("cpu-f64-1t", "exact solver, f64, 1 thread", w, t.elapsed().as_secs_f64(), &a), &mut results);
+
+    // The f32 kernels' arithmetic on the CPU (the mirror), shipped and naive.
+    let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
+    for (name, flags, desc) in [("cpu-f32", 0, "the GPU kernel's f32 algorithm on the CPU (all threads)"), ("cpu-f32-naive", FLAG_NAIVE, "f32, textbook formulas (no series, one f32 load)")] {
+        let t = Instant::now();
+        let a: Vec<Option<f64>> = pts
+            .par_iter()
+            .map(|p| {
+                let (h, l) = split(p.1);
+                out_a(&solve_f32(&prepared[p.0], h, l, Control::Load, false, flags), false)
+            })
+            .collect();
+        push(summarize(name, desc, w, t.elapsed().as_secs_f64(), &a), &mut results);
+    }
+
+    if let Some(g) = gpu {
+        let gp: Vec<(u32, f32, f32)> = pts.iter().map(|p| {
+            let (h, l) = split(p.1);
+            (p.0 as u32, h, l)
+        }).collect();
+        let _ = g.points(&prepared, &gp[..gp.len().min(1024)], 0, 0); // warm-up (pipeline compile)
+        let mut variants: Vec<(String, u32, String)> = vec![
+            ("gpu-f32".into(), 0, format!("shipped WGSL kernel on {}", g.adapter.name)),
+            ("gpu-f32-naive".into(), FLAG_NAIVE, "WGSL kernel with the textbook formulas".into()),
+        ];
+        for k in [1u32, 2, 3, 4, 6] {
+            variants.push((format!("gpu-f32-iter{k}"), k << 8, format!("shipped kernel stopped after {k} iteration(s)")));
+        }
+        for (name, flags, desc) in variants {
+            let t = Instant::now();
+            match g.points(&prepared, &gp, 0, flags) {
+                Ok(out) => {
+                    let s = t.elapsed().as_secs_f64();
+                    let a: Vec<Option<f64>> = out.iter().map(|o| out_a(o, flags >> 8 != 0)).collect();
+                    push(summarize(&name, &desc, w, s, &a), &mut results);
+                }
+                Err(e) => eprintln!("{name}: {e}"),
+            }
+        }
+    }
+
+    // The naive f64 method of the public Python reference, on a subsample (it is slow).
+    let step = (pts.len() / 4000).max(1);
+    let sub = Workload { lambdas: w.lambdas.clone(), contexts: w.contexts.clone(), points: pts.iter().step_by(step).copied().collect() };
+    let t = Instant::now();
+    let a: Vec<Option<f64>> = sub.points.par_iter().map(|p| naive::solve_load(&sub.contexts[p.0], p.1)).collect();
+    push(summarize("naive-f64-fixed-bracket", "f64 textbook formulas, Brent on m in [1, 1e12] (the public Python method), every n-th point", &sub, t.elapsed().as_secs_f64(), &a), &mut results);
+
+    // Closed forms as stand-ins for MD.
+    let closed: [(&str, &str, fn(f64, f64) -> Option<f64>); 4] = [
+        ("hertz", "Hertz contact radius", |_, p| hertz_radius(p)),
+        ("dmt", "DMT contact radius", |_, p| dmt_radius(p)),
+        ("jkr", "JKR contact radius", |_, p| jkr_radius(p)),
+        ("cos", "Carpick-Ogletree-Salmeron transition fit", cos_radius),
+    ];
+    for (name, desc, f) in closed {
+        let t = Instant::now();
+        let a: Vec<Option<f64>> = pts.par_iter().map(|p| f(w.lambdas[p.0], p.1)).collect();
+        push(summarize(name, desc, w, t.elapsed().as_secs_f64(), &a), &mut results);
+    }
+    results
+}
+
+/// The variants on the Pareto front: among those with no failure, none is both faster and more
+/// accurate (max error).
+pub fn pareto(results: &[VariantResult]) -> Vec<usize> {
+    let ok: Vec<usize> = (0..results.len()).filter(|&i| results[i].max_rel_err.is_finite() && results[i].failures == 0).collect();
+    let mut front: Vec<usize> = ok
+        .iter()
+        .copied()
+        .filter(|&i| {
+            !ok.iter().any(|&j| {
+                let (a, b) = (&results[j], &results[i]);
+                j != i && a.max_rel_err <= b.max_rel_err && a.points_per_second >= b.points_per_second && a.failures <= b.failures && (a.max_rel_err < b.max_rel_err || a.points_per_second > b.points_per_second)
+            })
+        })
+        .collect();
+    front.sort_by(|&a, &b| results[a].max_rel_err.total_cmp(&results[b].max_rel_err));
+    front
+}
+
+pub fn table(results: &[VariantResult]) -> String {
+    let mut t = format!("{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9}\n", "variant", "points/s", "max err", "p99 err", "median", "max (>=1e-4)", "failures");
+    for r in results {
+        t += &format!(
+            "{:<26} {:>12.3e} {:>10.2e} {:>10.2e} {:>10.2e} {:>12.2e} {:>9}\n",
+            r.name, r.points_per_second, r.max_rel_err, r.p99_rel_err, r.median_rel_err, r.max_rel_err_away, r.failures
+        );
+    }
+    t += "errors: relative error of A against the f64 solver (grid) and the 50-digit table (300 states);\n";
+    t += "max (>=1e-4): over points at least 1e-4 |Pbar_c| above pull-off; failures: no answer, NaN, failed status or off by > 50%\n";
+    t
+}
