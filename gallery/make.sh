@@ -17,3 +17,5 @@ $T map --quantity err-jkr --out $G/map_err_jkr.png
 $T map --quantity err-dmt --out $G/map_err_dmt.png
 $T plot pulloff --out $G/pulloff.png --svg $G/pulloff.svg
 $T plot curves --lambda 0.1,1,10 --out $G/curves.png --svg $G/curves.svg
+$T bench --out-dir $G
+$T atlas --out-dir $G/atlas

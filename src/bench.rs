@@ -31,13 +31,22 @@ impl Workload {
             .records()
             .map(|r| {
                 let r = r.expect("embedded table");
-                (r[2].parse().unwrap(), r[3].parse().unwrap(), r[4].parse().unwrap())
+                (
+                    r[2].parse().unwrap(),
+                    r[3].parse().unwrap(),
+                    r[4].parse().unwrap(),
+                )
             })
             .collect();
         lambdas.extend(table.iter().map(|t| t.0));
-        let contexts: Vec<LambdaContext> = lambdas.par_iter().map(|&l| LambdaContext::new(l).expect("lambda in range")).collect();
+        let contexts: Vec<LambdaContext> = lambdas
+            .par_iter()
+            .map(|&l| LambdaContext::new(l).expect("lambda in range"))
+            .collect();
         let gaps = crate::map::axis(1e-6, 1e3, n_load, true);
-        let grid: Vec<(usize, f64)> = (0..grid_n).flat_map(|i| gaps.iter().map(move |&g| (i, g))).collect();
+        let grid: Vec<(usize, f64)> = (0..grid_n)
+            .flat_map(|i| gaps.iter().map(move |&g| (i, g)))
+            .collect();
         let mut points: Vec<(usize, f64, f64, f64)> = grid
             .par_iter()
             .map(|&(i, g)| {
@@ -50,7 +59,11 @@ impl Workload {
         for (k, t) in table.iter().enumerate() {
             points.push((grid_n + k, t.1, f64::NAN, t.2));
         }
-        Workload { lambdas, contexts, points }
+        Workload {
+            lambdas,
+            contexts,
+            points,
+        }
     }
 }
 
@@ -70,7 +83,13 @@ pub struct VariantResult {
     pub failures: usize,
 }
 
-fn summarize(name: &str, description: &str, w: &Workload, seconds: f64, a: &[Option<f64>]) -> VariantResult {
+fn summarize(
+    name: &str,
+    description: &str,
+    w: &Workload,
+    seconds: f64,
+    a: &[Option<f64>],
+) -> VariantResult {
     let mut errs = Vec::with_capacity(a.len());
     let mut failures = 0;
     let mut away = 0f64;
@@ -92,7 +111,11 @@ fn summarize(name: &str, description: &str, w: &Workload, seconds: f64, a: &[Opt
         }
     }
     errs.sort_by(|a, b| a.total_cmp(b));
-    let q = |f: f64| errs.get(((errs.len() as f64 - 1.0) * f).round() as usize).copied().unwrap_or(f64::NAN);
+    let q = |f: f64| {
+        errs.get(((errs.len() as f64 - 1.0) * f).round() as usize)
+            .copied()
+            .unwrap_or(f64::NAN)
+    };
     VariantResult {
         name: name.into(),
         description: description.into(),
@@ -122,7 +145,11 @@ fn out_a(o: &Out, capped: bool) -> Option<f64> {
 }
 
 /// Runs every variant; `progress` gets one line per finished variant.
-pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantResult)) -> Vec<VariantResult> {
+pub fn run(
+    w: &Workload,
+    gpu: Option<&Gpu>,
+    progress: &mut dyn FnMut(&VariantResult),
+) -> Vec<VariantResult> {
     let mut results = Vec::new();
     let mut push = |r: VariantResult, results: &mut Vec<VariantResult>| {
         progress(&r);
@@ -134,45 +161,102 @@ pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantRes
     let t = Instant::now();
     let a: Vec<Option<f64>> = pts.par_iter().map(|p| Some(f64_solve(w, p))).collect();
     let s = t.elapsed().as_secs_f64();
-    push(summarize("cpu-f64", &format!("exact solver, f64, {} threads (the reference for the grid)", rayon::current_num_threads()), w, s, &a), &mut results);
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("thread pool");
+    push(
+        summarize(
+            "cpu-f64",
+            &format!(
+                "exact solver, f64, {} threads (the reference for the grid)",
+                rayon::current_num_threads()
+            ),
+            w,
+            s,
+            &a,
+        ),
+        &mut results,
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("thread pool");
     let t = Instant::now();
     let a: Vec<Option<f64>> = pool.install(|| pts.iter().map(|p| Some(f64_solve(w, p))).collect());
-    push(summarize("cpu-f64-1t", "exact solver, f64, 1 thread", w, t.elapsed().as_secs_f64(), &a), &mut results);
+    push(
+        summarize(
+            "cpu-f64-1t",
+            "exact solver, f64, 1 thread",
+            w,
+            t.elapsed().as_secs_f64(),
+            &a,
+        ),
+        &mut results,
+    );
 
     // The f32 kernels' arithmetic on the CPU (the mirror), shipped and naive.
     let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
-    for (name, flags, desc) in [("cpu-f32", 0, "the GPU kernel's f32 algorithm on the CPU (all threads)"), ("cpu-f32-naive", FLAG_NAIVE, "f32, textbook formulas (no series, one f32 load)")] {
+    for (name, flags, desc) in [
+        (
+            "cpu-f32",
+            0,
+            "the GPU kernel's f32 algorithm on the CPU (all threads)",
+        ),
+        (
+            "cpu-f32-naive",
+            FLAG_NAIVE,
+            "f32, textbook formulas (no series, one f32 load)",
+        ),
+    ] {
         let t = Instant::now();
         let a: Vec<Option<f64>> = pts
             .par_iter()
             .map(|p| {
                 let (h, l) = split(p.1);
-                out_a(&solve_f32(&prepared[p.0], h, l, Control::Load, false, flags), false)
+                out_a(
+                    &solve_f32(&prepared[p.0], h, l, Control::Load, false, flags),
+                    false,
+                )
             })
             .collect();
-        push(summarize(name, desc, w, t.elapsed().as_secs_f64(), &a), &mut results);
+        push(
+            summarize(name, desc, w, t.elapsed().as_secs_f64(), &a),
+            &mut results,
+        );
     }
 
     if let Some(g) = gpu {
-        let gp: Vec<(u32, f32, f32)> = pts.iter().map(|p| {
-            let (h, l) = split(p.1);
-            (p.0 as u32, h, l)
-        }).collect();
+        let gp: Vec<(u32, f32, f32)> = pts
+            .iter()
+            .map(|p| {
+                let (h, l) = split(p.1);
+                (p.0 as u32, h, l)
+            })
+            .collect();
         let _ = g.points(&prepared, &gp[..gp.len().min(1024)], 0, 0); // warm-up (pipeline compile)
         let mut variants: Vec<(String, u32, String)> = vec![
-            ("gpu-f32".into(), 0, format!("shipped WGSL kernel on {}", g.adapter.name)),
-            ("gpu-f32-naive".into(), FLAG_NAIVE, "WGSL kernel with the textbook formulas".into()),
+            (
+                "gpu-f32".into(),
+                0,
+                format!("shipped WGSL kernel on {}", g.adapter.name),
+            ),
+            (
+                "gpu-f32-naive".into(),
+                FLAG_NAIVE,
+                "WGSL kernel with the textbook formulas".into(),
+            ),
         ];
         for k in [1u32, 2, 3, 4, 6] {
-            variants.push((format!("gpu-f32-iter{k}"), k << 8, format!("shipped kernel stopped after {k} iteration(s)")));
+            variants.push((
+                format!("gpu-f32-iter{k}"),
+                k << 8,
+                format!("shipped kernel stopped after {k} iteration(s)"),
+            ));
         }
         for (name, flags, desc) in variants {
             let t = Instant::now();
             match g.points(&prepared, &gp, 0, flags) {
                 Ok(out) => {
                     let s = t.elapsed().as_secs_f64();
-                    let a: Vec<Option<f64>> = out.iter().map(|o| out_a(o, flags >> 8 != 0)).collect();
+                    let a: Vec<Option<f64>> =
+                        out.iter().map(|o| out_a(o, flags >> 8 != 0)).collect();
                     push(summarize(&name, &desc, w, s, &a), &mut results);
                 }
                 Err(e) => eprintln!("{name}: {e}"),
@@ -182,9 +266,17 @@ pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantRes
 
     // The naive f64 method of the public Python reference, on a subsample (it is slow).
     let step = (pts.len() / 4000).max(1);
-    let sub = Workload { lambdas: w.lambdas.clone(), contexts: w.contexts.clone(), points: pts.iter().step_by(step).copied().collect() };
+    let sub = Workload {
+        lambdas: w.lambdas.clone(),
+        contexts: w.contexts.clone(),
+        points: pts.iter().step_by(step).copied().collect(),
+    };
     let t = Instant::now();
-    let a: Vec<Option<f64>> = sub.points.par_iter().map(|p| naive::solve_load(&sub.contexts[p.0], p.1)).collect();
+    let a: Vec<Option<f64>> = sub
+        .points
+        .par_iter()
+        .map(|p| naive::solve_load(&sub.contexts[p.0], p.1))
+        .collect();
     push(summarize("naive-f64-fixed-bracket", "f64 textbook formulas, Brent on m in [1, 1e12] (the public Python method), every n-th point", &sub, t.elapsed().as_secs_f64(), &a), &mut results);
 
     // Closed forms as stand-ins for MD.
@@ -192,12 +284,19 @@ pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantRes
         ("hertz", "Hertz contact radius", |_, p| hertz_radius(p)),
         ("dmt", "DMT contact radius", |_, p| dmt_radius(p)),
         ("jkr", "JKR contact radius", |_, p| jkr_radius(p)),
-        ("cos", "Carpick-Ogletree-Salmeron transition fit", cos_radius),
+        (
+            "cos",
+            "Carpick-Ogletree-Salmeron transition fit",
+            cos_radius,
+        ),
     ];
     for (name, desc, f) in closed {
         let t = Instant::now();
         let a: Vec<Option<f64>> = pts.par_iter().map(|p| f(w.lambdas[p.0], p.1)).collect();
-        push(summarize(name, desc, w, t.elapsed().as_secs_f64(), &a), &mut results);
+        push(
+            summarize(name, desc, w, t.elapsed().as_secs_f64(), &a),
+            &mut results,
+        );
     }
     results
 }
@@ -205,14 +304,20 @@ pub fn run(w: &Workload, gpu: Option<&Gpu>, progress: &mut dyn FnMut(&VariantRes
 /// The variants on the Pareto front: among those with no failure, none is both faster and more
 /// accurate (max error).
 pub fn pareto(results: &[VariantResult]) -> Vec<usize> {
-    let ok: Vec<usize> = (0..results.len()).filter(|&i| results[i].max_rel_err.is_finite() && results[i].failures == 0).collect();
+    let ok: Vec<usize> = (0..results.len())
+        .filter(|&i| results[i].max_rel_err.is_finite() && results[i].failures == 0)
+        .collect();
     let mut front: Vec<usize> = ok
         .iter()
         .copied()
         .filter(|&i| {
             !ok.iter().any(|&j| {
                 let (a, b) = (&results[j], &results[i]);
-                j != i && a.max_rel_err <= b.max_rel_err && a.points_per_second >= b.points_per_second && a.failures <= b.failures && (a.max_rel_err < b.max_rel_err || a.points_per_second > b.points_per_second)
+                j != i
+                    && a.max_rel_err <= b.max_rel_err
+                    && a.points_per_second >= b.points_per_second
+                    && a.failures <= b.failures
+                    && (a.max_rel_err < b.max_rel_err || a.points_per_second > b.points_per_second)
             })
         })
         .collect();
@@ -221,14 +326,162 @@ pub fn pareto(results: &[VariantResult]) -> Vec<usize> {
 }
 
 pub fn table(results: &[VariantResult]) -> String {
-    let mut t = format!("{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9}\n", "variant", "points/s", "max err", "p99 err", "median", "max (>=1e-4)", "failures");
+    let mut t = format!(
+        "{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9}\n",
+        "variant", "points/s", "max err", "p99 err", "median", "max (>=1e-4)", "failures"
+    );
     for r in results {
         t += &format!(
             "{:<26} {:>12.3e} {:>10.2e} {:>10.2e} {:>10.2e} {:>12.2e} {:>9}\n",
-            r.name, r.points_per_second, r.max_rel_err, r.p99_rel_err, r.median_rel_err, r.max_rel_err_away, r.failures
+            r.name,
+            r.points_per_second,
+            r.max_rel_err,
+            r.p99_rel_err,
+            r.median_rel_err,
+            r.max_rel_err_away,
+            r.failures
         );
     }
     t += "errors: relative error of A against the f64 solver (grid) and the 50-digit table (300 states);\n";
     t += "max (>=1e-4): over points at least 1e-4 |Pbar_c| above pull-off; failures: no answer, NaN, failed status or off by > 50%\n";
     t
+}
+
+/// One method's error over the atlas grid: relative error of A (NaN: failed).
+pub struct AtlasMap {
+    pub name: &'static str,
+    pub title: String,
+    pub err: Vec<f64>,
+}
+
+/// The failure atlas: lambda 1e-6..1e6 (nx, log) by the gap above pull-off 1e-8..1e6 (ny, log),
+/// against the f64 solver, for the shipped f32 kernel (on the GPU if given, else its CPU
+/// mirror), the naive f32 and f64 methods and the closed forms.
+pub fn atlas(
+    nx: usize,
+    ny: usize,
+    gpu: Option<&Gpu>,
+) -> Result<(Vec<f64>, Vec<f64>, Vec<AtlasMap>), crate::gpu::GpuError> {
+    let lambdas = crate::map::axis(1e-6, 1e6, nx, true);
+    let gaps = crate::map::axis(1e-8, 1e6, ny, true);
+    let ctx: Vec<LambdaContext> = lambdas
+        .par_iter()
+        .map(|&l| LambdaContext::new(l).expect("lambda in range"))
+        .collect();
+    let n = nx * ny;
+    let at = |i: usize| (i % nx, i / nx);
+    let reference: Vec<(f64, f64)> = (0..n)
+        .into_par_iter()
+        .map(|i| {
+            let (ix, iy) = at(i);
+            let c = &ctx[ix];
+            let load = c.load_pulloff.load + gaps[iy];
+            (load, c.solve_load_gap(gaps[iy], load).a)
+        })
+        .collect();
+    let rel = |a: Option<f64>, i: usize| -> f64 {
+        match a {
+            Some(x) if x.is_finite() => {
+                let e = ((x - reference[i].1) / reference[i].1).abs();
+                if e > 0.5 {
+                    f64::NAN
+                } else {
+                    e
+                }
+            }
+            _ => f64::NAN,
+        }
+    };
+    let prepared: Vec<GpuLambda> = ctx.par_iter().map(prepare_ctx).collect();
+    let mut maps = Vec::new();
+    let f32_errs = |flags: u32| -> Result<Vec<f64>, crate::gpu::GpuError> {
+        match gpu {
+            Some(g) if flags == 0 => {
+                let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
+                let out = g.grid(&prepared, &rows, 0, true, 0)?;
+                Ok(out
+                    .iter()
+                    .enumerate()
+                    .map(|(i, o)| rel(out_a(o, false), i))
+                    .collect())
+            }
+            _ => Ok((0..n)
+                .into_par_iter()
+                .map(|i| {
+                    let (ix, iy) = at(i);
+                    let (h, l) = split(reference[i].0);
+                    let _ = iy;
+                    rel(
+                        out_a(
+                            &solve_f32(&prepared[ix], h, l, Control::Load, false, flags),
+                            false,
+                        ),
+                        i,
+                    )
+                })
+                .collect()),
+        }
+    };
+    let where_ = gpu.map_or("CPU mirror of the kernel".to_string(), |g| {
+        format!("GPU: {}", g.adapter.name)
+    });
+    maps.push(AtlasMap {
+        name: "shipped_f32",
+        title: format!("Shipped f32 kernel ({where_})"),
+        err: f32_errs(0)?,
+    });
+    maps.push(AtlasMap {
+        name: "naive_f32",
+        title: "Naive f32: textbook formulas, one f32 load".into(),
+        err: f32_errs(FLAG_NAIVE)?,
+    });
+    let naive64: Vec<f64> = (0..n)
+        .into_par_iter()
+        .map(|i| rel(naive::solve_load(&ctx[at(i).0], reference[i].0), i))
+        .collect();
+    maps.push(AtlasMap {
+        name: "naive_f64_fixed_bracket",
+        title: "Naive f64: Brent on m in [1, 1e12] (the public Python method)".into(),
+        err: naive64,
+    });
+    let closed: [(&'static str, &str, fn(f64, f64) -> Option<f64>); 3] = [
+        ("jkr", "JKR closed form as a stand-in for MD", |_, p| {
+            jkr_radius(p)
+        }),
+        ("dmt", "DMT closed form as a stand-in for MD", |_, p| {
+            dmt_radius(p)
+        }),
+        (
+            "cos",
+            "Carpick-Ogletree-Salmeron fit as a stand-in for MD",
+            cos_radius,
+        ),
+    ];
+    for (name, title, f) in closed {
+        let e: Vec<f64> = (0..n)
+            .into_par_iter()
+            .map(|i| rel(f(lambdas[at(i).0], reference[i].0), i))
+            .collect();
+        maps.push(AtlasMap {
+            name,
+            title: title.into(),
+            err: e,
+        });
+    }
+    for m in &mut maps {
+        let fails = m.err.iter().filter(|e| e.is_nan()).count();
+        let max = m
+            .err
+            .iter()
+            .filter(|e| !e.is_nan())
+            .cloned()
+            .fold(0.0, f64::max);
+        m.title = format!(
+            "{}: max error {:.1e}, {:.1}% failed",
+            m.title,
+            max,
+            100.0 * fails as f64 / n as f64
+        );
+    }
+    Ok((lambdas, gaps, maps))
 }

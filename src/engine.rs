@@ -4,7 +4,8 @@
 use crate::gpu::layout::Out;
 use crate::gpu::prepare::{prepare_all, split};
 use crate::gpu::{Gpu, GpuError};
-use crate::solver::{self, Control, State, Status};
+use crate::solver::{self, Control, LambdaContext, State, Status};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashMap;
 
@@ -123,44 +124,38 @@ impl Engine {
     /// Solves the grid lambdas x gaps, load = Pbar_c(lambda) + gap (row-major, one row per gap):
     /// the tensile range down to the pull-off, with the gap exact however small.
     pub fn solve_grid_gaps(&self, lambdas: &[f64], gaps: &[f64]) -> Result<Vec<State>, GpuError> {
-        use rayon::prelude::*;
+        self.solve_grid_gaps_with(&contexts(lambdas), lambdas, gaps)
+    }
+
+    /// As [`Engine::solve_grid_gaps`], with the per-lambda contexts already built.
+    pub fn solve_grid_gaps_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        gaps: &[f64],
+    ) -> Result<Vec<State>, GpuError> {
+        let nx = lambdas.len();
+        let pulloff = |i: usize| ctx[i].as_ref().map_or(f64::NAN, |c| c.load_pulloff.load);
         match self {
-            Engine::Cpu => {
-                let ctx: Vec<_> = lambdas
-                    .par_iter()
-                    .map(|&l| solver::LambdaContext::new(l).ok())
-                    .collect();
-                let nx = lambdas.len();
-                Ok((0..nx * gaps.len())
-                    .into_par_iter()
-                    .map(|i| match &ctx[i % nx] {
-                        Some(c) => {
-                            c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx])
-                        }
-                        None => {
-                            State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput)
-                        }
-                    })
-                    .collect())
-            }
+            Engine::Cpu => Ok((0..nx * gaps.len())
+                .into_par_iter()
+                .map(|i| match &ctx[i % nx] {
+                    Some(c) => c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx]),
+                    None => {
+                        State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput)
+                    }
+                })
+                .collect()),
             Engine::Gpu(g) => {
-                let prepared = prepare_all(lambdas);
-                let pulloff: Vec<f64> = lambdas
-                    .par_iter()
-                    .map(|&l| {
-                        solver::LambdaContext::new(l).map_or(f64::NAN, |c| c.load_pulloff.load)
-                    })
-                    .collect();
                 let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-                let out = g.grid(&prepared, &rows, 0, true, 0)?;
-                let nx = lambdas.len();
+                let out = g.grid(&prepare_contexts(ctx, lambdas), &rows, 0, true, 0)?;
                 Ok(out
-                    .iter()
+                    .par_iter()
                     .enumerate()
                     .map(|(i, o)| {
                         to_state(
                             lambdas[i % nx],
-                            pulloff[i % nx] + gaps[i / nx],
+                            pulloff(i % nx) + gaps[i / nx],
                             o,
                             Control::Load,
                         )
@@ -177,21 +172,60 @@ impl Engine {
         values: &[f64],
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
+        self.solve_grid_with(&contexts(lambdas), lambdas, values, control)
+    }
+
+    /// As [`Engine::solve_grid`], with the per-lambda contexts already built.
+    pub fn solve_grid_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        values: &[f64],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
         match self {
-            Engine::Cpu => Ok(solver::solve_grid(lambdas, values, control)),
+            Engine::Cpu => Ok(solver::solve_grid_with(ctx, lambdas, values, control)),
             Engine::Gpu(g) => {
-                let prepared = prepare_all(lambdas);
                 let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-                let out = g.grid(&prepared, &rows, control_code(control), false, 0)?;
+                let out = g.grid(
+                    &prepare_contexts(ctx, lambdas),
+                    &rows,
+                    control_code(control),
+                    false,
+                    0,
+                )?;
                 let nx = lambdas.len();
                 Ok(out
-                    .iter()
+                    .par_iter()
                     .enumerate()
                     .map(|(i, o)| to_state(lambdas[i % nx], values[i / nx], o, control))
                     .collect())
             }
         }
     }
+}
+
+/// The per-lambda contexts of a lambda axis, in parallel (None for an invalid lambda).
+pub fn contexts(lambdas: &[f64]) -> Vec<Option<LambdaContext>> {
+    lambdas
+        .par_iter()
+        .map(|&l| LambdaContext::new(l).ok())
+        .collect()
+}
+
+fn prepare_contexts(
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+) -> Vec<crate::gpu::layout::GpuLambda> {
+    ctx.par_iter()
+        .zip(lambdas)
+        .map(|(c, &l)| {
+            c.as_ref().map_or_else(
+                || crate::gpu::prepare::prepare(l),
+                crate::gpu::prepare::prepare_ctx,
+            )
+        })
+        .collect()
 }
 
 fn kind(g: &Gpu) -> &'static str {

@@ -508,7 +508,10 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     } else {
         match crate::gpu::Gpu::new(a.gpu.adapter.as_deref()) {
             Ok(g) => {
-                eprintln!("GPU variants on {} ({}, {})", g.adapter.name, g.adapter.backend, g.adapter.device_type);
+                eprintln!(
+                    "GPU variants on {} ({}, {})",
+                    g.adapter.name, g.adapter.backend, g.adapter.device_type
+                );
                 Some(g)
             }
             Err(e) => {
@@ -517,24 +520,89 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
             }
         }
     };
-    let results = bench::run(&w, gpu.as_ref(), &mut |r| eprintln!("  {:<26} {:>10.3e} points/s, max err {:.2e}, {} failed", r.name, r.points_per_second, r.max_rel_err, r.failures));
+    let results = bench::run(&w, gpu.as_ref(), &mut |r| {
+        eprintln!(
+            "  {:<26} {:>10.3e} points/s, max err {:.2e}, {} failed",
+            r.name, r.points_per_second, r.max_rel_err, r.failures
+        )
+    });
     let front = bench::pareto(&results);
     let text = bench::table(&results);
     print!("{text}");
     std::fs::create_dir_all(&a.out_dir)?;
-    let machine = format!("{} CPU threads{}", rayon::current_num_threads(), gpu.as_ref().map(|g| format!(", GPU: {}", g.adapter.name)).unwrap_or_default());
+    let machine = format!(
+        "{} CPU threads{}",
+        rayon::current_num_threads(),
+        gpu.as_ref()
+            .map(|g| format!(", GPU: {}", g.adapter.name))
+            .unwrap_or_default()
+    );
     let doc = json!({
         "metadata": {"tabor_version": env!("CARGO_PKG_VERSION"), "machine": machine, "quick": a.quick, "points": w.points.len(),
                      "adapter": gpu.as_ref().map(|g| g.adapter.clone())},
         "results": results,
         "pareto_front": front.iter().map(|&i| results[i].name.clone()).collect::<Vec<_>>(),
     });
-    crate::io::write_atomic(&a.out_dir.join("bench.json"), (serde_json::to_string_pretty(&doc)? + "\n").as_bytes())?;
-    crate::io::write_atomic(&a.out_dir.join("bench.txt"), format!("{machine}\n{text}").as_bytes())?;
+    crate::io::write_atomic(
+        &a.out_dir.join("bench.json"),
+        (serde_json::to_string_pretty(&doc)? + "\n").as_bytes(),
+    )?;
+    crate::io::write_atomic(
+        &a.out_dir.join("bench.txt"),
+        format!("{machine}\n{text}").as_bytes(),
+    )?;
     let title = format!("Speed against accuracy ({machine})");
     let (png, svg) = (a.out_dir.join("bench.png"), a.out_dir.join("bench.svg"));
-    crate::render::plots::save(Some(&png), Some(&svg), &|r| crate::render::plots::bench_chart(r, &results, &front, &title), &|r| crate::render::plots::bench_chart(r, &results, &front, &title))
-        .map_err(|e| anyhow::anyhow!("drawing the chart: {e}"))?;
+    crate::render::plots::save(
+        Some(&png),
+        Some(&svg),
+        &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
+        &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
+    )
+    .map_err(|e| anyhow::anyhow!("drawing the chart: {e}"))?;
     eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());
+    Ok(())
+}
+
+#[derive(Args, Debug)]
+pub struct AtlasArgs {
+    #[arg(long, default_value = "atlas")]
+    pub out_dir: std::path::PathBuf,
+    #[arg(long, default_value_t = 240)]
+    pub nx: usize,
+    #[arg(long, default_value_t = 180)]
+    pub ny: usize,
+    /// Run the shipped kernel's CPU mirror instead of the GPU.
+    #[arg(long)]
+    pub no_gpu: bool,
+}
+
+pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
+    if a.nx < 2 || a.ny < 2 || a.nx > 4096 || a.ny > 4096 {
+        bail!("--nx and --ny must be in 2..=4096");
+    }
+    let gpu = if a.no_gpu {
+        None
+    } else {
+        crate::gpu::Gpu::new(None)
+            .map_err(|e| eprintln!("GPU skipped: {e}"))
+            .ok()
+    };
+    let (lambdas, gaps, maps) = crate::bench::atlas(a.nx, a.ny, gpu.as_ref())?;
+    std::fs::create_dir_all(&a.out_dir)?;
+    for m in &maps {
+        let path = a.out_dir.join(format!("{}.png", m.name));
+        let em = crate::render::atlas::ErrorMap {
+            title: m.title.clone(),
+            lambdas: (lambdas[0], *lambdas.last().unwrap()),
+            gaps: (gaps[0], *gaps.last().unwrap()),
+            nx: a.nx,
+            ny: a.ny,
+            err: &m.err,
+        };
+        crate::render::atlas::write(&em, &path)
+            .map_err(|e| anyhow::anyhow!("drawing {}: {e}", path.display()))?;
+        eprintln!("{}: {}", path.display(), m.title);
+    }
     Ok(())
 }

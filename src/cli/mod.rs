@@ -26,6 +26,9 @@ pub enum Command {
     Plot(basic::PlotArgs),
     /// Speed against accuracy of every solver variant: a table, JSON and a chart.
     Bench(basic::BenchArgs),
+    /// The failure atlas: error maps of each method over lambda 1e-6..1e6 and loads from 1e-8
+    /// above pull-off to 1e6.
+    Atlas(basic::AtlasArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -47,5 +50,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Map(a) => map::run(*a),
         Command::Plot(a) => basic::plot(a),
         Command::Bench(a) => basic::bench(a),
+        Command::Atlas(a) => basic::atlas(a),
     }
 }

@@ -112,14 +112,15 @@ pub fn classify(s: &State, tol: f64) -> Region {
         Status::Ok => {}
         _ => return Region::Failed,
     }
-    let c = criteria(s.lambda, s.load, s.a, s.approach);
-    if c.err_hertz <= tol {
+    // The same tests as `criteria`, evaluated lazily: most points are decided by the first.
+    let within = |m: Option<f64>| m.is_some_and(|am| (am / s.a - 1.0).abs() <= tol);
+    if within(hertz_radius(s.load)) {
         Region::Hertz
-    } else if c.rigid <= tol {
+    } else if std::f64::consts::FRAC_PI_2 * s.lambda * (s.a * s.a).max(s.approach.abs()) <= tol {
         Region::Rigid
-    } else if c.err_dmt <= tol {
+    } else if within(dmt_radius(s.load)) {
         Region::Dmt
-    } else if c.err_jkr <= tol {
+    } else if within(jkr_radius(s.load)) {
         Region::Jkr
     } else {
         Region::Md
@@ -237,15 +238,16 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         spec.ny,
         spec.load_axis != LoadAxis::Linear,
     );
+    let ctx = crate::engine::contexts(&lambdas);
     let states = match spec.load_axis {
-        LoadAxis::AbovePulloff => engine.solve_grid_gaps(&lambdas, &rows)?,
-        _ => engine.solve_grid(&lambdas, &rows, crate::solver::Control::Load)?,
+        LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, &rows)?,
+        _ => engine.solve_grid_with(&ctx, &lambdas, &rows, crate::solver::Control::Load)?,
     };
     let solve_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();
-    let pulloff: Vec<f64> = lambdas
-        .par_iter()
-        .map(|&l| LambdaContext::new(l).map_or(f64::NAN, |c| c.load_pulloff.load))
+    let pulloff: Vec<f64> = ctx
+        .iter()
+        .map(|c| c.as_ref().map_or(f64::NAN, |c| c.load_pulloff.load))
         .collect();
     let regions: Vec<Region> = states
         .par_iter()
@@ -256,7 +258,7 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         .iter()
         .map(|&q| LargeDeformationLine {
             strength_ratio: q,
-            points: large_deformation_line(spec, &lambdas, &pulloff, q),
+            points: large_deformation_line(spec, &lambdas, &ctx, q),
         })
         .collect();
     let classify_s = t1.elapsed().as_secs_f64();
@@ -280,15 +282,19 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
 fn large_deformation_line(
     spec: &MapSpec,
     lambdas: &[f64],
-    pulloff: &[f64],
+    ctx: &[Option<LambdaContext>],
     ratio: f64,
 ) -> Vec<(f64, f64)> {
-    lambdas
-        .par_iter()
-        .zip(pulloff)
-        .filter_map(|(&l, &pc)| {
+    // Traced at 256 lambdas at most: the line is smooth.
+    let step = lambdas.len().div_ceil(256).max(1);
+    (0..lambdas.len())
+        .into_par_iter()
+        .filter(|i| i % step == 0 || *i == lambdas.len() - 1)
+        .filter_map(|i| {
+            let l = lambdas[i];
+            let ctx = ctx[i].as_ref()?;
+            let pc = ctx.load_pulloff.load;
             let a = 0.05 * l / ratio;
-            let ctx = LambdaContext::new(l).ok()?;
             if a <= ctx.load_pulloff.a {
                 return None;
             }

@@ -6,6 +6,7 @@ use crate::map::{criteria, LoadAxis, MapData, Region};
 use crate::solver::Status;
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use rayon::prelude::*;
 use std::path::Path;
 
 pub const WIDTH: u32 = 1600;
@@ -290,10 +291,7 @@ fn quantity_range(d: &MapData, q: Quantity) -> (f64, f64) {
     }
 }
 
-fn viridis(t: f64) -> RGBColor {
-    let c = colorous::VIRIDIS.eval_continuous(t.clamp(0.0, 1.0));
-    RGBColor(c.r, c.g, c.b)
-}
+use super::viridis;
 
 fn body<'a, DB: DrawingBackend + 'a, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
@@ -349,31 +347,47 @@ where
         .y_label_formatter(&|v| if y_log { log_label(*v) } else { format!("{v}") })
         .draw()?;
 
-    // Criteria lines at the tolerance, and the pull-off (edge of the no-contact region).
+    // Criteria lines at the tolerance, and the pull-off (edge of the no-contact region), traced
+    // on a grid strided to about the plot's pixel resolution: finer lines would not show.
     let (nx, ny) = (sp.nx, sp.ny);
+    let k = nx.max(ny).div_ceil(800).max(1);
+    let (mx, my) = ((nx - 1) / k + 1, (ny - 1) / k + 1);
+    let fields: Vec<[f64; 5]> = (0..mx * my)
+        .into_par_iter()
+        .map(|j| {
+            let i = (j / mx) * k * nx + (j % mx) * k;
+            let s = &d.states[i];
+            let contact = if d.regions[i] == Region::NoContact {
+                0.0
+            } else {
+                1.0
+            };
+            if s.status != Status::Ok {
+                return [1e9, 1e9, 1e9, 1e9, contact];
+            }
+            let c = criteria(s.lambda, s.load, s.a, s.approach);
+            let f = |v: f64| if v.is_finite() { v } else { 1e9 };
+            [
+                f(c.err_hertz),
+                f(c.rigid),
+                f(c.err_dmt),
+                f(c.err_jkr),
+                contact,
+            ]
+        })
+        .collect();
+    let scaled = |path: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
+        path.into_iter()
+            .map(|(x, y)| to_chart(d, x * k as f64, y * k as f64))
+            .collect()
+    };
     let names = ["Hertz", "Bradley (rigid)", "DMT", "JKR"];
-    for (k, name) in names.iter().enumerate() {
-        let field: Vec<f64> = d
-            .states
-            .iter()
-            .map(|s| {
-                if s.status != Status::Ok {
-                    return 1e9;
-                }
-                let c = criteria(s.lambda, s.load, s.a, s.approach);
-                let v = [c.err_hertz, c.rigid, c.err_dmt, c.err_jkr][k];
-                if v.is_finite() {
-                    v
-                } else {
-                    1e9
-                }
-            })
-            .collect();
-        let style = ShapeStyle::from(&line_color(k)).stroke_width(3);
+    for (c, name) in names.iter().enumerate() {
+        let field: Vec<f64> = fields.iter().map(|f| f[c]).collect();
+        let style = ShapeStyle::from(&line_color(c)).stroke_width(3);
         let mut first = true;
-        for path in contour_paths(&field, nx, ny, sp.tolerance) {
-            let pts: Vec<(f64, f64)> = path.iter().map(|&(x, y)| to_chart(d, x, y)).collect();
-            let series = chart.draw_series(LineSeries::new(pts, style))?;
+        for path in contour_paths(&field, mx, my, sp.tolerance) {
+            let series = chart.draw_series(LineSeries::new(scaled(path), style))?;
             if first {
                 series
                     .label(format!("{name} within {}%", sp.tolerance * 100.0))
@@ -382,19 +396,14 @@ where
             }
         }
     }
-    let contact: Vec<f64> = d
-        .regions
-        .iter()
-        .map(|&r| if r == Region::NoContact { 0.0 } else { 1.0 })
-        .collect();
+    let contact: Vec<f64> = fields.iter().map(|f| f[4]).collect();
     let mut first = true;
     let has_edge = contact.contains(&0.0) && contact.contains(&1.0);
-    for path in contour_paths(&contact, nx, ny, 0.5)
+    for path in contour_paths(&contact, mx, my, 0.5)
         .into_iter()
         .filter(|_| has_edge)
     {
-        let pts: Vec<(f64, f64)> = path.iter().map(|&(x, y)| to_chart(d, x, y)).collect();
-        let s = chart.draw_series(LineSeries::new(pts, BLACK.stroke_width(3)))?;
+        let s = chart.draw_series(LineSeries::new(scaled(path), BLACK.stroke_width(3)))?;
         if first {
             s.label("pull-off (load control)").legend(|(x, y)| {
                 PathElement::new(vec![(x, y), (x + 30, y)], BLACK.stroke_width(3))
@@ -562,39 +571,12 @@ where
     DB::ErrorType: 'static,
 {
     let (lo, hi) = quantity_range(d, q);
-    let mut chart = ChartBuilder::on(area)
-        .margin_top(90)
-        .margin_bottom(104)
-        .margin_right(20)
-        .y_label_area_size(100)
-        .build_cartesian_2d(0.0..1.0, lo..hi)?;
-    let (px, py) = chart.plotting_area().get_pixel_range();
-    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
-    for r in 0..h {
-        let c = viridis(1.0 - (r as f64 + 0.5) / h as f64);
-        for x in 0..w {
-            let k = ((r * w + x) * 3) as usize;
-            buf[k..k + 3].copy_from_slice(&[c.0, c.1, c.2]);
-        }
-    }
-    if let Some(el) = BitMapElement::with_owned_buffer((0.0, hi), (w, h), buf) {
-        chart.draw_series(std::iter::once(el))?;
-    }
     let log = q.log();
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .disable_x_axis()
-        .y_labels(8)
-        .label_style(("sans-serif", 20))
-        .y_label_formatter(&|v| {
-            if log {
-                format!("1e{:.1}", v).replace(".0", "")
-            } else {
-                format!("{:.2}", q.inverse(*v))
-            }
-        })
-        .draw()?;
-    Ok(())
+    super::colorbar(area, lo, hi, &|v| {
+        if log {
+            format!("1e{:.1}", v).replace(".0", "")
+        } else {
+            format!("{:.2}", q.inverse(v))
+        }
+    })
 }

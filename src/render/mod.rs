@@ -1,6 +1,7 @@
 //! Figures: plotters draws axes, log ticks, labels and legends with an embedded font (identical
 //! output on every machine); the map raster is coloured here and placed as one bitmap.
 
+pub mod atlas;
 pub mod map;
 pub mod plots;
 
@@ -45,4 +46,50 @@ pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, image::ImageErro
         image::ExtendedColorType::Rgb8,
     )?;
     Ok(out)
+}
+
+pub fn viridis(t: f64) -> plotters::style::RGBColor {
+    let c = colorous::VIRIDIS.eval_continuous(t.clamp(0.0, 1.0));
+    plotters::style::RGBColor(c.r, c.g, c.b)
+}
+
+/// A vertical viridis colorbar for values lo..hi in `area`, labelled by `fmt`.
+pub fn colorbar<DB: plotters::prelude::DrawingBackend>(
+    area: &plotters::prelude::DrawingArea<DB, plotters::coord::Shift>,
+    lo: f64,
+    hi: f64,
+    fmt: &dyn Fn(f64) -> String,
+) -> Result<(), Box<dyn std::error::Error + Send + Sync>>
+where
+    DB::ErrorType: 'static,
+{
+    use plotters::prelude::*;
+    let mut chart = ChartBuilder::on(area)
+        .margin_top(90)
+        .margin_bottom(104)
+        .margin_right(20)
+        .y_label_area_size(100)
+        .build_cartesian_2d(0.0..1.0, lo..hi)?;
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    for r in 0..h {
+        let c = viridis(1.0 - (r as f64 + 0.5) / h as f64);
+        for x in 0..w {
+            let k = ((r * w + x) * 3) as usize;
+            buf[k..k + 3].copy_from_slice(&[c.0, c.1, c.2]);
+        }
+    }
+    if let Some(el) = BitMapElement::with_owned_buffer((0.0, hi), (w, h), buf) {
+        chart.draw_series(std::iter::once(el))?;
+    }
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .disable_x_axis()
+        .y_labels(8)
+        .label_style(("sans-serif", 20))
+        .y_label_formatter(&|v| fmt(*v))
+        .draw()?;
+    Ok(())
 }

@@ -248,20 +248,35 @@ where
 
 /// Throughput against max relative error of A, one marker per variant, the Pareto front drawn.
 /// Hollow markers: variants with failures.
-pub fn bench_chart<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, results: &[crate::bench::VariantResult], front: &[usize], title: &str) -> Result<(), Err>
+pub fn bench_chart<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    results: &[crate::bench::VariantResult],
+    front: &[usize],
+    title: &str,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
     let err = |r: &crate::bench::VariantResult| r.max_rel_err.clamp(1e-13, 1.0);
-    let speeds: Vec<f64> = results.iter().map(|r| r.points_per_second).filter(|v| v.is_finite() && *v > 0.0).collect();
-    let (smin, smax) = (speeds.iter().cloned().fold(f64::INFINITY, f64::min), speeds.iter().cloned().fold(0.0, f64::max));
+    let speeds: Vec<f64> = results
+        .iter()
+        .map(|r| r.points_per_second)
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .collect();
+    let (smin, smax) = (
+        speeds.iter().cloned().fold(f64::INFINITY, f64::min),
+        speeds.iter().cloned().fold(0.0, f64::max),
+    );
     let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 30))
         .margin(24)
         .x_label_area_size(80)
         .y_label_area_size(110)
-        .build_cartesian_2d((1e-13..3.0f64).log_scale(), ((smin / 3.0).max(1.0)..smax * 5.0).log_scale())?;
+        .build_cartesian_2d(
+            (1e-13..3.0f64).log_scale(),
+            ((smin / 3.0).max(1.0)..smax * 5.0).log_scale(),
+        )?;
     chart
         .configure_mesh()
         .max_light_lines(1)
@@ -273,24 +288,68 @@ where
         .x_label_formatter(&|v| log_label(*v))
         .y_label_formatter(&|v| log_label(*v))
         .draw()?;
-    let pf: Vec<(f64, f64)> = front.iter().map(|&i| (err(&results[i]), results[i].points_per_second)).collect();
+    let pf: Vec<(f64, f64)> = front
+        .iter()
+        .map(|&i| (err(&results[i]), results[i].points_per_second))
+        .collect();
     chart
-        .draw_series(LineSeries::new(pf, ShapeStyle::from(&GREEN_).stroke_width(3)))?
+        .draw_series(LineSeries::new(
+            pf,
+            ShapeStyle::from(&GREEN_).stroke_width(3),
+        ))?
         .label("Pareto front (no variant is both faster and more accurate)")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], ShapeStyle::from(&GREEN_).stroke_width(3)));
+        .legend(|(x, y)| {
+            PathElement::new(
+                vec![(x, y), (x + 30, y)],
+                ShapeStyle::from(&GREEN_).stroke_width(3),
+            )
+        });
     for (k, r) in results.iter().enumerate() {
         let (x, y) = (err(r), r.points_per_second);
-        let col = if r.name.starts_with("gpu") { ORANGE_ } else if r.name.starts_with("cpu") || r.name.starts_with("naive") { BLUE_ } else { GRAY_ };
-        let style = if r.failures > 0 { ShapeStyle::from(&col).stroke_width(3) } else { col.filled() };
+        let col = if r.name.starts_with("gpu") {
+            ORANGE_
+        } else if r.name.starts_with("cpu") || r.name.starts_with("naive") {
+            BLUE_
+        } else {
+            GRAY_
+        };
+        let style = if r.failures > 0 {
+            ShapeStyle::from(&col).stroke_width(3)
+        } else {
+            col.filled()
+        };
         chart.draw_series(std::iter::once(Circle::new((x, y), 9, style)))?;
-        let label = if r.failures > 0 { format!("{} ({} failed)", r.name, r.failures) } else { r.name.clone() };
+        let label = if r.failures > 0 {
+            format!("{} ({} failed)", r.name, r.failures)
+        } else {
+            r.name.clone()
+        };
         // Labels left of markers near the right edge, staggered so that clusters stay legible.
         let dy = [1.0, 1.22, 0.82][k % 3];
-        let (lx, anchor) = if x > 1e-2 { (x / 1.6, plotters::style::text_anchor::HPos::Right) } else { (x * 1.6, plotters::style::text_anchor::HPos::Left) };
-        let style = ("sans-serif", 18).into_font().color(&BLACK).pos(plotters::style::text_anchor::Pos::new(anchor, plotters::style::text_anchor::VPos::Center));
+        let (lx, anchor) = if x > 1e-2 {
+            (x / 1.6, plotters::style::text_anchor::HPos::Right)
+        } else {
+            (x * 1.6, plotters::style::text_anchor::HPos::Left)
+        };
+        let style = ("sans-serif", 18).into_font().color(&BLACK).pos(
+            plotters::style::text_anchor::Pos::new(
+                anchor,
+                plotters::style::text_anchor::VPos::Center,
+            ),
+        );
         chart.draw_series(std::iter::once(Text::new(label, (lx, y * dy), style)))?;
     }
-    chart.draw_series(std::iter::once(Text::new("orange: GPU kernels; blue: CPU solvers; gray: closed forms; hollow: some points failed", (2e-13, smin / 2.2), ("sans-serif", 18).into_font())))?;
-    chart.configure_series_labels().background_style(WHITE.mix(0.9)).border_style(BLACK).label_font(("sans-serif", 20)).position(SeriesLabelPosition::UpperRight).draw()?;
+    chart.draw_series(std::iter::once(Text::new(
+        "orange: GPU kernels; blue: CPU solvers; gray: closed forms; hollow: some points failed",
+        (2e-13, smin / 2.2),
+        ("sans-serif", 18).into_font(),
+    )))?;
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 20))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
     Ok(())
 }

@@ -139,7 +139,16 @@ pub fn curve_point_naive(lambda: f32, mu: f32) -> crate::physics::md::CurvePoint
     let a = (-beta + (beta * beta + 4.0 * alpha).sqrt()) / (2.0 * alpha);
     let load = a * a * a - lambda * a * a * (mu + m * m * at);
     let approach = a * a - 4.0 / 3.0 * lambda * a * mu;
-    crate::physics::md::CurvePoint { mu, a, m_minus_1, load_plus_2: load + 2.0, load, approach, dload_dmu: f32::NAN, dapproach_dmu: f32::NAN }
+    crate::physics::md::CurvePoint {
+        mu,
+        a,
+        m_minus_1,
+        load_plus_2: load + 2.0,
+        load,
+        approach,
+        dload_dmu: f32::NAN,
+        dapproach_dmu: f32::NAN,
+    }
 }
 
 fn point_f32(g: &GpuLambda, mu: f32, naive: bool) -> crate::physics::md::CurvePoint<f32> {
@@ -180,7 +189,11 @@ fn residual(g: &GpuLambda, control: Control, mu: f32, gap: f32, naive: bool) -> 
 /// The branch end as one f32 in the residual's naive units (Pbar, not Pbar + 2).
 fn naive_end(g: &GpuLambda, control: Control) -> f32 {
     let b = branch(g, control);
-    let shift = if control == Control::Load && g.small == 1 { 2.0 } else { 0.0 };
+    let shift = if control == Control::Load && g.small == 1 {
+        2.0
+    } else {
+        0.0
+    };
     ((b.end_hi as f64 + b.end_lo as f64) - shift) as f32
 }
 
@@ -189,7 +202,14 @@ fn naive_end(g: &GpuLambda, control: Control) -> f32 {
 /// exact: an f32 load near Pbar_c = -2 is already off by 1e-4 of a gap of 1e-3. With `is_gap`
 /// the pair is that distance itself. `flags` as the kernels' Params: bit 0 [`FLAG_NAIVE`], bits
 /// 8..15 an iteration limit (0: the default, 32).
-pub fn solve_f32(g: &GpuLambda, hi: f32, lo: f32, control: Control, is_gap: bool, flags: u32) -> Out {
+pub fn solve_f32(
+    g: &GpuLambda,
+    hi: f32,
+    lo: f32,
+    control: Control,
+    is_gap: bool,
+    flags: u32,
+) -> Out {
     let value = hi;
     let naive = flags & FLAG_NAIVE != 0;
     let max_iter = (flags >> 8) & 0xff;
@@ -211,7 +231,11 @@ pub fn solve_f32(g: &GpuLambda, hi: f32, lo: f32, control: Control, is_gap: bool
     };
     // hi + shift - end_hi is exact where it matters (Sterbenz), then the low parts are added.
     let gap = if naive {
-        if is_gap { hi } else { hi - naive_end(g, control) }
+        if is_gap {
+            hi
+        } else {
+            hi - naive_end(g, control)
+        }
     } else if is_gap {
         hi + lo
     } else {

@@ -145,6 +145,16 @@ pub fn solve_grid(lambdas: &[f64], values: &[f64], control: Control) -> Vec<Stat
         .par_iter()
         .map(|&l| LambdaContext::new(l).ok())
         .collect();
+    solve_grid_with(&ctx, lambdas, values, control)
+}
+
+/// As [`solve_grid`], with the contexts of `lambdas` already built.
+pub fn solve_grid_with(
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+    values: &[f64],
+    control: Control,
+) -> Vec<State> {
     let nx = lambdas.len();
     let mut out = vec![State::failed(0.0, 0.0, 0.0, Status::InvalidInput); nx * values.len()];
     out.par_chunks_mut(nx)

@@ -13,9 +13,14 @@ pub fn m_of_a(lambda: f64, a: f64) -> Option<f64> {
     let f = |m: f64| {
         let s = (m * m - 1.0).max(0.0).sqrt();
         let asec = (1.0 / m).acos();
-        lambda * a * a / 2.0 * ((m * m - 2.0) * asec + s) + 4.0 * lambda * lambda * a / 3.0 * (s * asec - m + 1.0) - 1.0
+        lambda * a * a / 2.0 * ((m * m - 2.0) * asec + s)
+            + 4.0 * lambda * lambda * a / 3.0 * (s * asec - m + 1.0)
+            - 1.0
     };
-    let mut conv = SimpleConvergency { eps: 2e-12f64, max_iter: 100 };
+    let mut conv = SimpleConvergency {
+        eps: 2e-12f64,
+        max_iter: 100,
+    };
     find_root_brent(1.0, 1e12, f, &mut conv).ok()
 }
 
@@ -31,13 +36,27 @@ pub fn load_of_a(lambda: f64, a: f64) -> Option<f64> {
 pub fn solve_load(ctx: &LambdaContext, load: f64) -> Option<f64> {
     let lambda = ctx.lambda;
     let a_lo = ctx.load_pulloff.a;
-    let mut a_hi = jkr_radius(load).or(dmt_radius(load)).unwrap_or(a_lo).max(a_lo) * 1.1 + 0.1;
+    let mut a_hi = jkr_radius(load)
+        .or(dmt_radius(load))
+        .unwrap_or(a_lo)
+        .max(a_lo)
+        * 1.1
+        + 0.1;
     for _ in 0..60 {
         if load_of_a(lambda, a_hi)? > load {
             break;
         }
         a_hi *= 2.0;
     }
-    let mut conv = SimpleConvergency { eps: 2e-12f64, max_iter: 200 };
-    find_root_brent(a_lo, a_hi, |a| load_of_a(lambda, a).unwrap_or(f64::NAN) - load, &mut conv).ok()
+    let mut conv = SimpleConvergency {
+        eps: 2e-12f64,
+        max_iter: 200,
+    };
+    find_root_brent(
+        a_lo,
+        a_hi,
+        |a| load_of_a(lambda, a).unwrap_or(f64::NAN) - load,
+        &mut conv,
+    )
+    .ok()
 }
