@@ -19,3 +19,5 @@ $T plot pulloff --out $G/pulloff.png --svg $G/pulloff.svg
 $T plot curves --lambda 0.1,1,10 --out $G/curves.png --svg $G/curves.svg
 $T bench --out-dir $G
 $T atlas --out-dir $G/atlas
+$T scene --preset afm-si --plot $G/scene_afm.png > $G/scene_afm.txt
+$T scene --preset pdms-glass --plot $G/scene_pdms.png > $G/scene_pdms.txt

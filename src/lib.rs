@@ -12,4 +12,5 @@ pub mod io;
 pub mod map;
 pub mod physics;
 pub mod render;
+pub mod scene;
 pub mod solver;

@@ -2,6 +2,7 @@
 
 mod basic;
 mod map;
+mod scene;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
@@ -29,6 +30,10 @@ pub enum Command {
     /// The failure atlas: error maps of each method over lambda 1e-6..1e6 and loads from 1e-8
     /// above pull-off to 1e6.
     Atlas(basic::AtlasArgs),
+    /// A real contact in SI units: which model it needs, radii, pull-off forces, warnings.
+    Scene(scene::SceneArgs),
+    /// Work of adhesion from a measured pull-off force under JKR, DMT and exact MD.
+    Infer(scene::InferArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -51,5 +56,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Plot(a) => basic::plot(a),
         Command::Bench(a) => basic::bench(a),
         Command::Atlas(a) => basic::atlas(a),
+        Command::Scene(a) => scene::scene(a),
+        Command::Infer(a) => scene::infer_cmd(a),
     }
 }

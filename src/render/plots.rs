@@ -353,3 +353,175 @@ where
         .draw()?;
     Ok(())
 }
+
+/// A scene: a(P) in SI units (MD bold, the recommended model dashed, the others faint) and, right,
+/// the scene's lambda and loads on a small adhesion map.
+pub fn scene<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &crate::scene::SceneResult,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let (left, right) = root.split_horizontally(W * 3 / 5);
+    let fs = std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m;
+    let rs =
+        (std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m * r.radius_m / r.k_pa).cbrt();
+    let pc = r.pulloff_force_load_control_N;
+    let pmax = r
+        .loads
+        .iter()
+        .map(|l| l.load_n)
+        .fold(pc.abs() * 2.0, f64::max)
+        * 1.1;
+    let ctx = LambdaContext::new(r.lambda)?;
+    let md: Vec<(f64, f64)> = (0..=300)
+        .map(|i| {
+            let p = pc + (pmax - pc) * (i as f64 / 300.0).powi(2);
+            (p, ctx.solve_load(p / fs).a * rs)
+        })
+        .filter(|q| q.1.is_finite())
+        .collect();
+    let amax = md.iter().map(|q| q.1).fold(0.0, f64::max) * 1.1;
+    let mut chart = ChartBuilder::on(&left)
+        .caption(&r.name, ("sans-serif", 24))
+        .margin(20)
+        .x_label_area_size(70)
+        .y_label_area_size(100)
+        .build_cartesian_2d(pc * 1.4..pmax, 0.0..amax)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("load P (N)")
+        .y_desc("contact radius a (m)")
+        .axis_desc_style(("sans-serif", 22))
+        .label_style(("sans-serif", 16))
+        .x_label_formatter(&|v| {
+            if v.abs() < 1e-6 * pmax {
+                "0".into()
+            } else {
+                format!("{v:.2e}")
+            }
+        })
+        .y_label_formatter(&|v| {
+            if v.abs() < 1e-6 * amax {
+                "0".into()
+            } else {
+                format!("{v:.2e}")
+            }
+        })
+        .draw()?;
+    let closed = [
+        (
+            "hertz",
+            "Hertz",
+            GRAY_,
+            hertz_radius as fn(f64) -> Option<f64>,
+        ),
+        ("dmt", "DMT", BLUE_, dmt_radius),
+        ("jkr", "JKR", ORANGE_, jkr_radius),
+    ];
+    for (key, name, col, f) in closed {
+        let rec = r.recommended_model == key;
+        let st = if rec {
+            ShapeStyle::from(&col).stroke_width(4)
+        } else {
+            ShapeStyle::from(&col.mix(0.35)).stroke_width(2)
+        };
+        let pts: Vec<(f64, f64)> = (0..=300)
+            .filter_map(|i| {
+                let p = pc * 1.4 + (pmax - pc * 1.4) * i as f64 / 300.0;
+                f(p / fs).map(|a| (p, a * rs)).filter(|q| q.1 <= amax)
+            })
+            .collect();
+        chart
+            .draw_series(DashedLineSeries::new(pts, 8, 6, st))?
+            .label(if rec {
+                format!("{name} (recommended)")
+            } else {
+                name.to_string()
+            })
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+    }
+    let st = ShapeStyle::from(&BLACK).stroke_width(3);
+    chart
+        .draw_series(LineSeries::new(md, st))?
+        .label("Maugis-Dugdale (exact)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+    for l in &r.loads {
+        if let Some(a) = l.contact_radius_m {
+            chart.draw_series(std::iter::once(Circle::new(
+                (l.load_n, a),
+                6,
+                BLACK.filled(),
+            )))?;
+        }
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 18))
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()?;
+
+    // Right: where the scene sits on the map (normalised loads).
+    let spec = crate::map::MapSpec {
+        lambda_min: 1e-3,
+        lambda_max: 1e3,
+        nx: 160,
+        load_axis: crate::map::LoadAxis::Linear,
+        load_min: -2.0,
+        load_max: 10.0,
+        ny: 160,
+        tolerance: r.tolerance,
+        strength_ratios: vec![],
+    };
+    let d = crate::map::compute(&spec, &crate::engine::Engine::Cpu).map_err(|e| e.to_string())?;
+    let mut ch = ChartBuilder::on(&right)
+        .caption("on the adhesion map", ("sans-serif", 22))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(60)
+        .build_cartesian_2d((1e-3..1e3f64).log_scale(), -2.0..10.0f64)?;
+    let (px, py) = ch.plotting_area().get_pixel_range();
+    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
+    let mut buf = vec![0u8; (w * h * 3) as usize];
+    for rr in 0..h {
+        let iy = ((1.0 - (rr as f64 + 0.5) / h as f64) * 159.0).round() as usize;
+        for c in 0..w {
+            let ix = (((c as f64 + 0.5) / w as f64) * 159.0).round() as usize;
+            let col = crate::render::map::region_color(d.region_at(ix, iy));
+            let k = ((rr * w + c) * 3) as usize;
+            buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
+        }
+    }
+    if let Some(el) = BitMapElement::with_owned_buffer((1e-3, 10.0), (w, h), buf) {
+        ch.draw_series(std::iter::once(el))?;
+    }
+    ch.configure_mesh()
+        .disable_mesh()
+        .x_desc("λ")
+        .y_desc("P / (π w R)")
+        .axis_desc_style(("sans-serif", 20))
+        .label_style(("sans-serif", 16))
+        .x_label_formatter(&|v| log_label(*v))
+        .draw()?;
+    let l = r.lambda.clamp(1e-3, 1e3);
+    for ld in &r.loads {
+        let y = ld.load_normalised.clamp(-2.0, 10.0);
+        ch.draw_series(std::iter::once(Cross::new(
+            (l, y),
+            8,
+            BLACK.stroke_width(3),
+        )))?;
+    }
+    ch.draw_series(std::iter::once(Text::new(
+        format!("λ = {:.3}", r.lambda),
+        (l.clamp(2e-3, 50.0), 9.0),
+        ("sans-serif", 20).into_font(),
+    )))?;
+    Ok(())
+}
