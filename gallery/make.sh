@@ -21,3 +21,8 @@ $T bench --out-dir $G
 $T atlas --out-dir $G/atlas
 $T scene --preset afm-si --plot $G/scene_afm.png > $G/scene_afm.txt
 $T scene --preset pdms-glass --plot $G/scene_pdms.png > $G/scene_pdms.txt
+for l in 0.1 1 10; do
+    $T cycle --lambda $l --plot $G/cycle_grips_$l.png -o $G/cycle_grips_$l.csv
+done
+$T cycle --lambda 1 --control spring --stiffness 0.5 --plot $G/cycle_spring_0.5.png -o $G/cycle_spring_0.5.csv
+$T cycle --lambda 1 --control spring --stiffness 5 --plot $G/cycle_spring_5.png -o $G/cycle_spring_5.csv

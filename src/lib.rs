@@ -6,6 +6,7 @@
 
 pub mod bench;
 pub mod cli;
+pub mod cycle;
 pub mod engine;
 pub mod gpu;
 pub mod io;

@@ -34,6 +34,8 @@ pub enum Command {
     Scene(scene::SceneArgs),
     /// Work of adhesion from a measured pull-off force under JKR, DMT and exact MD.
     Infer(scene::InferArgs),
+    /// Approach-retract force curves: jump-in, jump-out and the energy lost per cycle.
+    Cycle(scene::CycleArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -58,5 +60,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Atlas(a) => basic::atlas(a),
         Command::Scene(a) => scene::scene(a),
         Command::Infer(a) => scene::infer_cmd(a),
+        Command::Cycle(a) => scene::cycle(a),
     }
 }

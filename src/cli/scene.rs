@@ -206,3 +206,139 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
     println!("  {}", r.verdict);
     Ok(())
 }
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum DriveKind {
+    /// Rigid grips: displacement control.
+    Grips,
+    /// Dead load: load control.
+    DeadLoad,
+    /// A spring in series (an AFM cantilever): --stiffness (normalised) or --spring-n-m.
+    Spring,
+}
+
+#[derive(Args, Debug)]
+pub struct CycleArgs {
+    /// Maugis parameter (or take it from --scene/--preset).
+    #[arg(long)]
+    pub lambda: Option<f64>,
+    /// A scene file (SI units): lambda from it, energies in joules.
+    #[arg(long)]
+    pub scene: Option<String>,
+    #[arg(long, conflicts_with = "scene")]
+    pub preset: Option<String>,
+    #[arg(long, value_enum, default_value_t = DriveKind::Grips)]
+    pub control: DriveKind,
+    /// Normalised spring stiffness kbar = k (pi^2 w^2 R / K^2)^(1/3) / (pi w R).
+    #[arg(long)]
+    pub stiffness: Option<f64>,
+    /// Spring stiffness in N/m (needs a scene).
+    #[arg(long)]
+    pub spring_n_m: Option<f64>,
+    /// Largest load of the approach (normalised).
+    #[arg(long, default_value_t = 2.0)]
+    pub max_load: f64,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    pub format: Format,
+    /// Force against displacement and contact radius against load (PNG).
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
+}
+
+pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
+    use crate::cycle::{cycle, normalised_stiffness, Drive};
+    let scene =
+        match (&a.scene, &a.preset) {
+            (Some(f), _) => Some(
+                serde_json::from_str::<SceneInput>(
+                    &std::fs::read_to_string(f).with_context(|| format!("cannot read {f}"))?,
+                )
+                .with_context(|| format!("{f}: not a valid scene"))?,
+            ),
+            (None, Some(p)) => Some(preset(p).with_context(|| {
+                format!("no preset {p:?}; the presets are {}", PRESETS.join(", "))
+            })?),
+            _ => None,
+        };
+    let contact = scene.as_ref().map(crate::scene::contact_of).transpose()?;
+    let lambda = match (a.lambda, &contact) {
+        (Some(l), None) => l,
+        (None, Some(c)) => c.lambda(),
+        (Some(_), Some(_)) => bail!("give --lambda or a scene, not both"),
+        (None, None) => bail!("give --lambda, --scene FILE or --preset NAME"),
+    };
+    if !(lambda > 0.0 && lambda.is_finite()) || !(a.max_load > 0.0 && a.max_load.is_finite()) {
+        bail!("lambda and --max-load must be positive numbers");
+    }
+    let drive = match a.control {
+        DriveKind::Grips => Drive::RigidGrips,
+        DriveKind::DeadLoad => Drive::DeadLoad,
+        DriveKind::Spring => {
+            let k = match (a.stiffness, a.spring_n_m, &contact) {
+                (Some(k), None, _) => k,
+                (None, Some(k), Some(c)) => normalised_stiffness(k, c),
+                (None, Some(_), None) => bail!("--spring-n-m needs a scene (--scene or --preset) to normalise it; or give --stiffness"),
+                _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
+            };
+            if !(k > 0.0 && k.is_finite()) {
+                bail!("the spring stiffness must be > 0");
+            }
+            Drive::Spring(k)
+        }
+    };
+    let c = cycle(lambda, drive, a.max_load);
+    let text = match a.format {
+        Format::Json => serde_json::to_string_pretty(&c)? + "\n",
+        _ => {
+            let mut t = String::from("phase,branch,approach,load,A,C,control,jump\n");
+            for s in &c.steps {
+                let b = ["free", "non_contact", "contact"][s.point.branch as usize];
+                let _ = writeln!(
+                    t,
+                    "{},{b},{:.16e},{:.16e},{:.16e},{:.16e},{:.16e},{}",
+                    s.phase,
+                    s.point.approach,
+                    s.point.load,
+                    s.point.a,
+                    s.point.c,
+                    s.control,
+                    s.jump as u8
+                );
+            }
+            t
+        }
+    };
+    write_output(&a.output, text.as_bytes())?;
+    eprintln!("lambda = {lambda:.4}, {:?}", c.drive);
+    for j in &c.jumps {
+        match &j.to {
+            Some(to) => eprintln!("  {} jump: from (approach {:.5}, load {:.5}, A {:.4}) to (approach {:.5}, load {:.5}, A {:.4})", j.phase, j.from.approach, j.from.load, j.from.a, to.approach, to.load, to.a),
+            None => eprintln!("  {} jump: from (approach {:.5}, load {:.5}, A {:.4}): the surfaces separate", j.phase, j.from.approach, j.from.load, j.from.a),
+        }
+    }
+    match (c.hysteresis, &contact) {
+        (Some(w), Some(ct)) => eprintln!(
+            "  energy lost per cycle: {w:.6} (normalised) = {} ",
+            si(w * ct.force_scale() * ct.approach_scale(), "J")
+        ),
+        (Some(w), None) => eprintln!(
+            "  energy lost per cycle: {w:.6} (in units of pi w R times the approach unit)"
+        ),
+        (None, _) => eprintln!(
+            "  energy lost per cycle: not defined (under dead load the surfaces separate for good)"
+        ),
+    }
+    if let Some(p) = &a.plot {
+        crate::render::plots::save(
+            Some(p),
+            None,
+            &|r| crate::render::plots::cycle(r, &c),
+            &|r| crate::render::plots::cycle(r, &c),
+        )
+        .map_err(|e| anyhow::anyhow!("drawing the cycle: {e}"))?;
+        eprintln!("wrote {}", p.display());
+    }
+    Ok(())
+}

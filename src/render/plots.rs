@@ -525,3 +525,179 @@ where
     )))?;
     Ok(())
 }
+
+/// An approach-retract cycle: load against approach (the equilibrium path faint, approach blue,
+/// retract orange, jumps as arrows) and contact radius against load.
+pub fn cycle<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    c: &crate::cycle::Cycle,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let (left, right) = root.split_horizontally(W * 3 / 5);
+    let steps = |ph: &str| -> Vec<&crate::cycle::Step> {
+        c.steps.iter().filter(|s| s.phase == ph).collect()
+    };
+    let xs: Vec<f64> = c
+        .path
+        .iter()
+        .filter(|p| p.branch > 0)
+        .map(|p| p.approach)
+        .collect();
+    let (xmin, xmax) = (
+        xs.iter().cloned().fold(f64::INFINITY, f64::min),
+        xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let pad = 0.08 * (xmax - xmin);
+    let (ymin, ymax) = (
+        c.path.iter().map(|p| p.load).fold(0.0, f64::min),
+        c.path.iter().map(|p| p.load).fold(0.0, f64::max),
+    );
+    let drive = match c.drive {
+        crate::cycle::Drive::RigidGrips => "rigid grips".to_string(),
+        crate::cycle::Drive::DeadLoad => "dead load".to_string(),
+        crate::cycle::Drive::Spring(k) => format!("spring, k = {k:.3}"),
+    };
+    let mut chart = ChartBuilder::on(&left)
+        .caption(
+            format!("Approach and retract, λ = {}, {drive}", c.lambda),
+            ("sans-serif", 26),
+        )
+        .margin(20)
+        .x_label_area_size(70)
+        .y_label_area_size(90)
+        .build_cartesian_2d(
+            xmin - pad..xmax + pad,
+            ymin * 1.15 - 0.05..ymax * 1.05 + 0.05,
+        )?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("approach  δ (K² / (π² w² R))^(1/3)")
+        .y_desc("load  P / (π w R)")
+        .axis_desc_style(("sans-serif", 22))
+        .label_style(("sans-serif", 18))
+        .draw()?;
+    let eq: Vec<(f64, f64)> = c
+        .path
+        .iter()
+        .filter(|p| p.approach >= xmin - pad)
+        .map(|p| (p.approach, p.load))
+        .collect();
+    let faint = ShapeStyle::from(&RGBColor(170, 170, 170)).stroke_width(6);
+    chart
+        .draw_series(LineSeries::new(eq, faint))?
+        .label("equilibrium path (all states)")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], faint));
+    // Retract first and wide, approach on top and thin: where they coincide both stay visible.
+    for (ph, col, width) in [("retract", ORANGE_, 6), ("approach", BLUE_, 2)] {
+        let st = ShapeStyle::from(&col).stroke_width(width);
+        let mut seg: Vec<(f64, f64)> = Vec::new();
+        let mut first = true;
+        for s in steps(ph) {
+            if s.jump && !seg.is_empty() {
+                let s2 = chart.draw_series(LineSeries::new(std::mem::take(&mut seg), st))?;
+                if first {
+                    s2.label(ph)
+                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+                    first = false;
+                }
+            }
+            if s.point.approach >= xmin - pad {
+                seg.push((s.point.approach, s.point.load));
+            }
+        }
+        if !seg.is_empty() {
+            let s2 = chart.draw_series(LineSeries::new(seg, st))?;
+            if first {
+                s2.label(ph)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+            }
+        }
+    }
+    // Jumps: dashed lines with an arrowhead drawn in pixel space.
+    for j in &c.jumps {
+        let col = if j.phase == "approach" {
+            BLUE_
+        } else {
+            ORANGE_
+        };
+        let from = (j.from.approach, j.from.load);
+        let to = match &j.to {
+            Some(t) => (t.approach.max(xmin - pad), t.load),
+            None => (j.from.approach, ymax * 1.05 + 0.05),
+        };
+        chart.draw_series(DashedLineSeries::new(
+            vec![from, to],
+            6,
+            4,
+            ShapeStyle::from(&col).stroke_width(2),
+        ))?;
+        let (p0, p1) = (chart.backend_coord(&from), chart.backend_coord(&to));
+        let (dx, dy) = ((p1.0 - p0.0) as f64, (p1.1 - p0.1) as f64);
+        let len = (dx * dx + dy * dy).sqrt().max(1.0);
+        let (ux, uy) = (dx / len, dy / len);
+        let tip = p1;
+        let base = (tip.0 as f64 - 16.0 * ux, tip.1 as f64 - 16.0 * uy);
+        let wing = |s: f64| {
+            (
+                (base.0 - 7.0 * uy * s) as i32,
+                (base.1 + 7.0 * ux * s) as i32,
+            )
+        };
+        root.draw(&Polygon::new(
+            vec![tip, wing(1.0), wing(-1.0)],
+            col.filled(),
+        ))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 18))
+        .position(SeriesLabelPosition::UpperLeft)
+        .draw()?;
+    let energy = match c.hysteresis {
+        Some(w) => format!("energy lost per cycle: {w:.4}"),
+        None => "the surfaces separate: no closed cycle".into(),
+    };
+    let (lw, lh) = left.dim_in_pixel();
+    left.draw(&Text::new(
+        energy,
+        (lw as i32 - 400, lh as i32 - 120),
+        ("sans-serif", 20).into_font(),
+    ))?;
+
+    let contact: Vec<&crate::cycle::PathPoint> = c.path.iter().filter(|p| p.branch == 2).collect();
+    let amax = contact.iter().map(|p| p.a).fold(0.0, f64::max) * 1.05;
+    let mut ch = ChartBuilder::on(&right)
+        .caption("contact radius against load", ("sans-serif", 22))
+        .margin(20)
+        .x_label_area_size(70)
+        .y_label_area_size(70)
+        .build_cartesian_2d(ymin * 1.15 - 0.05..ymax * 1.05 + 0.05, 0.0..amax)?;
+    ch.configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc("load  P / (π w R)")
+        .y_desc("contact radius A")
+        .axis_desc_style(("sans-serif", 20))
+        .label_style(("sans-serif", 16))
+        .draw()?;
+    ch.draw_series(LineSeries::new(
+        contact.iter().map(|p| (p.load, p.a)),
+        faint,
+    ))?;
+    for (ph, col, r) in [("retract", ORANGE_, 4), ("approach", BLUE_, 2)] {
+        let pts: Vec<(f64, f64)> = steps(ph)
+            .iter()
+            .filter(|s| s.point.branch == 2)
+            .map(|s| (s.point.load, s.point.a))
+            .collect();
+        ch.draw_series(pts.iter().map(|&p| Circle::new(p, r, col.filled())))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,336 @@
+//! Approach-retract cycles (PHYSICS.md section 4): the complete equilibrium path (free, the
+//! non-contact branch with a cohesive zone only, the Maugis-Dugdale contact branch) and the path
+//! actually followed under rigid grips, dead load or a spring in series (an AFM cantilever).
+//!
+//! With the spring's stiffness k normalised as `kbar = k (pi^2 w^2 R / K^2)^(1/3) / (pi w R)`,
+//! the controlled variable is the base displacement `Delta = Dbar + Pbar / kbar` (rigid grips:
+//! kbar -> infinity, Delta = Dbar; dead load: kbar -> 0, the load itself). Parametrise the path by
+//! s (C growing on the non-contact branch, then A growing on the contact branch): a state is
+//! stable while `dDelta/ds > 0`, i.e. until `dPbar/dDbar = -kbar` (the contact's force gradient
+//! reaches the spring's stiffness; under rigid grips `dDbar/ds = 0`, under dead load
+//! `dPbar/ds = 0`). There the system jumps at constant Delta to the next stable state. The energy
+//! lost per cycle is the loop's area `W = closed integral of Pbar dDelta = closed integral of
+//! Pbar dDbar` (the spring's stored energy is a state function), in units of pi w R times the
+//! approach unit.
+
+use crate::physics::md::{curve_point, non_contact_point, zero_radius_end};
+use crate::solver::context::x_at_radius;
+use crate::solver::LambdaContext;
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Drive {
+    /// Displacement control.
+    RigidGrips,
+    /// Load control.
+    DeadLoad,
+    /// A spring of normalised stiffness kbar in series.
+    Spring(f64),
+}
+
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct PathPoint {
+    /// 0 free (no force), 1 non-contact (cohesive zone only), 2 contact (Maugis-Dugdale).
+    pub branch: u8,
+    pub approach: f64,
+    pub load: f64,
+    pub a: f64,
+    /// Normalised radius of the cohesive zone: C on the non-contact branch, m A in contact.
+    pub c: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Step {
+    pub phase: &'static str,
+    pub point: PathPoint,
+    /// The controlled variable (Delta, or the load under dead load).
+    pub control: f64,
+    /// true at the first point after a jump.
+    pub jump: bool,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Jump {
+    pub phase: &'static str,
+    pub from: PathPoint,
+    /// None: under dead load the surfaces separate for good.
+    pub to: Option<PathPoint>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Cycle {
+    pub lambda: f64,
+    pub drive: Drive,
+    pub path: Vec<PathPoint>,
+    pub steps: Vec<Step>,
+    pub jumps: Vec<Jump>,
+    /// Energy lost per cycle (normalised); None where the loop does not close (dead load).
+    pub hysteresis: Option<f64>,
+}
+
+fn control_of(p: &PathPoint, drive: Drive) -> f64 {
+    match drive {
+        Drive::RigidGrips => p.approach,
+        Drive::DeadLoad => p.load,
+        Drive::Spring(k) => p.approach + p.load / k,
+    }
+}
+
+/// The complete equilibrium path up to load `max_load`: free, non-contact, contact.
+pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> {
+    let end = zero_radius_end(lambda);
+    let (_, d0) = non_contact_point(lambda, 0.0);
+    let mut path = Vec::with_capacity(3 * n);
+    for i in 0..n {
+        let c = end.c * i as f64 / (n - 1) as f64;
+        let (p, d) = non_contact_point(lambda, c);
+        path.push(PathPoint {
+            branch: 1,
+            approach: d,
+            load: p,
+            a: 0.0,
+            c,
+        });
+    }
+    let ctx = LambdaContext::new(lambda).expect("lambda in range");
+    let a_max = ctx.solve_load(max_load).a;
+    for i in 1..=2 * n {
+        // Dense near A = 0, where the contact branch leaves the non-contact one.
+        let a = a_max * (i as f64 / (2 * n) as f64).powf(1.5);
+        let mu = x_at_radius(lambda, a).exp();
+        let p = curve_point(lambda, mu);
+        path.push(PathPoint {
+            branch: 2,
+            approach: p.approach,
+            load: p.load,
+            a: p.a,
+            c: (p.m_minus_1 + 1.0) * p.a,
+        });
+    }
+    // The free segment before first contact of the force zones (no force), long enough for any
+    // spring jump to land on.
+    let lowest = path
+        .iter()
+        .map(|p| p.approach + p.load.min(0.0) * 1e3)
+        .fold(d0, f64::min);
+    let free: Vec<PathPoint> = (0..n)
+        .map(|i| {
+            let d = lowest - 1.0 + (d0 - lowest + 1.0) * i as f64 / n as f64;
+            PathPoint {
+                branch: 0,
+                approach: d,
+                load: 0.0,
+                a: 0.0,
+                c: 0.0,
+            }
+        })
+        .collect();
+    free.into_iter().chain(path).collect()
+}
+
+/// Where the path first comes back to `level` on a rising stretch, after index `from`.
+fn landing_forward(u: &[f64], from: usize, level: f64) -> Option<(usize, f64)> {
+    (from + 1..u.len() - 1)
+        .find(|&j| u[j] < u[j + 1] && u[j] <= level && level <= u[j + 1])
+        .map(|j| (j, (level - u[j]) / (u[j + 1] - u[j])))
+}
+
+fn landing_backward(u: &[f64], from: usize, level: f64) -> Option<(usize, f64)> {
+    (0..from.saturating_sub(1))
+        .rev()
+        .find(|&j| u[j] < u[j + 1] && u[j] <= level && level <= u[j + 1])
+        .map(|j| (j, (level - u[j]) / (u[j + 1] - u[j])))
+}
+
+fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
+    let l = |x: f64, y: f64| x + (y - x) * t;
+    PathPoint {
+        branch: if t < 0.5 { a.branch } else { b.branch },
+        approach: l(a.approach, b.approach),
+        load: l(a.load, b.load),
+        a: l(a.a, b.a),
+        c: l(a.c, b.c),
+    }
+}
+
+pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
+    let path = equilibrium_path(lambda, max_load, 400);
+    let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
+    let n = path.len();
+    let mut steps = Vec::new();
+    let mut jumps = Vec::new();
+    // Approach: follow the path while the control rises (flat counts, as on the free segment
+    // under dead load); at a fold, jump forward to where the control is reached again.
+    let mut i = 0;
+    let mut jumped = false;
+    loop {
+        steps.push(Step {
+            phase: "approach",
+            point: path[i],
+            control: u[i],
+            jump: jumped,
+        });
+        jumped = false;
+        if i + 1 >= n {
+            break;
+        }
+        if u[i + 1] >= u[i] {
+            i += 1;
+            continue;
+        }
+        match landing_forward(&u, i, u[i]) {
+            Some((j, t)) => {
+                let to = lerp(&path[j], &path[j + 1], t);
+                jumps.push(Jump {
+                    phase: "approach",
+                    from: path[i],
+                    to: Some(to),
+                });
+                steps.push(Step {
+                    phase: "approach",
+                    point: to,
+                    control: u[i],
+                    jump: true,
+                });
+                i = j + 1;
+            }
+            None => break,
+        }
+    }
+    // Retract: back down the path while the control falls; at a fold, jump back.
+    let mut i = n - 1;
+    let mut separated = false;
+    loop {
+        steps.push(Step {
+            phase: "retract",
+            point: path[i],
+            control: u[i],
+            jump: jumped,
+        });
+        jumped = false;
+        if i == 0 {
+            break;
+        }
+        if u[i - 1] <= u[i] {
+            i -= 1;
+            continue;
+        }
+        match landing_backward(&u, i, u[i]) {
+            Some((j, t)) => {
+                let to = lerp(&path[j], &path[j + 1], t);
+                jumps.push(Jump {
+                    phase: "retract",
+                    from: path[i],
+                    to: Some(to),
+                });
+                steps.push(Step {
+                    phase: "retract",
+                    point: to,
+                    control: u[i],
+                    jump: true,
+                });
+                i = j;
+            }
+            None => {
+                jumps.push(Jump {
+                    phase: "retract",
+                    from: path[i],
+                    to: None,
+                });
+                separated = true;
+                break;
+            }
+        }
+    }
+    // The loop area, integral of P dD along approach then retract (trapezoids).
+    let hysteresis = (!separated).then(|| {
+        let w: f64 = steps
+            .windows(2)
+            .map(|s| {
+                0.5 * (s[0].point.load + s[1].point.load)
+                    * (s[1].point.approach - s[0].point.approach)
+            })
+            .sum();
+        w.max(0.0)
+    });
+    Cycle {
+        lambda,
+        drive,
+        path,
+        steps,
+        jumps,
+        hysteresis,
+    }
+}
+
+/// The normalised spring stiffness: k (N/m) times the approach unit over the force unit.
+pub fn normalised_stiffness(k: f64, c: &crate::physics::params::Contact) -> f64 {
+    k * c.approach_scale() / c.force_scale()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn retract_jump(c: &Cycle) -> &Jump {
+        c.jumps
+            .iter()
+            .find(|j| j.phase == "retract")
+            .expect("a jump-out")
+    }
+
+    #[test]
+    fn rigid_grips_jkr_jump_out_at_minus_five_sixths() {
+        let c = cycle(1e3, Drive::RigidGrips, 2.0);
+        let j = retract_jump(&c);
+        assert!((j.from.load + 5.0 / 6.0).abs() < 2e-3, "{}", j.from.load);
+        assert!(c.hysteresis.unwrap() > 0.1);
+    }
+
+    #[test]
+    fn springs_interpolate_between_grips_and_dead_load() {
+        let lambda = 2.0;
+        let ctx = LambdaContext::new(lambda).unwrap();
+        let stiff = cycle(lambda, Drive::Spring(1e6), 2.0);
+        assert!(
+            (retract_jump(&stiff).from.load - ctx.disp_pulloff.load).abs() < 5e-3,
+            "{}",
+            retract_jump(&stiff).from.load
+        );
+        let soft = cycle(lambda, Drive::Spring(1e-4), 2.0);
+        assert!(
+            (retract_jump(&soft).from.load - ctx.load_pulloff.load).abs() < 5e-3,
+            "{}",
+            retract_jump(&soft).from.load
+        );
+        let dead = cycle(lambda, Drive::DeadLoad, 2.0);
+        assert!(retract_jump(&dead).to.is_none() && dead.hysteresis.is_none());
+        assert!((retract_jump(&dead).from.load - ctx.load_pulloff.load).abs() < 5e-3);
+    }
+
+    #[test]
+    fn hysteresis_vanishes_as_the_jumps_do() {
+        let e = |l: f64, d: Drive| cycle(l, d, 2.0).hysteresis.unwrap();
+        let (small, mid, large) = (
+            e(0.05, Drive::RigidGrips),
+            e(1.0, Drive::RigidGrips),
+            e(10.0, Drive::RigidGrips),
+        );
+        assert!(small < 1e-3 * large && mid < large, "{small} {mid} {large}");
+        // A stiffer spring loses less than a softer one.
+        assert!(e(1.0, Drive::Spring(100.0)) < e(1.0, Drive::Spring(0.5)));
+    }
+
+    #[test]
+    fn branches_meet_at_zero_radius() {
+        let lambda = 0.3;
+        let path = equilibrium_path(lambda, 1.0, 100);
+        let k = path.iter().position(|p| p.branch == 2).unwrap();
+        let (last_nc, first_c) = (path[k - 1], path[k]);
+        assert!(
+            (last_nc.load - first_c.load).abs() < 1e-3
+                && (last_nc.approach - first_c.approach).abs() < 1e-2
+        );
+    }
+}
