@@ -34,8 +34,19 @@ pub struct SceneInput {
     pub atomic_spacing_m: Option<f64>,
     /// Interfacial shear strength tau0 for the friction estimate F = tau0 pi a^2.
     pub shear_strength_pa: Option<f64>,
+    /// The control of the experiment: "load", "displacement", or {"cantilever_n_m": k}.
+    pub control: Option<SceneControl>,
     /// Source of the values, for the record.
     pub source: Option<String>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SceneControl {
+    Load,
+    Displacement,
+    /// An AFM cantilever (a spring in series) of stiffness k (N/m).
+    CantileverNM(f64),
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -76,6 +87,10 @@ pub struct SceneResult {
     pub zero_load_contact_radius_m: f64,
     pub recommended_model: &'static str,
     pub recommendation: String,
+    /// The pull-off (jump-out) force under the scene's control (N); with a cantilever, where its
+    /// stiffness equals the contact's force gradient (see `tabor cycle`).
+    pub pulloff_force_under_control_N: f64,
+    pub control: String,
     pub loads: Vec<LoadResult>,
     pub source: Option<String>,
 }
@@ -282,7 +297,35 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         )
     };
     let zero = ctx.solve_load(0.0);
+    let (pulloff_control, control_name) = match &s.control {
+        None | Some(SceneControl::Load) => (ctx.load_pulloff.load * fs, "load".to_string()),
+        Some(SceneControl::Displacement) => {
+            (ctx.disp_pulloff.load * fs, "displacement".to_string())
+        }
+        Some(SceneControl::CantileverNM(k)) => {
+            if !(*k > 0.0 && k.is_finite()) {
+                return Err(ParamError::OutOfRange {
+                    field: "control.cantilever_n_m",
+                    value: *k,
+                    allowed: "> 0 (N/m)",
+                });
+            }
+            let kbar = crate::cycle::normalised_stiffness(*k, &c);
+            let cyc = crate::cycle::cycle(lambda, crate::cycle::Drive::Spring(kbar), 1.0);
+            let out = cyc
+                .jumps
+                .iter()
+                .find(|j| j.phase == "retract")
+                .map_or(ctx.disp_pulloff.load, |j| j.from.load);
+            (
+                out * fs,
+                format!("cantilever k = {k} N/m (normalised {kbar:.4e})"),
+            )
+        }
+    };
     Ok(SceneResult {
+        pulloff_force_under_control_N: pulloff_control,
+        control: control_name,
         name: s.name.clone().unwrap_or_else(|| "scene".into()),
         e_star_pa: c.e_star,
         k_pa: c.k(),
@@ -336,6 +379,7 @@ pub fn preset(name: &str) -> Option<SceneInput> {
         tolerance: None,
         atomic_spacing_m: Some(0.25e-9),
         shear_strength_pa: tau,
+        control: None,
         source: Some(source.into()),
     };
     Some(match name {
@@ -461,6 +505,22 @@ mod tests {
     }
 
     #[test]
+    fn cantilever_pulloff_lies_between_the_controls() {
+        let mut s = preset("afm-si").unwrap();
+        s.control = Some(SceneControl::CantileverNM(0.2));
+        let r = solve_scene(&s).unwrap();
+        let (lc, dc, k) = (
+            r.pulloff_force_load_control_N,
+            r.pulloff_force_displacement_control_N,
+            r.pulloff_force_under_control_N,
+        );
+        assert!(
+            k >= lc.min(dc) - 1e-12 && k <= lc.max(dc) + 1e-12,
+            "{lc} {dc} {k}"
+        );
+    }
+
+    #[test]
     fn pulloff_force_in_newtons_matches_jkr_and_dmt_limits() {
         // JKR side: Fc = 3/2 pi w R.
         let pdms = solve_scene(&preset("pdms-glass").unwrap()).unwrap();
@@ -493,5 +553,130 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("work_of_adhesion"));
+    }
+}
+
+/// A fit of w and E* to measured (load, contact radius) pairs with the exact MD model.
+#[derive(Clone, Debug, Serialize)]
+pub struct PairsFit {
+    pub work_of_adhesion_j_m2: f64,
+    pub e_star_pa: f64,
+    pub lambda: f64,
+    pub tabor_parameter: f64,
+    /// (a_model - a_measured) / a_measured for each pair.
+    pub relative_residuals: Vec<f64>,
+    pub rms_relative_residual: f64,
+}
+
+/// Least squares on the relative contact-radius residuals over (ln w, ln E*): a coarse grid, then
+/// a compass search to a step of 1e-9. `pairs` are (load in N, contact radius in m).
+pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit, ParamError> {
+    if pairs.len() < 2 {
+        return Err(ParamError::Missing(
+            "give at least two (load, contact radius) pairs",
+        ));
+    }
+    for &(p, a) in pairs {
+        if !(p.is_finite() && a.is_finite() && a > 0.0) {
+            return Err(ParamError::OutOfRange {
+                field: "pairs",
+                value: if a > 0.0 { p } else { a },
+                allowed: "finite loads (N) and positive contact radii (m)",
+            });
+        }
+    }
+    let residuals = |lw: f64, le: f64| -> Option<Vec<f64>> {
+        let c = Contact::new(radius, le.exp(), lw.exp(), ForceRange::LennardJones(z0)).ok()?;
+        let ctx = LambdaContext::new(c.lambda()).ok()?;
+        let (fs, rs) = (c.force_scale(), c.radius_scale());
+        Some(
+            pairs
+                .iter()
+                .map(|&(p, a)| {
+                    let s = ctx.solve_load(p / fs);
+                    if s.status == Status::Ok {
+                        s.a * rs / a - 1.0
+                    } else {
+                        1.0
+                    }
+                })
+                .collect(),
+        )
+    };
+    let cost = |lw: f64, le: f64| {
+        residuals(lw, le).map_or(f64::INFINITY, |r| r.iter().map(|x| x * x).sum::<f64>())
+    };
+    let mut best = (f64::INFINITY, 0.0, 0.0);
+    for i in 0..=24 {
+        for j in 0..=24 {
+            let (lw, le) = (
+                (1e-4f64).ln() + i as f64 * (1e5f64).ln() / 24.0,
+                (1e3f64).ln() + j as f64 * (1e9f64).ln() / 24.0,
+            );
+            let c = cost(lw, le);
+            if c < best.0 {
+                best = (c, lw, le);
+            }
+        }
+    }
+    let (mut f, mut lw, mut le) = best;
+    let mut step = 0.5;
+    while step > 1e-9 {
+        let mut moved = false;
+        for (dw, de) in [
+            (step, 0.0),
+            (-step, 0.0),
+            (0.0, step),
+            (0.0, -step),
+            (step, step),
+            (-step, -step),
+            (step, -step),
+            (-step, step),
+        ] {
+            let c = cost(lw + dw, le + de);
+            if c < f {
+                (f, lw, le) = (c, lw + dw, le + de);
+                moved = true;
+            }
+        }
+        if !moved {
+            step *= 0.5;
+        }
+    }
+    let r = residuals(lw, le).ok_or(ParamError::Missing("the fit left the valid range"))?;
+    let c = Contact::new(radius, le.exp(), lw.exp(), ForceRange::LennardJones(z0))?;
+    let rms = (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt();
+    Ok(PairsFit {
+        work_of_adhesion_j_m2: c.work,
+        e_star_pa: c.e_star,
+        lambda: c.lambda(),
+        tabor_parameter: c.tabor(),
+        relative_residuals: r,
+        rms_relative_residual: rms,
+    })
+}
+
+#[cfg(test)]
+mod fit_tests {
+    use super::*;
+
+    #[test]
+    fn pairs_fit_recovers_w_and_e_star() {
+        // Synthetic JKR-like test: PDMS-like sphere, exact MD radii at six loads.
+        let (r, e, w, z0) = (2e-3, 2.4e6, 0.044, 0.3e-9);
+        let c = Contact::new(r, e, w, ForceRange::LennardJones(z0)).unwrap();
+        let ctx = LambdaContext::new(c.lambda()).unwrap();
+        let pairs: Vec<(f64, f64)> = [-2e-4, 0.0, 5e-4, 1e-3, 2e-3, 4e-3]
+            .iter()
+            .map(|&p| (p, ctx.solve_load(p / c.force_scale()).a * c.radius_scale()))
+            .collect();
+        let fit = fit_pairs(&pairs, r, z0).unwrap();
+        assert!(
+            (fit.work_of_adhesion_j_m2 / w - 1.0).abs() < 1e-5,
+            "{}",
+            fit.work_of_adhesion_j_m2
+        );
+        assert!((fit.e_star_pa / e - 1.0).abs() < 1e-5, "{}", fit.e_star_pa);
+        assert!(fit.rms_relative_residual < 1e-6);
     }
 }

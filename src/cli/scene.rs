@@ -109,9 +109,11 @@ pub fn scene_text(r: &SceneResult) -> String {
     );
     let _ = writeln!(
         t,
-        "  pull-off force: {} (load control), {} (displacement control)",
+        "  pull-off force: {} (load control), {} (displacement control); under this scene's control ({}): {}",
         si(r.pulloff_force_load_control_N, "N"),
-        si(r.pulloff_force_displacement_control_N, "N")
+        si(r.pulloff_force_displacement_control_N, "N"),
+        r.control,
+        si(r.pulloff_force_under_control_N, "N")
     );
     let _ = writeln!(
         t,
@@ -161,14 +163,18 @@ pub fn scene_text(r: &SceneResult) -> String {
 #[derive(Args, Debug)]
 pub struct InferArgs {
     /// Measured pull-off force (N).
-    #[arg(long, allow_hyphen_values = true)]
-    pub pulloff: f64,
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "pairs")]
+    pub pulloff: Option<f64>,
+    /// Measured (load, contact radius) pairs: CSV with columns `load_n` and `contact_radius_m`;
+    /// w and E* are fitted with the exact MD model.
+    #[arg(long, conflicts_with_all = ["pulloff", "e_star"])]
+    pub pairs: Option<String>,
     /// Effective radius (m).
     #[arg(long)]
     pub radius: f64,
-    /// Reduced modulus E* (Pa).
-    #[arg(long)]
-    pub e_star: f64,
+    /// Reduced modulus E* (Pa); needed with --pulloff.
+    #[arg(long, required_unless_present = "pairs")]
+    pub e_star: Option<f64>,
     /// Lennard-Jones range z0 (m).
     #[arg(long, default_value_t = 0.3e-9)]
     pub z0: f64,
@@ -177,7 +183,70 @@ pub struct InferArgs {
 }
 
 pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
-    let r = infer(a.pulloff, a.radius, a.e_star, a.z0)?;
+    if let Some(f) = &a.pairs {
+        let text = std::fs::read_to_string(f).with_context(|| format!("cannot read {f}"))?;
+        let mut rdr = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .from_reader(text.as_bytes());
+        let h = rdr.headers()?.clone();
+        let col = |n: &str| {
+            h.iter()
+                .position(|x| x == n)
+                .with_context(|| format!("{f}: no column `{n}` (need load_n and contact_radius_m)"))
+        };
+        let (ip, ia) = (col("load_n")?, col("contact_radius_m")?);
+        let mut pairs = Vec::new();
+        for (k, rec) in rdr.records().enumerate() {
+            let rec = rec?;
+            let num = |i: usize| {
+                rec.get(i)
+                    .unwrap_or("")
+                    .parse::<f64>()
+                    .with_context(|| format!("{f}, line {}: not a number", k + 2))
+            };
+            pairs.push((num(ip)?, num(ia)?));
+        }
+        let fit = crate::scene::fit_pairs(&pairs, a.radius, a.z0)?;
+        if a.format == Format::Json {
+            println!("{}", serde_json::to_string_pretty(&fit)?);
+            return Ok(());
+        }
+        println!(
+            "Maugis-Dugdale fit of {} (load, contact radius) pairs with R = {}, z0 = {}:",
+            pairs.len(),
+            si(a.radius, "m"),
+            si(a.z0, "m")
+        );
+        println!(
+            "  w = {:.5e} J/m^2, E* = {}, lambda = {:.4}, Tabor parameter {:.4}",
+            fit.work_of_adhesion_j_m2,
+            si(fit.e_star_pa, "Pa"),
+            fit.lambda,
+            fit.tabor_parameter
+        );
+        println!(
+            "  relative residuals of the contact radius: rms {:.2e}",
+            fit.rms_relative_residual
+        );
+        for ((p, r), e) in pairs
+            .iter()
+            .map(|q| q.0)
+            .zip(pairs.iter().map(|q| q.1))
+            .zip(&fit.relative_residuals)
+        {
+            println!(
+                "    load {:>14}  radius {:>14}  residual {e:+.2e}",
+                si(p, "N"),
+                si(r, "m")
+            );
+        }
+        return Ok(());
+    }
+    let (pulloff, e_star) = (
+        a.pulloff.context("give --pulloff")?,
+        a.e_star.context("give --e-star")?,
+    );
+    let r = infer(pulloff, a.radius, e_star, a.z0)?;
     if a.format == Format::Json {
         println!("{}", serde_json::to_string_pretty(&r)?);
         return Ok(());
@@ -186,7 +255,7 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
         "pull-off force {} with R = {}, E* = {}, z0 = {}",
         si(r.pulloff_force_n, "N"),
         si(a.radius, "m"),
-        si(a.e_star, "Pa"),
+        si(e_star, "Pa"),
         si(a.z0, "m")
     );
     println!(
