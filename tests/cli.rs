@@ -131,3 +131,82 @@ fn map_writes_json_and_npy() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("solve") && err.contains("render"), "{err}");
 }
+
+#[test]
+fn scene_infer_cycle_bench_and_atlas() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // A scene in SI units, with the required JSON keys.
+    let o = tabor(&["scene", "--preset", "afm-si", "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in [
+        "lambda",
+        "tabor_parameter",
+        "pulloff_force_load_control_N",
+        "pulloff_force_displacement_control_N",
+        "zero_load_contact_radius_m",
+        "recommended_model",
+    ] {
+        assert!(!v[k].is_null(), "{k}");
+    }
+    for k in ["load_n", "contact_radius_m", "approach_m", "model"] {
+        assert!(!v["loads"][0][k].is_null(), "loads[0].{k}");
+    }
+    // Impossible inputs name the field.
+    std::fs::write(
+        p("bad.json"),
+        r#"{"e_star_pa": -1, "radius_m": 1e-6, "work_of_adhesion_j_m2": 0.1, "z0_m": 3e-10}"#,
+    )
+    .unwrap();
+    let o = tabor(&["scene", &p("bad.json")]);
+    assert!(!o.status.success() && String::from_utf8_lossy(&o.stderr).contains("e_star_pa"));
+    // Inference from a pull-off force.
+    let o = tabor(&[
+        "infer",
+        "--pulloff",
+        "-12.2e-9",
+        "--radius",
+        "20e-9",
+        "--e-star",
+        "91e9",
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["w_md_j_m2"].as_f64().unwrap() > v["w_dmt_j_m2"].as_f64().unwrap());
+    // A cycle: CSV with both phases and a jump.
+    let o = tabor(&["cycle", "--lambda", "3", "-o", &p("c.csv")]);
+    assert!(o.status.success());
+    let text = std::fs::read_to_string(p("c.csv")).unwrap();
+    assert!(text.starts_with("phase,branch,approach,load,A,C,control,jump"));
+    assert!(text.contains("\nretract,") && text.contains(",1\n"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("energy lost per cycle"));
+    // The benchmark and the atlas, small.
+    let o = tabor(&["bench", "--quick", "--no-gpu", "--out-dir", &p("b")]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(p("b/bench.json")).unwrap()).unwrap();
+    let names: Vec<&str> = v["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        names.contains(&"cpu-f64") && names.contains(&"cpu-f32-naive") && names.contains(&"cos")
+    );
+    assert!(std::path::Path::new(&p("b/bench.png")).exists());
+    let o = tabor(&[
+        "atlas",
+        "--no-gpu",
+        "--nx",
+        "24",
+        "--ny",
+        "16",
+        "--out-dir",
+        &p("a"),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::path::Path::new(&p("a/naive_f32.png")).exists());
+}

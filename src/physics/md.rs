@@ -129,7 +129,7 @@ mod tests {
         // atan(1) = pi/4 to double-double precision.
         let (at, d) = Dd::of(1.0).atan_parts();
         let quarter_pi = Dd {
-            hi: 0.7853981633974483,
+            hi: std::f64::consts::FRAC_PI_4,
             lo: 3.061616997868383e-17,
         };
         assert!((at - quarter_pi).to_f64().abs() < 1e-31);

@@ -152,7 +152,7 @@ impl Div for Dd {
 }
 
 const HALF_PI_DD: Dd = Dd {
-    hi: 1.5707963267948966,
+    hi: std::f64::consts::FRAC_PI_2,
     lo: 6.123233995736766e-17,
 };
 

@@ -427,13 +427,7 @@ where
     if q.is_none() {
         region_labels(chart, d)?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 20))
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()?;
+    super::legend(chart, SeriesLabelPosition::LowerRight, 20)?;
     Ok(())
 }
 

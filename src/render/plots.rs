@@ -141,13 +141,7 @@ where
         (LAMBDA_D * 1.15, -0.75),
         ("sans-serif", 20).into_font(),
     )))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 22))
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()?;
+    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 22)?;
     Ok(())
 }
 
@@ -236,13 +230,7 @@ where
         (-2.1, 0.08),
         ("sans-serif", 20).into_font(),
     )))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 22))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, 22)?;
     Ok(())
 }
 
@@ -344,13 +332,7 @@ where
         (2e-13, smin / 2.2),
         ("sans-serif", 18).into_font(),
     )))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 20))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, 20)?;
     Ok(())
 }
 
@@ -459,13 +441,7 @@ where
             )))?;
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 18))
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()?;
+    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 18)?;
 
     // Right: where the scene sits on the map (normalised loads).
     let spec = crate::map::MapSpec {
@@ -653,13 +629,7 @@ where
             col.filled(),
         ))?;
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.9))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 18))
-        .position(SeriesLabelPosition::UpperLeft)
-        .draw()?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, 18)?;
     let energy = match c.hysteresis {
         Some(w) => format!("energy lost per cycle: {w:.4}"),
         None => "the surfaces separate: no closed cycle".into(),
