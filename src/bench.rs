@@ -222,6 +222,32 @@ pub fn run(
         );
     }
 
+    // Without a GPU, the iteration caps are traced on the kernel's CPU mirror.
+    if gpu.is_none() {
+        for k in [1u32, 2, 3, 4, 6] {
+            let t = Instant::now();
+            let a: Vec<Option<f64>> = pts
+                .par_iter()
+                .map(|p| {
+                    let (h, l) = split(p.1);
+                    out_a(
+                        &solve_f32(&prepared[p.0], h, l, Control::Load, false, k << 8),
+                        true,
+                    )
+                })
+                .collect();
+            push(
+                summarize(
+                    &format!("cpu-f32-iter{k}"),
+                    &format!("the f32 algorithm stopped after {k} iteration(s)"),
+                    w,
+                    t.elapsed().as_secs_f64(),
+                    &a,
+                ),
+                &mut results,
+            );
+        }
+    }
     if let Some(g) = gpu {
         let gp: Vec<(u32, f32, f32)> = pts
             .iter()

@@ -62,7 +62,10 @@ pub struct Jump {
 pub struct Cycle {
     pub lambda: f64,
     pub drive: Drive,
+    /// The complete equilibrium path, stable and unstable parts.
     pub path: Vec<PathPoint>,
+    /// For each path point: stable under this drive (the control rises along the path there).
+    pub stable: Vec<bool>,
     pub steps: Vec<Step>,
     pub jumps: Vec<Jump>,
     /// Energy lost per cycle (normalised); None where the loop does not close (dead load).
