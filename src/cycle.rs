@@ -257,10 +257,20 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
             .sum();
         w.max(0.0)
     });
+    let stable = (0..n)
+        .map(|i| {
+            if i + 1 < n {
+                u[i + 1] >= u[i]
+            } else {
+                u[i] >= u[i - 1]
+            }
+        })
+        .collect();
     Cycle {
         lambda,
         drive,
         path,
+        stable,
         steps,
         jumps,
         hysteresis,
