@@ -317,9 +317,16 @@ fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32
     } else {
         let t = ln_f(gap);
         let n = TABLE_NODES;
+        // First node with t_k >= t (binary search: the same k as a scan, in 4 steps).
         var k = 0u;
-        while k < n && br_t(ci, control, k) < t {
-            k++;
+        var k_hi = n;
+        while k < k_hi {
+            let mid = (k + k_hi) / 2u;
+            if br_t(ci, control, mid) < t {
+                k = mid + 1u;
+            } else {
+                k_hi = mid;
+            }
         }
         var end_dx = 0.0;
         if zero_end {

@@ -5,6 +5,7 @@
 use crate::engine::Engine;
 use crate::gpu::GpuError;
 use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
+
 use crate::solver::context::{point, x_at_radius};
 use crate::solver::{LambdaContext, State, Status};
 use rayon::prelude::*;
@@ -112,15 +113,19 @@ pub fn classify(s: &State, tol: f64) -> Region {
         Status::Ok => {}
         _ => return Region::Failed,
     }
-    // The same tests as `criteria`, evaluated lazily: most points are decided by the first.
-    let within = |m: Option<f64>| m.is_some_and(|am| (am / s.a - 1.0).abs() <= tol);
-    if within(hertz_radius(s.load)) {
+    // The same tests as `criteria`, on cubes: |A_m / A - 1| <= tol exactly when A_m^3 lies in
+    // [(1 - tol)^3 A^3, (1 + tol)^3 A^3], and the closed forms give A_m^3 without a cube root.
+    let a3 = s.a * s.a * s.a;
+    let (lo, hi) = ((1.0 - tol).powi(3) * a3, (1.0 + tol).powi(3) * a3);
+    let within = |m3: f64| m3 >= lo && m3 <= hi;
+    let p = s.load;
+    if p >= 0.0 && within(p) {
         Region::Hertz
     } else if std::f64::consts::FRAC_PI_2 * s.lambda * (s.a * s.a).max(s.approach.abs()) <= tol {
         Region::Rigid
-    } else if within(dmt_radius(s.load)) {
+    } else if within(p + 2.0) {
         Region::Dmt
-    } else if within(jkr_radius(s.load)) {
+    } else if p >= -1.5 && within(p + 3.0 + (9.0 + 6.0 * p).max(0.0).sqrt()) {
         Region::Jkr
     } else {
         Region::Md
@@ -253,6 +258,7 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         .par_iter()
         .map(|s| classify(s, spec.tolerance))
         .collect();
+    let t_regions = t1.elapsed().as_secs_f64();
     let large_deformation = spec
         .strength_ratios
         .iter()
@@ -262,6 +268,9 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         })
         .collect();
     let classify_s = t1.elapsed().as_secs_f64();
+    if std::env::var("TABOR_PROFILE").is_ok() {
+        eprintln!("regions {t_regions:.3} s, lines {:.3} s", classify_s - t_regions);
+    }
     Ok(MapData {
         spec: spec.clone(),
         lambdas,

@@ -441,7 +441,8 @@ where
     DB::ErrorType: 'static,
     Y: Ranged<ValueType = f64>,
 {
-    const C: usize = 72;
+    // All-pairs distances on a C x C grid: 48 keeps it to ~5M per region.
+    const C: usize = 48;
     let (nx, ny) = (d.spec.nx, d.spec.ny);
     let coarse: Vec<Region> = (0..C * C)
         .map(|k| {

@@ -265,10 +265,8 @@ pub fn solve_f32(
     } else {
         let t = ln_f32(gap);
         let n = TABLE_NODES;
-        let mut k = 0;
-        while k < n && b.t[k] < t {
-            k += 1;
-        }
+        // First node with t_k >= t (the shader's binary search gives the same k).
+        let k = b.t.partition_point(|&tk| tk < t);
         // Bracket one node wider than the interval, in case a node's f32 mu sits on the root.
         let end_dx = if zero_end { b.dx[0] + 60.0 } else { 0.0 };
         let (mut hi, mut f_hi) = if k >= 2 {
