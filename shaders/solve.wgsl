@@ -3,13 +3,13 @@
 //           (2 words per row: hi, lo). Nothing is uploaded per point.
 //   points: a list; `input` holds 4 words per point: lambda index, load hi, load lo, unused.
 
-const WORKGROUP: u32 = 64u;
+const WORKGROUP: u32 = 256u;
 
 fn max_iter() -> u32 {
     return (params.flags >> 8u) & 0xffu;
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(256)
 fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {
@@ -23,7 +23,7 @@ fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     out[local] = solve(ix, hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
 }
 
-@compute @workgroup_size(64)
+@compute @workgroup_size(256)
 fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {
@@ -38,7 +38,7 @@ fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
 // Measures the functions the kernels rely on, on this adapter: input = f32 arguments;
 // out = (own atan, own mu - atan, own exp(-x/4), bits of the built-in atan) - tests/gpu.rs
 // compares them with f64.
-@compute @workgroup_size(64)
+@compute @workgroup_size(256)
 fn probe(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {

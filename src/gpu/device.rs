@@ -106,7 +106,7 @@ pub struct Gpu {
     error: Arc<Mutex<Option<String>>>,
 }
 
-const WORKGROUP: usize = 64;
+const WORKGROUP: usize = 256;
 const OUT_BYTES: usize = std::mem::size_of::<Out>();
 
 impl Gpu {
