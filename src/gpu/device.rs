@@ -103,6 +103,7 @@ pub struct Gpu {
     /// Points per dispatch: bounded by 65,535 workgroups and the storage binding size.
     chunk: usize,
     max_binding: u64,
+    max_buffer: u64,
     error: Arc<Mutex<Option<String>>>,
 }
 
@@ -196,6 +197,7 @@ impl Gpu {
         let max_binding = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
+        let max_buffer = limits.max_buffer_size;
         let by_workgroups = limits.max_compute_workgroups_per_dimension as usize * WORKGROUP;
         // Input of the point kernel is 16 bytes a point, like the output.
         let chunk = by_workgroups.min(max_binding as usize / OUT_BYTES);
@@ -210,6 +212,7 @@ impl Gpu {
             params,
             chunk,
             max_binding,
+            max_buffer,
             error,
         };
         gpu.check()?;
@@ -320,6 +323,14 @@ impl Gpu {
         }
         if total == 0 {
             return Ok(Vec::new());
+        }
+        // Checked here: wgpu would otherwise fail inside buffer creation.
+        let in_bytes = (input.len() * 4) as u64;
+        if in_bytes > self.max_buffer {
+            return Err(GpuError::TooLarge(format!(
+                "{total} points need {in_bytes} bytes of input, more than this adapter's largest buffer ({}); split the input into smaller files",
+                self.max_buffer
+            )));
         }
         let d = &self.device;
         let lam_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {

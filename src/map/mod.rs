@@ -269,7 +269,10 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         .collect();
     let classify_s = t1.elapsed().as_secs_f64();
     if std::env::var("TABOR_PROFILE").is_ok() {
-        eprintln!("regions {t_regions:.3} s, lines {:.3} s", classify_s - t_regions);
+        eprintln!(
+            "regions {t_regions:.3} s, lines {:.3} s",
+            classify_s - t_regions
+        );
     }
     Ok(MapData {
         spec: spec.clone(),
