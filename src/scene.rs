@@ -231,7 +231,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
                 a / c.radius
             ));
         }
-        // Seed 000: a 1.35 nm contact on a 0.25 nm lattice is "only about 5 atoms across".
+        // A 1.35 nm contact on a 0.25 nm lattice is only about 5 atoms across (the AFM example).
         if ok && a < 10.0 * spacing {
             warnings.push(format!("the contact radius is {:.1} atomic spacings: continuum theory is questionable here", a / spacing));
         }
@@ -346,8 +346,9 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     })
 }
 
-/// Built-in scenes. The AFM geometry and lattice spacing are those of the seed document
-/// (000); the material values are representative handbook values, stated as such.
+/// Built-in scenes. The AFM geometry and lattice spacing are those of the classic AFM example
+/// (a 20 nm tip on a 0.25 nm lattice); the material values are representative handbook values,
+/// stated as such.
 pub fn preset(name: &str) -> Option<SceneInput> {
     let body = |e: f64, nu: f64, r: Option<f64>| {
         Some(Body {
@@ -384,7 +385,7 @@ pub fn preset(name: &str) -> Option<SceneInput> {
     };
     Some(match name {
         "afm-si" => base("AFM silicon tip (R = 20 nm) on silicon", body(169e9, 0.27, Some(20e-9)), body(169e9, 0.27, None), 0.1, 0.3e-9, (0.0, 20e-9, 5), Some(1e9),
-            "R = 20 nm and the 0.25 nm lattice spacing from the seed document (AFM example); Si E = 169 GPa, nu = 0.27 (handbook value for Si <110>); w = 0.1 J/m^2 and z0 = 0.3 nm representative of a dry oxide-covered Si contact; tau0 = 1 GPa representative of nanoscale friction"),
+            "R = 20 nm and the 0.25 nm lattice spacing of the classic AFM example; Si E = 169 GPa, nu = 0.27 (handbook value for Si <110>); w = 0.1 J/m^2 and z0 = 0.3 nm representative of a dry oxide-covered Si contact; tau0 = 1 GPa representative of nanoscale friction"),
         "pdms-glass" => base("PDMS sphere (R = 2 mm) on glass", body(1.8e6, 0.5, Some(2e-3)), body(70e9, 0.22, None), 0.044, 0.3e-9, (-0.5e-3, 5e-3, 12), None,
             "PDMS E = 1.8 MPa, nu = 0.5 (typical Sylgard 184); glass E = 70 GPa, nu = 0.22 (handbook); w = 44 mJ/m^2, twice the PDMS surface energy of about 22 mJ/m^2; z0 = 0.3 nm"),
         "mica-sfa" => base("Mica surfaces in a surface force apparatus (R = 1 cm)", body(34.5e9, 0.25, Some(1e-2)), body(34.5e9, 0.25, None), 0.1, 0.3e-9, (-1e-3, 10e-3, 12), None,
@@ -420,7 +421,7 @@ pub struct Inference {
 
 /// From a pull-off force (N, positive or negative), R, E* and the LJ range z0: w under JKR
 /// (Fc = 3/2 pi w R), DMT (Fc = 2 pi w R) and the exact MD (w and lambda together), and the
-/// self-consistency check of seed 000: a model is to be trusted if the Tabor parameter computed
+/// usual self-consistency check: a model is to be trusted if the Tabor parameter computed
 /// with its own w agrees with its own assumption (JKR: muT > 5, DMT: muT < 0.1).
 pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Inference, ParamError> {
     let f = pulloff_n.abs();

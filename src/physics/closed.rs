@@ -45,7 +45,7 @@ pub fn cos_radius(lambda: f64, load: f64) -> Option<f64> {
 }
 
 /// The Johnson-Greenwood fit of the load-controlled pull-off (exponent 1.4; PHYSICS.md
-/// section 7 corrects the seed's 1/4).
+/// section 7 of docs/PHYSICS.md: an exponent of 1/4 would be off by 15%).
 pub fn cos_pulloff(lambda: f64) -> f64 {
     let l14 = 4.04 * lambda.powf(1.4);
     -1.75 + 0.25 * (l14 - 1.0) / (l14 + 1.0)

@@ -1,4 +1,4 @@
-//! The Maugis-Dugdale curve, parametrised by `mu = sqrt(m^2 - 1)` (PHYSICS.md section 2).
+//! The Maugis-Dugdale curve, parametrised by `mu = sqrt(m^2 - 1)` (docs/PHYSICS.md section 2).
 //!
 //! Every state on the curve is an explicit function of mu: equation (1) is a quadratic in A whose
 //! positive root is taken in the cancellation-free form, and f1, f2 are written as sums of
@@ -7,7 +7,7 @@
 use super::real::Real;
 
 /// Above this lambda the minimum of the approach lies inside the curve; at or below it the
-/// displacement-controlled contact shrinks to zero radius (PHYSICS.md section 4).
+/// displacement-controlled contact shrinks to zero radius (docs/PHYSICS.md section 4).
 pub const LAMBDA_D: f64 = 0.937947457210712;
 
 /// One point of the Maugis-Dugdale curve and its slopes with respect to mu.
@@ -100,7 +100,7 @@ pub fn zero_radius_end(lambda: f64) -> ZeroRadiusEnd {
 }
 
 /// The non-contact branch (A = 0, cohesive zone of normalised radius C only), for
-/// `0 <= C <= zero_radius_end(lambda).c`: returns `(Pbar, Dbar)` (PHYSICS.md section 4).
+/// `0 <= C <= zero_radius_end(lambda).c`: returns `(Pbar, Dbar)` (docs/PHYSICS.md section 4).
 pub fn non_contact_point(lambda: f64, c: f64) -> (f64, f64) {
     use std::f64::consts::PI;
     let load = -(PI * lambda / 2.0) * c * c;
