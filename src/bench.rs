@@ -193,6 +193,22 @@ pub fn run(
 
     // The f32 kernels' arithmetic on the CPU (the mirror), shipped and naive.
     let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
+    // The kernel's f32 arithmetic on the CPU (the mirror), all threads; `capped` counts
+    // not-converged answers from an iteration cap.
+    let mirror = |flags: u32, capped: bool| -> (f64, Vec<Option<f64>>) {
+        let t = Instant::now();
+        let a = pts
+            .par_iter()
+            .map(|p| {
+                let (h, l) = split(p.1);
+                out_a(
+                    &solve_f32(&prepared[p.0], h, l, Control::Load, false, flags),
+                    capped,
+                )
+            })
+            .collect();
+        (t.elapsed().as_secs_f64(), a)
+    };
     for (name, flags, desc) in [
         (
             "cpu-f32",
@@ -205,45 +221,16 @@ pub fn run(
             "f32, textbook formulas (no series, one f32 load)",
         ),
     ] {
-        let t = Instant::now();
-        let a: Vec<Option<f64>> = pts
-            .par_iter()
-            .map(|p| {
-                let (h, l) = split(p.1);
-                out_a(
-                    &solve_f32(&prepared[p.0], h, l, Control::Load, false, flags),
-                    false,
-                )
-            })
-            .collect();
-        push(
-            summarize(name, desc, w, t.elapsed().as_secs_f64(), &a),
-            &mut results,
-        );
+        let (secs, a) = mirror(flags, false);
+        push(summarize(name, desc, w, secs, &a), &mut results);
     }
-
-    // Without a GPU, the iteration caps are traced on the kernel's CPU mirror.
+    // Without a GPU, the iteration caps are traced on the mirror.
     if gpu.is_none() {
         for k in [1u32, 2, 3, 4, 6] {
-            let t = Instant::now();
-            let a: Vec<Option<f64>> = pts
-                .par_iter()
-                .map(|p| {
-                    let (h, l) = split(p.1);
-                    out_a(
-                        &solve_f32(&prepared[p.0], h, l, Control::Load, false, k << 8),
-                        true,
-                    )
-                })
-                .collect();
+            let (secs, a) = mirror(k << 8, true);
+            let desc = format!("the f32 algorithm stopped after {k} iteration(s)");
             push(
-                summarize(
-                    &format!("cpu-f32-iter{k}"),
-                    &format!("the f32 algorithm stopped after {k} iteration(s)"),
-                    w,
-                    t.elapsed().as_secs_f64(),
-                    &a,
-                ),
+                summarize(&format!("cpu-f32-iter{k}"), &desc, w, secs, &a),
                 &mut results,
             );
         }

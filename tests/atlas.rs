@@ -2,16 +2,12 @@
 //! over the extreme ranges (a dense sweep), and the naive methods really do fail where
 //! PHYSICS.md says they do, so a regression in either direction is caught.
 
+mod common;
+use common::logspace;
 use tabor::gpu::prepare::{prepare, split};
 use tabor::physics::closed::{dmt_radius, jkr_radius};
 use tabor::solver::mirror::{solve_f32, FLAG_NAIVE};
 use tabor::solver::{naive, Control, LambdaContext, Status};
-
-fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
-        .collect()
-}
 
 #[test]
 fn shipped_f32_algorithm_holds_over_the_extreme_ranges() {

@@ -33,12 +33,6 @@ fn gpu() -> Option<Gpu> {
     }
 }
 
-fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
-    (0..n)
-        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
-        .collect()
-}
-
 #[test]
 fn own_functions_are_accurate_on_this_adapter() {
     let Some(g) = gpu() else { return };

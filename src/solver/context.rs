@@ -1,7 +1,7 @@
 //! The per-lambda context: pull-offs computed once, then many loads or approaches solved cheaply.
 
 use super::root::{bisect_sign, secant_bracketed, Stop};
-use super::{SolveError, State, Status};
+use super::{Control, SolveError, State, Status};
 use crate::physics::md::{curve_point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D};
 use crate::physics::real::{Dd, Real};
 
@@ -222,8 +222,14 @@ impl LambdaContext {
         })
     }
 
-    fn state(&self, x: f64, load: f64, approach: f64, iterations: u32, stop: Stop) -> State {
+    /// The state at x from one curve evaluation: the controlled quantity as given, the other
+    /// (approach under load control, load under displacement control) from the curve.
+    fn state(&self, x: f64, given: f64, control: Control, iterations: u32, stop: Stop) -> State {
         let p = point(self.lambda, x);
+        let (load, approach) = match control {
+            Control::Load => (given, p.approach),
+            Control::Displacement => (p.load, given),
+        };
         State {
             lambda: self.lambda,
             load,
@@ -266,10 +272,7 @@ impl LambdaContext {
         let pc = self.load_pulloff;
         let small = lambda < 1.0;
         if gap <= 0.0 {
-            return State {
-                approach: pc.approach,
-                ..self.state(pc.x, load, f64::NAN, 0, Stop::Converged)
-            };
+            return self.state(pc.x, load, Control::Load, 0, Stop::Converged);
         }
         let residual = |x: f64| {
             let p = point(lambda, x);
@@ -290,11 +293,7 @@ impl LambdaContext {
         let t = gap.ln();
         let (lo, hi, x0) = self.load_guess(t);
         let root = secant_bracketed(residual, lo, hi, x0, X_TOL, MAX_ITER);
-        let p = point(lambda, root.x);
-        State {
-            approach: p.approach,
-            ..self.state(root.x, load, f64::NAN, root.iterations, root.stop)
-        }
+        self.state(root.x, load, Control::Load, root.iterations, root.stop)
     }
 
     /// Bracket (with residuals) and first guess for ln(Pbar - Pbar_c) = t from the table: linear
@@ -368,8 +367,13 @@ impl LambdaContext {
             f64::NEG_INFINITY
         };
         let root = secant_bracketed(residual, (lo, f_lo), (hi, f_hi), x0, X_TOL, MAX_ITER);
-        let p = point(lambda, root.x);
-        self.state(root.x, p.load, approach, root.iterations, root.stop)
+        self.state(
+            root.x,
+            approach,
+            Control::Displacement,
+            root.iterations,
+            root.stop,
+        )
     }
 
     fn zero_gap_disp_state(&self, approach: f64) -> State {

@@ -51,3 +51,10 @@ pub fn rel(x: f64, reference: f64) -> f64 {
         ((x - reference) / reference).abs()
     }
 }
+
+/// n points log-spaced from 10^a to 10^b.
+pub fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+    (0..n)
+        .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
+        .collect()
+}
