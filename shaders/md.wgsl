@@ -34,12 +34,15 @@ struct Params {
     nx: u32,
     offset: u32,
     count: u32,
-    control: u32,
-    rows_are_gaps: u32,
-    flags: u32,
-    pad0: u32,
-    pad1: u32,
+    // An iteration cap for benchmarks (0: iterate to convergence).
+    max_iter: u32,
 }
+
+// Pipeline constants: each variant is its own pipeline. A software adapter runs both sides of
+// every branch under a lane mask, so a variant chosen at run time would cost all the others too.
+override CONTROL: u32 = 0u; // 0 load control, 1 displacement control
+override ROWS_ARE_GAPS: bool = false; // grid rows hold the distance above the branch end
+override NAIVE: bool = false; // the textbook formulas, for benchmarks
 
 // Twin of gpu::layout::Out. code = status | iterations << 8.
 struct Out {
@@ -54,40 +57,40 @@ struct Out {
 @group(0) @binding(2) var<storage, read> input: array<u32>;
 @group(0) @binding(3) var<storage, read_write> out: array<Out>;
 
-// Fields of one branch (control 0: load, 1: displacement) of lambdas[i], read in place: copying
-// the 352-byte struct into every invocation costs more than the whole root search.
-fn br_mu_ref(i: u32, control: u32) -> f32 {
-    if control == 1u {
+// Fields of the branch in use (CONTROL) of lambdas[i], read in place: copying the 352-byte
+// struct into every invocation costs more than the whole root search.
+fn br_mu_ref(i: u32) -> f32 {
+    if CONTROL == 1u {
         return lambdas[i].disp.mu_ref;
     }
     return lambdas[i].load.mu_ref;
 }
-fn br_end(i: u32, control: u32) -> vec2<f32> {
-    if control == 1u {
+fn br_end(i: u32) -> vec2<f32> {
+    if CONTROL == 1u {
         return vec2<f32>(lambdas[i].disp.end_hi, lambdas[i].disp.end_lo);
     }
     return vec2<f32>(lambdas[i].load.end_hi, lambdas[i].load.end_lo);
 }
-fn br_s_max(i: u32, control: u32) -> f32 {
-    if control == 1u {
+fn br_s_max(i: u32) -> f32 {
+    if CONTROL == 1u {
         return lambdas[i].disp.s_max;
     }
     return lambdas[i].load.s_max;
 }
-fn br_cheb(i: u32, control: u32, k: i32) -> f32 {
-    if control == 1u {
+fn br_cheb(i: u32, k: i32) -> f32 {
+    if CONTROL == 1u {
         return lambdas[i].disp.cheb[k];
     }
     return lambdas[i].load.cheb[k];
 }
-fn br_t(i: u32, control: u32, k: u32) -> f32 {
-    if control == 1u {
+fn br_t(i: u32, k: u32) -> f32 {
+    if CONTROL == 1u {
         return lambdas[i].disp.t[k];
     }
     return lambdas[i].load.t[k];
 }
-fn br_dx(i: u32, control: u32, k: u32) -> f32 {
-    if control == 1u {
+fn br_dx(i: u32, k: u32) -> f32 {
+    if CONTROL == 1u {
         return lambdas[i].disp.dx[k];
     }
     return lambdas[i].load.dx[k];
@@ -101,28 +104,22 @@ const TABLE_NODES: u32 = 14u;
 const HALF_PI: f32 = 1.5707963267948966;
 const LN2_HI: f32 = 0.69314575;
 const LN2_LO: f32 = 1.4286068e-6;
+const LN2: f32 = 0.6931472;
 const LOG2E: f32 = 1.4426950408889634;
 const INF: f32 = 3.0e38;
 
-// (atan(mu), mu - atan(mu)) from the half-angle reduction and the Maclaurin series only.
+// (atan(mu), mu - atan(mu)) from one half-angle step and a polynomial, without loops (a
+// masked loop runs as long as its slowest lane). For mu > 1, atan(mu) = pi/2 - atan(1/mu).
 fn atan_parts(mu: f32) -> vec2<f32> {
     let big = mu > 1.0;
-    var t0 = mu;
-    if big {
-        t0 = 1.0 / mu;
-    }
-    var t = t0;
-    var weight = 1.0;
-    var acc = 0.0;
-    for (var i = 0; i < 8 && t > 0.1; i++) {
-        let onem = 1.0 + sqrt(1.0 + t * t);
-        acc += weight * t * t * t / (onem * onem);
-        t = t / onem;
-        weight *= 2.0;
-    }
+    let t0 = select(mu, 1.0 / mu, big);
+    // atan t0 = 2 atan t with t = t0 / (1 + sqrt(1 + t0^2)) <= tan(pi/8), and t0 - 2 t = t0 t^2
+    // exactly, so t0 - atan t0 = t0 t^2 + 2 (t - atan t) has no cancellation.
+    let t = t0 / (1.0 + sqrt(1.0 + t0 * t0));
     let z = t * t;
-    let series = t * z * (1.0 / 3.0 - z * (1.0 / 5.0 - z * (1.0 / 7.0 - z * (1.0 / 9.0))));
-    let d0 = acc + weight * series;
+    // (t - atan t) / t^3 for z in [0, tan^2(pi/8)]: degree-5 fit, relative error 1.6e-9.
+    let g = 0.33333334 + z * (-0.19999978 + z * (0.14284152 + z * (-0.11071365 + z * (0.08624676 + z * -0.050481386))));
+    let d0 = z * (t0 + 2.0 * t * g);
     if big {
         let at = HALF_PI - (t0 - d0);
         return vec2<f32>(at, mu - at);
@@ -159,13 +156,13 @@ fn ln_f(y: f32) -> f32 {
     return f32(e) * LN2_HI + (f32(e) * LN2_LO + series);
 }
 
+// ln(1 + q), accurate for small q (the residual near convergence): ln(u) q / (u - 1) with
+// u = 1 + q cancels the rounding of u (Goldberg); above u = 2 it is not needed (and q = inf
+// would make it NaN). For u <= 0 it is -INF.
 fn log1p_f(q: f32) -> f32 {
-    if abs(q) < 0.25 {
-        let u = q / (2.0 + q);
-        let z = u * u;
-        return 2.0 * u * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0)))));
-    }
-    return ln_f(1.0 + q);
+    let u = 1.0 + q;
+    let c = select(q / (u - 1.0), 1.0, u > 2.0);
+    return select(ln_f(u) * c, q, u == 1.0);
 }
 
 // A curve point: A, Pbar, Pbar + 2, Dbar, m - 1 (src/physics/md.rs, curve_point).
@@ -177,12 +174,8 @@ struct Point {
     m_minus_1: f32,
 }
 
-// Variant switch for benchmarks (Params.flags bit 0): the textbook formulas, which cancel as
-// m -> 1 (src/solver/mirror.rs, curve_point_naive).
-fn naive() -> bool {
-    return (params.flags & 1u) != 0u;
-}
-
+// The NAIVE variant: the textbook formulas, which cancel as m -> 1 (src/solver/mirror.rs,
+// curve_point_naive).
 fn curve_point_naive(lambda: f32, mu: f32) -> Point {
     let at = atan_parts(mu).x;
     let m = sqrt(1.0 + mu * mu);
@@ -202,7 +195,7 @@ fn curve_point_naive(lambda: f32, mu: f32) -> Point {
 }
 
 fn curve_point(lambda: f32, mu: f32) -> Point {
-    if naive() {
+    if NAIVE {
         return curve_point_naive(lambda, mu);
     }
     let ap = atan_parts(mu);
@@ -225,48 +218,33 @@ fn curve_point(lambda: f32, mu: f32) -> Point {
     return p;
 }
 
-// The residual's quantity: Pbar + 2 (small lambda) or Pbar under load control, Dbar else.
-fn quantity(lambda: f32, small: bool, control: u32, mu: f32) -> f32 {
-    let p = curve_point(lambda, mu);
-    if control == 1u {
+// The residual's quantity: Dbar under displacement control, else Pbar + 2 (small lambda) or Pbar.
+fn quantity(p: Point, small: bool) -> f32 {
+    if CONTROL == 1u {
         return p.approach;
     }
-    if small && !naive() {
-        return p.load_plus_2;
-    }
-    return p.load;
+    return select(p.load, p.load_plus_2, small && !NAIVE);
 }
 
-// The branch end as one f32 in naive units (Pbar, not Pbar + 2).
-fn naive_end(end: vec2<f32>, small: bool, control: u32) -> f32 {
-    var shift = 0.0;
-    if control == 0u && small {
-        shift = 2.0;
+// F = ln(gap(mu) / gap): zero at the root, positive farther from the branch end. The NAIVE
+// variant subtracts the branch end as one f32 in Pbar (not Pbar + 2).
+fn residual(p: Point, small: bool, end: vec2<f32>, shift: f32, gap: f32) -> f32 {
+    var r = ((quantity(p, small) - end.x) - end.y) - gap;
+    if NAIVE {
+        r = (quantity(p, small) - ((end.x - shift) + end.y)) - gap;
     }
-    return (end.x - shift) + end.y;
+    return log1p_f(r / gap);
 }
 
-fn residual(lambda: f32, small: bool, end: vec2<f32>, control: u32, mu: f32, gap: f32) -> f32 {
-    var r = ((quantity(lambda, small, control, mu) - end.x) - end.y) - gap;
-    if naive() {
-        r = (quantity(lambda, small, control, mu) - naive_end(end, small, control)) - gap;
-    }
-    let q = r / gap;
-    if q <= -1.0 {
-        return -INF;
-    }
-    return log1p_f(q);
-}
-
-fn cheb_eval(i: u32, control: u32, u: f32) -> f32 {
+fn cheb_eval(i: u32, u: f32) -> f32 {
     var b1 = 0.0;
     var b2 = 0.0;
     for (var k = 7; k >= 1; k--) {
-        let b0 = 2.0 * u * b1 - b2 + br_cheb(i, control, k);
+        let b0 = 2.0 * u * b1 - b2 + br_cheb(i, k);
         b2 = b1;
         b1 = b0;
     }
-    return u * b1 - b2 + br_cheb(i, control, 0);
+    return u * b1 - b2 + br_cheb(i, 0);
 }
 
 fn failed(status: u32) -> Out {
@@ -274,175 +252,163 @@ fn failed(status: u32) -> Out {
     return Out(0.0, 0.0, 0.0, status);
 }
 
+fn lerp_point(p: Point, q: Point, c: f32) -> Point {
+    return Point(p.a + c * (p.a - q.a), p.load + c * (p.load - q.load), p.load_plus_2 + c * (p.load_plus_2 - q.load_plus_2), p.approach + c * (p.approach - q.approach), p.m_minus_1 + c * (p.m_minus_1 - q.m_minus_1));
+}
+
 // One point, as src/solver/mirror.rs solve_f32: the load (approach) is the pair hi + lo, or the
-// distance above the branch end if is_gap.
-fn solve(ci: u32, hi: f32, lo: f32, control: u32, is_gap: bool, max_iter_in: u32) -> Out {
+// distance above the branch end if ROWS_ARE_GAPS. max_iter_in: 0, or a cap for benchmarks.
+fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     if lambdas[ci].invalid == 1u || !(abs(hi) < INF) {
         return failed(STATUS_INVALID);
     }
     let lambda = lambdas[ci].lambda;
     let small = lambdas[ci].small == 1u;
-    let end = br_end(ci, control);
-    let mu_ref = br_mu_ref(ci, control);
-    let s_max = br_s_max(ci, control);
-    let zero_end = control == 1u && lambdas[ci].disp_at_zero == 1u;
-    var shift = 0.0;
-    if control == 0u && small {
-        shift = 2.0;
-    }
-    var gap = hi + lo;
-    if !is_gap {
-        gap = ((hi + shift) - end.x) + (lo - end.y);
-    }
-    if naive() {
-        gap = hi;
-        if !is_gap {
-            gap = hi - naive_end(end, small, control);
-        }
+    let end = br_end(ci);
+    let mu_ref = br_mu_ref(ci);
+    let zero_end = CONTROL == 1u && lambdas[ci].disp_at_zero == 1u;
+    let shift = select(0.0, 2.0, CONTROL == 0u && small);
+    // hi + shift - end.x is exact where it matters (Sterbenz), then the low parts are added.
+    var gap = select(((hi + shift) - end.x) + (lo - end.y), hi + lo, ROWS_ARE_GAPS);
+    if NAIVE {
+        gap = select(hi - ((end.x - shift) + end.y), hi, ROWS_ARE_GAPS);
     }
     if gap < 0.0 {
         return failed(STATUS_NO_CONTACT);
     }
-    var iterations = 0u;
-    var status = STATUS_OK;
-    var mu = mu_ref;
-    if gap == 0.0 {
-        if zero_end {
-            return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
-        }
-    } else if !naive() && sqrt(gap) < s_max {
-        let s = sqrt(gap);
-        let dx = s * cheb_eval(ci, control, 2.0 * s / s_max - 1.0);
-        mu = mu_ref * exp_f(dx);
+    if gap == 0.0 && zero_end {
+        return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
+    }
+    // Near the branch end the Chebyshev fit gives x = ln(mu / mu_ref) directly (one evaluation);
+    // elsewhere the table brackets the root and gives the first guess.
+    let s = sqrt(gap);
+    let s_max = br_s_max(ci);
+    let direct = gap == 0.0 || (!NAIVE && s < s_max);
+    let n = TABLE_NODES;
+    var x = 0.0;
+    var lo_x = br_dx(ci, n - 1u) - 120.0;
+    var f_lo = INF;
+    var hi_x = select(0.0, br_dx(ci, 0u) + 60.0, zero_end);
+    var f_hi = -INF;
+    if direct {
+        x = select(s * cheb_eval(ci, 2.0 * s / s_max - 1.0), 0.0, gap == 0.0);
     } else {
         let t = ln_f(gap);
-        let n = TABLE_NODES;
         // First node with t_k >= t (binary search: the same k as a scan, in 4 steps).
         var k = 0u;
         var k_hi = n;
         while k < k_hi {
             let mid = (k + k_hi) / 2u;
-            if br_t(ci, control, mid) < t {
+            if br_t(ci, mid) < t {
                 k = mid + 1u;
             } else {
                 k_hi = mid;
             }
         }
-        var end_dx = 0.0;
-        if zero_end {
-            end_dx = br_dx(ci, control, 0) + 60.0;
-        }
-        var hi_x = end_dx;
-        var f_hi = -INF;
+        // Bracket one node wider than the interval, in case a node's f32 mu sits on the root.
         if k >= 2u {
-            hi_x = br_dx(ci, control, k - 2u);
-            f_hi = br_t(ci, control, k - 2u) - t;
+            hi_x = br_dx(ci, k - 2u);
+            f_hi = br_t(ci, k - 2u) - t;
         }
-        var lo_x = br_dx(ci, control, n - 1u) - 120.0;
-        var f_lo = INF;
         if k + 1u < n {
-            lo_x = br_dx(ci, control, k + 1u);
-            f_lo = br_t(ci, control, k + 1u) - t;
+            lo_x = br_dx(ci, k + 1u);
+            f_lo = br_t(ci, k + 1u) - t;
         }
-        var x: f32;
-        if k == 0u {
+        x = br_dx(ci, n - 1u) - 1.0;
+        if k < n {
+            let k1 = max(k, 1u);
+            let d0 = br_dx(ci, k1 - 1u);
+            let w = (t - br_t(ci, k1 - 1u)) / (br_t(ci, k1) - br_t(ci, k1 - 1u));
             if zero_end {
-                x = br_dx(ci, control, 0) + 1.0;
+                x = select(d0 + w * (br_dx(ci, k1) - d0), br_dx(ci, 0u) + 1.0, k == 0u);
             } else {
-                x = br_dx(ci, control, 0) * exp_f(0.5 * (t - br_t(ci, control, 0)));
-            }
-        } else if k == n {
-            x = br_dx(ci, control, n - 1u) - 1.0;
-        } else {
-            let w = (t - br_t(ci, control, k - 1u)) / (br_t(ci, control, k) - br_t(ci, control, k - 1u));
-            if zero_end {
-                x = br_dx(ci, control, k - 1u) + w * (br_dx(ci, control, k) - br_dx(ci, control, k - 1u));
-            } else {
-                let l0 = ln_f(-br_dx(ci, control, k - 1u));
-                x = -exp_f(l0 + w * (ln_f(-br_dx(ci, control, k)) - l0));
+                // Interior nodes double (dx_k = dx_0 2^k), so ln|dx| is linear in k between
+                // nodes; before the first node the gap is quadratic in dx.
+                x = d0 * exp_f(select(w * LN2, 0.5 * (t - br_t(ci, 0u)), k == 0u));
             }
         }
         if !(x > lo_x && x < hi_x) {
             x = 0.5 * (lo_x + hi_x);
         }
-        var max_iter = max_iter_in;
-        if max_iter == 0u {
-            max_iter = 32u;
-        }
-        var m = mu_ref * exp_f(x);
-        var have_prev = false;
-        var f_prev = 0.0;
-        var l_prev = 0.0;
-        var dx_old = hi_x - lo_x;
-        var done = false;
-        // The best iterate so far: what an iteration cap returns.
-        var best_f = INF;
-        var best_m = m;
-        for (var it = 1u; it <= max_iter; it++) {
-            iterations = it;
-            let fx = residual(lambda, small, end, control, m, gap);
-            if abs(fx) < best_f {
-                best_f = abs(fx);
-                best_m = m;
-            }
-            // |F| at the f32 noise level: done (below it the secant slope is noise).
-            if abs(fx) <= 8e-7 {
-                done = true;
-                break;
-            }
-            if fx > 0.0 {
-                lo_x = x;
-                f_lo = fx;
-            } else {
-                hi_x = x;
-                f_hi = fx;
-            }
-            if hi_x - lo_x <= 4e-7 * max(abs(x), 1.0) {
-                done = true;
-                break;
-            }
-            var slope: f32;
-            if have_prev && abs(f_prev) < INF && l_prev != 0.0 {
-                slope = (fx - f_prev) / l_prev;
-            } else if fx > 0.0 {
-                slope = (f_hi - fx) / (hi_x - x);
-            } else {
-                slope = (f_lo - fx) / (lo_x - x);
-            }
-            let step = -fx / slope;
-            let finite = abs(step) < INF;
-            if finite && abs(step) <= 2.5e-7 {
-                m *= exp_f(step);
-                done = true;
-                break;
-            }
-            let next = x + step;
-            f_prev = fx;
-            have_prev = true;
-            if finite && next >= lo_x && next <= hi_x && abs(step) < 0.5 * abs(dx_old) {
-                m *= exp_f(step);
-                l_prev = step;
-                dx_old = step;
-                x = next;
-            } else {
-                let mid = 0.5 * (lo_x + hi_x);
-                let m_new = mu_ref * exp_f(mid);
-                l_prev = ln_f(m_new / m);
-                dx_old = mid - x;
-                x = mid;
-                m = m_new;
-            }
-        }
-        if !done {
-            status = STATUS_NOT_CONVERGED;
-            m = best_m;
-        }
-        mu = m;
     }
-    let p = curve_point(lambda, mu);
-    var other = p.approach;
-    if control == 1u {
-        other = p.load;
+    // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
+    // since an f32 x near 14 resolves mu only to 1e-6.
+    var max_iter = select(max_iter_in, 32u, max_iter_in == 0u);
+    var m = mu_ref * exp_f(x);
+    var p: Point;
+    var p_prev: Point;
+    var have_prev = false;
+    var f_prev = 0.0;
+    var l_prev = 0.0;
+    var dx_old = hi_x - lo_x;
+    var done = false;
+    var iterations = 0u;
+    // The best iterate so far: what an iteration cap returns.
+    var best_f = INF;
+    var best: Point;
+    for (var it = 1u; it <= max_iter; it++) {
+        iterations = it;
+        p = curve_point(lambda, m);
+        let fx = residual(p, small, end, shift, gap);
+        if abs(fx) < best_f {
+            best_f = abs(fx);
+            best = p;
+        }
+        // The direct start is the answer; |F| at the f32 noise level is done (below it the
+        // secant slope is noise).
+        if direct || abs(fx) <= 8e-7 {
+            done = true;
+            break;
+        }
+        if fx > 0.0 {
+            lo_x = x;
+            f_lo = fx;
+        } else {
+            hi_x = x;
+            f_hi = fx;
+        }
+        if hi_x - lo_x <= 4e-7 * max(abs(x), 1.0) {
+            done = true;
+            break;
+        }
+        var slope: f32;
+        if have_prev && abs(f_prev) < INF && l_prev != 0.0 {
+            slope = (fx - f_prev) / l_prev;
+        } else if fx > 0.0 {
+            slope = (f_hi - fx) / (hi_x - x);
+        } else {
+            slope = (f_lo - fx) / (lo_x - x);
+        }
+        let step = -fx / slope;
+        let finite = abs(step) < INF;
+        // A step below the noise level: the state there is the last one moved along the last
+        // secant (the error is second order in the step), not one more evaluation.
+        if finite && abs(step) <= 2.5e-7 && have_prev {
+            p = lerp_point(p, p_prev, step / l_prev);
+            done = true;
+            break;
+        }
+        let next = x + step;
+        let take = finite && next >= lo_x && next <= hi_x && abs(step) < 0.5 * abs(dx_old);
+        let mid = 0.5 * (lo_x + hi_x);
+        let d = select(mid - x, step, take);
+        m *= exp_f(d);
+        x = select(mid, next, take);
+        f_prev = fx;
+        p_prev = p;
+        have_prev = true;
+        l_prev = d;
+        dx_old = d;
+    }
+    var status = STATUS_OK;
+    if !done {
+        status = STATUS_NOT_CONVERGED;
+        p = best;
+    }
+    let other = select(p.approach, p.load, CONTROL == 1u);
+    // Only the NAIVE formulas can produce a non-number (0/0 where m - 1 rounds to 0): say so.
+    if !(abs(p.a) < INF && abs(other) < INF) {
+        status = STATUS_NOT_CONVERGED;
     }
     return Out(p.a, other, p.m_minus_1, status | (iterations << 8u));
 }

@@ -5,10 +5,6 @@
 
 const WORKGROUP: u32 = 256u;
 
-fn max_iter() -> u32 {
-    return (params.flags >> 8u) & 0xffu;
-}
-
 @compute @workgroup_size(256)
 fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
@@ -20,7 +16,7 @@ fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let iy = i / params.nx;
     let hi = bitcast<f32>(input[2u * iy]);
     let lo = bitcast<f32>(input[2u * iy + 1u]);
-    out[local] = solve(ix, hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
+    out[local] = solve(ix, hi, lo, params.max_iter);
 }
 
 @compute @workgroup_size(256)
@@ -32,7 +28,7 @@ fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
     let c = input[4u * local];
     let hi = bitcast<f32>(input[4u * local + 1u]);
     let lo = bitcast<f32>(input[4u * local + 2u]);
-    out[local] = solve(c, hi, lo, params.control, params.rows_are_gaps == 1u, max_iter());
+    out[local] = solve(c, hi, lo, params.max_iter);
 }
 
 // Measures the functions the kernels rely on, on this adapter: input = f32 arguments;

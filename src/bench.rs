@@ -243,7 +243,10 @@ pub fn run(
                 (p.0 as u32, h, l)
             })
             .collect();
-        let _ = g.points(&prepared, &gp[..gp.len().min(1024)], 0, 0); // warm-up (pipeline compile)
+        // Warm-up: each variant's pipeline is compiled on first use.
+        for flags in [0, FLAG_NAIVE] {
+            let _ = g.points(&prepared, &gp[..gp.len().min(1024)], 0, flags);
+        }
         let mut variants: Vec<(String, u32, String)> = vec![
             (
                 "gpu-f32".into(),

@@ -1,7 +1,8 @@
 //! The wgpu context: adapter choice, device, pipelines and reusable buffers, and the chunked
 //! dispatch with streamed readback.
 
-use super::layout::{GpuLambda, Out, Params};
+use super::layout::{flag_max_iter, GpuLambda, Out, Params, FLAG_NAIVE};
+use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
@@ -90,15 +91,24 @@ fn choose_adapter(wanted: Option<&str>) -> Result<wgpu::Adapter, GpuError> {
     Ok(adapters.remove(0))
 }
 
-/// Device, queue and the two kernels, reused across dispatches.
+/// Which kernel variant: the entry point and the pipeline constants of `shaders/md.wgsl`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct Variant {
+    entry: &'static str,
+    control: u32,
+    rows_are_gaps: bool,
+    naive: bool,
+}
+
+/// Device, queue, the shader module and its pipelines (compiled on first use, then reused).
 pub struct Gpu {
     pub adapter: AdapterSummary,
     device: wgpu::Device,
     queue: wgpu::Queue,
     layout: wgpu::BindGroupLayout,
-    grid: wgpu::ComputePipeline,
-    points: wgpu::ComputePipeline,
-    probe: wgpu::ComputePipeline,
+    module: wgpu::ShaderModule,
+    pipeline_layout: wgpu::PipelineLayout,
+    pipelines: Mutex<HashMap<Variant, wgpu::ComputePipeline>>,
     params: wgpu::Buffer,
     /// Points per dispatch: bounded by 65,535 workgroups and the storage binding size.
     chunk: usize,
@@ -177,17 +187,6 @@ impl Gpu {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let pipeline = |entry: &str| {
-            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(entry),
-                layout: Some(&pl),
-                module: &module,
-                entry_point: Some(entry),
-                compilation_options: Default::default(),
-                cache: None,
-            })
-        };
-        let (grid, points, probe) = (pipeline("grid"), pipeline("points"), pipeline("probe"));
         let params = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("params"),
             size: std::mem::size_of::<Params>() as u64,
@@ -206,9 +205,9 @@ impl Gpu {
             device,
             queue,
             layout,
-            grid,
-            points,
-            probe,
+            module,
+            pipeline_layout: pl,
+            pipelines: Mutex::new(HashMap::new()),
             params,
             chunk,
             max_binding,
@@ -217,6 +216,36 @@ impl Gpu {
         };
         gpu.check()?;
         Ok(gpu)
+    }
+
+    /// The pipeline of a variant, compiled on first use: a software adapter spends tens of
+    /// milliseconds on each, so only what a run needs is built.
+    fn pipeline(&self, v: Variant) -> Result<wgpu::ComputePipeline, GpuError> {
+        let mut cache = self.pipelines.lock().unwrap();
+        if let Some(p) = cache.get(&v) {
+            return Ok(p.clone());
+        }
+        let constants = [
+            ("CONTROL", v.control as f64),
+            ("ROWS_ARE_GAPS", v.rows_are_gaps as u32 as f64),
+            ("NAIVE", v.naive as u32 as f64),
+        ];
+        let p = self
+            .device
+            .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(v.entry),
+                layout: Some(&self.pipeline_layout),
+                module: &self.module,
+                entry_point: Some(v.entry),
+                compilation_options: wgpu::PipelineCompilationOptions {
+                    constants: &constants,
+                    ..Default::default()
+                },
+                cache: None,
+            });
+        self.check()?;
+        cache.insert(v, p.clone());
+        Ok(p)
     }
 
     fn check(&self) -> Result<(), GpuError> {
@@ -241,16 +270,20 @@ impl Gpu {
             .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
             .collect();
         let total = lambdas.len() * rows.len();
+        let v = Variant {
+            entry: "grid",
+            control,
+            rows_are_gaps,
+            naive: flags & FLAG_NAIVE != 0,
+        };
         self.run(
-            &self.grid,
+            v,
             lambdas,
             &words,
             0,
             total,
             lambdas.len() as u32,
-            control,
-            rows_are_gaps,
-            flags,
+            flag_max_iter(flags),
         )
     }
 
@@ -266,16 +299,20 @@ impl Gpu {
             .iter()
             .flat_map(|&(c, h, l)| [c, h.to_bits(), l.to_bits(), 0])
             .collect();
+        let v = Variant {
+            entry: "points",
+            control,
+            rows_are_gaps: false,
+            naive: flags & FLAG_NAIVE != 0,
+        };
         self.run(
-            &self.points,
+            v,
             lambdas,
             &words,
             16,
             points.len(),
             0,
-            control,
-            false,
-            flags,
+            flag_max_iter(flags),
         )
     }
 
@@ -283,15 +320,19 @@ impl Gpu {
     /// returns (atan, mu - atan, exp(-x/4), built-in atan) per argument.
     pub fn probe(&self, xs: &[f32]) -> Result<Vec<[f32; 4]>, GpuError> {
         let words: Vec<u32> = xs.iter().map(|x| x.to_bits()).collect();
+        let v = Variant {
+            entry: "probe",
+            control: 0,
+            rows_are_gaps: false,
+            naive: false,
+        };
         let out = self.run(
-            &self.probe,
+            v,
             &[bytemuck::Zeroable::zeroed()],
             &words,
             4,
             xs.len(),
             0,
-            0,
-            false,
             0,
         )?;
         Ok(out
@@ -303,15 +344,13 @@ impl Gpu {
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
-        pipeline: &wgpu::ComputePipeline,
+        variant: Variant,
         lambdas: &[GpuLambda],
         input: &[u32],
         input_stride: usize,
         total: usize,
         nx: u32,
-        control: u32,
-        rows_are_gaps: bool,
-        flags: u32,
+        max_iter: u32,
     ) -> Result<Vec<Out>, GpuError> {
         let lam_bytes = std::mem::size_of_val(lambdas) as u64;
         if lam_bytes > self.max_binding {
@@ -332,6 +371,7 @@ impl Gpu {
                 self.max_buffer
             )));
         }
+        let pipeline = self.pipeline(variant)?;
         let d = &self.device;
         let lam_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("lambdas"),
@@ -370,10 +410,7 @@ impl Gpu {
                 nx,
                 offset: start as u32,
                 count: n as u32,
-                control,
-                rows_are_gaps: rows_are_gaps as u32,
-                flags,
-                _pad: [0; 2],
+                max_iter,
             };
             self.queue
                 .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
@@ -420,7 +457,7 @@ impl Gpu {
                     label: Some("md"),
                     timestamp_writes: None,
                 });
-                pass.set_pipeline(pipeline);
+                pass.set_pipeline(&pipeline);
                 pass.set_bind_group(0, &bind, &[]);
                 pass.dispatch_workgroups(n.div_ceil(WORKGROUP) as u32, 1, 1);
             }

@@ -45,7 +45,8 @@ pub struct GpuLambda {
     pub disp: Branch,
 }
 
-/// Per-dispatch parameters. WGSL twin: `struct Params`.
+/// Per-dispatch parameters. WGSL twin: `struct Params`. The variant (control, rows as gaps,
+/// naive formulas) is a pipeline constant, not a parameter: see `Variant`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct Params {
@@ -55,14 +56,16 @@ pub struct Params {
     pub offset: u32,
     /// Points in this dispatch.
     pub count: u32,
-    /// 0 load control, 1 displacement control.
-    pub control: u32,
-    /// 1: the grid rows hold the distance above the branch end (gap), not the load.
-    pub rows_are_gaps: u32,
-    /// Variant switches for benchmarks: bit 0 naive formulas (no series), bits 8..15 a fixed
-    /// iteration count (0 = iterate to convergence).
-    pub flags: u32,
-    pub _pad: [u32; 2],
+    /// An iteration cap for benchmarks (0 = iterate to convergence).
+    pub max_iter: u32,
+}
+
+/// Variant switches for benchmarks, as the `flags` of the host API: bit 0 the naive formulas
+/// (no series), bits 8..15 a fixed iteration cap (0 = iterate to convergence).
+pub const FLAG_NAIVE: u32 = 1;
+
+pub fn flag_max_iter(flags: u32) -> u32 {
+    (flags >> 8) & 0xff
 }
 
 /// One result. WGSL twin: `struct Out`. `code` = status | iterations << 8.

@@ -199,3 +199,27 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
 pub fn prepare_all(lambdas: &[f64]) -> Vec<GpuLambda> {
     lambdas.par_iter().map(|&l| prepare(l)).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kernels' first guess interpolates ln|dx| linearly in the node index: interior
+    /// branch nodes must double exactly.
+    #[test]
+    fn interior_table_nodes_double() {
+        for &l in &[1e-4, 0.3, 1.0, 7.0, 1e4] {
+            let g = prepare(l);
+            let mut branches = vec![&g.load];
+            if g.disp_at_zero == 0 {
+                branches.push(&g.disp);
+            }
+            for b in branches {
+                for k in 1..TABLE_NODES {
+                    assert_eq!(b.dx[k], 2.0 * b.dx[k - 1], "lambda {l} node {k}");
+                    assert!(b.t[k] > b.t[k - 1], "lambda {l} node {k}");
+                }
+            }
+        }
+    }
+}

@@ -11,7 +11,7 @@ use super::real::Real;
 pub const LAMBDA_D: f64 = 0.937947457210712;
 
 /// One point of the Maugis-Dugdale curve and its slopes with respect to mu.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct CurvePoint<T> {
     pub mu: T,
     /// Contact radius A.

@@ -1,24 +1,20 @@
 //! The shaders' f32 arithmetic, on the CPU: read it side by side with `shaders/md.wgsl`.
 
-/// `(atan(mu), mu - atan(mu))` in f32 from the half-angle reduction and the Maclaurin series
-/// only (no built-in atan: lavapipe's inverse trigonometric built-ins are off by up to 1.6e-4).
+/// `(atan(mu), mu - atan(mu))` in f32 from one half-angle step and a polynomial, with no loop
+/// (no built-in atan: lavapipe's inverse trigonometric built-ins are off by up to 1.6e-4).
 /// For mu > 1, `atan(mu) = pi/2 - atan(1/mu)`. Max relative error about 3 ulp (measured by the
 /// tests below against f64).
 pub fn atan_parts_f32(mu: f32) -> (f32, f32) {
     let big = mu > 1.0;
     let t0 = if big { 1.0 / mu } else { mu };
-    let mut t = t0;
-    let mut weight = 1.0f32;
-    let mut acc = 0.0f32;
-    while t > 0.1 {
-        let onem = 1.0 + (1.0 + t * t).sqrt();
-        acc += weight * t * t * t / (onem * onem);
-        t /= onem;
-        weight *= 2.0;
-    }
+    // atan t0 = 2 atan t, t <= tan(pi/8); t0 - 2 t = t0 t^2 exactly, so there is no cancellation.
+    let t = t0 / (1.0 + (1.0 + t0 * t0).sqrt());
     let z = t * t;
-    let series = t * z * (1.0 / 3.0 - z * (1.0 / 5.0 - z * (1.0 / 7.0 - z * (1.0 / 9.0))));
-    let d0 = acc + weight * series; // t0 - atan(t0)
+    // (t - atan t) / t^3 on z in [0, tan^2(pi/8)]: degree-5 Chebyshev fit, relative error 1.6e-9.
+    let g = 0.333_333_34
+        + z * (-0.199_999_78
+            + z * (0.142_841_52 + z * (-0.110_713_65 + z * (0.086_246_76 + z * -0.050_481_386))));
+    let d0 = z * (t0 + 2.0 * t * g); // t0 - atan(t0)
     if big {
         let at = std::f32::consts::FRAC_PI_2 - (t0 - d0);
         (at, mu - at)
@@ -50,7 +46,7 @@ mod tests {
 
 use crate::gpu::layout::{Branch, GpuLambda, Out, TABLE_NODES};
 use crate::gpu::prepare::cheb_eval;
-use crate::physics::md::curve_point;
+use crate::physics::md::{curve_point, CurvePoint};
 use crate::solver::{Control, Status};
 
 const LN2_HI: f32 = 0.693_145_75;
@@ -105,14 +101,16 @@ pub fn ln_f32(y: f32) -> f32 {
     e as f32 * LN2_HI + (e as f32 * LN2_LO + series)
 }
 
-/// ln(1 + q), accurate for small q (the residual near convergence).
+/// ln(1 + q), accurate for small q (the residual near convergence): ln(u) q / (u - 1) with
+/// u = 1 + q cancels the rounding of u (Goldberg); -inf for u <= 0.
 pub fn log1p_f32(q: f32) -> f32 {
-    if q.abs() < 0.25 {
-        let u = q / (2.0 + q);
-        let z = u * u;
-        2.0 * u * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0)))))
+    let u = 1.0 + q;
+    // Above u = 2 the correction is not needed (and q = inf would make it NaN).
+    let c = if u > 2.0 { 1.0 } else { q / (u - 1.0) };
+    if u == 1.0 {
+        q
     } else {
-        ln_f32(1.0 + q)
+        ln_f32(u) * c
     }
 }
 
@@ -123,8 +121,7 @@ fn branch(g: &GpuLambda, control: Control) -> &Branch {
     }
 }
 
-/// Variant switch (bit 0 of `flags`): the textbook formulas, to show what the shipped ones avoid.
-pub const FLAG_NAIVE: u32 = 1;
+pub use crate::gpu::layout::FLAG_NAIVE;
 
 /// The curve point from the formulas as printed: `(m^2 - 2) arcsec m + mu` and `m - 1` by
 /// subtraction, which cancel as m -> 1 (the JKR side). Same atan as the shipped kernel.
@@ -159,49 +156,62 @@ fn point_f32(g: &GpuLambda, mu: f32, naive: bool) -> crate::physics::md::CurvePo
     }
 }
 
-/// The residual's quantity: Pbar + 2 (small lambda) or Pbar, or Dbar.
-fn quantity(g: &GpuLambda, control: Control, mu: f32, naive: bool) -> f32 {
-    let p = point_f32(g, mu, naive);
+/// The residual's quantity: Dbar under displacement control, else Pbar + 2 (small lambda) or Pbar.
+fn quantity(p: &CurvePoint<f32>, g: &GpuLambda, control: Control, naive: bool) -> f32 {
     match control {
+        Control::Displacement => p.approach,
         Control::Load if g.small == 1 && !naive => p.load_plus_2,
         Control::Load => p.load,
-        Control::Displacement => p.approach,
     }
 }
 
 /// F = ln(gap(mu) / gap): zero at the root, positive farther from the branch end. The naive
-/// variant subtracts one f32 branch end.
-fn residual(g: &GpuLambda, control: Control, mu: f32, gap: f32, naive: bool) -> f32 {
+/// variant subtracts the branch end as one f32 in Pbar (not Pbar + 2).
+fn residual(p: &CurvePoint<f32>, g: &GpuLambda, control: Control, gap: f32, naive: bool) -> f32 {
     let b = branch(g, control);
     let r = if naive {
-        (quantity(g, control, mu, true) - naive_end(g, control)) - gap
+        (quantity(p, g, control, true) - naive_end(g, control)) - gap
     } else {
-        ((quantity(g, control, mu, false) - b.end_hi) - b.end_lo) - gap
+        ((quantity(p, g, control, false) - b.end_hi) - b.end_lo) - gap
     };
-    let q = r / gap;
-    if q <= -1.0 {
-        f32::NEG_INFINITY
-    } else {
-        log1p_f32(q)
-    }
+    log1p_f32(r / gap)
 }
 
 /// The branch end as one f32 in the residual's naive units (Pbar, not Pbar + 2).
 fn naive_end(g: &GpuLambda, control: Control) -> f32 {
     let b = branch(g, control);
-    let shift = if control == Control::Load && g.small == 1 {
+    (b.end_hi - shift(g, control)) + b.end_lo
+}
+
+/// 2 where the load residual is written as Pbar + 2 (small lambda).
+fn shift(g: &GpuLambda, control: Control) -> f32 {
+    if control == Control::Load && g.small == 1 {
         2.0
     } else {
         0.0
-    };
-    ((b.end_hi as f64 + b.end_lo as f64) - shift) as f32
+    }
+}
+
+/// `p + c (p - q)` field by field: the state moved along the last secant.
+fn lerp_point(p: &CurvePoint<f32>, q: &CurvePoint<f32>, c: f32) -> CurvePoint<f32> {
+    let l = |a: f32, b: f32| a + c * (a - b);
+    CurvePoint {
+        mu: l(p.mu, q.mu),
+        a: l(p.a, q.a),
+        m_minus_1: l(p.m_minus_1, q.m_minus_1),
+        load_plus_2: l(p.load_plus_2, q.load_plus_2),
+        load: l(p.load, q.load),
+        approach: l(p.approach, q.approach),
+        dload_dmu: f32::NAN,
+        dapproach_dmu: f32::NAN,
+    }
 }
 
 /// The f32 solve of one point, exactly as `shaders/md.wgsl` does it. The load (approach) comes
 /// as an unevaluated pair `hi + lo` (about 48 bits), so that its distance from the branch end is
 /// exact: an f32 load near Pbar_c = -2 is already off by 1e-4 of a gap of 1e-3. With `is_gap`
-/// the pair is that distance itself. `flags` as the kernels' Params: bit 0 [`FLAG_NAIVE`], bits
-/// 8..15 an iteration limit (0: the default, 32).
+/// the pair is that distance itself. `flags` as the host API's: bit 0 [`FLAG_NAIVE`], bits
+/// 8..15 an iteration cap (0: iterate to convergence, at most 32).
 pub fn solve_f32(
     g: &GpuLambda,
     hi: f32,
@@ -210,169 +220,163 @@ pub fn solve_f32(
     is_gap: bool,
     flags: u32,
 ) -> Out {
-    let value = hi;
     let naive = flags & FLAG_NAIVE != 0;
-    let max_iter = (flags >> 8) & 0xff;
+    let max_iter = crate::gpu::layout::flag_max_iter(flags);
     let fail = |st: Status| Out {
         a: f32::NAN,
         other: f32::NAN,
         m_minus_1: f32::NAN,
         code: st as u32,
     };
-    if g.invalid == 1 || !value.is_finite() {
+    if g.invalid == 1 || !hi.is_finite() {
         return fail(Status::InvalidInput);
     }
     let b = branch(g, control);
     let zero_end = control == Control::Displacement && g.disp_at_zero == 1;
-    let shift = if control == Control::Load && g.small == 1 {
-        2.0
-    } else {
-        0.0
-    };
+    let shift = shift(g, control);
     // hi + shift - end_hi is exact where it matters (Sterbenz), then the low parts are added.
-    let gap = if naive {
-        if is_gap {
-            hi
-        } else {
-            hi - naive_end(g, control)
-        }
-    } else if is_gap {
-        hi + lo
-    } else {
-        ((hi + shift) - b.end_hi) + (lo - b.end_lo)
+    let gap = match (naive, is_gap) {
+        (true, true) => hi,
+        (true, false) => hi - naive_end(g, control),
+        (false, true) => hi + lo,
+        (false, false) => ((hi + shift) - b.end_hi) + (lo - b.end_lo),
     };
     if gap < 0.0 {
         return fail(Status::NoContact);
     }
-    let mut iterations = 0u32;
-    let mut status = Status::Ok;
-    let mu;
-    if gap == 0.0 {
-        if zero_end {
-            let load = g.end_load;
-            return Out {
-                a: 0.0,
-                other: load,
-                m_minus_1: f32::INFINITY,
-                code: 0,
-            };
+    if gap == 0.0 && zero_end {
+        return Out {
+            a: 0.0,
+            other: g.end_load,
+            m_minus_1: f32::INFINITY,
+            code: 0,
+        };
+    }
+    // Near the branch end the Chebyshev fit gives x = ln(mu / mu_ref) directly (one
+    // evaluation); elsewhere the table brackets the root and gives the first guess.
+    let s = gap.sqrt();
+    let direct = gap == 0.0 || (!naive && s < b.s_max);
+    let n = TABLE_NODES;
+    let (mut lo_x, mut f_lo) = (b.dx[n - 1] - 120.0, f32::INFINITY);
+    let end_dx = if zero_end { b.dx[0] + 60.0 } else { 0.0 };
+    let (mut hi_x, mut f_hi) = (end_dx, f32::NEG_INFINITY);
+    let mut x = if direct {
+        if gap == 0.0 {
+            0.0
+        } else {
+            s * cheb_eval(&b.cheb, 2.0 * s / b.s_max - 1.0)
         }
-        mu = b.mu_ref;
-    } else if !naive && gap.sqrt() < b.s_max {
-        let s = gap.sqrt();
-        let dx = s * cheb_eval(&b.cheb, 2.0 * s / b.s_max - 1.0);
-        mu = b.mu_ref * exp_f32(dx);
     } else {
         let t = ln_f32(gap);
-        let n = TABLE_NODES;
         // First node with t_k >= t (the shader's binary search gives the same k).
         let k = b.t.partition_point(|&tk| tk < t);
         // Bracket one node wider than the interval, in case a node's f32 mu sits on the root.
-        let end_dx = if zero_end { b.dx[0] + 60.0 } else { 0.0 };
-        let (mut hi, mut f_hi) = if k >= 2 {
-            (b.dx[k - 2], b.t[k - 2] - t)
-        } else {
-            (end_dx, f32::NEG_INFINITY)
-        };
-        let (mut lo, mut f_lo) = if k + 1 < n {
-            (b.dx[k + 1], b.t[k + 1] - t)
-        } else {
-            (b.dx[n - 1] - 120.0, f32::INFINITY)
-        };
-        // First guess: linear in (t, ln|dx|) for an interior end (exact near it), else in (t, dx).
-        let mut x = if k == 0 {
-            if zero_end {
-                b.dx[0] + 1.0
-            } else {
-                b.dx[0] * exp_f32(0.5 * (t - b.t[0]))
-            }
-        } else if k == n {
-            b.dx[n - 1] - 1.0
-        } else {
-            let w = (t - b.t[k - 1]) / (b.t[k] - b.t[k - 1]);
-            if zero_end {
-                b.dx[k - 1] + w * (b.dx[k] - b.dx[k - 1])
-            } else {
-                -exp_f32(ln_f32(-b.dx[k - 1]) + w * (ln_f32(-b.dx[k]) - ln_f32(-b.dx[k - 1])))
-            }
-        };
-        if !(x > lo && x < hi) {
-            x = 0.5 * (lo + hi);
+        if k >= 2 {
+            (hi_x, f_hi) = (b.dx[k - 2], b.t[k - 2] - t);
         }
-        // Secant in x = ln(mu/mu_ref) with a bisection safeguard; mu is carried separately and
-        // updated multiplicatively, since an f32 x near 14 resolves mu only to 1e-6.
-        let max_iter = if max_iter == 0 { 32 } else { max_iter };
-        let mut m = b.mu_ref * exp_f32(x);
-        let (mut f_prev, mut l_prev) = (f32::NAN, 0.0f32);
-        let mut dx_old = hi - lo;
-        let mut done = false;
-        // The best iterate so far: what an iteration cap returns (a safeguard bisection can be
-        // the last step taken).
-        let (mut best_f, mut best_m) = (f32::INFINITY, m);
-        for it in 1..=max_iter {
-            iterations = it;
-            let fx = residual(g, control, m, gap, naive);
-            if fx.abs() < best_f {
-                (best_f, best_m) = (fx.abs(), m);
-            }
-            // |F| at the f32 noise level (a relative error of the gap of 8e-7): done. Below it
-            // the secant slope is noise.
-            if fx.abs() <= 8e-7 {
-                done = true;
-                break;
-            }
-            if fx > 0.0 {
-                (lo, f_lo) = (x, fx);
+        if k + 1 < n {
+            (lo_x, f_lo) = (b.dx[k + 1], b.t[k + 1] - t);
+        }
+        let mut x = b.dx[n - 1] - 1.0;
+        if k < n {
+            let k1 = k.max(1);
+            let d0 = b.dx[k1 - 1];
+            let w = (t - b.t[k1 - 1]) / (b.t[k1] - b.t[k1 - 1]);
+            x = if zero_end {
+                if k == 0 {
+                    b.dx[0] + 1.0
+                } else {
+                    d0 + w * (b.dx[k1] - d0)
+                }
             } else {
-                (hi, f_hi) = (x, fx);
-            }
-            if hi - lo <= 4e-7 * x.abs().max(1.0) {
-                done = true;
-                break;
-            }
-            let slope = if f_prev.is_finite() && l_prev != 0.0 {
-                (fx - f_prev) / l_prev
-            } else if fx > 0.0 {
-                (f_hi - fx) / (hi - x)
-            } else {
-                (f_lo - fx) / (lo - x)
+                // Interior nodes double (dx_k = dx_0 2^k), so ln|dx| is linear in k between
+                // nodes; before the first node the gap is quadratic in dx.
+                let e = if k == 0 {
+                    0.5 * (t - b.t[0])
+                } else {
+                    w * std::f32::consts::LN_2
+                };
+                d0 * exp_f32(e)
             };
-            let step = -fx / slope;
-            // The last step is applied, so stopping at the noise level of F still lands within
-            // a few ulp of mu.
-            if step.is_finite() && step.abs() <= 2.5e-7 {
-                m *= exp_f32(step);
-                done = true;
-                break;
-            }
-            let next = x + step;
-            f_prev = fx;
-            // Non-strict: a step below the ulp of x still moves mu, which is carried apart.
-            if step.is_finite() && next >= lo && next <= hi && step.abs() < 0.5 * dx_old.abs() {
-                m *= exp_f32(step);
-                l_prev = step;
-                dx_old = step;
-                x = next;
-            } else {
-                let mid = 0.5 * (lo + hi);
-                let m_new = b.mu_ref * exp_f32(mid);
-                l_prev = ln_f32(m_new / m);
-                dx_old = mid - x;
-                x = mid;
-                m = m_new;
-            }
         }
-        if !done {
-            status = Status::NotConverged;
-            m = best_m;
+        if !(x > lo_x && x < hi_x) {
+            x = 0.5 * (lo_x + hi_x);
         }
-        mu = m;
+        x
+    };
+    // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
+    // since an f32 x near 14 resolves mu only to 1e-6.
+    let max_iter = if max_iter == 0 { 32 } else { max_iter };
+    let mut m = b.mu_ref * exp_f32(x);
+    let mut p = CurvePoint::<f32>::default();
+    let mut prev: Option<(CurvePoint<f32>, f32, f32)> = None; // point, F, ln step to the next
+    let mut dx_old = hi_x - lo_x;
+    let mut done = false;
+    let mut iterations = 0;
+    // The best iterate so far: what an iteration cap returns.
+    let (mut best_f, mut best) = (f32::INFINITY, p);
+    for it in 1..=max_iter {
+        iterations = it;
+        p = point_f32(g, m, naive);
+        let fx = residual(&p, g, control, gap, naive);
+        if fx.abs() < best_f {
+            (best_f, best) = (fx.abs(), p);
+        }
+        // The direct start is the answer; |F| at the f32 noise level (a relative error of the
+        // gap of 8e-7) is done: below it the secant slope is noise.
+        if direct || fx.abs() <= 8e-7 {
+            done = true;
+            break;
+        }
+        if fx > 0.0 {
+            (lo_x, f_lo) = (x, fx);
+        } else {
+            (hi_x, f_hi) = (x, fx);
+        }
+        if hi_x - lo_x <= 4e-7 * x.abs().max(1.0) {
+            done = true;
+            break;
+        }
+        let slope = match prev {
+            Some((_, f_prev, l_prev)) if f_prev.is_finite() && l_prev != 0.0 => {
+                (fx - f_prev) / l_prev
+            }
+            _ if fx > 0.0 => (f_hi - fx) / (hi_x - x),
+            _ => (f_lo - fx) / (lo_x - x),
+        };
+        let step = -fx / slope;
+        // A step below the noise level: the state there is this one moved along the last
+        // secant (the error is second order in the step), not one more evaluation.
+        if let Some((q, _, l_prev)) = prev.filter(|_| step.is_finite() && step.abs() <= 2.5e-7) {
+            p = lerp_point(&p, &q, step / l_prev);
+            done = true;
+            break;
+        }
+        let next = x + step;
+        // Non-strict: a step below the ulp of x still moves mu, which is carried apart.
+        let take =
+            step.is_finite() && next >= lo_x && next <= hi_x && step.abs() < 0.5 * dx_old.abs();
+        let mid = 0.5 * (lo_x + hi_x);
+        let d = if take { step } else { mid - x };
+        m *= exp_f32(d);
+        x = if take { next } else { mid };
+        prev = Some((p, fx, d));
+        dx_old = d;
     }
-    let p = point_f32(g, mu, naive);
+    let mut status = if done {
+        Status::Ok
+    } else {
+        p = best;
+        Status::NotConverged
+    };
     let other = match control {
         Control::Load => p.approach,
         Control::Displacement => p.load,
     };
+    // Only the naive formulas can produce a non-number (0/0 where m - 1 rounds to 0): say so.
+    if !(p.a.is_finite() && other.is_finite()) {
+        status = Status::NotConverged;
+    }
     Out {
         a: p.a,
         other,
