@@ -286,6 +286,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     let direct = gap == 0.0 || (!NAIVE && s < s_max);
     let n = TABLE_NODES;
     var x = 0.0;
+    var slope0 = 0.0;
     var lo_x = br_dx(ci, n - 1u) - 120.0;
     var f_lo = INF;
     var hi_x = select(0.0, br_dx(ci, 0u) + 60.0, zero_end);
@@ -330,6 +331,9 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
         if !(x > lo_x && x < hi_x) {
             x = 0.5 * (lo_x + hi_x);
         }
+        // The first step's slope dF/dx = dt/dx: the table's chord around the guess.
+        let kc = clamp(k, 1u, n - 1u);
+        slope0 = (br_t(ci, kc) - br_t(ci, kc - 1u)) / (br_dx(ci, kc) - br_dx(ci, kc - 1u));
     }
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.
@@ -341,6 +345,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     var f_prev = 0.0;
     var l_prev = 0.0;
     var dx_old = hi_x - lo_x;
+    var rf_last = false;
     var done = false;
     var iterations = 0u;
     // The best iterate so far: what an iteration cap returns.
@@ -371,29 +376,38 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
             done = true;
             break;
         }
-        var slope: f32;
+        // Secant slope; before there is one, the table's; without either, the chord to the
+        // bracket end on the other side.
+        var slope = slope0;
         if have_prev && abs(f_prev) < INF && l_prev != 0.0 {
             slope = (fx - f_prev) / l_prev;
-        } else if fx > 0.0 {
+        } else if have_prev && fx > 0.0 {
             slope = (f_hi - fx) / (hi_x - x);
-        } else {
+        } else if have_prev {
             slope = (f_lo - fx) / (lo_x - x);
         }
         let step = -fx / slope;
-        let finite = abs(step) < INF;
-        // A step below the noise level: the state there is the last one moved along the last
-        // secant (the error is second order in the step), not one more evaluation.
-        if finite && abs(step) <= 2.5e-7 && have_prev {
+        // A zero step from an infinite slope is no step: bisect.
+        let finite = abs(step) < INF && step != 0.0;
+        // A step below 4 ulp of x: the state there is this one moved along the last secant
+        // (the error is second order in the step), not one more evaluation.
+        if finite && abs(step) <= 2.5e-7 * max(abs(x), 1.0) && have_prev && l_prev != 0.0 {
             p = lerp_point(p, p_prev, step / l_prev);
             done = true;
             break;
         }
         let next = x + step;
         let take = finite && next >= lo_x && next <= hi_x && abs(step) < 0.5 * abs(dx_old);
-        let mid = 0.5 * (lo_x + hi_x);
-        let d = select(mid - x, step, take);
+        // Else regula falsi on the bracket, which lands next to an end whose F is already at
+        // the noise level (bisection would walk back from the far end), but never twice in a
+        // row, so that the bracket at least halves every other step.
+        let rf = lo_x - f_lo * (hi_x - lo_x) / (f_hi - f_lo);
+        let use_rf = !take && !rf_last && rf > lo_x && rf < hi_x;
+        rf_last = use_rf;
+        let to = select(0.5 * (lo_x + hi_x), rf, use_rf);
+        let d = select(to - x, step, take);
         m *= exp_f(d);
-        x = select(mid, next, take);
+        x = select(to, next, take);
         f_prev = fx;
         p_prev = p;
         have_prev = true;
