@@ -4,7 +4,7 @@
 //! and reading every result back.
 
 use std::time::Instant;
-use tabor::engine::Engine;
+use tabor::engine::{Engine, Precision};
 use tabor::gpu::Gpu;
 use tabor::solver::{solve_grid, Control};
 
@@ -63,6 +63,24 @@ fn main() {
         rate(n * n, g1),
         cpu_all / g1
     );
+    // The same grid with every state refined by Newton steps in f64 on the GPU.
+    let mut engine = engine;
+    if engine.set_precision(Precision::F64).is_ok() {
+        let _ = engine
+            .solve_grid(&lambdas[..64], &loads[..64], Control::Load)
+            .unwrap(); // warm-up (the f64 pipeline)
+        let t = Instant::now();
+        let _ = engine.solve_grid(&lambdas, &loads, Control::Load).unwrap();
+        let g64 = t.elapsed().as_secs_f64();
+        println!(
+            "  gpu f32 + f64 Newton  : {}  = {:.2}x the cpu f64 (all threads)",
+            rate(n * n, g64),
+            cpu_all / g64
+        );
+        engine.set_precision(Precision::F32).unwrap();
+    } else {
+        println!("  gpu f64: skipped (no SHADER_F64 on this adapter)");
+    }
     let big = 4096;
     let (bl, bp) = (logspace(-3.0, 3.0, big), logspace(-3.0, 3.0, big));
     let t = Instant::now();

@@ -1,8 +1,8 @@
 //! `tabor bench`: every solver variant on one workload, timed in one run and measured against
 //! the f64 reference, charted as throughput against error.
 
-use crate::gpu::layout::{GpuLambda, Out};
-use crate::gpu::prepare::{prepare_ctx, split};
+use crate::gpu::layout::{GpuLambda, Lambda64, Out, Out64};
+use crate::gpu::prepare::{prepare64, prepare_ctx, split};
 use crate::gpu::Gpu;
 use crate::physics::closed::{cos_radius, dmt_radius, hertz_radius, jkr_radius};
 use crate::solver::mirror::{solve_f32, FLAG_NAIVE};
@@ -276,6 +276,53 @@ pub fn run(
                     push(summarize(&name, &desc, w, s, &a), &mut results);
                 }
                 Err(e) => eprintln!("{name}: {e}"),
+            }
+        }
+        // The f32 kernel's states refined by Newton steps in f64 on the GPU (SHADER_F64).
+        if g.f64 {
+            let l64: Vec<Lambda64> = w
+                .contexts
+                .iter()
+                .map(|c| prepare64(Some(c), c.lambda))
+                .collect();
+            // Grid points are refined from their exact gap, the reference states from their load
+            // (as the f64 solver is given them).
+            let n_grid = pts.iter().filter(|p| p.2.is_finite()).count();
+            let idx: Vec<(u32, f64)> = pts
+                .iter()
+                .map(|p| (p.0 as u32, if p.2.is_finite() { p.2 } else { p.1 }))
+                .collect();
+            let refine = |o: Vec<Out>| -> Result<(Vec<Out64>, Vec<Out>), crate::gpu::GpuError> {
+                let (og, ot) = o.split_at(n_grid.min(o.len()));
+                let (ig, it) = idx[..o.len()].split_at(og.len());
+                let mut r = g.polish_f64(&l64, ig, og, 0, true, 0)?;
+                r.extend(g.polish_f64(&l64, it, ot, 0, false, 0)?);
+                Ok((r, o))
+            };
+            // Warm-up: both pipelines of the refinement.
+            let _ = g.points(&prepared, &gp[..16], 0, 0).and_then(|o| {
+                g.polish_f64(&l64, &idx[..16], &o, 0, true, 0)?;
+                g.polish_f64(&l64, &idx[..16], &o, 0, false, 0)
+            });
+            let t = Instant::now();
+            match g.points(&prepared, &gp, 0, 0).and_then(&refine) {
+                Ok((r, o)) => {
+                    let s = t.elapsed().as_secs_f64();
+                    let a: Vec<Option<f64>> = r
+                        .iter()
+                        .zip(&o)
+                        .map(|(r, o)| {
+                            if r.steps() == 0 {
+                                out_a(o, false)
+                            } else {
+                                (r.status() == Status::Ok).then_some(r.a)
+                            }
+                        })
+                        .collect();
+                    let desc = "shipped kernel, then Newton steps in f64 on the GPU";
+                    push(summarize("gpu-f64", desc, w, s, &a), &mut results);
+                }
+                Err(e) => eprintln!("gpu-f64: {e}"),
             }
         }
     }

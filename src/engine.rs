@@ -1,8 +1,8 @@
 //! Where the work runs: the GPU kernels (f32) or the CPU reference (f64), chosen once, with a
 //! one-line reason, and the cross-check of GPU results against the CPU.
 
-use crate::gpu::layout::Out;
-use crate::gpu::prepare::{prepare_all, split};
+use crate::gpu::layout::{Lambda64, Out, Out64};
+use crate::gpu::prepare::{prepare64, split};
 use crate::gpu::{Gpu, GpuError};
 use crate::solver::{self, Control, LambdaContext, State, Status};
 use rayon::prelude::*;
@@ -18,6 +18,15 @@ pub enum Backend {
     Gpu,
     /// The f64 reference solver on all CPU cores.
     Cpu,
+}
+
+/// The GPU's arithmetic: the f32 kernels, or their states refined by Newton steps in f64 on the
+/// GPU (adapters with SHADER_F64). The CPU path is f64 either way.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    F32,
+    F64,
 }
 
 pub enum Engine {
@@ -77,8 +86,20 @@ impl Engine {
     pub fn precision(&self) -> &'static str {
         match self {
             Engine::Cpu => "f64",
+            Engine::Gpu(g) if g.refine_f64 => "f64 (f32 kernel, then f64 Newton steps on the GPU)",
             Engine::Gpu(_) => "f32",
         }
+    }
+
+    /// Sets the GPU's arithmetic; f64 needs an adapter with SHADER_F64.
+    pub fn set_precision(&mut self, p: Precision) -> Result<(), GpuError> {
+        if let Engine::Gpu(g) = self {
+            if p == Precision::F64 && !g.f64 {
+                return Err(GpuError::NoF64(g.adapter.name.clone()));
+            }
+            g.refine_f64 = p == Precision::F64;
+        }
+        Ok(())
     }
 
     pub fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
@@ -110,13 +131,19 @@ impl Engine {
                         (i, h, lo)
                     })
                     .collect();
-                let prepared = prepare_all(&lambdas);
-                let out = g.points(&prepared, &pts, control_code(control), 0)?;
-                Ok(points
+                let ctx = contexts(&lambdas);
+                let out = g.points(
+                    &prepare_contexts(&ctx, &lambdas),
+                    &pts,
+                    control_code(control),
+                    0,
+                )?;
+                let idx: Vec<(u32, f64)> = pts
                     .iter()
-                    .zip(&out)
-                    .map(|(&(l, v), o)| to_state(l, v, o, control))
-                    .collect())
+                    .zip(points)
+                    .map(|(p, &(_, v))| (p.0, v))
+                    .collect();
+                finish(g, &ctx, &lambdas, &idx, &out, control, false)
             }
         }
     }
@@ -149,18 +176,16 @@ impl Engine {
             Engine::Gpu(g) => {
                 let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
                 let out = g.grid(&prepare_contexts(ctx, lambdas), &rows, 0, true, 0)?;
-                Ok(out
-                    .par_iter()
+                // States carry the load; an f64 refinement works from the exact gap.
+                let idx: Vec<(u32, f64)> = (0..out.len())
+                    .map(|i| ((i % nx) as u32, gaps[i / nx]))
+                    .collect();
+                let mut states = finish(g, ctx, lambdas, &idx, &out, Control::Load, true)?;
+                states
+                    .par_iter_mut()
                     .enumerate()
-                    .map(|(i, o)| {
-                        to_state(
-                            lambdas[i % nx],
-                            pulloff(i % nx) + gaps[i / nx],
-                            o,
-                            Control::Load,
-                        )
-                    })
-                    .collect())
+                    .for_each(|(i, s)| s.load = pulloff(i % nx) + gaps[i / nx]);
+                Ok(states)
             }
         }
     }
@@ -195,11 +220,10 @@ impl Engine {
                     0,
                 )?;
                 let nx = lambdas.len();
-                Ok(out
-                    .par_iter()
-                    .enumerate()
-                    .map(|(i, o)| to_state(lambdas[i % nx], values[i / nx], o, control))
-                    .collect())
+                let idx: Vec<(u32, f64)> = (0..out.len())
+                    .map(|i| ((i % nx) as u32, values[i / nx]))
+                    .collect();
+                finish(g, ctx, lambdas, &idx, &out, control, false)
             }
         }
     }
@@ -240,6 +264,61 @@ pub fn control_code(c: Control) -> u32 {
     match c {
         Control::Load => 0,
         Control::Displacement => 1,
+    }
+}
+
+/// The states of kernel results for points `(lambda index, value)`, refined in f64 on the GPU
+/// if the engine is set to f64. With `gaps` the values are distances above the pull-off (the
+/// states' load is then that distance: the caller sets it).
+fn finish(
+    g: &Gpu,
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+    idx: &[(u32, f64)],
+    out: &[Out],
+    control: Control,
+    gaps: bool,
+) -> Result<Vec<State>, GpuError> {
+    if !g.refine_f64 {
+        return Ok(idx
+            .par_iter()
+            .zip(out)
+            .map(|(&(i, v), o)| to_state(lambdas[i as usize], v, o, control))
+            .collect());
+    }
+    let l64: Vec<Lambda64> = ctx
+        .iter()
+        .zip(lambdas)
+        .map(|(c, &l)| prepare64(c.as_ref(), l))
+        .collect();
+    let r = g.polish_f64(&l64, idx, out, control_code(control), gaps, 0)?;
+    Ok(idx
+        .par_iter()
+        .zip(out)
+        .zip(&r)
+        .map(|((&(i, v), o), r)| to_state64(lambdas[i as usize], v, o, r, control))
+        .collect())
+}
+
+/// A refined result as a State: the f64 numbers, or the kernel's where it took no step (no
+/// contact, invalid input, the zero-radius end).
+pub fn to_state64(lambda: f64, value: f64, o: &Out, r: &Out64, control: Control) -> State {
+    if r.steps() == 0 {
+        return to_state(lambda, value, o, control);
+    }
+    let status = r.status();
+    let (load, approach) = match control {
+        Control::Load => (value, r.other),
+        Control::Displacement => (r.other, value),
+    };
+    State {
+        lambda,
+        load,
+        approach,
+        a: r.a,
+        m_minus_1: r.m_minus_1,
+        status,
+        iterations: o.iterations() + r.steps(),
     }
 }
 

@@ -4,7 +4,7 @@
 
 mod common;
 use common::*;
-use tabor::engine::{Backend, Engine};
+use tabor::engine::{Backend, Engine, Precision};
 use tabor::gpu::prepare::{prepare, prepare_all, split};
 use tabor::gpu::Gpu;
 use tabor::solver::{mirror::solve_f32, solve_grid, Control, LambdaContext, Status};
@@ -207,4 +207,88 @@ fn auto_backend_reports_its_choice() {
     let (engine, line) = Engine::select(Backend::Auto, None).unwrap();
     assert_eq!(engine.name(), "gpu");
     assert!(line.contains("GPU"), "{line}");
+}
+
+/// The GPU set to f64 (f32 kernel, then f64 Newton steps), where the adapter has SHADER_F64.
+fn gpu_f64() -> Option<Engine> {
+    let g = gpu()?;
+    if !g.f64 {
+        eprintln!("SKIPPED (f64): {} has no SHADER_F64", g.adapter.name);
+        return None;
+    }
+    let mut e = Engine::Gpu(Box::new(g));
+    e.set_precision(Precision::F64).unwrap();
+    Some(e)
+}
+
+#[test]
+fn f64_refinement_meets_the_f64_contract_on_reference_states() {
+    let Some(engine) = gpu_f64() else { return };
+    let rows = table("points.csv");
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (num(r, "lambda"), num(r, "Pbar")))
+        .collect();
+    let states = engine.solve_points(&pts, Control::Load).unwrap();
+    let (mut worst, mut worst_far) = (0f64, 0f64);
+    for (i, (r, s)) in rows.iter().zip(&states).enumerate() {
+        assert_eq!(s.status, Status::Ok, "id {i}");
+        let b = bound(num(r, "Pbar"), num(r, "Pbar_pulloff_load"));
+        let e = rel(s.a, num(r, "A")).max(rel(s.m_minus_1, num(r, "m_minus_1")));
+        assert!(e <= b, "id {i}: error {e:e}, bound {b:e}");
+        worst = worst.max(e / b);
+        if num(r, "Pbar") - num(r, "Pbar_pulloff_load") >= 1e-4 {
+            worst_far = worst_far.max(rel(s.a, num(r, "A")));
+        }
+    }
+    eprintln!(
+        "f64 refinement, reference states: worst error/bound {worst:.2}; max rel. error of A {worst_far:.2e} at gap >= 1e-4"
+    );
+}
+
+#[test]
+fn f64_refinement_agrees_with_cpu_under_both_controls() {
+    let Some(engine) = gpu_f64() else { return };
+    let lambdas = logspace(-4.0, 4.0, 96);
+    let loads: Vec<f64> = [-1.9, -1.6, -1.0, -0.5]
+        .into_iter()
+        .chain(logspace(-4.0, 4.0, 60))
+        .collect();
+    let approaches: Vec<f64> = (0..40).map(|k| -1.6 + 0.07 * k as f64).collect();
+    for (control, values) in [(Control::Load, loads), (Control::Displacement, approaches)] {
+        let gs = engine.solve_grid(&lambdas, &values, control).unwrap();
+        let cs = solve_grid(&lambdas, &values, control);
+        let mut worst = 0f64;
+        for (g, c) in gs.iter().zip(&cs) {
+            assert_eq!(
+                g.status, c.status,
+                "{control:?} lambda {} value {}",
+                c.lambda, c.load
+            );
+            if c.status == Status::Ok && c.a > 1e-3 {
+                worst = worst.max(rel(g.a, c.a));
+            }
+        }
+        eprintln!("f64 refinement vs CPU, {control:?}: max rel. difference of A {worst:.2e}");
+        assert!(worst < 1e-11, "{control:?}: {worst:e}");
+    }
+    // Distances above the pull-off, down to 1e-10: refined from the exact gap.
+    let gaps = logspace(-10.0, 3.0, 40);
+    let gs = engine.solve_grid_gaps(&lambdas, &gaps).unwrap();
+    let cs = Engine::Cpu.solve_grid_gaps(&lambdas, &gaps).unwrap();
+    let mut worst = 0f64;
+    for (i, (g, c)) in gs.iter().zip(&cs).enumerate() {
+        assert_eq!(g.status, c.status);
+        assert_eq!(g.load, c.load);
+        let b = 2.0 * bound(gaps[i / lambdas.len()], 0.0);
+        let e = rel(g.a, c.a);
+        assert!(
+            e <= b,
+            "lambda {} gap {}: {e:e}",
+            c.lambda,
+            gaps[i / lambdas.len()]
+        );
+        worst = worst.max(e / b);
+    }
+    eprintln!("f64 refinement vs CPU above pull-off: worst difference/bound {worst:.2}");
 }

@@ -2,7 +2,7 @@
 //! WGSL layouts byte for byte.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use tabor::gpu::layout::{Branch, GpuLambda, Out, Params};
+use tabor::gpu::layout::{Branch, GpuLambda, Lambda64, Out, Out64, Params, Point64};
 
 fn module() -> naga::Module {
     let src = tabor::gpu::shader_source();
@@ -56,4 +56,36 @@ fn rust_structs_match_wgsl_layout() {
     } else {
         panic!("Lambda is not a struct");
     }
+}
+
+/// The f64 refinement is its own module; it validates with the FLOAT64 capability, and its
+/// structs match the Rust ones.
+#[test]
+fn f64_module_validates_and_matches_rust_layout() {
+    let src = include_str!("../shaders/polish64.wgsl");
+    let m =
+        naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)));
+    Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
+        .validate(&m)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    // Without FLOAT64 it must not validate: it could not be part of the f32 module.
+    assert!(
+        Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&m)
+            .is_err()
+    );
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(m.to_ctx()).unwrap();
+    let size_of = |name: &str| {
+        let (h, _) = m
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no struct {name}"));
+        layouter[h].size as usize
+    };
+    assert_eq!(size_of("Lambda64"), std::mem::size_of::<Lambda64>());
+    assert_eq!(size_of("Point64"), std::mem::size_of::<Point64>());
+    assert_eq!(size_of("Out64"), std::mem::size_of::<Out64>());
+    assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
 }

@@ -1,7 +1,7 @@
 //! `tabor solve`, `tabor pulloff`, `tabor curve`.
 
 use super::Format;
-use crate::engine::{cross_check, Backend, Engine};
+use crate::engine::{cross_check, Backend, Engine, Precision};
 use crate::io::{fmt17, json_num, read_points, write_output};
 use crate::physics::md::{curve_point, LAMBDA_D};
 use crate::solver::{Control, LambdaContext, State, Status};
@@ -49,6 +49,10 @@ pub struct GpuArgs {
     /// errors (also written into the JSON metadata).
     #[arg(long, default_value = "1000")]
     pub check: CheckCount,
+    /// GPU arithmetic: the f32 kernels, or f64 (their states refined by Newton steps in f64 on
+    /// the GPU; needs an adapter with SHADER_F64, see `tabor info`). The CPU path is f64.
+    #[arg(long, value_enum, default_value_t = Precision::F32)]
+    pub precision: Precision,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -77,7 +81,8 @@ pub fn solve_on(
     points: &[(f64, f64)],
     control: Control,
 ) -> anyhow::Result<(Vec<State>, serde_json::Value)> {
-    let (engine, line) = Engine::select(backend, gpu.adapter.as_deref())?;
+    let (mut engine, line) = Engine::select(backend, gpu.adapter.as_deref())?;
+    engine.set_precision(gpu.precision)?;
     eprintln!("{line}");
     let t = std::time::Instant::now();
     let states = engine.solve_points(points, control)?;

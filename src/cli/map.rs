@@ -87,7 +87,8 @@ impl MapArgs {
 pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
     spec.validate()?;
-    let (engine, line) = Engine::select(a.backend, a.gpu.adapter.as_deref())?;
+    let (mut engine, line) = Engine::select(a.backend, a.gpu.adapter.as_deref())?;
+    engine.set_precision(a.gpu.precision)?;
     eprintln!("{line}");
     let mut data = compute(&spec, &engine)?;
     // GPU maps are cross-checked on a sample of points against the f64 solver.

@@ -1,7 +1,7 @@
 //! The wgpu context: adapter choice, device, pipelines and reusable buffers, and the chunked
 //! dispatch with streamed readback.
 
-use super::layout::{flag_max_iter, GpuLambda, Out, Params, FLAG_NAIVE};
+use super::layout::{flag_max_iter, GpuLambda, Lambda64, Out, Out64, Params, Point64, FLAG_NAIVE};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
@@ -18,6 +18,8 @@ pub enum GpuError {
     Runtime(String),
     #[error("{0}")]
     TooLarge(String),
+    #[error("the adapter {0} has no f64 shaders (SHADER_F64); use --precision f32, or --backend cpu for f64")]
+    NoF64(String),
 }
 
 /// A short description of an adapter, for `tabor info` and result metadata.
@@ -110,23 +112,32 @@ pub struct Gpu {
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: Mutex<HashMap<Variant, wgpu::ComputePipeline>>,
     params: wgpu::Buffer,
-    /// Points per dispatch: bounded by 65,535 workgroups and the storage binding size.
-    chunk: usize,
+    /// Points per dispatch by the workgroup count limit (65,535 workgroups).
+    by_workgroups: usize,
+    /// The adapter runs f64 shaders (SHADER_F64): the f64 refinement is available.
+    pub f64: bool,
+    /// Refine every result in f64 (set through `Engine::set_precision`).
+    pub refine_f64: bool,
     max_binding: u64,
     max_buffer: u64,
     error: Arc<Mutex<Option<String>>>,
 }
 
 const WORKGROUP: usize = 256;
-const OUT_BYTES: usize = std::mem::size_of::<Out>();
 
 impl Gpu {
     pub fn new(adapter_name: Option<&str>) -> Result<Gpu, GpuError> {
         let adapter = choose_adapter(adapter_name)?;
         let info = adapter.get_info();
         let limits = adapter.limits();
+        let f64_ok = adapter.features().contains(wgpu::Features::SHADER_F64);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("tabor"),
+            required_features: if f64_ok {
+                wgpu::Features::SHADER_F64
+            } else {
+                wgpu::Features::empty()
+            },
             required_limits: wgpu::Limits {
                 max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
                 max_buffer_size: limits.max_buffer_size,
@@ -198,8 +209,6 @@ impl Gpu {
             .min(limits.max_buffer_size);
         let max_buffer = limits.max_buffer_size;
         let by_workgroups = limits.max_compute_workgroups_per_dimension as usize * WORKGROUP;
-        // Input of the point kernel is 16 bytes a point, like the output.
-        let chunk = by_workgroups.min(max_binding as usize / OUT_BYTES);
         let gpu = Gpu {
             adapter: AdapterSummary::of(&info),
             device,
@@ -209,7 +218,9 @@ impl Gpu {
             pipeline_layout: pl,
             pipelines: Mutex::new(HashMap::new()),
             params,
-            chunk,
+            by_workgroups,
+            f64: f64_ok,
+            refine_f64: false,
             max_binding,
             max_buffer,
             error,
@@ -230,15 +241,35 @@ impl Gpu {
             ("ROWS_ARE_GAPS", v.rows_are_gaps as u32 as f64),
             ("NAIVE", v.naive as u32 as f64),
         ];
+        // The f64 refinement is its own module: the f32 one must build where f64 does not exist.
+        let polish;
+        let module = if v.entry == "polish" {
+            polish = self
+                .device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("polish64"),
+                    source: wgpu::ShaderSource::Wgsl(
+                        include_str!("../../shaders/polish64.wgsl").into(),
+                    ),
+                });
+            &polish
+        } else {
+            &self.module
+        };
+        let constants: &[(&str, f64)] = if v.entry == "polish" {
+            &constants[..2]
+        } else {
+            &constants
+        };
         let p = self
             .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
                 label: Some(v.entry),
                 layout: Some(&self.pipeline_layout),
-                module: &self.module,
+                module,
                 entry_point: Some(v.entry),
                 compilation_options: wgpu::PipelineCompilationOptions {
-                    constants: &constants,
+                    constants,
                     ..Default::default()
                 },
                 cache: None,
@@ -316,6 +347,51 @@ impl Gpu {
         )
     }
 
+    /// Refines f32 results in f64 (adapters with SHADER_F64): `points` are (lambda index, value)
+    /// and `start` the f32 kernel's results for them; with `gaps` the values are distances above
+    /// the branch end. `max_steps` caps the Newton steps (0: the default, 8).
+    #[allow(clippy::too_many_arguments)]
+    pub fn polish_f64(
+        &self,
+        lambdas: &[Lambda64],
+        points: &[(u32, f64)],
+        start: &[Out],
+        control: u32,
+        gaps: bool,
+        max_steps: u32,
+    ) -> Result<Vec<Out64>, GpuError> {
+        if !self.f64 {
+            return Err(GpuError::NoF64(self.adapter.name.clone()));
+        }
+        let input: Vec<Point64> = points
+            .iter()
+            .zip(start)
+            .map(|(&(ci, value), o)| Point64 {
+                value,
+                ci,
+                code: o.code,
+                m_minus_1: o.m_minus_1,
+                _pad: 0,
+            })
+            .collect();
+        let v = Variant {
+            entry: "polish",
+            control,
+            rows_are_gaps: gaps,
+            naive: false,
+        };
+        let words: &[u32] = bytemuck::cast_slice(&input);
+        self.run(
+            v,
+            lambdas,
+            words,
+            std::mem::size_of::<Point64>(),
+            points.len(),
+            0,
+            max_steps,
+        )
+    }
+
     /// Evaluates the kernels' own atan, mu - atan and exp, and the built-in atan, at `xs`:
     /// returns (atan, mu - atan, exp(-x/4), built-in atan) per argument.
     pub fn probe(&self, xs: &[f32]) -> Result<Vec<[f32; 4]>, GpuError> {
@@ -326,9 +402,9 @@ impl Gpu {
             rows_are_gaps: false,
             naive: false,
         };
-        let out = self.run(
+        let out: Vec<Out> = self.run(
             v,
-            &[bytemuck::Zeroable::zeroed()],
+            &[<GpuLambda as bytemuck::Zeroable>::zeroed()],
             &words,
             4,
             xs.len(),
@@ -342,16 +418,17 @@ impl Gpu {
     }
 
     #[allow(clippy::too_many_arguments)]
-    fn run(
+    fn run<L: bytemuck::Pod, T: bytemuck::Pod>(
         &self,
         variant: Variant,
-        lambdas: &[GpuLambda],
+        lambdas: &[L],
         input: &[u32],
         input_stride: usize,
         total: usize,
         nx: u32,
         max_iter: u32,
-    ) -> Result<Vec<Out>, GpuError> {
+    ) -> Result<Vec<T>, GpuError> {
+        let out_bytes = std::mem::size_of::<T>();
         let lam_bytes = std::mem::size_of_val(lambdas) as u64;
         if lam_bytes > self.max_binding {
             return Err(GpuError::TooLarge(format!(
@@ -387,8 +464,13 @@ impl Gpu {
             contents: bytemuck::cast_slice(&in_words),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        let chunk = self.chunk.min(total);
-        let out_size = (chunk * OUT_BYTES) as u64;
+        // Points per dispatch: within the workgroup limit and the binding size of the output
+        // (and of the per-point input).
+        let chunk = self
+            .by_workgroups
+            .min(self.max_binding as usize / out_bytes.max(input_stride))
+            .min(total);
+        let out_size = (chunk * out_bytes) as u64;
         let out_buf = d.create_buffer(&wgpu::BufferDescriptor {
             label: Some("out"),
             size: out_size,
@@ -402,7 +484,7 @@ impl Gpu {
             mapped_at_creation: false,
         });
         self.check()?;
-        let mut result: Vec<Out> = Vec::with_capacity(total);
+        let mut result: Vec<T> = Vec::with_capacity(total);
         let mut start = 0usize;
         while start < total {
             let n = chunk.min(total - start);
@@ -461,7 +543,7 @@ impl Gpu {
                 pass.set_bind_group(0, &bind, &[]);
                 pass.dispatch_workgroups(n.div_ceil(WORKGROUP) as u32, 1, 1);
             }
-            let bytes = (n * OUT_BYTES) as u64;
+            let bytes = (n * out_bytes) as u64;
             enc.copy_buffer_to_buffer(&out_buf, 0, &staging, 0, bytes);
             self.queue.submit([enc.finish()]);
             let slice = staging.slice(..bytes);

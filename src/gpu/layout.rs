@@ -87,3 +87,55 @@ impl Out {
         self.code >> 8
     }
 }
+
+/// Per-lambda data of the f64 refinement (`shaders/polish64.wgsl`). WGSL twin: `struct Lambda64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct Lambda64 {
+    pub lambda: f64,
+    /// Branch end of the load residual's quantity: Pbar_c, or Pbar_c + 2 if `small`.
+    pub load_end: f64,
+    /// Branch end of the approach: Dbar at the displacement-controlled jump-out.
+    pub disp_end: f64,
+    /// mu at the load-controlled pull-off (the stable branch has mu below it).
+    pub mu_load: f64,
+    /// mu at the displacement-controlled jump-out (interior branches only).
+    pub mu_disp: f64,
+    pub small: u32,
+    pub disp_at_zero: u32,
+    pub invalid: u32,
+    pub _pad: u32,
+}
+
+/// One point for the f64 refinement: its value (load or approach), lambda index and the f32
+/// kernel's result. WGSL twin: `struct Point64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct Point64 {
+    pub value: f64,
+    pub ci: u32,
+    pub code: u32,
+    pub m_minus_1: f32,
+    pub _pad: u32,
+}
+
+/// One refined result. WGSL twin: `struct Out64`. `code` = status | Newton steps << 8.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
+pub struct Out64 {
+    pub a: f64,
+    /// The approach under load control, the load under displacement control.
+    pub other: f64,
+    pub m_minus_1: f64,
+    pub code: u32,
+    pub _pad: u32,
+}
+
+impl Out64 {
+    pub fn status(&self) -> crate::solver::Status {
+        crate::solver::Status::from_code(self.code & 0xff)
+    }
+    pub fn steps(&self) -> u32 {
+        self.code >> 8
+    }
+}

@@ -2,7 +2,7 @@
 //! the Chebyshev fit of the state near the jump-out, where f32 cannot evaluate the residual
 //! accurately enough (dA/dP is infinite there).
 
-use super::layout::{Branch, GpuLambda, CHEB_TERMS, TABLE_NODES};
+use super::layout::{Branch, GpuLambda, Lambda64, CHEB_TERMS, TABLE_NODES};
 use crate::physics::md::{curve_point, CurvePoint};
 use crate::solver::context::point;
 use crate::solver::LambdaContext;
@@ -192,6 +192,34 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
         _pad: [0; 3],
         load,
         disp,
+    }
+}
+
+/// Prepares one lambda for the f64 refinement (`shaders/polish64.wgsl`).
+pub fn prepare64(ctx: Option<&LambdaContext>, lambda: f64) -> Lambda64 {
+    let Some(ctx) = ctx else {
+        return Lambda64 {
+            lambda,
+            invalid: 1,
+            ..bytemuck::Zeroable::zeroed()
+        };
+    };
+    let small = ctx.lambda < 1.0;
+    let jo = ctx.disp_pulloff;
+    Lambda64 {
+        lambda: ctx.lambda,
+        load_end: if small {
+            ctx.load_plus_2_c
+        } else {
+            ctx.load_pulloff.load
+        },
+        disp_end: jo.approach,
+        mu_load: ctx.load_pulloff.x.exp(),
+        mu_disp: if jo.at_zero_radius() { 0.0 } else { jo.x.exp() },
+        small: small as u32,
+        disp_at_zero: jo.at_zero_radius() as u32,
+        invalid: 0,
+        _pad: 0,
     }
 }
 

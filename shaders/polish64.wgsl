@@ -1,0 +1,209 @@
+// f64 refinement of the f32 kernels' states, for adapters with SHADER_F64 (a separate module:
+// the f32 kernels must run where f64 does not exist). Each point starts from its f32 state
+// and takes safeguarded Newton steps in mu on the f64 curve (src/physics/md.rs, curve_point,
+// with its derivatives). WGSL has no f64 transcendentals (SPIR-V's GLSL.std.450 exp, log and
+// atan are 32-bit only); atan below uses sqrt, division and a series.
+
+// Twin of gpu::layout::Lambda64 (56 bytes).
+struct Lambda64 {
+    lambda: f64,
+    // The branch end of the residual's quantity: Pbar_c (+ 2 for small lambda), Dbar_min.
+    load_end: f64,
+    disp_end: f64,
+    // mu at the end of each interior branch: the stable side is mu < mu_end.
+    mu_load: f64,
+    mu_disp: f64,
+    small: u32,
+    disp_at_zero: u32,
+    invalid: u32,
+    pad0: u32,
+}
+
+// Twin of gpu::layout::Point64 (24 bytes): the value (load or approach, or with ROWS_ARE_GAPS
+// its distance above the branch end), the lambda index, and the f32 kernel's status code and
+// m - 1.
+struct Point64 {
+    value: f64,
+    ci: u32,
+    code: u32,
+    m_minus_1: f32,
+    pad0: u32,
+}
+
+// Twin of gpu::layout::Out64 (32 bytes).
+struct Out64 {
+    a: f64,
+    other: f64,
+    m_minus_1: f64,
+    code: u32,
+    pad0: u32,
+}
+
+// Twin of gpu::layout::Params (the f32 kernels' parameters).
+struct Params {
+    nx: u32,
+    offset: u32,
+    count: u32,
+    max_iter: u32,
+}
+
+override CONTROL: u32 = 0u; // 0 load control, 1 displacement control
+override ROWS_ARE_GAPS: bool = false; // values are distances above the branch end
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> lambdas: array<Lambda64>;
+@group(0) @binding(2) var<storage, read> input: array<Point64>;
+@group(0) @binding(3) var<storage, read_write> out: array<Out64>;
+
+const STATUS_OK: u32 = 0u;
+const STATUS_NOT_CONVERGED: u32 = 2u;
+const HALF_PI: f64 = 1.5707963267948966;
+
+// (atan(mu), mu - atan(mu)) in f64: three half-angle steps (t0 - 2 t = t0 t^2 exactly, so
+// every term of t0 - atan t0 is positive) to t <= tan(pi/64), then 8 terms of the series.
+fn atan_parts64(mu: f64) -> vec2<f64> {
+    let big = mu > 1.0;
+    let t0 = select(mu, 1.0 / mu, big);
+    let t1 = t0 / (1.0 + sqrt(1.0 + t0 * t0));
+    let t2 = t1 / (1.0 + sqrt(1.0 + t1 * t1));
+    let t3 = t2 / (1.0 + sqrt(1.0 + t2 * t2));
+    let z = t3 * t3;
+    var s: f64 = 1.0 / 17.0;
+    s = 1.0 / 15.0 - z * s;
+    s = 1.0 / 13.0 - z * s;
+    s = 1.0 / 11.0 - z * s;
+    s = 1.0 / 9.0 - z * s;
+    s = 1.0 / 7.0 - z * s;
+    s = 1.0 / 5.0 - z * s;
+    s = 1.0 / 3.0 - z * s;
+    let d3 = t3 * z * s;
+    let d0 = t0 * t1 * t1 + 2.0 * (t1 * t2 * t2 + 2.0 * (t2 * z + 2.0 * d3));
+    if big {
+        let at = HALF_PI - (t0 - d0);
+        return vec2<f64>(at, mu - at);
+    }
+    return vec2<f64>(mu - d0, d0);
+}
+
+// The residual's quantity and its derivative in mu, plus the outputs: (A, Pbar, Pbar + 2, Dbar,
+// m - 1, dPbar/dmu, dDbar/dmu), as src/physics/md.rs curve_point.
+struct Point {
+    a: f64,
+    load: f64,
+    load_plus_2: f64,
+    approach: f64,
+    m_minus_1: f64,
+    dload: f64,
+    dapproach: f64,
+}
+
+fn curve_point64(lambda: f64, mu: f64) -> Point {
+    let four_thirds: f64 = 4.0 / 3.0;
+    let ap = atan_parts64(mu);
+    let at = ap.x;
+    let mu2 = mu * mu;
+    let m = sqrt(1.0 + mu2);
+    let m_minus_1 = mu2 / (1.0 + m);
+    let f1 = mu2 * at + ap.y;
+    let f2 = mu * at - m_minus_1;
+    let alpha = 0.5 * lambda * f1;
+    let beta = four_thirds * lambda * lambda * f2;
+    let a = 2.0 / (beta + sqrt(beta * beta + 4.0 * alpha));
+    let g = mu + (1.0 + mu2) * at;
+    var p: Point;
+    p.a = a;
+    p.load = a * a * (a - lambda * g);
+    p.load_plus_2 = a * a * a + (8.0 / 3.0) * lambda * lambda * f2 * a - 2.0 * lambda * a * a * at;
+    p.approach = a * (a - four_thirds * lambda * mu);
+    p.m_minus_1 = m_minus_1;
+    let m2 = 1.0 + mu2;
+    let df1 = 2.0 * mu * at + 2.0 * mu2 / m2;
+    let df2 = at - mu * mu2 / ((1.0 + m) * m2);
+    let dalpha = 0.5 * lambda * df1;
+    let dbeta = four_thirds * lambda * lambda * df2;
+    let da = -(dalpha * a * a + dbeta * a) / (2.0 * alpha * a + beta);
+    let dg = 2.0 + 2.0 * mu * at;
+    p.dload = da * (3.0 * a * a - 2.0 * lambda * a * g) - lambda * a * a * dg;
+    p.dapproach = da * (2.0 * a - four_thirds * lambda * mu) - four_thirds * lambda * a;
+    return p;
+}
+
+@compute @workgroup_size(256)
+fn polish(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let local = gid.x;
+    if local >= params.count {
+        return;
+    }
+    let pt = input[local];
+    let status = pt.code & 0xffu;
+    // No contact, invalid input, or the zero-radius end: the f32 kernel's answer stands.
+    if (status != STATUS_OK && status != STATUS_NOT_CONVERGED) || !(pt.m_minus_1 < 3.0e38) {
+        out[local] = Out64(0.0, 0.0, 0.0, pt.code, 0u);
+        return;
+    }
+    let c = lambdas[pt.ci];
+    let small = c.small == 1u;
+    // Q - goal = (Q - end) - gap with the gap exact, as the f64 CPU solver does it; given a
+    // load, goal = load (+ 2 where Q is Pbar + 2).
+    var goal = pt.value;
+    var end = c.disp_end;
+    var mu_end = c.mu_disp;
+    var interior = c.disp_at_zero == 0u;
+    if CONTROL == 0u {
+        goal = select(pt.value, pt.value + 2.0, small);
+        end = c.load_end;
+        mu_end = c.mu_load;
+        interior = true;
+    }
+    let mm1 = f64(pt.m_minus_1);
+    var mu = sqrt(mm1 * (mm1 + 2.0));
+    var max_iter = select(params.max_iter, 8u, params.max_iter == 0u);
+    var done = false;
+    var steps = 0u;
+    var r_prev: f64 = 1.0e300;
+    for (var it = 1u; it <= max_iter; it++) {
+        steps = it;
+        let p = curve_point64(c.lambda, mu);
+        var q = select(p.load, p.load_plus_2, small);
+        var dq = p.dload;
+        if CONTROL == 1u {
+            q = p.approach;
+            dq = p.dapproach;
+        }
+        var res = q - goal;
+        if ROWS_ARE_GAPS {
+            res = (q - end) - pt.value;
+        }
+        let r = abs(res);
+        // Near pull-off dQ/dmu -> 0 and the steps stay at the noise of Q / dQ: once |Q - goal|
+        // has stopped falling and is at rounding level, it is as good as f64 gets.
+        if it > 2u && r >= 0.5 * r_prev && r <= 1e-13 * max(abs(q), 1.0) {
+            done = true;
+            break;
+        }
+        r_prev = r;
+        let step = -res / dq;
+        var next = mu + step;
+        // Stay on the stable branch (mu < mu_end on an interior branch) and at mu > 0.
+        if interior && next >= mu_end {
+            next = 0.5 * (mu + mu_end);
+        }
+        if !(next > 0.0) {
+            next = 0.5 * mu;
+        }
+        let moved = abs(next - mu);
+        mu = next;
+        // Newton converges quadratically: after a step of 1e-13 the next would be at the noise level.
+        if moved <= 1e-13 * mu {
+            done = true;
+            break;
+        }
+    }
+    let p = curve_point64(c.lambda, mu);
+    let other = select(p.approach, p.load, CONTROL == 1u);
+    var code = pt.code & 0xffu;
+    if !done || !(abs(p.a) < 1.0e300) {
+        code = STATUS_NOT_CONVERGED;
+    }
+    out[local] = Out64(p.a, other, p.m_minus_1, code | (steps << 8u), 0u);
+}
