@@ -292,7 +292,10 @@ where
                 ShapeStyle::from(&GREEN_).stroke_width(3),
             )
         });
-    for (k, r) in results.iter().enumerate() {
+    // Markers first; then each label at the first nearby spot that overlaps no marker and no
+    // label placed before it (boxes in pixels; the text width is estimated from the font size).
+    let mut taken: Vec<(i32, i32, i32, i32)> = Vec::new();
+    for r in results {
         let (x, y) = (err(r), r.points_per_second);
         let col = if r.name.starts_with("gpu") {
             ORANGE_
@@ -307,25 +310,46 @@ where
             col.filled()
         };
         chart.draw_series(std::iter::once(Circle::new((x, y), 9, style)))?;
+        let (px, py) = chart.backend_coord(&(x, y));
+        taken.push((px - 11, py - 11, px + 11, py + 11));
+    }
+    let plot = chart.plotting_area().get_pixel_range();
+    let overlaps = |b: (i32, i32, i32, i32), o: &(i32, i32, i32, i32)| {
+        b.0 < o.2 && o.0 < b.2 && b.1 < o.3 && o.1 < b.3
+    };
+    for r in results {
+        let (x, y) = (err(r), r.points_per_second);
         let label = if r.failures > 0 {
             format!("{} ({} failed)", r.name, r.failures)
         } else {
             r.name.clone()
         };
-        // Labels left of markers near the right edge, staggered so that clusters stay legible.
-        let dy = [1.0, 1.22, 0.82][k % 3];
-        let (lx, anchor) = if x > 1e-2 {
-            (x / 1.6, plotters::style::text_anchor::HPos::Right)
-        } else {
-            (x * 1.6, plotters::style::text_anchor::HPos::Left)
+        let (px, py) = chart.backend_coord(&(x, y));
+        let (w, h) = ((label.chars().count() as f64 * 9.4) as i32, 20);
+        let right_first = x <= 1e-2;
+        let mut spots = Vec::new();
+        for dy in [0, -22, 22, -44, 44, -66, 66] {
+            for right in [right_first, !right_first] {
+                let x0 = if right { px + 14 } else { px - 14 - w };
+                spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
+            }
+        }
+        let inside = |b: &(i32, i32, i32, i32)| {
+            b.0 >= plot.0.start && b.2 <= plot.0.end && b.1 >= plot.1.start && b.3 <= plot.1.end
         };
+        let spot = spots
+            .iter()
+            .copied()
+            .find(|b| inside(b) && !taken.iter().any(|o| overlaps(*b, o)))
+            .unwrap_or(spots[0]);
+        taken.push(spot);
         let style = ("sans-serif", 18).into_font().color(&BLACK).pos(
             plotters::style::text_anchor::Pos::new(
-                anchor,
+                plotters::style::text_anchor::HPos::Left,
                 plotters::style::text_anchor::VPos::Center,
             ),
         );
-        chart.draw_series(std::iter::once(Text::new(label, (lx, y * dy), style)))?;
+        root.draw(&Text::new(label, (spot.0, (spot.1 + spot.3) / 2), style))?;
     }
     chart.draw_series(std::iter::once(Text::new(
         "orange: GPU kernels; blue: CPU solvers; gray: closed forms; hollow: some points failed",
