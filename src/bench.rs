@@ -343,7 +343,7 @@ pub fn run(
     push(summarize("naive-f64-fixed-bracket", "f64 textbook formulas, Brent on m in [1, 1e12] (the public Python method), every n-th point", &sub, t.elapsed().as_secs_f64(), &a), &mut results);
 
     // Closed forms as stand-ins for MD.
-    let closed: [(&str, &str, fn(f64, f64) -> Option<f64>); 4] = [
+    let closed: [ClosedForm; 4] = [
         ("hertz", "Hertz contact radius", |_, p| hertz_radius(p)),
         ("dmt", "DMT contact radius", |_, p| dmt_radius(p)),
         ("jkr", "JKR contact radius", |_, p| jkr_radius(p)),
@@ -417,14 +417,16 @@ pub struct AtlasMap {
     pub err: Vec<f64>,
 }
 
+/// A closed form as a stand-in for MD: name, description, A from (lambda, load) if defined.
+type ClosedForm = (&'static str, &'static str, fn(f64, f64) -> Option<f64>);
+
+/// The atlas: the lambda axis, the gap axis and one error map per method.
+pub type Atlas = (Vec<f64>, Vec<f64>, Vec<AtlasMap>);
+
 /// The failure atlas: lambda 1e-6..1e6 (nx, log) by the gap above pull-off 1e-8..1e6 (ny, log),
 /// against the f64 solver, for the shipped f32 kernel (on the GPU if given, else its CPU
 /// mirror), the naive f32 and f64 methods and the closed forms.
-pub fn atlas(
-    nx: usize,
-    ny: usize,
-    gpu: Option<&Gpu>,
-) -> Result<(Vec<f64>, Vec<f64>, Vec<AtlasMap>), crate::gpu::GpuError> {
+pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gpu::GpuError> {
     let lambdas = crate::map::axis(1e-6, 1e6, nx, true);
     let gaps = crate::map::axis(1e-8, 1e6, ny, true);
     let ctx: Vec<LambdaContext> = lambdas
@@ -507,7 +509,7 @@ pub fn atlas(
         title: "Naive f64: Brent on m in [1, 1e12] (the public Python method)".into(),
         err: naive64,
     });
-    let closed: [(&'static str, &str, fn(f64, f64) -> Option<f64>); 3] = [
+    let closed: [ClosedForm; 3] = [
         ("jkr", "JKR closed form as a stand-in for MD", |_, p| {
             jkr_radius(p)
         }),

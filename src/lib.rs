@@ -4,6 +4,9 @@
 //! code for the WGSL kernels in `shaders/`), `map` (classification), `render` (figures) and the
 //! command line in `src/cli`.
 
+// `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod bench;
 pub mod cli;
 pub mod cycle;

@@ -338,7 +338,7 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         (Some(_), Some(_)) => bail!("give --lambda or a scene, not both"),
         (None, None) => bail!("give --lambda, --scene FILE or --preset NAME"),
     };
-    if !(lambda > 0.0 && lambda.is_finite()) || !(a.max_load > 0.0 && a.max_load.is_finite()) {
+    if !(lambda > 0.0 && lambda.is_finite() && a.max_load > 0.0 && a.max_load.is_finite()) {
         bail!("lambda and --max-load must be positive numbers");
     }
     let drive = match a.control {

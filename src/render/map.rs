@@ -476,8 +476,8 @@ where
                 .min(3.0 * (y + 1.0))
                 .min(3.0 * (C as f64 - y))
                 / 3.0;
-            for j in 0..C * C {
-                if coarse[j] != r {
+            for (j, &cj) in coarse.iter().enumerate() {
+                if cj != r {
                     let (u, v) = ((j % C) as f64, (j / C) as f64);
                     dist = dist.min((((x - u) / 3.0).powi(2) + (y - v).powi(2)).sqrt());
                 }

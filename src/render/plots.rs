@@ -15,13 +15,14 @@ type Err = Box<dyn std::error::Error + Send + Sync>;
 pub const W: u32 = 1400;
 pub const H: u32 = 1000;
 
+/// A figure drawn into a PNG buffer or an SVG string (the same drawing code, instantiated for
+/// each backend).
+pub type DrawPng<'a> =
+    &'a dyn for<'b> Fn(&DrawingArea<BitMapBackend<'b>, Shift>) -> Result<(), Err>;
+pub type DrawSvg<'a> = &'a dyn for<'b> Fn(&DrawingArea<SVGBackend<'b>, Shift>) -> Result<(), Err>;
+
 /// Draws with `f` into a PNG and/or an SVG of W x H.
-pub fn save(
-    png: Option<&Path>,
-    svg: Option<&Path>,
-    f: &dyn Fn(&DrawingArea<BitMapBackend, Shift>) -> Result<(), Err>,
-    g: &dyn Fn(&DrawingArea<SVGBackend, Shift>) -> Result<(), Err>,
-) -> Result<(), Err> {
+pub fn save(png: Option<&Path>, svg: Option<&Path>, f: DrawPng, g: DrawSvg) -> Result<(), Err> {
     fonts();
     if let Some(p) = png {
         let mut rgb = vec![0u8; (W * H * 3) as usize];
