@@ -312,11 +312,8 @@ pub fn run(
                         .iter()
                         .zip(&o)
                         .map(|(r, o)| {
-                            if r.steps() == 0 {
-                                out_a(o, false)
-                            } else {
-                                (r.status() == Status::Ok).then_some(r.a)
-                            }
+                            let s = crate::engine::to_state64(0.0, 0.0, o, r, Control::Load);
+                            (s.status == Status::Ok).then_some(s.a)
                         })
                         .collect();
                     let desc = "shipped kernel, then Newton steps in f64 on the GPU";

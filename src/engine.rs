@@ -162,7 +162,6 @@ impl Engine {
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
         let nx = lambdas.len();
-        let pulloff = |i: usize| ctx[i].as_ref().map_or(f64::NAN, |c| c.load_pulloff.load);
         match self {
             Engine::Cpu => Ok((0..nx * gaps.len())
                 .into_par_iter()
@@ -176,16 +175,10 @@ impl Engine {
             Engine::Gpu(g) => {
                 let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
                 let out = g.grid(&prepare_contexts(ctx, lambdas), &rows, 0, true, 0)?;
-                // States carry the load; an f64 refinement works from the exact gap.
                 let idx: Vec<(u32, f64)> = (0..out.len())
                     .map(|i| ((i % nx) as u32, gaps[i / nx]))
                     .collect();
-                let mut states = finish(g, ctx, lambdas, &idx, &out, Control::Load, true)?;
-                states
-                    .par_iter_mut()
-                    .enumerate()
-                    .for_each(|(i, s)| s.load = pulloff(i % nx) + gaps[i / nx]);
-                Ok(states)
+                finish(g, ctx, lambdas, &idx, &out, Control::Load, true)
             }
         }
     }
@@ -268,8 +261,8 @@ pub fn control_code(c: Control) -> u32 {
 }
 
 /// The states of kernel results for points `(lambda index, value)`, refined in f64 on the GPU
-/// if the engine is set to f64. With `gaps` the values are distances above the pull-off (the
-/// states' load is then that distance: the caller sets it).
+/// if the engine is set to f64. With `gaps` the values are distances above the pull-off: the
+/// refinement works from the exact gap, the states carry the load Pbar_c + gap.
 fn finish(
     g: &Gpu,
     ctx: &[Option<LambdaContext>],
@@ -279,11 +272,16 @@ fn finish(
     control: Control,
     gaps: bool,
 ) -> Result<Vec<State>, GpuError> {
+    let value = |i: u32, v: f64| match (gaps, &ctx[i as usize]) {
+        (false, _) => v,
+        (true, Some(c)) => c.load_pulloff.load + v,
+        (true, None) => f64::NAN,
+    };
     if !g.refine_f64 {
         return Ok(idx
             .par_iter()
             .zip(out)
-            .map(|(&(i, v), o)| to_state(lambdas[i as usize], v, o, control))
+            .map(|(&(i, v), o)| to_state(lambdas[i as usize], value(i, v), o, control))
             .collect());
     }
     let l64: Vec<Lambda64> = ctx
@@ -296,7 +294,7 @@ fn finish(
         .par_iter()
         .zip(out)
         .zip(&r)
-        .map(|((&(i, v), o), r)| to_state64(lambdas[i as usize], v, o, r, control))
+        .map(|((&(i, v), o), r)| to_state64(lambdas[i as usize], value(i, v), o, r, control))
         .collect())
 }
 

@@ -4,9 +4,24 @@
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use tabor::gpu::layout::{Branch, GpuLambda, Lambda64, Out, Out64, Params, Point64};
 
+fn parse(src: &str) -> naga::Module {
+    naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)))
+}
+
 fn module() -> naga::Module {
-    let src = tabor::gpu::shader_source();
-    naga::front::wgsl::parse_str(&src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&src)))
+    parse(&tabor::gpu::shader_source())
+}
+
+/// The size naga lays out for the WGSL struct `name` of `m`.
+fn wgsl_size(m: &naga::Module, name: &str) -> usize {
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(m.to_ctx()).unwrap();
+    let (h, _) = m
+        .types
+        .iter()
+        .find(|(_, t)| t.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no struct {name}"));
+    layouter[h].size as usize
 }
 
 #[test]
@@ -22,16 +37,7 @@ fn shaders_parse_and_validate() {
 #[test]
 fn rust_structs_match_wgsl_layout() {
     let m = module();
-    let mut layouter = naga::proc::Layouter::default();
-    layouter.update(m.to_ctx()).unwrap();
-    let size_of = |name: &str| {
-        let (h, _) = m
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("no struct {name}"));
-        layouter[h].size as usize
-    };
+    let size_of = |name: &str| wgsl_size(&m, name);
     assert_eq!(size_of("Branch"), std::mem::size_of::<Branch>());
     assert_eq!(size_of("Lambda"), std::mem::size_of::<GpuLambda>());
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
@@ -62,9 +68,7 @@ fn rust_structs_match_wgsl_layout() {
 /// structs match the Rust ones.
 #[test]
 fn f64_module_validates_and_matches_rust_layout() {
-    let src = include_str!("../shaders/polish64.wgsl");
-    let m =
-        naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)));
+    let m = parse(include_str!("../shaders/polish64.wgsl"));
     Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
         .validate(&m)
         .unwrap_or_else(|e| panic!("{e:?}"));
@@ -74,16 +78,7 @@ fn f64_module_validates_and_matches_rust_layout() {
             .validate(&m)
             .is_err()
     );
-    let mut layouter = naga::proc::Layouter::default();
-    layouter.update(m.to_ctx()).unwrap();
-    let size_of = |name: &str| {
-        let (h, _) = m
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap_or_else(|| panic!("no struct {name}"));
-        layouter[h].size as usize
-    };
+    let size_of = |name: &str| wgsl_size(&m, name);
     assert_eq!(size_of("Lambda64"), std::mem::size_of::<Lambda64>());
     assert_eq!(size_of("Point64"), std::mem::size_of::<Point64>());
     assert_eq!(size_of("Out64"), std::mem::size_of::<Out64>());

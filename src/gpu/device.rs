@@ -109,6 +109,8 @@ pub struct Gpu {
     queue: wgpu::Queue,
     layout: wgpu::BindGroupLayout,
     module: wgpu::ShaderModule,
+    /// The f64 refinement's module, built on first use.
+    polish_module: std::sync::OnceLock<wgpu::ShaderModule>,
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: Mutex<HashMap<Variant, wgpu::ComputePipeline>>,
     params: wgpu::Buffer,
@@ -215,6 +217,7 @@ impl Gpu {
             queue,
             layout,
             module,
+            polish_module: std::sync::OnceLock::new(),
             pipeline_layout: pl,
             pipelines: Mutex::new(HashMap::new()),
             params,
@@ -236,30 +239,25 @@ impl Gpu {
         if let Some(p) = cache.get(&v) {
             return Ok(p.clone());
         }
-        let constants = [
+        let mut constants = vec![
             ("CONTROL", v.control as f64),
             ("ROWS_ARE_GAPS", v.rows_are_gaps as u32 as f64),
-            ("NAIVE", v.naive as u32 as f64),
         ];
-        // The f64 refinement is its own module: the f32 one must build where f64 does not exist.
-        let polish;
+        // The f64 refinement is its own module (the f32 one must build where f64 does not
+        // exist), with no NAIVE constant.
         let module = if v.entry == "polish" {
-            polish = self
-                .device
-                .create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("polish64"),
-                    source: wgpu::ShaderSource::Wgsl(
-                        include_str!("../../shaders/polish64.wgsl").into(),
-                    ),
-                });
-            &polish
+            self.polish_module.get_or_init(|| {
+                self.device
+                    .create_shader_module(wgpu::ShaderModuleDescriptor {
+                        label: Some("polish64"),
+                        source: wgpu::ShaderSource::Wgsl(
+                            include_str!("../../shaders/polish64.wgsl").into(),
+                        ),
+                    })
+            })
         } else {
+            constants.push(("NAIVE", v.naive as u32 as f64));
             &self.module
-        };
-        let constants: &[(&str, f64)] = if v.entry == "polish" {
-            &constants[..2]
-        } else {
-            &constants
         };
         let p = self
             .device
@@ -269,7 +267,7 @@ impl Gpu {
                 module,
                 entry_point: Some(v.entry),
                 compilation_options: wgpu::PipelineCompilationOptions {
-                    constants,
+                    constants: &constants,
                     ..Default::default()
                 },
                 cache: None,

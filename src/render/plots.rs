@@ -318,6 +318,9 @@ where
     let overlaps = |b: (i32, i32, i32, i32), o: &(i32, i32, i32, i32)| {
         b.0 < o.2 && o.0 < b.2 && b.1 < o.3 && o.1 < b.3
     };
+    let inside = |b: &(i32, i32, i32, i32)| {
+        b.0 >= plot.0.start && b.2 <= plot.0.end && b.1 >= plot.1.start && b.3 <= plot.1.end
+    };
     for r in results {
         let (x, y) = (err(r), r.points_per_second);
         let label = if r.failures > 0 {
@@ -335,9 +338,6 @@ where
                 spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
             }
         }
-        let inside = |b: &(i32, i32, i32, i32)| {
-            b.0 >= plot.0.start && b.2 <= plot.0.end && b.1 >= plot.1.start && b.3 <= plot.1.end
-        };
         let spot = spots
             .iter()
             .copied()

@@ -461,9 +461,7 @@ mod convergence_tests {
     #[test]
     fn classic_map_points_need_few_iterations() {
         let n = 300;
-        let axis: Vec<f64> = (0..n)
-            .map(|i| 10f64.powf(-3.0 + 6.0 * i as f64 / (n - 1) as f64))
-            .collect();
+        let axis = crate::map::axis(1e-3, 1e3, n, true);
         let prepared: Vec<GpuLambda> = axis.iter().map(|&l| prepare(l)).collect();
         let (mut total, mut most) = (0u32, 0u32);
         for g in &prepared {
