@@ -81,6 +81,7 @@ fn control_of(p: &PathPoint, drive: Drive) -> f64 {
 }
 
 /// The complete equilibrium path up to load `max_load`: free, non-contact, contact.
+/// `lambda` must be in the solver's domain (see [`cycle`]).
 pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> {
     let end = zero_radius_end(lambda);
     let (_, d0) = non_contact_point(lambda, 0.0);
@@ -96,11 +97,21 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
             c,
         });
     }
-    let ctx = LambdaContext::new(lambda).expect("lambda in range");
+    let Ok(ctx) = LambdaContext::new(lambda) else {
+        return Vec::new();
+    };
     let a_max = ctx.solve_load(max_load).a;
-    for i in 1..=2 * n {
+    // The jumps happen at loads of order one: the branch up to the radius at load 10 gets 2n
+    // points however large `max_load` is, and beyond it n more, spaced geometrically.
+    let a_mid = a_max.min(ctx.solve_load(10.0).a);
+    let mut radii: Vec<f64> = (1..=2 * n)
+        .map(|i| a_mid * (i as f64 / (2 * n) as f64).powf(1.5))
+        .collect();
+    if a_max > a_mid {
+        radii.extend((1..=n).map(|i| a_mid * (a_max / a_mid).powf(i as f64 / n as f64)));
+    }
+    for a in radii {
         // Dense near A = 0, where the contact branch leaves the non-contact one.
-        let a = a_max * (i as f64 / (2 * n) as f64).powf(1.5);
         let mu = x_at_radius(lambda, a).exp();
         let p = curve_point(lambda, mu);
         path.push(PathPoint {
@@ -157,7 +168,31 @@ fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
     }
 }
 
-pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
+/// The cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the solver's
+/// domain.
+pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
+    crate::solver::domain::check_lambda(lambda)?;
+    crate::solver::domain::check_load(max_load)?;
+    if !(max_load > 0.0) {
+        return Err(crate::solver::domain::DomainError {
+            name: "the largest load of the approach",
+            value: max_load,
+            range: "(0, 1e12]",
+            hint: "the approach must end in compression",
+        }
+        .into());
+    }
+    if let Drive::Spring(k) = drive {
+        if !(k > 0.0 && k.is_finite()) {
+            return Err(crate::solver::domain::DomainError {
+                name: "the spring stiffness kbar",
+                value: k,
+                range: "(0, inf)",
+                hint: "give a positive, finite stiffness",
+            }
+            .into());
+        }
+    }
     let path = equilibrium_path(lambda, max_load, 400);
     let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
     let n = path.len();
@@ -247,15 +282,23 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
         }
     }
     // The loop area, integral of P dD along approach then retract (trapezoids).
+    // The stretches followed both ways cancel exactly, but at large loads their terms dwarf the
+    // loop (1e17 against 0.5 at a final load of 1e10): Neumaier's compensated sum keeps it.
     let hysteresis = (!separated).then(|| {
-        let w: f64 = steps
-            .windows(2)
-            .map(|s| {
-                0.5 * (s[0].point.load + s[1].point.load)
-                    * (s[1].point.approach - s[0].point.approach)
-            })
-            .sum();
-        w.max(0.0)
+        let (mut sum, mut comp) = (0.0f64, 0.0f64);
+        for s in steps.windows(2) {
+            let t = 0.5
+                * (s[0].point.load + s[1].point.load)
+                * (s[1].point.approach - s[0].point.approach);
+            let next = sum + t;
+            comp += if sum.abs() >= t.abs() {
+                (sum - next) + t
+            } else {
+                (t - next) + sum
+            };
+            sum = next;
+        }
+        (sum + comp).max(0.0)
     });
     let stable = (0..n)
         .map(|i| {
@@ -266,7 +309,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
             }
         })
         .collect();
-    Cycle {
+    Ok(Cycle {
         lambda,
         drive,
         path,
@@ -274,7 +317,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Cycle {
         steps,
         jumps,
         hysteresis,
-    }
+    })
 }
 
 /// The normalised spring stiffness: k (N/m) times the approach unit over the force unit.
@@ -295,7 +338,7 @@ mod tests {
 
     #[test]
     fn rigid_grips_jkr_jump_out_at_minus_five_sixths() {
-        let c = cycle(1e3, Drive::RigidGrips, 2.0);
+        let c = cycle(1e3, Drive::RigidGrips, 2.0).unwrap();
         let j = retract_jump(&c);
         assert!((j.from.load + 5.0 / 6.0).abs() < 2e-3, "{}", j.from.load);
         assert!(c.hysteresis.unwrap() > 0.1);
@@ -305,26 +348,26 @@ mod tests {
     fn springs_interpolate_between_grips_and_dead_load() {
         let lambda = 2.0;
         let ctx = LambdaContext::new(lambda).unwrap();
-        let stiff = cycle(lambda, Drive::Spring(1e6), 2.0);
+        let stiff = cycle(lambda, Drive::Spring(1e6), 2.0).unwrap();
         assert!(
             (retract_jump(&stiff).from.load - ctx.disp_pulloff.load).abs() < 5e-3,
             "{}",
             retract_jump(&stiff).from.load
         );
-        let soft = cycle(lambda, Drive::Spring(1e-4), 2.0);
+        let soft = cycle(lambda, Drive::Spring(1e-4), 2.0).unwrap();
         assert!(
             (retract_jump(&soft).from.load - ctx.load_pulloff.load).abs() < 5e-3,
             "{}",
             retract_jump(&soft).from.load
         );
-        let dead = cycle(lambda, Drive::DeadLoad, 2.0);
+        let dead = cycle(lambda, Drive::DeadLoad, 2.0).unwrap();
         assert!(retract_jump(&dead).to.is_none() && dead.hysteresis.is_none());
         assert!((retract_jump(&dead).from.load - ctx.load_pulloff.load).abs() < 5e-3);
     }
 
     #[test]
     fn hysteresis_vanishes_as_the_jumps_do() {
-        let e = |l: f64, d: Drive| cycle(l, d, 2.0).hysteresis.unwrap();
+        let e = |l: f64, d: Drive| cycle(l, d, 2.0).unwrap().hysteresis.unwrap();
         let (small, mid, large) = (
             e(0.05, Drive::RigidGrips),
             e(1.0, Drive::RigidGrips),
@@ -333,6 +376,22 @@ mod tests {
         assert!(small < 1e-3 * large && mid < large, "{small} {mid} {large}");
         // A stiffer spring loses less than a softer one.
         assert!(e(1.0, Drive::Spring(100.0)) < e(1.0, Drive::Spring(0.5)));
+    }
+
+    #[test]
+    fn a_large_final_load_keeps_the_loop() {
+        // The loop lives at loads of order one: pushing the approach to 1e10 must not thin it out.
+        let w = |max: f64| cycle(1.0, Drive::RigidGrips, max).unwrap().hysteresis.unwrap();
+        let (w2, w10) = (w(2.0), w(1e10));
+        assert!(w2 > 0.4 && (w10 / w2 - 1.0).abs() < 0.02, "{w2} {w10}");
+        let c = cycle(1.0, Drive::RigidGrips, 1e12).unwrap();
+        let j = c.jumps.iter().find(|j| j.phase == "retract").unwrap();
+        let ctx = LambdaContext::new(1.0).unwrap();
+        assert!((j.from.load - ctx.disp_pulloff.load).abs() < 5e-3, "{}", j.from.load);
+        assert!(cycle(1e-300, Drive::RigidGrips, 2.0).is_err());
+        assert!(cycle(1.0, Drive::RigidGrips, 1e20).is_err());
+        assert!(cycle(1.0, Drive::RigidGrips, -1.0).is_err());
+        assert!(cycle(1.0, Drive::Spring(0.0), 2.0).is_err());
     }
 
     #[test]

@@ -59,6 +59,8 @@ impl Engine {
                 Ok((Engine::Gpu(Box::new(g)), line))
             }
             Backend::Auto => match Gpu::new(adapter) {
+                // An adapter asked for by name that is not there is an error, not a fallback.
+                Err(e @ GpuError::NoMatch { .. }) => Err(e),
                 Ok(g) => {
                     let line = format!(
                         "backend: GPU f32 kernels on {} ({}, {}; chosen by --backend auto)",
@@ -353,10 +355,48 @@ pub struct CheckReport {
     pub near_pulloff: usize,
     pub near_pulloff_max_rel_err_a: f64,
     pub status_mismatches: usize,
+    /// The errors behind the median, kept to at most `MEDIAN_SAMPLE` by thinning when reports of
+    /// many chunks are merged.
+    #[serde(skip)]
+    errs: Vec<f64>,
+}
+
+const MEDIAN_SAMPLE: usize = 1 << 16;
+
+impl CheckReport {
+    /// No point checked yet.
+    pub fn empty(tolerance: f64) -> CheckReport {
+        CheckReport {
+            tolerance,
+            ..Default::default()
+        }
+    }
+
+    /// Adds the report of another chunk of the same run.
+    pub fn merge(&mut self, o: CheckReport) {
+        self.checked += o.checked;
+        self.max_rel_err_a = self.max_rel_err_a.max(o.max_rel_err_a);
+        self.over_tolerance += o.over_tolerance;
+        self.near_pulloff += o.near_pulloff;
+        self.near_pulloff_max_rel_err_a = self
+            .near_pulloff_max_rel_err_a
+            .max(o.near_pulloff_max_rel_err_a);
+        self.status_mismatches += o.status_mismatches;
+        self.errs.extend(o.errs);
+        self.errs.sort_by(|a, b| a.total_cmp(b));
+        while self.errs.len() > MEDIAN_SAMPLE {
+            // Every other one of the sorted errors: the median stays where it was.
+            self.errs = self.errs.iter().step_by(2).copied().collect();
+        }
+        self.median_rel_err_a = self.errs.get(self.errs.len() / 2).copied().unwrap_or(0.0);
+    }
 }
 
 impl std::fmt::Display for CheckReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.checked == 0 {
+            return write!(f, "cross-check against CPU f64: none made (--check 0)");
+        }
         write!(
             f,
             "cross-check against CPU f64 on {} points: max rel. error of A {:.2e}, median {:.2e}, {} over {:.0e}, {} status mismatches",
@@ -384,10 +424,7 @@ pub fn cross_check(
     let len = points.len();
     let n = n.min(len);
     if n == 0 {
-        return CheckReport {
-            tolerance,
-            ..Default::default()
-        };
+        return CheckReport::empty(tolerance);
     }
     let idx: Vec<usize> = (0..n).map(|k| k * len / n).collect();
     let sample: Vec<(f64, f64)> = idx.iter().map(|&i| points[i]).collect();
@@ -424,5 +461,6 @@ pub fn cross_check(
         near_pulloff: near,
         near_pulloff_max_rel_err_a: near_max,
         status_mismatches: mism,
+        errs,
     }
 }

@@ -1,21 +1,27 @@
 //! Input tables and output files: CSV points in, atomic writes out, `-` for stdin/stdout.
 
-use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+pub mod output;
+
+pub use output::{write_output, Output};
+
+use std::io::Read;
+use std::path::Path;
 
 #[derive(Debug, thiserror::Error)]
 pub enum InputError {
-    #[error("{source_name}: cannot read: {err}")]
+    #[error("{source_name}: cannot read")]
     Read {
         source_name: String,
+        #[source]
         err: std::io::Error,
     },
-    #[error("{0}: the file is empty; give a header row with the columns `lambda` and `{1}`, then one row per point")]
+    #[error("{0}: the file is empty; give a header row naming the columns (`lambda` and `{1}`), then one row per point")]
     Empty(String, &'static str),
-    #[error("{source_name}: no column `{column}` in the header (found: {found}); name the columns `lambda` and `{column}`")]
+    #[error("{source_name}: no column `{column}` in the header (the first line is: {found}); the first line must name the columns, e.g. `{expected}`")]
     MissingColumn {
         source_name: String,
         column: &'static str,
+        expected: String,
         found: String,
     },
     #[error("{source_name}, line {line}: column `{column}`: cannot read {value:?} as a number")]
@@ -48,25 +54,188 @@ pub enum InputError {
     NoRows { source_name: String },
 }
 
-/// Reads `(lambda, value)` pairs from CSV with a header row; `value_column` is `load` or
-/// `approach`. Other columns are ignored. `-` reads stdin.
+/// Longest line accepted in an input table: a longer one is not a CSV table (`/dev/zero`, a
+/// binary file) and would otherwise be buffered without bound.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// A reader that fails on a line longer than [`MAX_LINE_BYTES`].
+struct LineLimit<R> {
+    inner: R,
+    since_newline: usize,
+}
+
+impl<R: Read> Read for LineLimit<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        for &b in &buf[..n] {
+            if b == b'\n' {
+                self.since_newline = 0;
+            } else {
+                self.since_newline += 1;
+                if self.since_newline > MAX_LINE_BYTES {
+                    return Err(std::io::Error::new(
+                        std::io::ErrorKind::InvalidData,
+                        format!("a line longer than {} MiB: this is not a CSV table", MAX_LINE_BYTES >> 20),
+                    ));
+                }
+            }
+        }
+        Ok(n)
+    }
+}
+
+/// `(lambda, value)` rows of a CSV table with a header row, read in chunks so that memory stays
+/// bounded whatever the size of the input; `value_column` is `load` or `approach`. Other columns
+/// are ignored.
+pub struct PointReader {
+    rdr: csv::Reader<LineLimit<Box<dyn Read>>>,
+    source_name: String,
+    names: (&'static str, &'static str),
+    columns: (usize, usize),
+    rows: u64,
+}
+
+impl PointReader {
+    /// Opens `path` (`-` is stdin) and reads its header.
+    pub fn open(path: &str, value_column: &'static str) -> Result<PointReader, InputError> {
+        PointReader::open_columns(path, ("lambda", value_column))
+    }
+
+    /// Any two numeric columns (the first must be > 0 if it is `lambda`).
+    pub fn open_columns(
+        path: &str,
+        names: (&'static str, &'static str),
+    ) -> Result<PointReader, InputError> {
+        let (source_name, r): (String, Box<dyn Read>) = if path == "-" {
+            ("stdin".into(), Box::new(std::io::stdin()))
+        } else {
+            let f = std::fs::File::open(path).map_err(|err| InputError::Read {
+                source_name: path.into(),
+                err,
+            })?;
+            (path.into(), Box::new(f))
+        };
+        PointReader::new(r, &source_name, names)
+    }
+
+    pub fn new(
+        r: Box<dyn Read>,
+        source_name: &str,
+        names: (&'static str, &'static str),
+    ) -> Result<PointReader, InputError> {
+        let value_column = names.1;
+        let mut rdr = csv::ReaderBuilder::new()
+            .trim(csv::Trim::All)
+            .from_reader(LineLimit {
+                inner: r,
+                since_newline: 0,
+            });
+        let csv_err = |e: csv::Error| csv_error(source_name, e);
+        let headers = rdr.headers().map_err(csv_err)?.clone();
+        if headers.iter().all(|h| h.is_empty()) {
+            return Err(InputError::Empty(source_name.into(), value_column));
+        }
+        let col = |name: &'static str| {
+            headers
+                .iter()
+                .position(|h| h == name)
+                .ok_or_else(|| InputError::MissingColumn {
+                    source_name: source_name.into(),
+                    column: name,
+                    expected: format!("{},{}", names.0, names.1),
+                    found: headers.iter().collect::<Vec<_>>().join(", "),
+                })
+        };
+        let columns = (col(names.0)?, col(names.1)?);
+        Ok(PointReader {
+            rdr,
+            source_name: source_name.into(),
+            names,
+            columns,
+            rows: 0,
+        })
+    }
+
+    /// Bytes of the input read so far (for progress).
+    pub fn bytes_read(&self) -> u64 {
+        self.rdr.position().byte()
+    }
+
+    /// The next at most `max` rows; empty at the end of the input. An input without any data
+    /// row is an error.
+    pub fn next_chunk(&mut self, max: usize) -> Result<Vec<(f64, f64)>, InputError> {
+        let mut out = Vec::with_capacity(max.min(1 << 16));
+        let mut rec = csv::StringRecord::new();
+        let (il, iv) = self.columns;
+        let source_name = self.source_name.as_str();
+        while out.len() < max {
+            if !self
+                .rdr
+                .read_record(&mut rec)
+                .map_err(|e| csv_error(source_name, e))?
+            {
+                break;
+            }
+            let line = rec.position().map_or(0, |p| p.line());
+            let get = |i: usize, column: &'static str| -> Result<f64, InputError> {
+                let s = rec.get(i).unwrap_or("");
+                let v: f64 = s.parse().map_err(|_| InputError::Parse {
+                    source_name: source_name.into(),
+                    line,
+                    column,
+                    value: s.into(),
+                })?;
+                if !v.is_finite() {
+                    return Err(InputError::NotFinite {
+                        source_name: source_name.into(),
+                        line,
+                        column,
+                        value: v,
+                    });
+                }
+                Ok(v)
+            };
+            let first = get(il, self.names.0)?;
+            if self.names.0 == "lambda" && first <= 0.0 {
+                return Err(InputError::Lambda {
+                    source_name: source_name.into(),
+                    line,
+                    value: first,
+                });
+            }
+            out.push((first, get(iv, self.names.1)?));
+        }
+        self.rows += out.len() as u64;
+        if out.is_empty() && self.rows == 0 {
+            return Err(InputError::NoRows {
+                source_name: source_name.into(),
+            });
+        }
+        Ok(out)
+    }
+}
+
+fn csv_error(source_name: &str, e: csv::Error) -> InputError {
+    let line = e.position().map_or(0, |p| p.line());
+    if e.is_io_error() {
+        if let csv::ErrorKind::Io(err) = e.into_kind() {
+            return InputError::Read {
+                source_name: source_name.into(),
+                err,
+            };
+        }
+        unreachable!("is_io_error");
+    }
+    InputError::Csv {
+        source_name: source_name.into(),
+        line,
+        err: e.to_string(),
+    }
+}
+
+/// Reads a whole table (for small inputs; see [`PointReader`] for large ones).
 pub fn read_points(path: &str, value_column: &'static str) -> Result<Vec<(f64, f64)>, InputError> {
-    let source_name = if path == "-" {
-        "stdin".to_string()
-    } else {
-        path.to_string()
-    };
-    let mut text = String::new();
-    let res = if path == "-" {
-        std::io::stdin().read_to_string(&mut text)
-    } else {
-        std::fs::File::open(path).and_then(|mut f| f.read_to_string(&mut text))
-    };
-    res.map_err(|err| InputError::Read {
-        source_name: source_name.clone(),
-        err,
-    })?;
-    parse_points(&text, &source_name, value_column)
+    PointReader::open(path, value_column)?.next_chunk(usize::MAX)
 }
 
 pub fn parse_points(
@@ -77,70 +246,8 @@ pub fn parse_points(
     if text.trim().is_empty() {
         return Err(InputError::Empty(source_name.to_string(), value_column));
     }
-    let mut rdr = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let headers = rdr
-        .headers()
-        .map_err(|e| InputError::Csv {
-            source_name: source_name.into(),
-            line: 1,
-            err: e.to_string(),
-        })?
-        .clone();
-    let col = |name: &'static str| {
-        headers
-            .iter()
-            .position(|h| h == name)
-            .ok_or_else(|| InputError::MissingColumn {
-                source_name: source_name.into(),
-                column: name,
-                found: headers.iter().collect::<Vec<_>>().join(", "),
-            })
-    };
-    let (il, iv) = (col("lambda")?, col(value_column)?);
-    let mut out = Vec::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(|e| InputError::Csv {
-            source_name: source_name.into(),
-            line: e.position().map_or(0, |p| p.line()),
-            err: e.to_string(),
-        })?;
-        let line = rec.position().map_or(0, |p| p.line());
-        let get = |i: usize, column: &'static str| -> Result<f64, InputError> {
-            let s = rec.get(i).unwrap_or("");
-            let v: f64 = s.parse().map_err(|_| InputError::Parse {
-                source_name: source_name.into(),
-                line,
-                column,
-                value: s.into(),
-            })?;
-            if !v.is_finite() {
-                return Err(InputError::NotFinite {
-                    source_name: source_name.into(),
-                    line,
-                    column,
-                    value: v,
-                });
-            }
-            Ok(v)
-        };
-        let lambda = get(il, "lambda")?;
-        if lambda <= 0.0 {
-            return Err(InputError::Lambda {
-                source_name: source_name.into(),
-                line,
-                value: lambda,
-            });
-        }
-        out.push((lambda, get(iv, value_column)?));
-    }
-    if out.is_empty() {
-        return Err(InputError::NoRows {
-            source_name: source_name.into(),
-        });
-    }
-    Ok(out)
+    let bytes: Box<dyn Read> = Box::new(std::io::Cursor::new(text.as_bytes().to_vec()));
+    PointReader::new(bytes, source_name, ("lambda", value_column))?.next_chunk(usize::MAX)
 }
 
 /// A number with 17 significant digits; empty where it could not be computed.
@@ -167,35 +274,9 @@ pub fn json_num(x: f64) -> serde_json::Value {
     }
 }
 
-/// Writes the whole output at once: to stdout for `-`, else to a temporary file beside the target
-/// that is renamed into place, so a failure never leaves a half-written file.
-pub fn write_output(path: &str, bytes: &[u8]) -> anyhow::Result<()> {
-    if path == "-" {
-        let mut out = std::io::stdout().lock();
-        out.write_all(bytes)?;
-        out.flush()?;
-        return Ok(());
-    }
-    write_atomic(Path::new(path), bytes)
-}
-
+/// Writes the whole output at once (see [`output::Output`]).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
-    use anyhow::Context;
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path.file_name().context("output path has no file name")?;
-    let mut tmp = PathBuf::from(dir);
-    tmp.push(format!(
-        ".{}.tmp{}",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
-    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("cannot move output into place at {}", path.display()))?;
-    Ok(())
+    write_output(path, bytes)
 }
 
 #[cfg(test)]

@@ -178,6 +178,9 @@ fn why(region: Region, c: &crate::map::Criteria, tol: f64) -> String {
     }
 }
 
+/// Most loads one scene solves (its report is kept in memory).
+pub const MAX_SCENE_LOADS: usize = 100_000;
+
 pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let c = contact_of(s)?;
     let tol = s.tolerance.unwrap_or(0.05);
@@ -191,11 +194,28 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let spacing = s.atomic_spacing_m.unwrap_or(0.25e-9);
     let lambda = c.lambda();
     let ctx = LambdaContext::new(lambda).map_err(|_| ParamError::OutOfRange {
-        field: "lambda (from the inputs)",
+        field: "the Maugis parameter lambda of these inputs",
         value: lambda,
-        allowed: "in 1e-8..1e8",
+        allowed: "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
     })?;
     let (fs, rs, ds) = (c.force_scale(), c.radius_scale(), c.approach_scale());
+    if let Some(t) = s.shear_strength_pa {
+        if !(t.is_finite() && t >= 0.0) {
+            return Err(ParamError::OutOfRange {
+                field: "shear_strength_pa",
+                value: t,
+                allowed: ">= 0 (Pa)",
+            });
+        }
+    }
+    let count = s.loads_n.as_ref().map_or(0, Vec::len) + s.load_range_n.map_or(0, |r| r.2);
+    if count > MAX_SCENE_LOADS {
+        return Err(ParamError::OutOfRange {
+            field: "the number of loads (loads_n or load_range_n)",
+            value: count as f64,
+            allowed: "at most 100000; for more use `tabor solve` on a file",
+        });
+    }
     let loads: Vec<f64> = match (&s.loads_n, s.load_range_n) {
         (Some(l), None) => l.clone(),
         (None, Some((a, b, n))) if n >= 2 => (0..n)
@@ -218,6 +238,11 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
                 allowed: "finite (N)",
             });
         }
+        crate::solver::domain::check_load(p / fs).map_err(|_| ParamError::OutOfRange {
+            field: "loads_n",
+            value: p,
+            allowed: "a load whose normalised value P / (pi w R) is within -1e12..1e12",
+        })?;
         let st = ctx.solve_load(p / fs);
         let region = classify(&st, tol);
         *counts.entry(region as u8).or_insert(0usize) += 1;
@@ -311,7 +336,13 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
                 });
             }
             let kbar = crate::cycle::normalised_stiffness(*k, &c);
-            let cyc = crate::cycle::cycle(lambda, crate::cycle::Drive::Spring(kbar), 1.0);
+            let cyc = crate::cycle::cycle(lambda, crate::cycle::Drive::Spring(kbar), 1.0).map_err(
+                |_| ParamError::OutOfRange {
+                    field: "control.cantilever_n_m",
+                    value: *k,
+                    allowed: "a stiffness whose normalised value is positive and finite",
+                },
+            )?;
             let out = cyc
                 .jumps
                 .iter()
@@ -438,6 +469,17 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
     let w_jkr = f / (1.5 * pi * radius);
     let w_dmt = f / (2.0 * pi * radius);
     let (mt_j, mt_d) = (tabor(w_jkr)?, tabor(w_dmt)?);
+    // Every w between the DMT and JKR values must give a lambda the solver can certify.
+    for w in [w_dmt, w_jkr] {
+        let l = Contact::new(radius, e_star, w, ForceRange::LennardJones(z0))?.lambda();
+        if crate::solver::domain::check_lambda(l).is_err() {
+            return Err(ParamError::OutOfRange {
+                field: "pulloff_force_n",
+                value: pulloff_n,
+                allowed: "a force whose work of adhesion gives a Maugis parameter in 1e-8..1e8 with this R, E* and z0 (check the units)",
+            });
+        }
+    }
     // MD: find w with -Pbar_c(lambda(w)) pi w R = f; the left side grows with w.
     let g = |w: f64| -> f64 {
         let c = Contact::new(radius, e_star, w, ForceRange::LennardJones(z0)).expect("validated");
@@ -586,6 +628,22 @@ pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit,
             });
         }
     }
+    // Two parameters need two distinct loads, and an elastic contact grows with the load.
+    let mut sorted = pairs.to_vec();
+    sorted.sort_by(|x, y| x.0.total_cmp(&y.0));
+    sorted.dedup_by(|x, y| x.0 == y.0 && x.1 == y.1);
+    if sorted.windows(2).filter(|w| w[1].0 > w[0].0).count() < 1 {
+        return Err(ParamError::Missing(
+            "the pairs need at least two different loads to determine both w and E*",
+        ));
+    }
+    if let Some(w) = sorted.windows(2).find(|w| w[1].0 > w[0].0 && !(w[1].1 > w[0].1)) {
+        return Err(ParamError::OutOfRange {
+            field: "contact_radius_m",
+            value: w[1].1,
+            allowed: "larger at a larger load (the contact radius of an elastic sphere grows with the load); check the columns",
+        });
+    }
     let residuals = |lw: f64, le: f64| -> Option<Vec<f64>> {
         let c = Contact::new(radius, le.exp(), lw.exp(), ForceRange::LennardJones(z0)).ok()?;
         let ctx = LambdaContext::new(c.lambda()).ok()?;
@@ -645,6 +703,20 @@ pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit,
         }
     }
     let r = residuals(lw, le).ok_or(ParamError::Missing("the fit left the valid range"))?;
+    // A minimum on the edge of the searched box, or pairs the model leaves out of contact, mean
+    // the data do not determine the parameters: no number is better than a wrong one.
+    let (lw_lo, lw_hi) = ((1e-4f64).ln(), (1e1f64).ln());
+    let (le_lo, le_hi) = ((1e3f64).ln(), (1e12f64).ln());
+    if !(lw > lw_lo + 0.5 && lw < lw_hi - 0.5 && le > le_lo + 0.5 && le < le_hi - 0.5) {
+        return Err(ParamError::Missing(
+            "the pairs do not determine w and E*: the best fit runs to the edge of w in 1e-4..10 J/m^2 and E* in 1e3..1e12 Pa (check the units and that the radii grow with the load)",
+        ));
+    }
+    if r.iter().any(|&x| x == 1.0) {
+        return Err(ParamError::Missing(
+            "some loads lie below the fitted model's pull-off: the pairs are not consistent with one Maugis-Dugdale contact",
+        ));
+    }
     let c = Contact::new(radius, le.exp(), lw.exp(), ForceRange::LennardJones(z0))?;
     let rms = (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt();
     Ok(PairsFit {

@@ -2,13 +2,14 @@
 
 use super::Format;
 use crate::engine::{cross_check, Backend, Engine, Precision};
-use crate::io::{fmt17, json_num, read_points, write_output};
+use crate::io::{fmt17, json_num, write_output, Output};
 use crate::physics::md::{curve_point, LAMBDA_D};
 use crate::solver::{Control, LambdaContext, State, Status};
 use anyhow::{bail, Context};
 use clap::Args;
 use serde_json::json;
 use std::fmt::Write as _;
+use std::io::Write as _;
 
 #[derive(Args, Debug)]
 pub struct SolveArgs {
@@ -27,9 +28,10 @@ pub struct SolveArgs {
     /// Normalised approach Dbar of a single state (displacement control).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["input", "load"])]
     pub approach: Option<f64>,
-    /// What is given: the load (dead load) or the approach (rigid grips).
-    #[arg(long, value_enum, default_value_t = Control::Load)]
-    pub control: Control,
+    /// What is given: the load (dead load, column `load`) or the approach (rigid grips, column
+    /// `approach`). Default: load.
+    #[arg(long, value_enum)]
+    pub control: Option<Control>,
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
@@ -38,6 +40,10 @@ pub struct SolveArgs {
     pub backend: Backend,
     #[command(flatten)]
     pub gpu: GpuArgs,
+    /// Put the solve time into the output (JSON metadata) or on stderr; off by default so that
+    /// the same command gives the same bytes.
+    #[arg(long)]
+    pub timings: bool,
 }
 
 #[derive(Args, Debug, Clone)]
@@ -73,35 +79,34 @@ impl std::str::FromStr for CheckCount {
 /// The relative error of A the f32 kernels are held to away from pull-off.
 pub const GPU_TOLERANCE: f64 = 1e-5;
 
-/// Solves points on the chosen engine; for GPU results also cross-checks them. Prints the
-/// backend line and the check to stderr.
-pub fn solve_on(
-    backend: Backend,
-    gpu: &GpuArgs,
-    points: &[(f64, f64)],
-    control: Control,
-) -> anyhow::Result<(Vec<State>, serde_json::Value)> {
+/// Rows of an input table solved at a time: memory stays bounded (about 50 MB) whatever the
+/// size of the input.
+pub const CHUNK_ROWS: usize = 1 << 18;
+
+/// Chooses the engine for `--backend` and `--precision`, and says which in one line on stderr.
+pub fn engine_for(backend: Backend, gpu: &GpuArgs) -> anyhow::Result<Engine> {
     let (mut engine, line) = Engine::select(backend, gpu.adapter.as_deref())?;
     engine.set_precision(gpu.precision)?;
     eprintln!("{line}");
-    let t = std::time::Instant::now();
-    let states = engine.solve_points(points, control)?;
-    let secs = t.elapsed().as_secs_f64();
-    let mut meta = json!({
-        "tabor_version": env!("CARGO_PKG_VERSION"),
-        "backend": engine.name(),
-        "adapter": engine.adapter(),
-        "precision": engine.precision(),
-        "control": control,
-        "points": points.len(),
-        "solve_seconds": secs,
-    });
-    if let Engine::Gpu(_) = engine {
-        let report = cross_check(points, &states, control, gpu.check.0, GPU_TOLERANCE);
-        eprintln!("{report}");
-        meta["cross_check"] = serde_json::to_value(&report)?;
+    Ok(engine)
+}
+
+/// f32 results carry 9 significant digits (what the arithmetic supports); f64 ones 17.
+fn digits_of(engine: &Engine) -> usize {
+    if engine.precision() == "f32" {
+        9
+    } else {
+        17
     }
-    Ok((states, meta))
+}
+
+/// A computed number with `digits` significant digits; empty where it could not be computed.
+fn fmt_digits(x: f64, digits: usize) -> String {
+    if digits >= 17 || !x.is_finite() {
+        fmt17(x)
+    } else {
+        format!("{x:.prec$e}", prec = digits - 1)
+    }
 }
 
 fn value_column(control: Control) -> &'static str {
@@ -113,13 +118,7 @@ fn value_column(control: Control) -> &'static str {
 
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     if let Some(input) = &a.input {
-        let points = read_points(input, value_column(a.control))?;
-        let (states, meta) = solve_on(a.backend, &a.gpu, &points, a.control)?;
-        let text = match a.format.unwrap_or(Format::Csv) {
-            Format::Json => states_json(&states, meta),
-            _ => states_csv(&states),
-        };
-        return write_output(&a.output, text.as_bytes());
+        return solve_file(&a, input);
     }
     let lambda = a
         .lambda
@@ -129,42 +128,160 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         (None, Some(d)) => (Control::Displacement, d),
         _ => bail!("give one of --load or --approach with --lambda"),
     };
-    if !value.is_finite() {
+    if let Some(c) = a.control.filter(|&c| c != control) {
         bail!(
-            "the {} must be a finite number, got {value}",
-            value_column(control)
+            "--control {} does not match the value given ({}); give {} for {} control",
+            c.name(),
+            match control {
+                Control::Load => "--load",
+                Control::Displacement => "--approach",
+            },
+            match c {
+                Control::Load => "--load",
+                Control::Displacement => "--approach",
+            },
+            c.name()
         );
     }
-    let ctx = LambdaContext::new(lambda)
-        .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
+    if a.backend != Backend::Cpu {
+        bail!("--backend {:?} is for --input files; a single state is solved by the f64 CPU solver", a.backend);
+    }
+    let ctx = LambdaContext::new(lambda).context("--lambda")?;
+    match control {
+        Control::Load => crate::solver::domain::check_load(value).context("--load")?,
+        Control::Displacement => {
+            crate::solver::domain::check_approach(value).context("--approach")?
+        }
+    };
     let s = crate::solver::solve_with(&ctx, value, control);
+    let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control});
     let text = match a.format.unwrap_or(Format::Text) {
-        Format::Json => states_json(
-            &[s],
-            json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control}),
-        ),
-        Format::Csv => states_csv(&[s]),
+        Format::Json => {
+            let mut t = String::from("{\n  \"results\": [\n");
+            t += &indent(&serde_json::to_string_pretty(&state_json(&s))?, 4);
+            t += "\n  ],\n  \"metadata\": ";
+            t += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
+            t + "\n}\n"
+        }
+        Format::Csv => {
+            let mut t = String::from(CSV_HEADER);
+            push_csv_row(&mut t, &s, 17);
+            t
+        }
         Format::Text => state_text(&ctx, &s, control),
     };
     write_output(&a.output, text.as_bytes())
 }
 
-pub fn states_csv(states: &[State]) -> String {
-    let mut out = String::with_capacity(states.len() * 110 + 64);
-    out.push_str("lambda,load,A,approach,m_minus_1,status\n");
-    for s in states {
-        let _ = writeln!(
-            out,
-            "{},{},{},{},{},{}",
-            fmt17(s.lambda),
-            fmt17(s.load),
-            fmt17(s.a),
-            fmt17(s.approach),
-            fmt17(s.m_minus_1),
-            s.status.name()
-        );
+/// A CSV or JSON table of points, streamed in chunks of [`CHUNK_ROWS`]: parse, solve, write.
+fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
+    let control = a.control.unwrap_or(Control::Load);
+    let format = match a.format.unwrap_or(Format::Csv) {
+        Format::Text => bail!("--format text is for a single state; use csv or json for --input"),
+        f => f,
+    };
+    let mut reader = crate::io::PointReader::open(input, value_column(control))?;
+    let mut out = Output::create(&a.output)?;
+    let shown = out.name().display().to_string();
+    let engine = engine_for(a.backend, &a.gpu)?;
+    let digits = digits_of(&engine);
+    let is_gpu = matches!(engine, Engine::Gpu(_));
+    let len = std::fs::metadata(input).map_or(0, |m| m.len());
+    let mut progress = crate::progress::Progress::new("solving", len, "bytes");
+    let mut check = crate::engine::CheckReport::empty(GPU_TOLERANCE);
+    let (mut rows, mut solve_s) = (0usize, 0.0);
+    let mut buf = String::new();
+    buf.push_str(match format {
+        Format::Json => "{\n  \"results\": [\n",
+        _ => CSV_HEADER,
+    });
+    loop {
+        let chunk = reader.next_chunk(CHUNK_ROWS)?;
+        if chunk.is_empty() {
+            break;
+        }
+        let t = std::time::Instant::now();
+        let states = engine.solve_points(&chunk, control)?;
+        solve_s += t.elapsed().as_secs_f64();
+        if is_gpu {
+            check.merge(cross_check(&chunk, &states, control, a.gpu.check.0, GPU_TOLERANCE));
+        }
+        for s in &states {
+            match format {
+                Format::Json => {
+                    if rows > 0 {
+                        buf.push_str(",\n");
+                    }
+                    buf += &indent(&serde_json::to_string_pretty(&state_json_digits(s, digits))?, 4);
+                }
+                _ => push_csv_row(&mut buf, s, digits),
+            }
+            rows += 1;
+        }
+        out.write_all(buf.as_bytes())
+            .with_context(|| format!("cannot write {shown}"))?;
+        buf.clear();
+        progress.set(reader.bytes_read());
     }
-    out
+    progress.finish();
+    if is_gpu {
+        eprintln!("{check}");
+    }
+    if format == Format::Json {
+        let mut meta = json!({
+            "tabor_version": env!("CARGO_PKG_VERSION"),
+            "backend": engine.name(),
+            "adapter": engine.adapter(),
+            "precision": engine.precision(),
+            "significant_digits": digits,
+            "control": control,
+            "points": rows,
+        });
+        if is_gpu {
+            meta["cross_check"] = serde_json::to_value(&check)?;
+        }
+        if a.timings {
+            meta["solve_seconds"] = json!(solve_s);
+        }
+        buf.push_str("\n  ],\n  \"metadata\": ");
+        buf += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
+        buf.push_str("\n}\n");
+        out.write_all(buf.as_bytes())
+            .with_context(|| format!("cannot write {shown}"))?;
+    } else if a.timings {
+        eprintln!("solved {rows} points in {solve_s:.3} s");
+    }
+    out.commit()
+}
+
+/// Every line of `text` indented by `n` spaces.
+fn indent(text: &str, n: usize) -> String {
+    let pad = " ".repeat(n);
+    text.lines()
+        .map(|l| format!("{pad}{l}"))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+const CSV_HEADER: &str = "lambda,load,A,approach,m_minus_1,status\n";
+
+/// One CSV row: the given numbers with 17 digits, the computed ones with `digits`.
+fn push_csv_row(out: &mut String, s: &State, digits: usize) {
+    let (load, approach) = if s.load.is_nan() || s.approach.is_nan() {
+        (fmt17(s.load), fmt17(s.approach))
+    } else {
+        (fmt17(s.load), fmt_digits(s.approach, digits))
+    };
+    let _ = writeln!(
+        out,
+        "{},{},{},{},{},{}",
+        fmt17(s.lambda),
+        load,
+        fmt_digits(s.a, digits),
+        approach,
+        fmt_digits(s.m_minus_1, digits),
+        s.status.name()
+    );
 }
 
 pub fn state_json(s: &State) -> serde_json::Value {
@@ -175,10 +292,17 @@ pub fn state_json(s: &State) -> serde_json::Value {
     })
 }
 
-fn states_json(states: &[State], metadata: serde_json::Value) -> String {
-    let results: Vec<_> = states.iter().map(state_json).collect();
-    let doc = json!({"metadata": metadata, "results": results});
-    serde_json::to_string_pretty(&doc).expect("json") + "\n"
+/// As [`state_json`], computed numbers rounded to `digits` significant digits.
+fn state_json_digits(s: &State, digits: usize) -> serde_json::Value {
+    if digits >= 17 {
+        return state_json(s);
+    }
+    let r = |x: f64| fmt_digits(x, digits).parse::<f64>().unwrap_or(f64::NAN);
+    let mut v = state_json(s);
+    v["A"] = json_num(r(s.a));
+    v["m_minus_1"] = json_num(r(s.m_minus_1));
+    v["approach"] = json_num(if s.approach.is_nan() { s.approach } else { r(s.approach) });
+    v
 }
 
 fn shown(x: f64) -> String {
@@ -239,8 +363,7 @@ pub struct PulloffArgs {
 pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
     let mut rows = Vec::new();
     for &l in &a.lambda {
-        let ctx = LambdaContext::new(l)
-            .map_err(|e| anyhow::anyhow!("{e}; every --lambda must be a positive number"))?;
+        let ctx = LambdaContext::new(l).context("--lambda")?;
         rows.push(ctx);
     }
     let cols = [
@@ -341,11 +464,20 @@ pub struct CurveArgs {
     pub format: Format,
 }
 
+/// Most points of `tabor curve` (its rows are kept in memory).
+const MAX_CURVE_POINTS: usize = 1_000_000;
+
 pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
-    let ctx = LambdaContext::new(a.lambda)
-        .map_err(|e| anyhow::anyhow!("{e}; pass --lambda with a positive number"))?;
-    if !(a.a_max.is_finite() && a.a_max > 0.0) || a.points < 2 {
-        bail!("--a-max must be > 0 and --points at least 2");
+    let ctx = LambdaContext::new(a.lambda).context("--lambda")?;
+    crate::solver::domain::check_radius(a.a_max).context("--a-max")?;
+    if !(2..=MAX_CURVE_POINTS).contains(&a.points) {
+        bail!(
+            "--points {} is out of range: give 2..={MAX_CURVE_POINTS}",
+            a.points
+        );
+    }
+    if a.format == Format::Text {
+        bail!("--format text is not available for a curve: use csv or json");
     }
     let mut rows = Vec::new();
     for i in 0..a.points - 1 {
@@ -409,22 +541,23 @@ pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
 }
 
 pub fn info() -> anyhow::Result<()> {
+    let mut t = String::new();
     let adapters = crate::gpu::list_adapters();
-    println!("tabor {}", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(t, "tabor {}", env!("CARGO_PKG_VERSION"));
     if adapters.is_empty() {
-        println!("no GPU adapters: the CPU f64 solver is used (install a Vulkan driver, e.g. `apt-get install mesa-vulkan-drivers`, for the GPU kernels)");
+        let _ = writeln!(t, "no GPU adapters: the CPU f64 solver is used (install a Vulkan driver, e.g. `apt-get install mesa-vulkan-drivers`, for the GPU kernels)");
     }
     for (i, (a, features, limits)) in adapters.iter().enumerate() {
-        println!("adapter {i}: {}", a.name);
-        println!(
+        let _ = writeln!(t, "adapter {i}: {}", a.name);
+        let _ = writeln!(t, 
             "  backend {}, type {}, driver {} {}",
             a.backend, a.device_type, a.driver, a.driver_info
         );
-        println!(
+        let _ = writeln!(t, 
             "  shader f64: {}",
             features.contains(wgpu::Features::SHADER_F64)
         );
-        println!(
+        let _ = writeln!(t, 
             "  max storage buffer binding {} MiB, max buffer {} MiB, workgroups per dimension {}",
             limits.max_storage_buffer_binding_size >> 20,
             limits.max_buffer_size >> 20,
@@ -435,11 +568,11 @@ pub fn info() -> anyhow::Result<()> {
         Backend::Auto,
         std::env::var("TABOR_ADAPTER").ok().as_deref(),
     ) {
-        Ok((_, line)) => println!("{line}"),
-        Err(e) => println!("--backend auto: {e}"),
+        Ok((_, line)) => writeln!(t, "{line}")?,
+        Err(e) => writeln!(t, "--backend auto: {e}")?,
     }
-    println!("CPU threads: {}", rayon::current_num_threads());
-    Ok(())
+    let _ = writeln!(t, "CPU threads: {}", rayon::current_num_threads());
+    write_output("-", t.as_bytes())
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -465,8 +598,12 @@ pub struct PlotArgs {
 
 pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     use crate::render::plots;
-    if a.lambda.iter().any(|l| !(*l > 0.0 && l.is_finite())) {
-        bail!("every --lambda must be a positive number");
+    for &l in &a.lambda {
+        crate::solver::domain::check_lambda(l).context("--lambda")?;
+    }
+    super::map::check_extension(&a.out, "png", "--out")?;
+    if let Some(p) = &a.svg {
+        super::map::check_extension(p, "svg", "--svg")?;
     }
     let r = match a.kind {
         PlotKind::Pulloff => plots::save(
@@ -533,8 +670,9 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     });
     let front = bench::pareto(&results);
     let text = bench::table(&results);
-    print!("{text}");
-    std::fs::create_dir_all(&a.out_dir)?;
+    write_output("-", text.as_bytes())?;
+    std::fs::create_dir_all(&a.out_dir)
+        .with_context(|| format!("--out-dir {}: cannot create the folder", a.out_dir.display()))?;
     let machine = format!(
         "{} CPU threads{}",
         rayon::current_num_threads(),
@@ -593,8 +731,9 @@ pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
             .map_err(|e| eprintln!("GPU skipped: {e}"))
             .ok()
     };
+    std::fs::create_dir_all(&a.out_dir)
+        .with_context(|| format!("--out-dir {}: cannot create the folder", a.out_dir.display()))?;
     let (lambdas, gaps, maps) = crate::bench::atlas(a.nx, a.ny, gpu.as_ref())?;
-    std::fs::create_dir_all(&a.out_dir)?;
     for m in &maps {
         let path = a.out_dir.join(format!("{}.png", m.name));
         let em = crate::render::atlas::ErrorMap {

@@ -2,13 +2,14 @@
 
 use super::basic::GpuArgs;
 use crate::engine::{cross_check, Backend, Engine};
-use crate::io::{json_num, write_atomic};
+use crate::io::{json_num, Output};
 use crate::map::{compute, LoadAxis, MapData, MapSpec, Region};
 use crate::render::map::Quantity;
 use crate::solver::{Control, Status};
 use anyhow::Context;
 use clap::Args;
 use serde_json::json;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -54,6 +55,10 @@ pub struct MapArgs {
     /// Add the per-point arrays to the JSON.
     #[arg(long, requires = "json")]
     pub json_full: bool,
+    /// Put the stage timings into the JSON metadata (they differ between runs, so the same
+    /// command no longer gives the same bytes).
+    #[arg(long)]
+    pub timings: bool,
     /// Write PREFIX_lambda.npy, PREFIX_load.npy, PREFIX_region.npy, PREFIX_A.npy, ... .
     #[arg(long)]
     pub npy: Option<String>,
@@ -84,9 +89,59 @@ impl MapArgs {
     }
 }
 
+/// Refuses an output whose name says another format than the one written.
+pub fn check_extension(path: &Path, ext: &str, flag: &str) -> anyhow::Result<()> {
+    let got = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    if got != ext {
+        anyhow::bail!(
+            "{flag} {} writes {}: give a name ending in .{ext}{}",
+            path.display(),
+            ext.to_uppercase(),
+            match ext {
+                "png" => " (an SVG goes to --svg FILE.svg)",
+                "svg" => " (a PNG goes to --out FILE.png)",
+                _ => "",
+            }
+        );
+    }
+    Ok(())
+}
+
+/// The NumPy files of `--npy PREFIX`, in the order they are written.
+const NPY_FILES: [&str; 8] = [
+    "lambda.npy",
+    "load_axis.npy",
+    "load.npy",
+    "A.npy",
+    "approach.npy",
+    "m_minus_1.npy",
+    "region.npy",
+    "region_names.json",
+];
+
 pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
     spec.validate()?;
+    check_extension(&a.out, "png", "--out")?;
+    if let Some(p) = &a.svg {
+        check_extension(p, "svg", "--svg")?;
+    }
+    // Every output is opened before the work: a bad path fails at once, and none is put in
+    // place unless all of them were written.
+    let mut png = Output::create(&a.out).context("--out")?;
+    let mut svg = a.svg.as_ref().map(Output::create).transpose().context("--svg")?;
+    let mut json_out = a.json.as_ref().map(Output::create).transpose().context("--json")?;
+    let mut npy: Vec<Output> = match &a.npy {
+        Some(prefix) => NPY_FILES
+            .iter()
+            .map(|n| Output::create(format!("{prefix}_{n}")))
+            .collect::<anyhow::Result<_>>()
+            .context("--npy")?,
+        None => Vec::new(),
+    };
     let (mut engine, line) = Engine::select(a.backend, a.gpu.adapter.as_deref())?;
     engine.set_precision(a.gpu.precision)?;
     eprintln!("{line}");
@@ -107,9 +162,31 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         None
     };
     let t = Instant::now();
-    crate::render::map::write(&data, a.quantity, Some(&a.out), a.svg.as_deref())
+    let (png_bytes, svg_text) = crate::render::map::render(&data, a.quantity, true, svg.is_some())
         .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
     data.timings.render_s = t.elapsed().as_secs_f64();
+    let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
+        let shown = o.name().display().to_string();
+        o.write_all(bytes).with_context(|| format!("cannot write {shown}"))
+    };
+    if let Some(b) = &png_bytes {
+        put(&mut png, b)?;
+    }
+    if let (Some(o), Some(s)) = (svg.as_mut(), &svg_text) {
+        put(o, s.as_bytes())?;
+    }
+    if let Some(o) = json_out.as_mut() {
+        let shown = o.name().display().to_string();
+        write_map_json(o, &data, &engine, check.as_ref(), a.json_full, a.timings)
+            .with_context(|| format!("cannot write {shown}"))?;
+    }
+    if !npy.is_empty() {
+        write_npy(&data, &mut npy)?;
+    }
+    png.commit()?;
+    for o in svg.into_iter().chain(json_out).chain(npy) {
+        o.commit()?;
+    }
     let tm = &data.timings;
     eprintln!(
         "map {}x{}: solve {:.3} s, classify {:.3} s, render {:.3} s; wrote {}{}",
@@ -136,13 +213,60 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         })
         .collect();
     eprintln!("regions: {}", counts.join(", "));
-    if let Some(p) = &a.json {
-        let doc = map_json(&data, &engine, check.as_ref(), a.json_full);
-        write_atomic(p, (serde_json::to_string_pretty(&doc)? + "\n").as_bytes())?;
+    Ok(())
+}
+
+/// The map's JSON document. The per-point arrays of `full` are streamed row by row, so that
+/// memory does not grow with them; timings (which differ between runs) only with `timings`.
+pub fn write_map_json(
+    out: &mut dyn std::io::Write,
+    d: &MapData,
+    engine: &Engine,
+    check: Option<&crate::engine::CheckReport>,
+    full: bool,
+    timings: bool,
+) -> anyhow::Result<()> {
+    let mut doc = map_json(d, engine, check);
+    if timings {
+        doc["metadata"]["timings_s"] = serde_json::to_value(&d.timings)?;
     }
-    if let Some(prefix) = &a.npy {
-        write_npy(&data, prefix)?;
+    let text = serde_json::to_string_pretty(&doc)?;
+    if !full {
+        out.write_all(text.as_bytes())?;
+        out.write_all(b"\n")?;
+        return Ok(());
     }
+    // Reopen the document's closing brace and append "points".
+    let body = text.trim_end().strip_suffix('}').unwrap_or(&text).trim_end();
+    out.write_all(body.as_bytes())?;
+    out.write_all(b",\n  \"points\": {")?;
+    let nx = d.spec.nx;
+    let fields: [(&str, &dyn Fn(usize) -> serde_json::Value); 6] = [
+        ("region", &|i| json!(d.regions[i].name())),
+        ("load", &|i| json_num(d.states[i].load)),
+        ("A", &|i| json_num(d.states[i].a)),
+        ("approach", &|i| json_num(d.states[i].approach)),
+        ("m_minus_1", &|i| json_num(d.states[i].m_minus_1)),
+        ("status", &|i| json!(d.states[i].status.name())),
+    ];
+    let mut line = String::new();
+    for (k, (name, f)) in fields.iter().enumerate() {
+        write!(out, "{}\n    \"{name}\": [", if k > 0 { "," } else { "" })?;
+        for iy in 0..d.spec.ny {
+            line.clear();
+            line.push_str(if iy > 0 { ",\n      [" } else { "\n      [" });
+            for ix in 0..nx {
+                if ix > 0 {
+                    line.push(',');
+                }
+                line.push_str(&f(iy * nx + ix).to_string());
+            }
+            line.push(']');
+            out.write_all(line.as_bytes())?;
+        }
+        out.write_all(b"\n    ]")?;
+    }
+    out.write_all(b"\n  }\n}\n")?;
     Ok(())
 }
 
@@ -150,9 +274,8 @@ pub fn map_json(
     d: &MapData,
     engine: &Engine,
     check: Option<&crate::engine::CheckReport>,
-    full: bool,
 ) -> serde_json::Value {
-    let mut doc = json!({
+    json!({
         "metadata": {
             "tabor_version": env!("CARGO_PKG_VERSION"),
             "backend": engine.name(),
@@ -161,7 +284,6 @@ pub fn map_json(
             "tolerance": d.spec.tolerance,
             "grid": {"nx": d.spec.nx, "ny": d.spec.ny},
             "spec": d.spec,
-            "timings_s": d.timings,
             "cross_check": check,
             "criteria": {
                 "order": ["hertz", "rigid", "dmt", "jkr", "md"],
@@ -180,104 +302,50 @@ pub fn map_json(
         },
         "thresholds": d.thresholds(),
         "large_deformation": d.large_deformation,
-    });
-    if full {
-        let nx = d.spec.nx;
-        let rows = |f: &dyn Fn(usize) -> serde_json::Value| -> Vec<Vec<serde_json::Value>> {
-            (0..d.spec.ny)
-                .map(|iy| (0..nx).map(|ix| f(iy * nx + ix)).collect())
-                .collect()
-        };
-        doc["points"] = json!({
-            "region": rows(&|i| json!(d.regions[i].name())),
-            "load": rows(&|i| json_num(d.states[i].load)),
-            "A": rows(&|i| json_num(d.states[i].a)),
-            "approach": rows(&|i| json_num(d.states[i].approach)),
-            "m_minus_1": rows(&|i| json_num(d.states[i].m_minus_1)),
-            "status": rows(&|i| json!(d.states[i].status.name())),
-        });
-    }
-    doc
+    })
 }
 
-fn npy_bytes<T: npyz::AutoSerialize + Copy>(shape: &[u64], data: &[T]) -> anyhow::Result<Vec<u8>> {
+fn npy_write<T: npyz::AutoSerialize + Copy>(
+    out: &mut Output,
+    shape: &[u64],
+    data: impl Iterator<Item = T>,
+) -> anyhow::Result<()> {
     use npyz::WriterBuilder;
-    let mut buf = Vec::new();
-    {
-        let mut w = npyz::WriteOptions::new()
-            .default_dtype()
-            .shape(shape)
-            .writer(&mut buf)
-            .begin_nd()?;
-        w.extend(data.iter().copied())?;
-        w.finish()?;
-    }
-    Ok(buf)
+    let shown = out.name().display().to_string();
+    let mut w = npyz::WriteOptions::new()
+        .default_dtype()
+        .shape(shape)
+        .writer(&mut *out)
+        .begin_nd()
+        .with_context(|| format!("cannot write {shown}"))?;
+    w.extend(data).with_context(|| format!("cannot write {shown}"))?;
+    w.finish().with_context(|| format!("cannot write {shown}"))?;
+    Ok(())
 }
 
-/// The per-point arrays as NumPy files: NaN where a state could not be computed; region codes
-/// as uint8 with their names in PREFIX_region_names.json.
-pub fn write_npy(d: &MapData, prefix: &str) -> anyhow::Result<()> {
+/// The per-point arrays as NumPy files, streamed into the outputs of [`NPY_FILES`]: NaN where a
+/// state could not be computed; region codes as uint8 with their names in
+/// PREFIX_region_names.json.
+pub fn write_npy(d: &MapData, outs: &mut [Output]) -> anyhow::Result<()> {
     let (nx, ny) = (d.spec.nx as u64, d.spec.ny as u64);
-    let file = |name: &str| PathBuf::from(format!("{prefix}_{name}"));
-    let put = |name: &str, bytes: Vec<u8>| {
-        write_atomic(&file(name), &bytes)
-            .with_context(|| format!("writing {}", file(name).display()))
+    let ok = |s: &crate::solver::State, x: f64| if s.status == Status::Ok { x } else { f64::NAN };
+    let [lam, axis, load, a, approach, m1, region, names] = outs else {
+        anyhow::bail!("write_npy needs the {} outputs of NPY_FILES", NPY_FILES.len());
     };
-    put("lambda.npy", npy_bytes(&[nx], &d.lambdas)?)?;
-    put("load_axis.npy", npy_bytes(&[ny], &d.rows)?)?;
-    let col =
-        |f: &dyn Fn(&crate::solver::State) -> f64| -> Vec<f64> { d.states.iter().map(f).collect() };
-    put("load.npy", npy_bytes(&[ny, nx], &col(&|s| s.load))?)?;
-    put(
-        "A.npy",
-        npy_bytes(
-            &[ny, nx],
-            &col(&|s| {
-                if s.status == Status::Ok {
-                    s.a
-                } else {
-                    f64::NAN
-                }
-            }),
-        )?,
-    )?;
-    put(
-        "approach.npy",
-        npy_bytes(
-            &[ny, nx],
-            &col(&|s| {
-                if s.status == Status::Ok {
-                    s.approach
-                } else {
-                    f64::NAN
-                }
-            }),
-        )?,
-    )?;
-    put(
-        "m_minus_1.npy",
-        npy_bytes(
-            &[ny, nx],
-            &col(&|s| {
-                if s.status == Status::Ok {
-                    s.m_minus_1
-                } else {
-                    f64::NAN
-                }
-            }),
-        )?,
-    )?;
-    let codes: Vec<u8> = d.regions.iter().map(|&r| r as u8).collect();
-    put("region.npy", npy_bytes(&[ny, nx], &codes)?)?;
-    let names: serde_json::Map<_, _> = Region::ALL
+    npy_write(lam, &[nx], d.lambdas.iter().copied())?;
+    npy_write(axis, &[ny], d.rows.iter().copied())?;
+    npy_write(load, &[ny, nx], d.states.iter().map(|s| s.load))?;
+    npy_write(a, &[ny, nx], d.states.iter().map(|s| ok(s, s.a)))?;
+    npy_write(approach, &[ny, nx], d.states.iter().map(|s| ok(s, s.approach)))?;
+    npy_write(m1, &[ny, nx], d.states.iter().map(|s| ok(s, s.m_minus_1)))?;
+    npy_write(region, &[ny, nx], d.regions.iter().map(|&r| r as u8))?;
+    let map: serde_json::Map<_, _> = Region::ALL
         .iter()
         .map(|r| ((*r as u8).to_string(), json!(r.name())))
         .collect();
-    put(
-        "region_names.json",
-        (serde_json::to_string_pretty(&names)? + "\n").into_bytes(),
-    )?;
-    let _ = Path::new(prefix);
+    let shown = names.name().display().to_string();
+    names
+        .write_all((serde_json::to_string_pretty(&map)? + "\n").as_bytes())
+        .with_context(|| format!("cannot write {shown}"))?;
     Ok(())
 }

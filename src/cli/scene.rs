@@ -49,6 +49,12 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     if a.tolerance.is_some() {
         input.tolerance = a.tolerance;
     }
+    if a.format == Format::Csv {
+        bail!("--format csv is not available for a scene: use text or json");
+    }
+    if let Some(p) = &a.plot {
+        super::map::check_extension(p, "png", "--plot")?;
+    }
     let r = solve_scene(&input)?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
@@ -183,64 +189,49 @@ pub struct InferArgs {
 }
 
 pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
+    if a.format == Format::Csv {
+        bail!("--format csv is not available for infer: use text or json");
+    }
+    let mut t = String::new();
     if let Some(f) = &a.pairs {
-        let text = std::fs::read_to_string(f).with_context(|| format!("cannot read {f}"))?;
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes());
-        let h = rdr.headers()?.clone();
-        let col = |n: &str| {
-            h.iter()
-                .position(|x| x == n)
-                .with_context(|| format!("{f}: no column `{n}` (need load_n and contact_radius_m)"))
-        };
-        let (ip, ia) = (col("load_n")?, col("contact_radius_m")?);
-        let mut pairs = Vec::new();
-        for (k, rec) in rdr.records().enumerate() {
-            let rec = rec?;
-            let num = |i: usize| {
-                rec.get(i)
-                    .unwrap_or("")
-                    .parse::<f64>()
-                    .with_context(|| format!("{f}, line {}: not a number", k + 2))
-            };
-            pairs.push((num(ip)?, num(ia)?));
+        let pairs = crate::io::PointReader::open_columns(f, ("load_n", "contact_radius_m"))?
+            .next_chunk(MAX_PAIRS + 1)?;
+        if pairs.len() > MAX_PAIRS {
+            bail!("{f}: more than {MAX_PAIRS} pairs; fit a representative subset");
         }
-        let fit = crate::scene::fit_pairs(&pairs, a.radius, a.z0)?;
+        let fit = crate::scene::fit_pairs(&pairs, a.radius, a.z0).with_context(|| format!("{f}"))?;
         if a.format == Format::Json {
-            println!("{}", serde_json::to_string_pretty(&fit)?);
-            return Ok(());
+            return write_output("-", (serde_json::to_string_pretty(&fit)? + "\n").as_bytes());
         }
-        println!(
+        let _ = writeln!(
+            t,
             "Maugis-Dugdale fit of {} (load, contact radius) pairs with R = {}, z0 = {}:",
             pairs.len(),
             si(a.radius, "m"),
             si(a.z0, "m")
         );
-        println!(
+        let _ = writeln!(
+            t,
             "  w = {:.5e} J/m^2, E* = {}, lambda = {:.4}, Tabor parameter {:.4}",
             fit.work_of_adhesion_j_m2,
             si(fit.e_star_pa, "Pa"),
             fit.lambda,
             fit.tabor_parameter
         );
-        println!(
+        let _ = writeln!(
+            t,
             "  relative residuals of the contact radius: rms {:.2e}",
             fit.rms_relative_residual
         );
-        for ((p, r), e) in pairs
-            .iter()
-            .map(|q| q.0)
-            .zip(pairs.iter().map(|q| q.1))
-            .zip(&fit.relative_residuals)
-        {
-            println!(
+        for (&(p, r), e) in pairs.iter().zip(&fit.relative_residuals) {
+            let _ = writeln!(
+                t,
                 "    load {:>14}  radius {:>14}  residual {e:+.2e}",
                 si(p, "N"),
                 si(r, "m")
             );
         }
-        return Ok(());
+        return write_output("-", t.as_bytes());
     }
     let (pulloff, e_star) = (
         a.pulloff.context("give --pulloff")?,
@@ -248,33 +239,43 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
     );
     let r = infer(pulloff, a.radius, e_star, a.z0)?;
     if a.format == Format::Json {
-        println!("{}", serde_json::to_string_pretty(&r)?);
-        return Ok(());
+        return write_output("-", (serde_json::to_string_pretty(&r)? + "\n").as_bytes());
     }
-    println!(
+    let _ = writeln!(
+        t,
         "pull-off force {} with R = {}, E* = {}, z0 = {}",
         si(r.pulloff_force_n, "N"),
         si(a.radius, "m"),
         si(e_star, "Pa"),
         si(a.z0, "m")
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  JKR (Fc = 3/2 pi w R): w = {:.4e} J/m^2, Tabor parameter then {:.3}",
         r.w_jkr_j_m2, r.tabor_if_jkr
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  DMT (Fc = 2 pi w R):   w = {:.4e} J/m^2, Tabor parameter then {:.3}",
         r.w_dmt_j_m2, r.tabor_if_dmt
     );
     match (r.w_md_j_m2, r.lambda_md) {
         (Some(w), Some(l)) => {
-            println!("  Maugis-Dugdale (w and lambda together): w = {w:.4e} J/m^2, lambda = {l:.4}")
+            let _ = writeln!(
+                t,
+                "  Maugis-Dugdale (w and lambda together): w = {w:.4e} J/m^2, lambda = {l:.4}"
+            );
         }
-        _ => println!("  Maugis-Dugdale: no solution between the DMT and JKR values"),
+        _ => {
+            let _ = writeln!(t, "  Maugis-Dugdale: no solution between the DMT and JKR values");
+        }
     }
-    println!("  {}", r.verdict);
-    Ok(())
+    let _ = writeln!(t, "  {}", r.verdict);
+    write_output("-", t.as_bytes())
 }
+
+/// Most (load, contact radius) pairs `infer --pairs` fits.
+const MAX_PAIRS: usize = 100_000;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum DriveKind {
@@ -338,8 +339,22 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         (Some(_), Some(_)) => bail!("give --lambda or a scene, not both"),
         (None, None) => bail!("give --lambda, --scene FILE or --preset NAME"),
     };
-    if !(lambda > 0.0 && lambda.is_finite() && a.max_load > 0.0 && a.max_load.is_finite()) {
-        bail!("lambda and --max-load must be positive numbers");
+    crate::solver::domain::check_lambda(lambda).context(if a.lambda.is_some() {
+        "--lambda"
+    } else {
+        "the scene's lambda"
+    })?;
+    if a.format == Format::Text {
+        bail!("--format text is not available for a cycle: use csv or json (a summary goes to stderr)");
+    }
+    if let Some(p) = &a.plot {
+        super::map::check_extension(p, "png", "--plot")?;
+    }
+    if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
+        bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
+            DriveKind::Grips => "grips",
+            _ => "dead-load",
+        });
     }
     let drive = match a.control {
         DriveKind::Grips => Drive::RigidGrips,
@@ -352,12 +367,12 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
                 _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
             };
             if !(k > 0.0 && k.is_finite()) {
-                bail!("the spring stiffness must be > 0");
+                bail!("the spring stiffness must be a positive, finite number, got {}", crate::solver::domain::short(k));
             }
             Drive::Spring(k)
         }
     };
-    let c = cycle(lambda, drive, a.max_load);
+    let c = cycle(lambda, drive, a.max_load).context("--max-load")?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {

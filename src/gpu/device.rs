@@ -46,7 +46,37 @@ impl AdapterSummary {
     }
 }
 
+/// Mesa's Vulkan loader probes Wayland and prints "XDG_RUNTIME_DIR is invalid or not set" on
+/// every run where the variable is unset (ssh shells, containers, CI): that is not an error of
+/// ours, so point it at a private folder before the first instance is made.
+fn quiet_driver_probe() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_none() {
+            // One private folder per user (the owner of /proc/self), reused across runs.
+            #[cfg(unix)]
+            let user = {
+                use std::os::unix::fs::MetadataExt;
+                std::fs::metadata("/proc/self").map_or(0, |m| m.uid())
+            };
+            #[cfg(not(unix))]
+            let user = 0;
+            let dir = std::env::temp_dir().join(format!("tabor-runtime-{user}"));
+            let made = std::fs::create_dir_all(&dir).is_ok();
+            #[cfg(unix)]
+            if made {
+                use std::os::unix::fs::PermissionsExt;
+                let _ = std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700));
+            }
+            if made {
+                std::env::set_var("XDG_RUNTIME_DIR", &dir);
+            }
+        }
+    });
+}
+
 fn instance() -> wgpu::Instance {
+    quiet_driver_probe();
     wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env())
 }
 

@@ -185,16 +185,28 @@ pub enum MapError {
     Gpu(#[from] GpuError),
 }
 
+/// Most points a map holds (its states stay in memory for classification and rendering).
+pub const MAX_MAP_POINTS: usize = 4096 * 4096;
+/// Smallest load (or gap above the pull-off) of a log load axis.
+pub const LOG_LOAD_MIN: f64 = 1e-15;
+
 impl MapSpec {
     pub fn validate(&self) -> Result<(), MapError> {
+        use crate::physics::domain::{check_lambda, short, LOAD_MAX};
         let bad = |m: String| Err(MapError::Spec(m));
-        if !(self.lambda_min > 0.0
-            && self.lambda_max > self.lambda_min
-            && self.lambda_max.is_finite())
-        {
+        for (flag, l) in [
+            ("--lambda-min", self.lambda_min),
+            ("--lambda-max", self.lambda_max),
+        ] {
+            if let Err(e) = check_lambda(l) {
+                return bad(format!("{flag}: {e}"));
+            }
+        }
+        if !(self.lambda_max > self.lambda_min) {
             return bad(format!(
-                "--lambda-min/--lambda-max must satisfy 0 < min < max, got {} and {}",
-                self.lambda_min, self.lambda_max
+                "--lambda-min must be below --lambda-max, got {} and {}",
+                short(self.lambda_min),
+                short(self.lambda_max)
             ));
         }
         if self.nx < 2 || self.ny < 2 || self.nx > 16384 || self.ny > 16384 {
@@ -203,17 +215,37 @@ impl MapSpec {
                 self.nx, self.ny
             ));
         }
+        if self.nx * self.ny > MAX_MAP_POINTS {
+            return bad(format!(
+                "--nx {} x --ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 1.5 GB); use fewer points, or split the range into several maps",
+                self.nx,
+                self.ny,
+                self.nx * self.ny
+            ));
+        }
         if !(self.load_max > self.load_min
             && self.load_min.is_finite()
             && self.load_max.is_finite())
         {
             return bad(format!(
                 "--load-min must be below --load-max, got {} and {}",
-                self.load_min, self.load_max
+                short(self.load_min),
+                short(self.load_max)
             ));
         }
+        let (lo, hi, range) = match self.load_axis {
+            LoadAxis::Linear => (-LOAD_MAX, LOAD_MAX, "-1e12..1e12"),
+            _ => (LOG_LOAD_MIN, LOAD_MAX, "1e-15..1e12"),
+        };
         if self.load_axis != LoadAxis::Linear && self.load_min <= 0.0 {
-            return bad(format!("a log load axis needs --load-min > 0 (got {}); use --load-axis linear for tensile loads", self.load_min));
+            return bad(format!("a log load axis needs --load-min > 0 (got {}); use --load-axis linear for tensile loads", short(self.load_min)));
+        }
+        if !(self.load_min >= lo && self.load_max <= hi) {
+            return bad(format!(
+                "--load-min {} and --load-max {} must lie within {range} on this load axis (the solver's domain); narrow the range",
+                short(self.load_min),
+                short(self.load_max)
+            ));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return bad(format!(

@@ -1,6 +1,7 @@
 //! The physics: normalisation, the closed-form models and the Maugis-Dugdale curve.
 
 pub mod closed;
+pub mod domain;
 pub mod md;
 pub mod params;
 pub mod real;

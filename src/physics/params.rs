@@ -4,7 +4,7 @@ use std::f64::consts::PI;
 
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum ParamError {
-    #[error("{field} = {value} is out of range: it must be {allowed}")]
+    #[error("{field} = {} is out of range: it must be {allowed}", super::domain::short(*.value))]
     OutOfRange {
         field: &'static str,
         value: f64,
@@ -12,6 +12,8 @@ pub enum ParamError {
     },
     #[error("{0}")]
     Missing(&'static str),
+    #[error(transparent)]
+    Domain(#[from] super::domain::DomainError),
 }
 
 fn check(
@@ -33,6 +35,7 @@ fn check(
 
 /// One elastic body: Young's modulus (Pa), Poisson ratio, radius (m; `None` for a flat).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
 pub struct Body {
     pub youngs_modulus_pa: f64,
     pub poisson_ratio: f64,

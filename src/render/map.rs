@@ -108,32 +108,52 @@ fn line_color(k: usize) -> RGBColor {
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
 
-/// Writes the figure as PNG and/or SVG.
-pub fn write(
+/// Draws the figure: PNG bytes and/or an SVG document, as asked.
+pub fn render(
     d: &MapData,
     q: Option<Quantity>,
-    png: Option<&Path>,
-    svg: Option<&Path>,
-) -> Result<(), Err> {
+    png: bool,
+    svg: bool,
+) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
     fonts();
-    if let Some(p) = png {
+    let png = if png {
         let mut rgb = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, HEIGHT)).into_drawing_area();
             draw(&root, d, q)?;
             root.present()?;
         }
-        crate::io::write_atomic(p, &super::png_bytes(&rgb, WIDTH, HEIGHT)?)
-            .map_err(|e| e.to_string())?;
-    }
-    if let Some(p) = svg {
+        Some(super::png_bytes(&rgb, WIDTH, HEIGHT)?)
+    } else {
+        None
+    };
+    let svg = if svg {
         let mut s = String::new();
         {
             let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
             draw(&root, d, q)?;
             root.present()?;
         }
-        crate::io::write_atomic(p, s.as_bytes()).map_err(|e| e.to_string())?;
+        Some(s)
+    } else {
+        None
+    };
+    Ok((png, svg))
+}
+
+/// Writes the figure as PNG and/or SVG files.
+pub fn write(
+    d: &MapData,
+    q: Option<Quantity>,
+    png: Option<&Path>,
+    svg: Option<&Path>,
+) -> Result<(), Err> {
+    let (png_bytes, svg_text) = render(d, q, png.is_some(), svg.is_some())?;
+    if let (Some(p), Some(b)) = (png, png_bytes) {
+        crate::io::write_output(p, &b)?;
+    }
+    if let (Some(p), Some(s)) = (svg, svg_text) {
+        crate::io::write_output(p, s.as_bytes())?;
     }
     Ok(())
 }
@@ -284,7 +304,10 @@ fn quantity_range(d: &MapData, q: Quantity) -> (f64, f64) {
             hi = hi.max(v);
         }
     }
-    if lo >= hi {
+    if !(lo.is_finite() && hi.is_finite()) {
+        // Nothing to colour (every point below the pull-off, say): a unit range, not infinity.
+        (0.0, 1.0)
+    } else if lo >= hi {
         (lo - 1.0, lo + 1.0)
     } else {
         (lo, hi)

@@ -21,26 +21,47 @@ pub type DrawPng<'a> =
     &'a dyn for<'b> Fn(&DrawingArea<BitMapBackend<'b>, Shift>) -> Result<(), Err>;
 pub type DrawSvg<'a> = &'a dyn for<'b> Fn(&DrawingArea<SVGBackend<'b>, Shift>) -> Result<(), Err>;
 
-/// Draws with `f` into a PNG and/or an SVG of W x H.
-pub fn save(png: Option<&Path>, svg: Option<&Path>, f: DrawPng, g: DrawSvg) -> Result<(), Err> {
+/// Draws with `f` into PNG bytes and/or with `g` into an SVG document of W x H, as asked.
+pub fn render(
+    png: bool,
+    svg: bool,
+    f: DrawPng,
+    g: DrawSvg,
+) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
     fonts();
-    if let Some(p) = png {
+    let png = if png {
         let mut rgb = vec![0u8; (W * H * 3) as usize];
         {
             let root = BitMapBackend::with_buffer(&mut rgb, (W, H)).into_drawing_area();
             f(&root)?;
             root.present()?;
         }
-        crate::io::write_atomic(p, &png_bytes(&rgb, W, H)?).map_err(|e| e.to_string())?;
-    }
-    if let Some(p) = svg {
+        Some(png_bytes(&rgb, W, H)?)
+    } else {
+        None
+    };
+    let svg = if svg {
         let mut s = String::new();
         {
             let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
             g(&root)?;
             root.present()?;
         }
-        crate::io::write_atomic(p, s.as_bytes()).map_err(|e| e.to_string())?;
+        Some(s)
+    } else {
+        None
+    };
+    Ok((png, svg))
+}
+
+/// Draws with `f` into a PNG file and/or with `g` into an SVG file of W x H.
+pub fn save(png: Option<&Path>, svg: Option<&Path>, f: DrawPng, g: DrawSvg) -> Result<(), Err> {
+    let (png_bytes, svg_text) = render(png.is_some(), svg.is_some(), f, g)?;
+    if let (Some(p), Some(b)) = (png, png_bytes) {
+        crate::io::write_output(p, &b)?;
+    }
+    if let (Some(p), Some(s)) = (svg, svg_text) {
+        crate::io::write_output(p, s.as_bytes())?;
     }
     Ok(())
 }

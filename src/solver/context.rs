@@ -152,9 +152,7 @@ fn pulloff_at(lambda: f64, x: f64) -> PullOff {
 
 impl LambdaContext {
     pub fn new(lambda: f64) -> Result<Self, SolveError> {
-        if !(lambda.is_finite() && lambda > 0.0) {
-            return Err(SolveError::Lambda(lambda));
-        }
+        let lambda = super::domain::check_lambda(lambda)?;
         // The slope of Pbar at its minimum is a difference of terms larger by ~lambda^-3
         // (PHYSICS.md section 5): below lambda = 0.5 it is evaluated in double-double.
         let load_slope = |x: f64| {
@@ -224,12 +222,37 @@ impl LambdaContext {
 
     /// The state at x from one curve evaluation: the controlled quantity as given, the other
     /// (approach under load control, load under displacement control) from the curve.
-    fn state(&self, x: f64, given: f64, control: Control, iterations: u32, stop: Stop) -> State {
+    ///
+    /// The same evaluation certifies it: a state is `ok` only if every field is finite, A > 0,
+    /// and the controlled quantity is reproduced (`gap` is its distance from the pull-off); a
+    /// search that ended anywhere else is `not_converged`, never a number marked ok.
+    fn state(
+        &self,
+        x: f64,
+        given: f64,
+        gap: f64,
+        control: Control,
+        iterations: u32,
+        stop: Stop,
+    ) -> State {
         let p = point(self.lambda, x);
-        let (load, approach) = match control {
-            Control::Load => (given, p.approach),
-            Control::Displacement => (p.load, given),
+        let (load, approach, residual) = match control {
+            Control::Load => {
+                let r = if self.lambda < 1.0 {
+                    (p.load_plus_2 - self.load_plus_2_c) - gap
+                } else {
+                    (p.load - self.load_pulloff.load) - gap
+                };
+                (given, p.approach, r)
+            }
+            Control::Displacement => (p.load, given, p.approach - given),
         };
+        // Rounding noise of the curve is ~1e-16 of the larger of the value and the pull-off.
+        let noise = 1e-13 * given.abs().max(2.0);
+        let certified = [load, approach, p.a, p.m_minus_1].iter().all(|v| v.is_finite())
+            && p.a > 0.0
+            && p.m_minus_1 > 0.0
+            && residual.abs() <= 1e-6 * gap.abs() + noise;
         State {
             lambda: self.lambda,
             load,
@@ -237,8 +260,8 @@ impl LambdaContext {
             a: p.a,
             m_minus_1: p.m_minus_1,
             status: match stop {
-                Stop::Converged => Status::Ok,
-                Stop::MaxIterations => Status::NotConverged,
+                Stop::Converged if certified => Status::Ok,
+                _ => Status::NotConverged,
             },
             iterations,
         }
@@ -247,7 +270,7 @@ impl LambdaContext {
     /// The state at load `load` (Pbar) on the load-controlled stable branch.
     pub fn solve_load(&self, load: f64) -> State {
         let lambda = self.lambda;
-        if !load.is_finite() {
+        if super::domain::check_load(load).is_err() {
             return State::failed(lambda, load, f64::NAN, Status::InvalidInput);
         }
         let pc = self.load_pulloff;
@@ -271,8 +294,11 @@ impl LambdaContext {
         let lambda = self.lambda;
         let pc = self.load_pulloff;
         let small = lambda < 1.0;
+        if !(gap.is_finite() && load.is_finite()) {
+            return State::failed(lambda, load, f64::NAN, Status::InvalidInput);
+        }
         if gap <= 0.0 {
-            return self.state(pc.x, load, Control::Load, 0, Stop::Converged);
+            return self.state(pc.x, load, 0.0, Control::Load, 0, Stop::Converged);
         }
         let residual = |x: f64| {
             let p = point(lambda, x);
@@ -293,7 +319,7 @@ impl LambdaContext {
         let t = gap.ln();
         let (lo, hi, x0) = self.load_guess(t);
         let root = secant_bracketed(residual, lo, hi, x0, X_TOL, MAX_ITER);
-        self.state(root.x, load, Control::Load, root.iterations, root.stop)
+        self.state(root.x, load, gap, Control::Load, root.iterations, root.stop)
     }
 
     /// Bracket (with residuals) and first guess for ln(Pbar - Pbar_c) = t from the table: linear
@@ -324,7 +350,7 @@ impl LambdaContext {
     /// The state at approach `approach` (Dbar) on the displacement-controlled stable branch.
     pub fn solve_approach(&self, approach: f64) -> State {
         let lambda = self.lambda;
-        if !approach.is_finite() {
+        if super::domain::check_approach(approach).is_err() {
             return State::failed(lambda, f64::NAN, approach, Status::InvalidInput);
         }
         let jo = self.disp_pulloff;
@@ -370,6 +396,7 @@ impl LambdaContext {
         self.state(
             root.x,
             approach,
+            gap,
             Control::Displacement,
             root.iterations,
             root.stop,

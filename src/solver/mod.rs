@@ -6,6 +6,7 @@ pub mod mirror;
 pub mod naive;
 pub mod root;
 
+pub use crate::physics::domain;
 pub use context::{LambdaContext, PullOff};
 
 use rayon::prelude::*;
@@ -18,6 +19,15 @@ use std::collections::HashMap;
 pub enum Control {
     Load,
     Displacement,
+}
+
+impl Control {
+    pub fn name(self) -> &'static str {
+        match self {
+            Control::Load => "load",
+            Control::Displacement => "displacement",
+        }
+    }
 }
 
 /// Outcome of one state. The numeric codes are the ones the shaders write.
@@ -86,9 +96,9 @@ impl State {
 
 #[derive(Debug, thiserror::Error)]
 pub enum SolveError {
-    #[error("lambda must be a finite number > 0, got {0}")]
-    Lambda(f64),
-    #[error("no load-controlled pull-off found for lambda = {0} (outside the supported range 1e-8..1e8?)")]
+    #[error(transparent)]
+    Domain(#[from] domain::DomainError),
+    #[error("no load-controlled pull-off found for lambda = {}", domain::short(*.0))]
     NoPullOff(f64),
 }
 

@@ -1,0 +1,60 @@
+//! Progress of long work on a terminal: an `indicatif` bar that appears only after the work has
+//! run for two seconds and only when stderr is a terminal, so short runs, scripts and CI logs stay
+//! clean.
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::time::{Duration, Instant};
+
+const DELAY: Duration = Duration::from_secs(2);
+
+pub struct Progress {
+    bar: ProgressBar,
+    start: Instant,
+    shown: bool,
+}
+
+impl Progress {
+    /// A bar counting `unit` (for example "points", or "bytes" for a file read in chunks) up to
+    /// `len`.
+    pub fn new(what: &str, len: u64, unit: &str) -> Progress {
+        let bar = ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::hidden());
+        let template = if unit == "bytes" {
+            "{msg} [{bar:40}] {binary_bytes}/{binary_total_bytes}, {eta} left"
+        } else {
+            "{msg} [{bar:40}] {human_pos}/{human_len} {prefix}, {eta} left"
+        };
+        if let Ok(style) = ProgressStyle::with_template(template) {
+            bar.set_style(style.progress_chars("=> "));
+        }
+        bar.set_message(what.to_string());
+        bar.set_prefix(unit.to_string());
+        Progress {
+            bar,
+            start: Instant::now(),
+            shown: false,
+        }
+    }
+
+    fn reveal(&mut self) {
+        if !self.shown && self.start.elapsed() >= DELAY {
+            self.shown = true;
+            // Drawn only where stderr is a terminal.
+            self.bar.set_draw_target(ProgressDrawTarget::stderr());
+        }
+    }
+
+    pub fn inc(&mut self, n: u64) {
+        self.bar.inc(n);
+        self.reveal();
+    }
+
+    pub fn set(&mut self, pos: u64) {
+        self.bar.set_position(pos);
+        self.reveal();
+    }
+
+    /// Removes the bar (the command prints its own summary).
+    pub fn finish(self) {
+        self.bar.finish_and_clear();
+    }
+}
