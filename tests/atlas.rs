@@ -33,6 +33,41 @@ fn shipped_f32_algorithm_holds_over_the_extreme_ranges() {
     eprintln!("shipped f32 (CPU mirror): max rel. error of A {worst:.2e}");
 }
 
+#[test]
+fn displacement_kernel_holds_its_contract_where_it_certifies() {
+    // The kernel's arithmetic (CPU mirror) under rigid grips, lambda 1e-4..1e4 on both sides of
+    // lambda_D, approaches from 1e-10 to 1e2 of max(|Dbar_c|, 1) above the end: wherever
+    // `kernel_certifies` leaves a state to the kernel, its status is the f64 solver's and its A
+    // within 1e-5. Closer to the end the kernel really is off (which is why the engine re-solves
+    // those states in f64): pinned too, so that the cut cannot silently become too loose.
+    let (mut worst, mut worst_inside) = (0f64, 0f64);
+    for &l in &logspace(-4.0, 4.0, 81) {
+        let c = LambdaContext::new(l).unwrap();
+        let g = prepare(l);
+        let end = c.disp_pulloff.approach;
+        for &r in &logspace(-10.0, 2.0, 241) {
+            let d = end + r * end.abs().max(1.0);
+            let reference = c.solve_approach(d);
+            assert_eq!(reference.status, Status::Ok);
+            let (h, lo) = split(d);
+            let o = solve_f32(&g, h, lo, Control::Displacement, false, 0);
+            let e = if o.status() == Status::Ok {
+                (o.a as f64 / reference.a - 1.0).abs()
+            } else {
+                f64::INFINITY
+            };
+            if tabor::engine::kernel_certifies(&c, d, Control::Displacement) {
+                assert!(e <= 1e-5, "lambda {l} approach {d} ({r:e} above the end): {e:e}");
+                worst = worst.max(e);
+            } else {
+                worst_inside = worst_inside.max(e);
+            }
+        }
+    }
+    eprintln!("displacement control (CPU mirror): max rel. error of A {worst:.2e} where certified, {worst_inside:.2e} nearer the end");
+    assert!(worst_inside > 1e-5, "the cut could be tightened: {worst_inside:e}");
+}
+
 fn naive32_err(l: f64, gap: f64) -> f64 {
     let c = LambdaContext::new(l).unwrap();
     let load = c.load_pulloff.load + gap;

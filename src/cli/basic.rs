@@ -76,8 +76,7 @@ impl std::str::FromStr for CheckCount {
     }
 }
 
-/// The relative error of A the f32 kernels are held to away from pull-off.
-pub const GPU_TOLERANCE: f64 = 1e-5;
+pub use crate::engine::GPU_TOLERANCE;
 
 /// Rows of an input table solved at a time: memory stays bounded (about 50 MB) whatever the
 /// size of the input.

@@ -236,20 +236,20 @@ impl LambdaContext {
         stop: Stop,
     ) -> State {
         let p = point(self.lambda, x);
-        let (load, approach, residual) = match control {
+        let (load, approach, other, residual) = match control {
             Control::Load => {
                 let r = if self.lambda < 1.0 {
                     (p.load_plus_2 - self.load_plus_2_c) - gap
                 } else {
                     (p.load - self.load_pulloff.load) - gap
                 };
-                (given, p.approach, r)
+                (given, p.approach, p.approach, r)
             }
-            Control::Displacement => (p.load, given, p.approach - given),
+            Control::Displacement => (p.load, given, p.load, p.approach - given),
         };
         // Rounding noise of the curve is ~1e-16 of the larger of the value and the pull-off.
         let noise = 1e-13 * given.abs().max(2.0);
-        let certified = [load, approach, p.a, p.m_minus_1].iter().all(|v| v.is_finite())
+        let certified = [other, p.a, p.m_minus_1].iter().all(|v| v.is_finite())
             && p.a > 0.0
             && p.m_minus_1 > 0.0
             && residual.abs() <= 1e-6 * gap.abs() + noise;
@@ -294,7 +294,7 @@ impl LambdaContext {
         let lambda = self.lambda;
         let pc = self.load_pulloff;
         let small = lambda < 1.0;
-        if !(gap.is_finite() && load.is_finite()) {
+        if !gap.is_finite() {
             return State::failed(lambda, load, f64::NAN, Status::InvalidInput);
         }
         if gap <= 0.0 {
