@@ -35,6 +35,31 @@ impl Progress {
         }
     }
 
+    /// For work of unknown length that always takes long (bench, atlas): a spinner with the
+    /// count of finished steps, drawn at once (where stderr is a terminal).
+    pub fn spinner(what: &str) -> Progress {
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+        if let Ok(style) = ProgressStyle::with_template("{spinner} {msg}: {pos} done, {elapsed}") {
+            bar.set_style(style);
+        }
+        bar.set_message(what.to_string());
+        bar.enable_steady_tick(Duration::from_millis(200));
+        Progress {
+            bar,
+            start: Instant::now(),
+            shown: true,
+        }
+    }
+
+    /// Prints a line above the bar (or plainly where there is no bar).
+    pub fn println(&self, line: &str) {
+        if self.bar.is_hidden() {
+            eprintln!("{line}");
+        } else {
+            self.bar.println(line);
+        }
+    }
+
     fn reveal(&mut self) {
         if !self.shown && self.start.elapsed() >= DELAY {
             self.shown = true;

@@ -12,6 +12,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct SolveArgs {
     /// CSV with a header row and the columns `lambda` and `load` (or `approach`); `-` is stdin.
     #[arg(long, short)]
@@ -78,9 +79,9 @@ impl std::str::FromStr for CheckCount {
 
 pub use crate::engine::GPU_TOLERANCE;
 
-/// Rows of an input table solved at a time: memory stays bounded (about 50 MB) whatever the
+/// Rows of an input table solved at a time: memory stays bounded (under 100 MB) whatever the
 /// size of the input.
-pub const CHUNK_ROWS: usize = 1 << 18;
+pub const CHUNK_ROWS: usize = 1 << 16;
 
 /// Chooses the engine for `--backend` and `--precision`, and says which in one line on stderr.
 pub fn engine_for(backend: Backend, gpu: &GpuArgs) -> anyhow::Result<Engine> {
@@ -349,6 +350,7 @@ fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct PulloffArgs {
     /// Maugis parameters, comma separated.
     #[arg(long, value_delimiter = ',', required = true, num_args = 1..)]
@@ -448,6 +450,7 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct CurveArgs {
     #[arg(long)]
     pub lambda: f64,
@@ -583,6 +586,7 @@ pub enum PlotKind {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct PlotArgs {
     #[arg(value_enum)]
     pub kind: PlotKind,
@@ -624,6 +628,7 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// A small workload (under a minute on 2 cores).
     #[arg(long)]
@@ -661,12 +666,15 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
             }
         }
     };
+    let mut progress = crate::progress::Progress::spinner("variants");
     let results = bench::run(&w, gpu.as_ref(), &mut |r| {
-        eprintln!(
+        progress.println(&format!(
             "  {:<26} {:>10.3e} points/s, max err {:.2e}, {} failed",
             r.name, r.points_per_second, r.max_rel_err, r.failures
-        )
+        ));
+        progress.inc(1);
     });
+    progress.finish();
     let front = bench::pareto(&results);
     let text = bench::table(&results);
     write_output("-", text.as_bytes())?;
@@ -707,6 +715,7 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct AtlasArgs {
     #[arg(long, default_value = "atlas")]
     pub out_dir: std::path::PathBuf,
@@ -732,7 +741,9 @@ pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
     };
     std::fs::create_dir_all(&a.out_dir)
         .with_context(|| format!("--out-dir {}: cannot create the folder", a.out_dir.display()))?;
+    let progress = crate::progress::Progress::spinner("atlas error maps");
     let (lambdas, gaps, maps) = crate::bench::atlas(a.nx, a.ny, gpu.as_ref())?;
+    progress.finish();
     for m in &maps {
         let path = a.out_dir.join(format!("{}.png", m.name));
         let em = crate::render::atlas::ErrorMap {

@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct MapArgs {
     #[arg(long, default_value_t = 1e-3)]
     pub lambda_min: f64,

@@ -8,6 +8,7 @@ use clap::Args;
 use std::fmt::Write as _;
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct SceneArgs {
     /// Scene file (JSON, SI units; see README); `-` is stdin.
     pub file: Option<String>,
@@ -167,6 +168,7 @@ pub fn scene_text(r: &SceneResult) -> String {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct InferArgs {
     /// Measured pull-off force (N).
     #[arg(long, allow_hyphen_values = true, required_unless_present = "pairs")]
@@ -288,6 +290,7 @@ pub enum DriveKind {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct CycleArgs {
     /// Maugis parameter (or take it from --scene/--preset).
     #[arg(long)]

@@ -276,9 +276,23 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         spec.load_axis != LoadAxis::Linear,
     );
     let ctx = crate::engine::contexts(&lambdas);
-    let states = match spec.load_axis {
-        LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, &rows)?,
-        _ => engine.solve_grid_with(&ctx, &lambdas, &rows, crate::solver::Control::Load)?,
+    let solve = |rows: &[f64]| match spec.load_axis {
+        LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, rows),
+        _ => engine.solve_grid_with(&ctx, &lambdas, rows, crate::solver::Control::Load),
+    };
+    let states = if matches!(engine, Engine::Cpu) {
+        // On the CPU, blocks of rows with a progress bar (shown on a terminal after 2 s).
+        let block = (1 << 18) / spec.nx + 1;
+        let mut progress = crate::progress::Progress::new("solving", (spec.nx * spec.ny) as u64, "points");
+        let mut states = Vec::with_capacity(spec.nx * spec.ny);
+        for r in rows.chunks(block) {
+            states.extend(solve(r)?);
+            progress.inc((r.len() * spec.nx) as u64);
+        }
+        progress.finish();
+        states
+    } else {
+        solve(&rows)?
     };
     let solve_s = t0.elapsed().as_secs_f64();
     let t1 = std::time::Instant::now();

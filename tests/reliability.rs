@@ -1,0 +1,411 @@
+//! Hostile and careless input to every command: each case was a wrong answer marked ok, a hang,
+//! a clobbered or half-written file, unbounded memory or a panic, and is now one clear line and a
+//! non-zero exit, or the right answer.
+
+use std::io::Write;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::Duration;
+
+fn bin() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_tabor"));
+    c.env("TABOR_BACKEND", "cpu");
+    c
+}
+
+/// Runs tabor, killing it after a minute: a guard against hangs (which these cases were), not a
+/// timing assertion.
+fn run_in(dir: Option<&Path>, args: &[&str]) -> Output {
+    let mut c = bin();
+    c.args(args).stdout(Stdio::piped()).stderr(Stdio::piped());
+    if let Some(d) = dir {
+        c.current_dir(d);
+    }
+    let child = c.spawn().unwrap();
+    let pid = child.id();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || tx.send(child.wait_with_output().unwrap()));
+    match rx.recv_timeout(Duration::from_secs(60)) {
+        Ok(o) => o,
+        Err(_) => {
+            let _ = Command::new("kill").args(["-9", &pid.to_string()]).status();
+            panic!("tabor {args:?} hangs");
+        }
+    }
+}
+
+fn run(args: &[&str]) -> Output {
+    run_in(None, args)
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// A refusal: exit 1, one error line naming `needle`, no panic, nothing on stdout.
+fn refused(args: &[&str], needle: &str) {
+    let o = run(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert_eq!(err.lines().filter(|l| l.starts_with("error")).count(), 1, "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+    let out = stdout(&o);
+    assert!(!out.contains("NaN") && !out.contains("inf"), "{args:?}: {out}");
+}
+
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn lambda_outside_the_domain_is_refused_everywhere() {
+    for l in ["1e-22", "1e-21", "1e-28", "1e-40", "1e-50", "1e160", "1e300", "-1"] {
+        refused(&["solve", "--lambda", l, "--load", "1"], "1e-8..1e8");
+        refused(&["pulloff", "--lambda", l], "1e-8..1e8");
+        refused(&["curve", "--lambda", l], "1e-8..1e8");
+        refused(&["cycle", "--lambda", l], "1e-8..1e8");
+    }
+    refused(
+        &["map", "--lambda-min", "1e200", "--lambda-max", "1e201"],
+        "--lambda-min",
+    );
+    // The limits themselves are inside: the solver certifies them.
+    for l in ["1e-8", "1e8"] {
+        let o = run(&["solve", "--lambda", l, "--load", "1", "--format", "csv"]);
+        assert!(o.status.success() && stdout(&o).trim_end().ends_with(",ok"), "{}", stdout(&o));
+    }
+}
+
+#[test]
+fn out_of_domain_rows_of_a_file_are_marked_not_filled() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.csv");
+    std::fs::write(&input, "lambda,load\n1e-22,1\n1e200,1\n1,1e13\n1,0.5\n").unwrap();
+    let o = run(&["solve", "-i", input.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let rows: Vec<&str> = text.lines().skip(1).collect();
+    for r in &rows[..3] {
+        assert!(r.ends_with(",,,,invalid_input"), "{r}");
+    }
+    assert!(rows[3].ends_with(",ok"));
+}
+
+#[test]
+fn values_outside_the_domain_are_refused() {
+    refused(&["solve", "--lambda", "1", "--load", "1e13"], "-1e12..1e12");
+    refused(&["solve", "--lambda", "1", "--approach", "1e300"], "approach");
+    refused(&["curve", "--lambda", "1", "--a-max", "1e300", "--points", "3"], "--a-max");
+    refused(&["cycle", "--lambda", "1", "--max-load", "1e20"], "--max-load");
+    refused(&["infer", "--pulloff=-1e300", "--radius", "1e-8", "--e-star", "1e11"], "pulloff_force_n = -1e300");
+}
+
+fn scene_file(dir: &Path, json: &str) -> String {
+    let p = dir.join("scene.json");
+    std::fs::write(&p, json).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+#[test]
+fn scene_inputs_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = |extra: &str, w: &str| {
+        format!(r#"{{"e_star_pa": 1e9, "radius_m": 1e-6, "work_of_adhesion_j_m2": {w}, "z0_m": 3e-10{extra}}}"#)
+    };
+    // A tiny w gives a lambda far outside the domain: refused, never "NaN N".
+    refused(&["scene", &scene_file(dir.path(), &base("", "1e-200"))], "Maugis parameter");
+    // E* = 1e300: the message gives lambda in short form.
+    let f = scene_file(dir.path(), &base("", "0.05").replace("1e9", "1e300"));
+    refused(&["scene", &f], "lambda of these inputs = ");
+    refused(&["scene", &scene_file(dir.path(), &base(r#", "shear_strength_pa": -1"#, "0.05"))], "shear_strength_pa");
+    refused(&["scene", &scene_file(dir.path(), &base(r#", "load_range_n": [0, 1e-6, 100000000]"#, "0.05"))], "number of loads");
+    // A typo in a body's key is an error naming it, not silently a flat.
+    let typo = r#"{"body1": {"youngs_modulus_pa": 1e9, "poisson_ratio": 0.3, "radius_m": 1e-6},
+                  "body2": {"youngs_modulus_pa": 1e9, "poisson_ratio": 0.3, "radius": 1e-6},
+                  "work_of_adhesion_j_m2": 0.05, "z0_m": 3e-10}"#;
+    refused(&["scene", &scene_file(dir.path(), typo)], "unknown field `radius`");
+    refused(&["scene", "--preset", "afm-si", "--format", "csv"], "--format csv");
+}
+
+#[test]
+fn ill_posed_pair_fits_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let write = |name: &str, body: &str| {
+        let p = dir.path().join(name);
+        std::fs::write(&p, format!("load_n,contact_radius_m\n{body}")).unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let identical = write("same.csv", "1e-6,1e-6\n1e-6,1e-6\n1e-6,1e-6\n");
+    refused(&["infer", "--pairs", &identical, "--radius", "1e-3"], "two different loads");
+    let constant = write("const.csv", "1e-6,2e-6\n2e-6,2e-6\n3e-6,2e-6\n");
+    refused(&["infer", "--pairs", &constant, "--radius", "1e-3"], "grows with the load");
+    let tensile = write("below.csv", "-1,1e-6\n-0.9,2e-6\n-0.8,3e-6\n");
+    refused(&["infer", "--pairs", &tensile, "--radius", "1e-3"], "");
+    let inf = write("inf.csv", "1e-6,1e-6\n2e-6,inf\n");
+    refused(&["infer", "--pairs", &inf, "--radius", "1e-3"], "line 3");
+    // `-` is stdin.
+    let mut child = bin()
+        .args(["infer", "--pairs", "-", "--radius", "1e-3"])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"load_n,contact_radius_m\n1e-6,1e-6\n1e-6,1e-6\n")
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(stderr(&o).contains("two different loads"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_large_final_load_keeps_the_cycle_loop() {
+    let o = run(&["cycle", "--lambda", "1", "--max-load", "1e10"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let w: f64 = err
+        .split("energy lost per cycle: ")
+        .nth(1)
+        .and_then(|t| t.split_whitespace().next())
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((w - 0.4963).abs() < 2e-3, "{err}");
+}
+
+#[test]
+fn former_hangs_draw_or_refuse() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("q.png");
+    let png = png.to_str().unwrap();
+    // Every point below the pull-off: an empty colour scale, drawn.
+    let o = run(&[
+        "map", "--nx", "2", "--ny", "2", "--quantity", "a", "--load-axis", "linear",
+        "--load-min", "-5", "--load-max", "-3", "--out", png,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    refused(&["map", "--nx", "2", "--ny", "2", "--lambda-min", "1e-160", "--lambda-max", "1e150"], "--lambda-min");
+    refused(&["map", "--nx", "2", "--ny", "2", "--load-min", "1e-200", "--load-max", "1e200"], "1e-15..1e12");
+    refused(
+        &["map", "--nx", "4", "--ny", "4", "--load-axis", "linear", "--load-min=-1e308", "--load-max", "1e308"],
+        "-1e12..1e12",
+    );
+    // The widest axes the domain allows are drawn.
+    for args in [
+        vec!["--lambda-min", "1e-8", "--lambda-max", "1e8", "--load-min", "1e-15", "--load-max", "1e12"],
+        vec!["--load-axis", "linear", "--load-min=-1e12", "--load-max", "1e12"],
+        vec!["--load-axis", "above-pulloff", "--load-min", "1e-15", "--load-max", "1e12"],
+    ] {
+        let mut a = vec!["map", "--nx", "16", "--ny", "16", "--out", png];
+        a.extend(args);
+        let o = run(&a);
+        assert!(o.status.success(), "{a:?}: {}", stderr(&o));
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn outputs_follow_links_and_write_into_devices() {
+    let dir = tempfile::tempdir().unwrap();
+    let real = dir.path().join("real.csv");
+    std::fs::write(&real, "old").unwrap();
+    let link = dir.path().join("link.csv");
+    std::os::unix::fs::symlink(&real, &link).unwrap();
+    let o = run(&["pulloff", "--lambda", "1", "--format", "csv", "-o", link.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
+    assert!(std::fs::read_to_string(&real).unwrap().starts_with("lambda,"));
+    let o = run(&["pulloff", "--lambda", "1", "-o", "/dev/null"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    use std::os::unix::fs::FileTypeExt;
+    assert!(std::fs::metadata("/dev/null").unwrap().file_type().is_char_device());
+    assert_eq!(files_in(dir.path()), ["link.csv", "real.csv"]);
+}
+
+#[cfg(unix)]
+#[test]
+fn interrupted_writes_leave_no_file() {
+    let dir = tempfile::tempdir().unwrap();
+    for signal in ["INT", "TERM"] {
+        let out = dir.path().join("out.csv");
+        let mut child = bin()
+            .args(["solve", "-i", "-", "-o", out.to_str().unwrap()])
+            .stdin(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut stdin = child.stdin.take().unwrap();
+        stdin.write_all(b"lambda,load\n").unwrap();
+        // Rows until the output's temporary file exists (the first chunk was written).
+        let row = "0.5,1.0\n".repeat(1 << 16);
+        while files_in(dir.path()).is_empty() {
+            stdin.write_all(row.as_bytes()).unwrap();
+        }
+        let kill = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(kill.success());
+        let o = child.wait_with_output().unwrap();
+        drop(stdin);
+        assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
+        assert!(files_in(dir.path()).is_empty(), "left behind: {:?}", files_in(dir.path()));
+    }
+}
+
+#[test]
+fn map_outputs_are_checked_before_the_work_and_written_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // A JSON path that cannot be written: refused before anything is computed or written.
+    let o = run(&[
+        "map", "--nx", "8", "--ny", "8", "--out", &p("m.png"), "--svg", &p("m.svg"),
+        "--json", &p("no/such/dir/m.json"),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--json"), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("backend"), "computed before failing: {}", stderr(&o));
+    assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
+    // Formats follow the names.
+    refused(&["map", "--nx", "8", "--ny", "8", "--out", &p("x.svg")], ".png");
+    refused(&["plot", "pulloff", "--out", &p("x.png"), "--svg", &p("x.png")], ".svg");
+    assert!(files_in(dir.path()).is_empty());
+    // The same command gives the same bytes (timings only with --timings).
+    let json = |name: &str, extra: &[&str]| {
+        let png = p("m.png");
+        let mut a = vec!["map", "--nx", "16", "--ny", "16", "--out", &png];
+        let j = p(name);
+        a.extend(["--json", j.as_str()]);
+        a.extend(extra);
+        let o = run(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read(&j).unwrap()
+    };
+    assert_eq!(json("a.json", &[]), json("b.json", &[]));
+    let t = String::from_utf8(json("c.json", &["--timings"])).unwrap();
+    assert!(t.contains("timings_s"));
+    // --json-full streams the per-point arrays: valid JSON with ny rows of nx.
+    let full = json("d.json", &["--json-full"]);
+    let v: serde_json::Value = serde_json::from_slice(&full).unwrap();
+    let a = v["points"]["A"].as_array().unwrap();
+    assert_eq!((a.len(), a[0].as_array().unwrap().len()), (16, 16));
+    assert_eq!(v["points"]["region"][15][15], "hertz");
+}
+
+#[test]
+fn closed_pipes_end_quietly_and_full_disks_are_errors() {
+    for args in [
+        vec!["info"],
+        vec!["infer", "--pulloff", "1e-8", "--radius", "1e-8", "--e-star", "1e11"],
+        vec!["pulloff", "--lambda", "0.1,1,10"],
+    ] {
+        // stdout closed before tabor writes.
+        let mut child = bin()
+            .args(&args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let o = child.wait_with_output().unwrap();
+        assert!(!stderr(&o).contains("panicked"), "{args:?}: {}", stderr(&o));
+        assert_ne!(o.status.code(), Some(101), "{args:?}");
+        #[cfg(target_os = "linux")]
+        {
+            let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
+            let o = bin().args(&args).stdout(full).stderr(Stdio::piped()).output().unwrap();
+            assert_eq!(o.status.code(), Some(1), "{args:?}");
+            assert!(stderr(&o).contains("No space left"), "{args:?}: {}", stderr(&o));
+        }
+    }
+}
+
+#[test]
+fn sizes_beyond_the_memory_bound_are_refused_up_front() {
+    refused(&["map", "--nx", "16384", "--ny", "16384"], "4096 x 4096");
+    refused(&["curve", "--lambda", "1", "--points", "100000000"], "--points");
+    let o = run(&["solve", "-i", "/dev/zero"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("not a CSV table"), "{}", stderr(&o));
+}
+
+/// A solve whose input and output are several times the memory it may use: it streams.
+#[cfg(target_os = "linux")]
+#[test]
+fn large_solves_run_in_bounded_memory() {
+    if Command::new("prlimit").arg("--version").output().is_err() {
+        eprintln!("SKIPPED: no prlimit");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.csv");
+    let rows = 3_000_000;
+    // 3e6 rows: 33 MB in, 330 MB out; held in memory at once they took over 600 MB.
+    let mut child = Command::new("prlimit")
+        .arg(format!("--as={}", 300 << 20))
+        .arg(env!("CARGO_BIN_EXE_tabor"))
+        .args(["solve", "-i", "-", "-o", out.to_str().unwrap(), "--backend", "cpu"])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || {
+        stdin.write_all(b"lambda,load\n").unwrap();
+        let block: String = (0..1000).map(|i| format!("0.5,{i}.25\n")).collect();
+        for _ in 0..rows / 1000 {
+            stdin.write_all(block.as_bytes()).unwrap();
+        }
+    });
+    writer.join().unwrap();
+    let o = child.wait_with_output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    // No progress bar chatter where stderr is not a terminal.
+    assert!(!stderr(&o).contains('\r'));
+    let f = std::io::BufReader::new(std::fs::File::open(&out).unwrap());
+    use std::io::BufRead;
+    let (mut n, mut last) = (0usize, String::new());
+    for l in f.lines() {
+        last = l.unwrap();
+        n += 1;
+    }
+    assert_eq!(n, rows + 1);
+    assert!(last.starts_with("5.0000000000000000e-1,9.9925000000000000e2,") && last.ends_with(",ok"), "{last}");
+}
+
+#[test]
+fn messages_name_the_input_the_value_and_what_to_do() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.csv");
+    std::fs::write(&input, "1,2\n3,4\n").unwrap();
+    let o = run(&["solve", "-i", input.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert!(err.contains("no column `lambda`") && err.contains("`lambda,load`"), "{err}");
+    assert!(!err.contains("`lambda` and `lambda`"), "{err}");
+    refused(&["solve", "--lambda", "-1", "--load", "1"], "lambda = -1");
+    refused(&["solve", "--lambda", "1", "--load", "1", "--control", "displacement"], "--approach");
+    refused(&["curve", "--lambda", "1", "--format", "text"], "--format text");
+    refused(&["cycle", "--lambda", "1", "--control", "grips", "--stiffness", "2"], "--control spring");
+    refused(&["infer", "--pulloff", "1e-8", "--radius", "1e-8", "--e-star", "1e11", "--format", "csv"], "--format csv");
+    // atlas into a path that is a file: the message names it.
+    let file = dir.path().join("taken");
+    std::fs::write(&file, "").unwrap();
+    refused(&["atlas", "--nx", "2", "--ny", "2", "--no-gpu", "--out-dir", file.to_str().unwrap()], "taken");
+    // The driver's XDG_RUNTIME_DIR complaint is not ours to print.
+    let o = bin().arg("info").env_remove("XDG_RUNTIME_DIR").output().unwrap();
+    let all = format!("{}{}", stdout(&o), stderr(&o));
+    assert!(!all.contains("XDG_RUNTIME_DIR"), "{all}");
+}
