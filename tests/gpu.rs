@@ -335,3 +335,47 @@ fn f64_refinement_agrees_with_cpu_under_both_controls() {
     }
     eprintln!("f64 refinement vs CPU above pull-off: worst difference/bound {worst:.2}");
 }
+
+/// The command line on the GPU: f32 results carry the digits f32 supports, `--check 0` says no
+/// check was made, and an adapter asked for by name that does not exist is an error, not a
+/// silent fallback to the CPU.
+#[test]
+fn command_line_on_the_gpu() {
+    if gpu().is_none() {
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("in.csv");
+    std::fs::write(&input, "lambda,load\n1,0.5\n10,-1.4\n").unwrap();
+    let tabor = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+            .args(args)
+            .env_remove("TABOR_BACKEND")
+            .output()
+            .unwrap()
+    };
+    let o = tabor(&["solve", "-i", input.to_str().unwrap(), "--backend", "gpu", "--check", "0"]);
+    let (out, err) = (
+        String::from_utf8_lossy(&o.stdout).into_owned(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    );
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("none made (--check 0)"), "{err}");
+    let row: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
+    // The given numbers keep 17 digits, the computed ones have 9.
+    assert_eq!(row[1], "5.0000000000000000e-1");
+    assert_eq!(row[2].split('e').next().unwrap().len(), 10, "{}", row[2]);
+    let a: f64 = row[2].parse().unwrap();
+    assert!(rel(a, 1.7289400402050878) < F32_TOL, "{a}");
+    let o = tabor(&["solve", "-i", input.to_str().unwrap(), "--backend", "gpu", "--format", "json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["metadata"]["precision"], "f32");
+    assert_eq!(v["metadata"]["significant_digits"], 9);
+    assert_eq!(v["metadata"]["cross_check"]["status_mismatches"], 0);
+    let png = dir.path().join("m.png");
+    let o = tabor(&["map", "--nx", "4", "--ny", "4", "--adapter", "nosuchname", "--out", png.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("no adapter name contains \"nosuchname\""), "{err}");
+    assert!(!png.exists());
+}

@@ -367,7 +367,7 @@ where
         .axis_desc_style(("sans-serif", 28))
         .label_style(("sans-serif", 22))
         .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| if y_log { log_label(*v) } else { format!("{v}") })
+        .y_label_formatter(&|v| if y_log { log_label(*v) } else { super::linear_label(*v) })
         .draw()?;
 
     // Criteria lines at the tolerance, and the pull-off (edge of the no-contact region), traced
@@ -405,6 +405,8 @@ where
             .collect()
     };
     let names = ["Hertz", "Bradley (rigid)", "DMT", "JKR"];
+    // A legend only for lines that were drawn (none where no point is in contact).
+    let mut labelled = false;
     for (c, name) in names.iter().enumerate() {
         let field: Vec<f64> = fields.iter().map(|f| f[c]).collect();
         let style = ShapeStyle::from(&line_color(c)).stroke_width(3);
@@ -412,6 +414,7 @@ where
         for path in contour_paths(&field, mx, my, sp.tolerance) {
             let series = chart.draw_series(LineSeries::new(scaled(path), style))?;
             if first {
+                labelled = true;
                 series
                     .label(format!("{name} within {}%", sp.tolerance * 100.0))
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], style));
@@ -428,6 +431,7 @@ where
     {
         let s = chart.draw_series(LineSeries::new(scaled(path), BLACK.stroke_width(3)))?;
         if first {
+            labelled = true;
             s.label("pull-off (load control)").legend(|(x, y)| {
                 PathElement::new(vec![(x, y), (x + 30, y)], BLACK.stroke_width(3))
             });
@@ -450,7 +454,9 @@ where
     if q.is_none() {
         region_labels(chart, d)?;
     }
-    super::legend(chart, SeriesLabelPosition::LowerRight, 20)?;
+    if labelled {
+        super::legend(chart, SeriesLabelPosition::LowerRight, 20)?;
+    }
     Ok(())
 }
 

@@ -17,6 +17,17 @@ pub fn fonts() {
     });
 }
 
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn linear_labels_have_no_binary_noise() {
+        assert_eq!(super::linear_label(-3.4000000000000004), "-3.4");
+        assert_eq!(super::linear_label(2.0), "2");
+        assert_eq!(super::linear_label(-1e12), "-1e12");
+        assert_eq!(super::linear_label(2.5e-5), "2.5e-5");
+    }
+}
+
 /// "1e-3"-style tick labels for log axes: 0.001 .. 1000 as plain numbers, beyond as powers.
 pub fn log_label(v: f64) -> String {
     if v <= 0.0 || !v.is_finite() {
@@ -32,6 +43,29 @@ pub fn log_label(v: f64) -> String {
         format!("{}", 10f64.powi(e))
     } else {
         format!("1e{e}")
+    }
+}
+
+/// Tick labels for linear axes: the value without binary noise (-3.4, not -3.4000000000000004),
+/// in e-notation where it is very large or small.
+pub fn linear_label(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return "0".into();
+    }
+    let trim = |s: String| -> String {
+        match s.split_once('e') {
+            Some((m, e)) if m.contains('.') => {
+                format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+            }
+            Some(_) => s,
+            None if s.contains('.') => s.trim_end_matches('0').trim_end_matches('.').into(),
+            None => s,
+        }
+    };
+    if v.abs() >= 1e5 || v.abs() < 1e-3 {
+        trim(format!("{v:.4e}"))
+    } else {
+        trim(format!("{v:.6}"))
     }
 }
 
