@@ -381,13 +381,22 @@ mod tests {
     #[test]
     fn a_large_final_load_keeps_the_loop() {
         // The loop lives at loads of order one: pushing the approach to 1e10 must not thin it out.
-        let w = |max: f64| cycle(1.0, Drive::RigidGrips, max).unwrap().hysteresis.unwrap();
+        let w = |max: f64| {
+            cycle(1.0, Drive::RigidGrips, max)
+                .unwrap()
+                .hysteresis
+                .unwrap()
+        };
         let (w2, w10) = (w(2.0), w(1e10));
         assert!(w2 > 0.4 && (w10 / w2 - 1.0).abs() < 0.02, "{w2} {w10}");
         let c = cycle(1.0, Drive::RigidGrips, 1e12).unwrap();
         let j = c.jumps.iter().find(|j| j.phase == "retract").unwrap();
         let ctx = LambdaContext::new(1.0).unwrap();
-        assert!((j.from.load - ctx.disp_pulloff.load).abs() < 5e-3, "{}", j.from.load);
+        assert!(
+            (j.from.load - ctx.disp_pulloff.load).abs() < 5e-3,
+            "{}",
+            j.from.load
+        );
         assert!(cycle(1e-300, Drive::RigidGrips, 2.0).is_err());
         assert!(cycle(1.0, Drive::RigidGrips, 1e20).is_err());
         assert!(cycle(1.0, Drive::RigidGrips, -1.0).is_err());

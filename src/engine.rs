@@ -306,9 +306,8 @@ fn finish(
         .zip(out)
         .zip(&r)
         .map(|((&(i, v), o), r)| {
-            near_end(i, v).unwrap_or_else(|| {
-                to_state64(lambdas[i as usize], value(i, v), o, r, control)
-            })
+            near_end(i, v)
+                .unwrap_or_else(|| to_state64(lambdas[i as usize], value(i, v), o, r, control))
         })
         .collect())
 }

@@ -75,7 +75,10 @@ impl<R: Read> Read for LineLimit<R> {
                 if self.since_newline > MAX_LINE_BYTES {
                     return Err(std::io::Error::new(
                         std::io::ErrorKind::InvalidData,
-                        format!("a line longer than {} MiB: this is not a CSV table", MAX_LINE_BYTES >> 20),
+                        format!(
+                            "a line longer than {} MiB: this is not a CSV table",
+                            MAX_LINE_BYTES >> 20
+                        ),
                     ));
                 }
             }

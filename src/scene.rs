@@ -196,7 +196,8 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let ctx = LambdaContext::new(lambda).map_err(|_| ParamError::OutOfRange {
         field: "the Maugis parameter lambda of these inputs",
         value: lambda,
-        allowed: "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
+        allowed:
+            "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
     })?;
     let (fs, rs, ds) = (c.force_scale(), c.radius_scale(), c.approach_scale());
     if let Some(t) = s.shear_strength_pa {
@@ -637,7 +638,10 @@ pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit,
             "the pairs need at least two different loads to determine both w and E*",
         ));
     }
-    if let Some(w) = sorted.windows(2).find(|w| w[1].0 > w[0].0 && !(w[1].1 > w[0].1)) {
+    if let Some(w) = sorted
+        .windows(2)
+        .find(|w| w[1].0 > w[0].0 && !(w[1].1 > w[0].1))
+    {
         return Err(ParamError::OutOfRange {
             field: "contact_radius_m",
             value: w[1].1,
@@ -712,7 +716,7 @@ pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit,
             "the pairs do not determine w and E*: the best fit runs to the edge of w in 1e-4..10 J/m^2 and E* in 1e3..1e12 Pa (check the units and that the radii grow with the load)",
         ));
     }
-    if r.iter().any(|&x| x == 1.0) {
+    if r.contains(&1.0) {
         return Err(ParamError::Missing(
             "some loads lie below the fitted model's pull-off: the pairs are not consistent with one Maugis-Dugdale contact",
         ));

@@ -57,7 +57,10 @@ fn displacement_kernel_holds_its_contract_where_it_certifies() {
                 f64::INFINITY
             };
             if tabor::engine::kernel_certifies(&c, d, Control::Displacement) {
-                assert!(e <= 1e-5, "lambda {l} approach {d} ({r:e} above the end): {e:e}");
+                assert!(
+                    e <= 1e-5,
+                    "lambda {l} approach {d} ({r:e} above the end): {e:e}"
+                );
                 worst = worst.max(e);
             } else {
                 worst_inside = worst_inside.max(e);
@@ -65,7 +68,10 @@ fn displacement_kernel_holds_its_contract_where_it_certifies() {
         }
     }
     eprintln!("displacement control (CPU mirror): max rel. error of A {worst:.2e} where certified, {worst_inside:.2e} nearer the end");
-    assert!(worst_inside > 1e-5, "the cut could be tightened: {worst_inside:e}");
+    assert!(
+        worst_inside > 1e-5,
+        "the cut could be tightened: {worst_inside:e}"
+    );
 }
 
 fn naive32_err(l: f64, gap: f64) -> f64 {

@@ -231,14 +231,20 @@ fn displacement_control_holds_its_contract_up_to_the_end() {
         .into_iter()
         .filter(|r| num(r, "disp_stable") == 1.0 && num(r, "A") > 0.0)
         .collect();
-    let pts: Vec<(f64, f64)> = rows.iter().map(|r| (num(r, "lambda"), num(r, "Dbar"))).collect();
+    let pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (num(r, "lambda"), num(r, "Dbar")))
+        .collect();
     let gs = engine.solve_points(&pts, Control::Displacement).unwrap();
     let mut worst = 0f64;
     for (r, s) in rows.iter().zip(&gs) {
         assert_eq!(s.status, Status::Ok, "{r:?}");
         worst = worst.max(rel(s.a, num(r, "A")));
     }
-    eprintln!("displacement control, {} reference curve points: max rel. error of A {worst:.2e}", rows.len());
+    eprintln!(
+        "displacement control, {} reference curve points: max rel. error of A {worst:.2e}",
+        rows.len()
+    );
     assert!(worst <= F32_TOL, "{worst:e}");
 }
 
@@ -354,7 +360,15 @@ fn command_line_on_the_gpu() {
             .output()
             .unwrap()
     };
-    let o = tabor(&["solve", "-i", input.to_str().unwrap(), "--backend", "gpu", "--check", "0"]);
+    let o = tabor(&[
+        "solve",
+        "-i",
+        input.to_str().unwrap(),
+        "--backend",
+        "gpu",
+        "--check",
+        "0",
+    ]);
     let (out, err) = (
         String::from_utf8_lossy(&o.stdout).into_owned(),
         String::from_utf8_lossy(&o.stderr).into_owned(),
@@ -367,15 +381,36 @@ fn command_line_on_the_gpu() {
     assert_eq!(row[2].split('e').next().unwrap().len(), 10, "{}", row[2]);
     let a: f64 = row[2].parse().unwrap();
     assert!(rel(a, 1.7289400402050878) < F32_TOL, "{a}");
-    let o = tabor(&["solve", "-i", input.to_str().unwrap(), "--backend", "gpu", "--format", "json"]);
+    let o = tabor(&[
+        "solve",
+        "-i",
+        input.to_str().unwrap(),
+        "--backend",
+        "gpu",
+        "--format",
+        "json",
+    ]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["metadata"]["precision"], "f32");
     assert_eq!(v["metadata"]["significant_digits"], 9);
     assert_eq!(v["metadata"]["cross_check"]["status_mismatches"], 0);
     let png = dir.path().join("m.png");
-    let o = tabor(&["map", "--nx", "4", "--ny", "4", "--adapter", "nosuchname", "--out", png.to_str().unwrap()]);
+    let o = tabor(&[
+        "map",
+        "--nx",
+        "4",
+        "--ny",
+        "4",
+        "--adapter",
+        "nosuchname",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
-    assert!(err.contains("no adapter name contains \"nosuchname\""), "{err}");
+    assert!(
+        err.contains("no adapter name contains \"nosuchname\""),
+        "{err}"
+    );
     assert!(!png.exists());
 }

@@ -52,10 +52,17 @@ fn refused(args: &[&str], needle: &str) {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
     assert!(err.contains(needle), "{args:?}: {err}");
-    assert_eq!(err.lines().filter(|l| l.starts_with("error")).count(), 1, "{args:?}: {err}");
+    assert_eq!(
+        err.lines().filter(|l| l.starts_with("error")).count(),
+        1,
+        "{args:?}: {err}"
+    );
     assert!(!err.contains("panicked"), "{args:?}: {err}");
     let out = stdout(&o);
-    assert!(!out.contains("NaN") && !out.contains("inf"), "{args:?}: {out}");
+    assert!(
+        !out.contains("NaN") && !out.contains("inf"),
+        "{args:?}: {out}"
+    );
 }
 
 fn files_in(dir: &Path) -> Vec<String> {
@@ -69,7 +76,9 @@ fn files_in(dir: &Path) -> Vec<String> {
 
 #[test]
 fn lambda_outside_the_domain_is_refused_everywhere() {
-    for l in ["1e-22", "1e-21", "1e-28", "1e-40", "1e-50", "1e160", "1e300", "-1"] {
+    for l in [
+        "1e-22", "1e-21", "1e-28", "1e-40", "1e-50", "1e160", "1e300", "-1",
+    ] {
         refused(&["solve", "--lambda", l, "--load", "1"], "1e-8..1e8");
         refused(&["pulloff", "--lambda", l], "1e-8..1e8");
         refused(&["curve", "--lambda", l], "1e-8..1e8");
@@ -82,7 +91,11 @@ fn lambda_outside_the_domain_is_refused_everywhere() {
     // The limits themselves are inside: the solver certifies them.
     for l in ["1e-8", "1e8"] {
         let o = run(&["solve", "--lambda", l, "--load", "1", "--format", "csv"]);
-        assert!(o.status.success() && stdout(&o).trim_end().ends_with(",ok"), "{}", stdout(&o));
+        assert!(
+            o.status.success() && stdout(&o).trim_end().ends_with(",ok"),
+            "{}",
+            stdout(&o)
+        );
     }
 }
 
@@ -104,10 +117,31 @@ fn out_of_domain_rows_of_a_file_are_marked_not_filled() {
 #[test]
 fn values_outside_the_domain_are_refused() {
     refused(&["solve", "--lambda", "1", "--load", "1e13"], "-1e12..1e12");
-    refused(&["solve", "--lambda", "1", "--approach", "1e300"], "approach");
-    refused(&["curve", "--lambda", "1", "--a-max", "1e300", "--points", "3"], "--a-max");
-    refused(&["cycle", "--lambda", "1", "--max-load", "1e20"], "--max-load");
-    refused(&["infer", "--pulloff=-1e300", "--radius", "1e-8", "--e-star", "1e11"], "pulloff_force_n = -1e300");
+    refused(
+        &["solve", "--lambda", "1", "--approach", "1e300"],
+        "approach",
+    );
+    refused(
+        &[
+            "curve", "--lambda", "1", "--a-max", "1e300", "--points", "3",
+        ],
+        "--a-max",
+    );
+    refused(
+        &["cycle", "--lambda", "1", "--max-load", "1e20"],
+        "--max-load",
+    );
+    refused(
+        &[
+            "infer",
+            "--pulloff=-1e300",
+            "--radius",
+            "1e-8",
+            "--e-star",
+            "1e11",
+        ],
+        "pulloff_force_n = -1e300",
+    );
 }
 
 fn scene_file(dir: &Path, json: &str) -> String {
@@ -120,21 +154,47 @@ fn scene_file(dir: &Path, json: &str) -> String {
 fn scene_inputs_are_checked() {
     let dir = tempfile::tempdir().unwrap();
     let base = |extra: &str, w: &str| {
-        format!(r#"{{"e_star_pa": 1e9, "radius_m": 1e-6, "work_of_adhesion_j_m2": {w}, "z0_m": 3e-10{extra}}}"#)
+        format!(
+            r#"{{"e_star_pa": 1e9, "radius_m": 1e-6, "work_of_adhesion_j_m2": {w}, "z0_m": 3e-10{extra}}}"#
+        )
     };
     // A tiny w gives a lambda far outside the domain: refused, never "NaN N".
-    refused(&["scene", &scene_file(dir.path(), &base("", "1e-200"))], "Maugis parameter");
+    refused(
+        &["scene", &scene_file(dir.path(), &base("", "1e-200"))],
+        "Maugis parameter",
+    );
     // E* = 1e300: the message gives lambda in short form.
     let f = scene_file(dir.path(), &base("", "0.05").replace("1e9", "1e300"));
     refused(&["scene", &f], "lambda of these inputs = ");
-    refused(&["scene", &scene_file(dir.path(), &base(r#", "shear_strength_pa": -1"#, "0.05"))], "shear_strength_pa");
-    refused(&["scene", &scene_file(dir.path(), &base(r#", "load_range_n": [0, 1e-6, 100000000]"#, "0.05"))], "number of loads");
+    refused(
+        &[
+            "scene",
+            &scene_file(dir.path(), &base(r#", "shear_strength_pa": -1"#, "0.05")),
+        ],
+        "shear_strength_pa",
+    );
+    refused(
+        &[
+            "scene",
+            &scene_file(
+                dir.path(),
+                &base(r#", "load_range_n": [0, 1e-6, 100000000]"#, "0.05"),
+            ),
+        ],
+        "number of loads",
+    );
     // A typo in a body's key is an error naming it, not silently a flat.
     let typo = r#"{"body1": {"youngs_modulus_pa": 1e9, "poisson_ratio": 0.3, "radius_m": 1e-6},
                   "body2": {"youngs_modulus_pa": 1e9, "poisson_ratio": 0.3, "radius": 1e-6},
                   "work_of_adhesion_j_m2": 0.05, "z0_m": 3e-10}"#;
-    refused(&["scene", &scene_file(dir.path(), typo)], "unknown field `radius`");
-    refused(&["scene", "--preset", "afm-si", "--format", "csv"], "--format csv");
+    refused(
+        &["scene", &scene_file(dir.path(), typo)],
+        "unknown field `radius`",
+    );
+    refused(
+        &["scene", "--preset", "afm-si", "--format", "csv"],
+        "--format csv",
+    );
 }
 
 #[test]
@@ -146,9 +206,15 @@ fn ill_posed_pair_fits_are_refused() {
         p.to_str().unwrap().to_string()
     };
     let identical = write("same.csv", "1e-6,1e-6\n1e-6,1e-6\n1e-6,1e-6\n");
-    refused(&["infer", "--pairs", &identical, "--radius", "1e-3"], "two different loads");
+    refused(
+        &["infer", "--pairs", &identical, "--radius", "1e-3"],
+        "two different loads",
+    );
     let constant = write("const.csv", "1e-6,2e-6\n2e-6,2e-6\n3e-6,2e-6\n");
-    refused(&["infer", "--pairs", &constant, "--radius", "1e-3"], "grows with the load");
+    refused(
+        &["infer", "--pairs", &constant, "--radius", "1e-3"],
+        "grows with the load",
+    );
     let tensile = write("below.csv", "-1,1e-6\n-0.9,2e-6\n-0.8,3e-6\n");
     refused(&["infer", "--pairs", &tensile, "--radius", "1e-3"], "");
     let inf = write("inf.csv", "1e-6,1e-6\n2e-6,inf\n");
@@ -193,21 +259,93 @@ fn former_hangs_draw_or_refuse() {
     let png = png.to_str().unwrap();
     // Every point below the pull-off: an empty colour scale, drawn.
     let o = run(&[
-        "map", "--nx", "2", "--ny", "2", "--quantity", "a", "--load-axis", "linear",
-        "--load-min", "-5", "--load-max", "-3", "--out", png,
+        "map",
+        "--nx",
+        "2",
+        "--ny",
+        "2",
+        "--quantity",
+        "a",
+        "--load-axis",
+        "linear",
+        "--load-min",
+        "-5",
+        "--load-max",
+        "-3",
+        "--out",
+        png,
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    refused(&["map", "--nx", "2", "--ny", "2", "--lambda-min", "1e-160", "--lambda-max", "1e150"], "--lambda-min");
-    refused(&["map", "--nx", "2", "--ny", "2", "--load-min", "1e-200", "--load-max", "1e200"], "1e-15..1e12");
     refused(
-        &["map", "--nx", "4", "--ny", "4", "--load-axis", "linear", "--load-min=-1e308", "--load-max", "1e308"],
+        &[
+            "map",
+            "--nx",
+            "2",
+            "--ny",
+            "2",
+            "--lambda-min",
+            "1e-160",
+            "--lambda-max",
+            "1e150",
+        ],
+        "--lambda-min",
+    );
+    refused(
+        &[
+            "map",
+            "--nx",
+            "2",
+            "--ny",
+            "2",
+            "--load-min",
+            "1e-200",
+            "--load-max",
+            "1e200",
+        ],
+        "1e-15..1e12",
+    );
+    refused(
+        &[
+            "map",
+            "--nx",
+            "4",
+            "--ny",
+            "4",
+            "--load-axis",
+            "linear",
+            "--load-min=-1e308",
+            "--load-max",
+            "1e308",
+        ],
         "-1e12..1e12",
     );
     // The widest axes the domain allows are drawn.
     for args in [
-        vec!["--lambda-min", "1e-8", "--lambda-max", "1e8", "--load-min", "1e-15", "--load-max", "1e12"],
-        vec!["--load-axis", "linear", "--load-min=-1e12", "--load-max", "1e12"],
-        vec!["--load-axis", "above-pulloff", "--load-min", "1e-15", "--load-max", "1e12"],
+        vec![
+            "--lambda-min",
+            "1e-8",
+            "--lambda-max",
+            "1e8",
+            "--load-min",
+            "1e-15",
+            "--load-max",
+            "1e12",
+        ],
+        vec![
+            "--load-axis",
+            "linear",
+            "--load-min=-1e12",
+            "--load-max",
+            "1e12",
+        ],
+        vec![
+            "--load-axis",
+            "above-pulloff",
+            "--load-min",
+            "1e-15",
+            "--load-max",
+            "1e12",
+        ],
     ] {
         let mut a = vec!["map", "--nx", "16", "--ny", "16", "--out", png];
         a.extend(args);
@@ -224,14 +362,30 @@ fn outputs_follow_links_and_write_into_devices() {
     std::fs::write(&real, "old").unwrap();
     let link = dir.path().join("link.csv");
     std::os::unix::fs::symlink(&real, &link).unwrap();
-    let o = run(&["pulloff", "--lambda", "1", "--format", "csv", "-o", link.to_str().unwrap()]);
+    let o = run(&[
+        "pulloff",
+        "--lambda",
+        "1",
+        "--format",
+        "csv",
+        "-o",
+        link.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink());
-    assert!(std::fs::read_to_string(&real).unwrap().starts_with("lambda,"));
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::read_to_string(&real)
+        .unwrap()
+        .starts_with("lambda,"));
     let o = run(&["pulloff", "--lambda", "1", "-o", "/dev/null"]);
     assert!(o.status.success(), "{}", stderr(&o));
     use std::os::unix::fs::FileTypeExt;
-    assert!(std::fs::metadata("/dev/null").unwrap().file_type().is_char_device());
+    assert!(std::fs::metadata("/dev/null")
+        .unwrap()
+        .file_type()
+        .is_char_device());
     assert_eq!(files_in(dir.path()), ["link.csv", "real.csv"]);
 }
 
@@ -262,7 +416,11 @@ fn interrupted_writes_leave_no_file() {
         let o = child.wait_with_output().unwrap();
         drop(stdin);
         assert_eq!(o.status.code(), Some(130), "{}", stderr(&o));
-        assert!(files_in(dir.path()).is_empty(), "left behind: {:?}", files_in(dir.path()));
+        assert!(
+            files_in(dir.path()).is_empty(),
+            "left behind: {:?}",
+            files_in(dir.path())
+        );
     }
 }
 
@@ -272,16 +430,46 @@ fn map_outputs_are_checked_before_the_work_and_written_together() {
     let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
     // A JSON path that cannot be written: refused before anything is computed or written.
     let o = run(&[
-        "map", "--nx", "8", "--ny", "8", "--out", &p("m.png"), "--svg", &p("m.svg"),
-        "--json", &p("no/such/dir/m.json"),
+        "map",
+        "--nx",
+        "8",
+        "--ny",
+        "8",
+        "--out",
+        &p("m.png"),
+        "--svg",
+        &p("m.svg"),
+        "--json",
+        &p("no/such/dir/m.json"),
     ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("--json"), "{}", stderr(&o));
-    assert!(!stderr(&o).contains("backend"), "computed before failing: {}", stderr(&o));
-    assert!(files_in(dir.path()).is_empty(), "{:?}", files_in(dir.path()));
+    assert!(
+        !stderr(&o).contains("backend"),
+        "computed before failing: {}",
+        stderr(&o)
+    );
+    assert!(
+        files_in(dir.path()).is_empty(),
+        "{:?}",
+        files_in(dir.path())
+    );
     // Formats follow the names.
-    refused(&["map", "--nx", "8", "--ny", "8", "--out", &p("x.svg")], ".png");
-    refused(&["plot", "pulloff", "--out", &p("x.png"), "--svg", &p("x.png")], ".svg");
+    refused(
+        &["map", "--nx", "8", "--ny", "8", "--out", &p("x.svg")],
+        ".png",
+    );
+    refused(
+        &[
+            "plot",
+            "pulloff",
+            "--out",
+            &p("x.png"),
+            "--svg",
+            &p("x.png"),
+        ],
+        ".svg",
+    );
     assert!(files_in(dir.path()).is_empty());
     // The same command gives the same bytes (timings only with --timings).
     let json = |name: &str, extra: &[&str]| {
@@ -309,7 +497,15 @@ fn map_outputs_are_checked_before_the_work_and_written_together() {
 fn closed_pipes_end_quietly_and_full_disks_are_errors() {
     for args in [
         vec!["info"],
-        vec!["infer", "--pulloff", "1e-8", "--radius", "1e-8", "--e-star", "1e11"],
+        vec![
+            "infer",
+            "--pulloff",
+            "1e-8",
+            "--radius",
+            "1e-8",
+            "--e-star",
+            "1e11",
+        ],
         vec!["pulloff", "--lambda", "0.1,1,10"],
     ] {
         // stdout closed before tabor writes.
@@ -325,10 +521,22 @@ fn closed_pipes_end_quietly_and_full_disks_are_errors() {
         assert_ne!(o.status.code(), Some(101), "{args:?}");
         #[cfg(target_os = "linux")]
         {
-            let full = std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap();
-            let o = bin().args(&args).stdout(full).stderr(Stdio::piped()).output().unwrap();
+            let full = std::fs::OpenOptions::new()
+                .write(true)
+                .open("/dev/full")
+                .unwrap();
+            let o = bin()
+                .args(&args)
+                .stdout(full)
+                .stderr(Stdio::piped())
+                .output()
+                .unwrap();
             assert_eq!(o.status.code(), Some(1), "{args:?}");
-            assert!(stderr(&o).contains("No space left"), "{args:?}: {}", stderr(&o));
+            assert!(
+                stderr(&o).contains("No space left"),
+                "{args:?}: {}",
+                stderr(&o)
+            );
         }
     }
 }
@@ -336,7 +544,10 @@ fn closed_pipes_end_quietly_and_full_disks_are_errors() {
 #[test]
 fn sizes_beyond_the_memory_bound_are_refused_up_front() {
     refused(&["map", "--nx", "16384", "--ny", "16384"], "4096 x 4096");
-    refused(&["curve", "--lambda", "1", "--points", "100000000"], "--points");
+    refused(
+        &["curve", "--lambda", "1", "--points", "100000000"],
+        "--points",
+    );
     let o = run(&["solve", "-i", "/dev/zero"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("not a CSV table"), "{}", stderr(&o));
@@ -357,7 +568,15 @@ fn large_solves_run_in_bounded_memory() {
     let mut child = Command::new("prlimit")
         .arg(format!("--as={}", 300 << 20))
         .arg(env!("CARGO_BIN_EXE_tabor"))
-        .args(["solve", "-i", "-", "-o", out.to_str().unwrap(), "--backend", "cpu"])
+        .args([
+            "solve",
+            "-i",
+            "-",
+            "-o",
+            out.to_str().unwrap(),
+            "--backend",
+            "cpu",
+        ])
         .stdin(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
@@ -383,7 +602,10 @@ fn large_solves_run_in_bounded_memory() {
         n += 1;
     }
     assert_eq!(n, rows + 1);
-    assert!(last.starts_with("5.0000000000000000e-1,9.9925000000000000e2,") && last.ends_with(",ok"), "{last}");
+    assert!(
+        last.starts_with("5.0000000000000000e-1,9.9925000000000000e2,") && last.ends_with(",ok"),
+        "{last}"
+    );
 }
 
 #[test]
@@ -393,19 +615,76 @@ fn messages_name_the_input_the_value_and_what_to_do() {
     std::fs::write(&input, "1,2\n3,4\n").unwrap();
     let o = run(&["solve", "-i", input.to_str().unwrap()]);
     let err = stderr(&o);
-    assert!(err.contains("no column `lambda`") && err.contains("`lambda,load`"), "{err}");
+    assert!(
+        err.contains("no column `lambda`") && err.contains("`lambda,load`"),
+        "{err}"
+    );
     assert!(!err.contains("`lambda` and `lambda`"), "{err}");
     refused(&["solve", "--lambda", "-1", "--load", "1"], "lambda = -1");
-    refused(&["solve", "--lambda", "1", "--load", "1", "--control", "displacement"], "--approach");
-    refused(&["curve", "--lambda", "1", "--format", "text"], "--format text");
-    refused(&["cycle", "--lambda", "1", "--control", "grips", "--stiffness", "2"], "--control spring");
-    refused(&["infer", "--pulloff", "1e-8", "--radius", "1e-8", "--e-star", "1e11", "--format", "csv"], "--format csv");
+    refused(
+        &[
+            "solve",
+            "--lambda",
+            "1",
+            "--load",
+            "1",
+            "--control",
+            "displacement",
+        ],
+        "--approach",
+    );
+    refused(
+        &["curve", "--lambda", "1", "--format", "text"],
+        "--format text",
+    );
+    refused(
+        &[
+            "cycle",
+            "--lambda",
+            "1",
+            "--control",
+            "grips",
+            "--stiffness",
+            "2",
+        ],
+        "--control spring",
+    );
+    refused(
+        &[
+            "infer",
+            "--pulloff",
+            "1e-8",
+            "--radius",
+            "1e-8",
+            "--e-star",
+            "1e11",
+            "--format",
+            "csv",
+        ],
+        "--format csv",
+    );
     // atlas into a path that is a file: the message names it.
     let file = dir.path().join("taken");
     std::fs::write(&file, "").unwrap();
-    refused(&["atlas", "--nx", "2", "--ny", "2", "--no-gpu", "--out-dir", file.to_str().unwrap()], "taken");
+    refused(
+        &[
+            "atlas",
+            "--nx",
+            "2",
+            "--ny",
+            "2",
+            "--no-gpu",
+            "--out-dir",
+            file.to_str().unwrap(),
+        ],
+        "taken",
+    );
     // The driver's XDG_RUNTIME_DIR complaint is not ours to print.
-    let o = bin().arg("info").env_remove("XDG_RUNTIME_DIR").output().unwrap();
+    let o = bin()
+        .arg("info")
+        .env_remove("XDG_RUNTIME_DIR")
+        .output()
+        .unwrap();
     let all = format!("{}{}", stdout(&o), stderr(&o));
     assert!(!all.contains("XDG_RUNTIME_DIR"), "{all}");
 }

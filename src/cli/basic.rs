@@ -144,7 +144,7 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         );
     }
     if a.backend != Backend::Cpu {
-        bail!("--backend {:?} is for --input files; a single state is solved by the f64 CPU solver", a.backend);
+        eprintln!("note: a single state is solved by the f64 CPU solver; --backend applies to --input files");
     }
     let ctx = LambdaContext::new(lambda).context("--lambda")?;
     match control {
@@ -204,7 +204,13 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
         let states = engine.solve_points(&chunk, control)?;
         solve_s += t.elapsed().as_secs_f64();
         if is_gpu {
-            check.merge(cross_check(&chunk, &states, control, a.gpu.check.0, GPU_TOLERANCE));
+            check.merge(cross_check(
+                &chunk,
+                &states,
+                control,
+                a.gpu.check.0,
+                GPU_TOLERANCE,
+            ));
         }
         for s in &states {
             match format {
@@ -212,7 +218,10 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
                     if rows > 0 {
                         buf.push_str(",\n");
                     }
-                    buf += &indent(&serde_json::to_string_pretty(&state_json_digits(s, digits))?, 4);
+                    buf += &indent(
+                        &serde_json::to_string_pretty(&state_json_digits(s, digits))?,
+                        4,
+                    );
                 }
                 _ => push_csv_row(&mut buf, s, digits),
             }
@@ -301,7 +310,11 @@ fn state_json_digits(s: &State, digits: usize) -> serde_json::Value {
     let mut v = state_json(s);
     v["A"] = json_num(r(s.a));
     v["m_minus_1"] = json_num(r(s.m_minus_1));
-    v["approach"] = json_num(if s.approach.is_nan() { s.approach } else { r(s.approach) });
+    v["approach"] = json_num(if s.approach.is_nan() {
+        s.approach
+    } else {
+        r(s.approach)
+    });
     v
 }
 
@@ -551,15 +564,18 @@ pub fn info() -> anyhow::Result<()> {
     }
     for (i, (a, features, limits)) in adapters.iter().enumerate() {
         let _ = writeln!(t, "adapter {i}: {}", a.name);
-        let _ = writeln!(t, 
+        let _ = writeln!(
+            t,
             "  backend {}, type {}, driver {} {}",
             a.backend, a.device_type, a.driver, a.driver_info
         );
-        let _ = writeln!(t, 
+        let _ = writeln!(
+            t,
             "  shader f64: {}",
             features.contains(wgpu::Features::SHADER_F64)
         );
-        let _ = writeln!(t, 
+        let _ =
+            writeln!(t, 
             "  max storage buffer binding {} MiB, max buffer {} MiB, workgroups per dimension {}",
             limits.max_storage_buffer_binding_size >> 20,
             limits.max_buffer_size >> 20,
@@ -678,8 +694,12 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     let front = bench::pareto(&results);
     let text = bench::table(&results);
     write_output("-", text.as_bytes())?;
-    std::fs::create_dir_all(&a.out_dir)
-        .with_context(|| format!("--out-dir {}: cannot create the folder", a.out_dir.display()))?;
+    std::fs::create_dir_all(&a.out_dir).with_context(|| {
+        format!(
+            "--out-dir {}: cannot create the folder",
+            a.out_dir.display()
+        )
+    })?;
     let machine = format!(
         "{} CPU threads{}",
         rayon::current_num_threads(),
@@ -739,8 +759,12 @@ pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
             .map_err(|e| eprintln!("GPU skipped: {e}"))
             .ok()
     };
-    std::fs::create_dir_all(&a.out_dir)
-        .with_context(|| format!("--out-dir {}: cannot create the folder", a.out_dir.display()))?;
+    std::fs::create_dir_all(&a.out_dir).with_context(|| {
+        format!(
+            "--out-dir {}: cannot create the folder",
+            a.out_dir.display()
+        )
+    })?;
     let progress = crate::progress::Progress::spinner("atlas error maps");
     let (lambdas, gaps, maps) = crate::bench::atlas(a.nx, a.ny, gpu.as_ref())?;
     progress.finish();

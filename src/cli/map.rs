@@ -133,8 +133,18 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     // Every output is opened before the work: a bad path fails at once, and none is put in
     // place unless all of them were written.
     let mut png = Output::create(&a.out).context("--out")?;
-    let mut svg = a.svg.as_ref().map(Output::create).transpose().context("--svg")?;
-    let mut json_out = a.json.as_ref().map(Output::create).transpose().context("--json")?;
+    let mut svg = a
+        .svg
+        .as_ref()
+        .map(Output::create)
+        .transpose()
+        .context("--svg")?;
+    let mut json_out = a
+        .json
+        .as_ref()
+        .map(Output::create)
+        .transpose()
+        .context("--json")?;
     let mut npy: Vec<Output> = match &a.npy {
         Some(prefix) => NPY_FILES
             .iter()
@@ -168,7 +178,8 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     data.timings.render_s = t.elapsed().as_secs_f64();
     let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
         let shown = o.name().display().to_string();
-        o.write_all(bytes).with_context(|| format!("cannot write {shown}"))
+        o.write_all(bytes)
+            .with_context(|| format!("cannot write {shown}"))
     };
     if let Some(b) = &png_bytes {
         put(&mut png, b)?;
@@ -238,7 +249,11 @@ pub fn write_map_json(
         return Ok(());
     }
     // Reopen the document's closing brace and append "points".
-    let body = text.trim_end().strip_suffix('}').unwrap_or(&text).trim_end();
+    let body = text
+        .trim_end()
+        .strip_suffix('}')
+        .unwrap_or(&text)
+        .trim_end();
     out.write_all(body.as_bytes())?;
     out.write_all(b",\n  \"points\": {")?;
     let nx = d.spec.nx;
@@ -319,8 +334,10 @@ fn npy_write<T: npyz::AutoSerialize + Copy>(
         .writer(&mut *out)
         .begin_nd()
         .with_context(|| format!("cannot write {shown}"))?;
-    w.extend(data).with_context(|| format!("cannot write {shown}"))?;
-    w.finish().with_context(|| format!("cannot write {shown}"))?;
+    w.extend(data)
+        .with_context(|| format!("cannot write {shown}"))?;
+    w.finish()
+        .with_context(|| format!("cannot write {shown}"))?;
     Ok(())
 }
 
@@ -331,13 +348,20 @@ pub fn write_npy(d: &MapData, outs: &mut [Output]) -> anyhow::Result<()> {
     let (nx, ny) = (d.spec.nx as u64, d.spec.ny as u64);
     let ok = |s: &crate::solver::State, x: f64| if s.status == Status::Ok { x } else { f64::NAN };
     let [lam, axis, load, a, approach, m1, region, names] = outs else {
-        anyhow::bail!("write_npy needs the {} outputs of NPY_FILES", NPY_FILES.len());
+        anyhow::bail!(
+            "write_npy needs the {} outputs of NPY_FILES",
+            NPY_FILES.len()
+        );
     };
     npy_write(lam, &[nx], d.lambdas.iter().copied())?;
     npy_write(axis, &[ny], d.rows.iter().copied())?;
     npy_write(load, &[ny, nx], d.states.iter().map(|s| s.load))?;
     npy_write(a, &[ny, nx], d.states.iter().map(|s| ok(s, s.a)))?;
-    npy_write(approach, &[ny, nx], d.states.iter().map(|s| ok(s, s.approach)))?;
+    npy_write(
+        approach,
+        &[ny, nx],
+        d.states.iter().map(|s| ok(s, s.approach)),
+    )?;
     npy_write(m1, &[ny, nx], d.states.iter().map(|s| ok(s, s.m_minus_1)))?;
     npy_write(region, &[ny, nx], d.regions.iter().map(|&r| r as u8))?;
     let map: serde_json::Map<_, _> = Region::ALL

@@ -201,7 +201,7 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
         if pairs.len() > MAX_PAIRS {
             bail!("{f}: more than {MAX_PAIRS} pairs; fit a representative subset");
         }
-        let fit = crate::scene::fit_pairs(&pairs, a.radius, a.z0).with_context(|| format!("{f}"))?;
+        let fit = crate::scene::fit_pairs(&pairs, a.radius, a.z0).with_context(|| f.to_string())?;
         if a.format == Format::Json {
             return write_output("-", (serde_json::to_string_pretty(&fit)? + "\n").as_bytes());
         }
@@ -269,7 +269,10 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
             );
         }
         _ => {
-            let _ = writeln!(t, "  Maugis-Dugdale: no solution between the DMT and JKR values");
+            let _ = writeln!(
+                t,
+                "  Maugis-Dugdale: no solution between the DMT and JKR values"
+            );
         }
     }
     let _ = writeln!(t, "  {}", r.verdict);
@@ -370,7 +373,10 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
                 _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
             };
             if !(k > 0.0 && k.is_finite()) {
-                bail!("the spring stiffness must be a positive, finite number, got {}", crate::solver::domain::short(k));
+                bail!(
+                    "the spring stiffness must be a positive, finite number, got {}",
+                    crate::solver::domain::short(k)
+                );
             }
             Drive::Spring(k)
         }

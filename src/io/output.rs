@@ -40,10 +40,7 @@ pub fn install_signal_cleanup() {
 enum Sink {
     Stdout(BufWriter<std::io::Stdout>),
     InPlace(BufWriter<File>),
-    Temp {
-        file: BufWriter<File>,
-        tmp: PathBuf,
-    },
+    Temp { file: BufWriter<File>, tmp: PathBuf },
 }
 
 /// One output being written; see the module documentation.
@@ -125,9 +122,10 @@ impl Output {
                 )
             })?;
         // Keep the file, drop tempfile's own guard: removal is ours (on drop and on signals).
-        let (file, tmp_path) = tmp.keep().map_err(|e| e.error).with_context(|| {
-            format!("cannot write {shown}")
-        })?;
+        let (file, tmp_path) = tmp
+            .keep()
+            .map_err(|e| e.error)
+            .with_context(|| format!("cannot write {shown}"))?;
         pending().push(tmp_path.clone());
         Ok(Output {
             sink: Some(Sink::Temp {
@@ -149,7 +147,9 @@ impl Output {
         let shown = self.name.display().to_string();
         match self.sink.take() {
             Some(Sink::Stdout(mut w)) => w.flush().context("cannot write to stdout")?,
-            Some(Sink::InPlace(mut w)) => w.flush().with_context(|| format!("cannot write {shown}"))?,
+            Some(Sink::InPlace(mut w)) => {
+                w.flush().with_context(|| format!("cannot write {shown}"))?
+            }
             Some(Sink::Temp { file, tmp }) => {
                 let res = file
                     .into_inner()
@@ -157,8 +157,9 @@ impl Output {
                     .and_then(|f| f.sync_all())
                     .with_context(|| format!("cannot write {shown}"))
                     .and_then(|_| {
-                        std::fs::rename(&tmp, &self.target)
-                            .with_context(|| format!("cannot move the output into place at {shown}"))
+                        std::fs::rename(&tmp, &self.target).with_context(|| {
+                            format!("cannot move the output into place at {shown}")
+                        })
                     });
                 if res.is_err() {
                     let _ = std::fs::remove_file(&tmp);

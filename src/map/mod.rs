@@ -283,7 +283,8 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
     let states = if matches!(engine, Engine::Cpu) {
         // On the CPU, blocks of rows with a progress bar (shown on a terminal after 2 s).
         let block = (1 << 18) / spec.nx + 1;
-        let mut progress = crate::progress::Progress::new("solving", (spec.nx * spec.ny) as u64, "points");
+        let mut progress =
+            crate::progress::Progress::new("solving", (spec.nx * spec.ny) as u64, "points");
         let mut states = Vec::with_capacity(spec.nx * spec.ny);
         for r in rows.chunks(block) {
             states.extend(solve(r)?);

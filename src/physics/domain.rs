@@ -116,7 +116,10 @@ mod tests {
     fn limits_are_inclusive_and_messages_are_short() {
         assert!(check_lambda(1e-8).is_ok() && check_lambda(1e8).is_ok());
         let e = check_lambda(1e-22).unwrap_err().to_string();
-        assert!(e.contains("lambda = 1e-22") && e.contains("1e-8..1e8"), "{e}");
+        assert!(
+            e.contains("lambda = 1e-22") && e.contains("1e-8..1e8"),
+            "{e}"
+        );
         let e = check_lambda(1e300).unwrap_err().to_string();
         assert!(e.contains("lambda = 1e300"), "{e}");
         assert!(check_lambda(f64::NAN).is_err() && check_lambda(-1.0).is_err());

@@ -367,7 +367,13 @@ where
         .axis_desc_style(("sans-serif", 28))
         .label_style(("sans-serif", 22))
         .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| if y_log { log_label(*v) } else { super::linear_label(*v) })
+        .y_label_formatter(&|v| {
+            if y_log {
+                log_label(*v)
+            } else {
+                super::linear_label(*v)
+            }
+        })
         .draw()?;
 
     // Criteria lines at the tolerance, and the pull-off (edge of the no-contact region), traced

@@ -17,17 +17,6 @@ pub fn fonts() {
     });
 }
 
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn linear_labels_have_no_binary_noise() {
-        assert_eq!(super::linear_label(-3.4000000000000004), "-3.4");
-        assert_eq!(super::linear_label(2.0), "2");
-        assert_eq!(super::linear_label(-1e12), "-1e12");
-        assert_eq!(super::linear_label(2.5e-5), "2.5e-5");
-    }
-}
-
 /// "1e-3"-style tick labels for log axes: 0.001 .. 1000 as plain numbers, beyond as powers.
 pub fn log_label(v: f64) -> String {
     if v <= 0.0 || !v.is_finite() {
@@ -146,4 +135,15 @@ where
         .position(position)
         .draw()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn linear_labels_have_no_binary_noise() {
+        assert_eq!(super::linear_label(-3.4000000000000004), "-3.4");
+        assert_eq!(super::linear_label(2.0), "2");
+        assert_eq!(super::linear_label(-1e12), "-1e12");
+        assert_eq!(super::linear_label(2.5e-5), "2.5e-5");
+    }
 }
