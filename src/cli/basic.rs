@@ -574,8 +574,8 @@ pub fn info() -> anyhow::Result<()> {
             "  shader f64: {}",
             features.contains(wgpu::Features::SHADER_F64)
         );
-        let _ =
-            writeln!(t, 
+        let _ = writeln!(
+            t,
             "  max storage buffer binding {} MiB, max buffer {} MiB, workgroups per dimension {}",
             limits.max_storage_buffer_binding_size >> 20,
             limits.max_buffer_size >> 20,
