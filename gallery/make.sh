@@ -26,3 +26,6 @@ for l in 0.1 1 10; do
 done
 $T cycle --lambda 1 --control spring --stiffness 0.5 --plot $G/cycle_spring_0.5.png -o $G/cycle_spring_0.5.csv
 $T cycle --lambda 1 --control spring --stiffness 5 --plot $G/cycle_spring_5.png -o $G/cycle_spring_5.csv
+for l in 0.1 1 10; do
+    $T profile --lambda $l --load 0 --plot $G/profile_$l.png -o $G/profile_$l.json
+done

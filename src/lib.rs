@@ -15,6 +15,7 @@ pub mod gpu;
 pub mod io;
 pub mod map;
 pub mod physics;
+pub mod profile;
 pub mod progress;
 pub mod render;
 pub mod scene;

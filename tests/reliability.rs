@@ -83,6 +83,7 @@ fn lambda_outside_the_domain_is_refused_everywhere() {
         refused(&["pulloff", "--lambda", l], "1e-8..1e8");
         refused(&["curve", "--lambda", l], "1e-8..1e8");
         refused(&["cycle", "--lambda", l], "1e-8..1e8");
+        refused(&["profile", "--lambda", l, "--load", "0"], "1e-8..1e8");
     }
     refused(
         &["map", "--lambda-min", "1e200", "--lambda-max", "1e201"],

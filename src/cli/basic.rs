@@ -29,10 +29,13 @@ pub struct SolveArgs {
     /// Normalised approach Dbar of a single state (displacement control).
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["input", "load"])]
     pub approach: Option<f64>,
-    /// What is given: the load (dead load, column `load`) or the approach (rigid grips, column
-    /// `approach`). Default: load.
+    /// What is given: the load (dead load, column `load`), the approach (rigid grips, column
+    /// `approach`) or the contact radius (column `A`). Default: load.
     #[arg(long, value_enum)]
-    pub control: Option<Control>,
+    pub control: Option<Given>,
+    /// Contact radius A of a single state (the curve point there, with its stability).
+    #[arg(long, conflicts_with_all = ["input", "load", "approach"])]
+    pub radius_a: Option<f64>,
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
@@ -116,30 +119,56 @@ fn value_column(control: Control) -> &'static str {
     }
 }
 
+/// What `tabor solve` is given.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Given {
+    /// The load Pbar (dead load; column `load`).
+    Load,
+    /// The approach Dbar (rigid grips; column `approach`).
+    Displacement,
+    /// The contact radius A (column `A`): the curve point there, stable or not.
+    Radius,
+}
+
+impl Given {
+    fn flag(self) -> &'static str {
+        match self {
+            Given::Load => "--load",
+            Given::Displacement => "--approach",
+            Given::Radius => "--radius-a",
+        }
+    }
+    fn name(self) -> &'static str {
+        match self {
+            Given::Load => "load",
+            Given::Displacement => "displacement",
+            Given::Radius => "radius",
+        }
+    }
+}
+
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     if let Some(input) = &a.input {
-        return solve_file(&a, input);
+        return match a.control {
+            Some(Given::Radius) => solve_radius_file(&a, input),
+            _ => solve_file(&a, input),
+        };
     }
     let lambda = a
         .lambda
-        .context("give --input FILE, or --lambda with --load (or --approach)")?;
-    let (control, value) = match (a.load, a.approach) {
-        (Some(l), None) => (Control::Load, l),
-        (None, Some(d)) => (Control::Displacement, d),
-        _ => bail!("give one of --load or --approach with --lambda"),
+        .context("give --input FILE, or --lambda with --load, --approach or --radius-a")?;
+    let (given, value) = match (a.load, a.approach, a.radius_a) {
+        (Some(l), None, None) => (Given::Load, l),
+        (None, Some(d), None) => (Given::Displacement, d),
+        (None, None, Some(r)) => (Given::Radius, r),
+        _ => bail!("give one of --load, --approach or --radius-a with --lambda"),
     };
-    if let Some(c) = a.control.filter(|&c| c != control) {
+    if let Some(c) = a.control.filter(|&c| c != given) {
         bail!(
             "--control {} does not match the value given ({}); give {} for {} control",
             c.name(),
-            match control {
-                Control::Load => "--load",
-                Control::Displacement => "--approach",
-            },
-            match c {
-                Control::Load => "--load",
-                Control::Displacement => "--approach",
-            },
+            given.flag(),
+            c.flag(),
             c.name()
         );
     }
@@ -147,35 +176,172 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         eprintln!("note: a single state is solved by the f64 CPU solver; --backend applies to --input files");
     }
     let ctx = LambdaContext::new(lambda).context("--lambda")?;
-    match control {
-        Control::Load => crate::solver::domain::check_load(value).context("--load")?,
-        Control::Displacement => {
-            crate::solver::domain::check_approach(value).context("--approach")?
+    let format = a.format.unwrap_or(Format::Text);
+    let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": given.name()});
+    let text = if given == Given::Radius {
+        crate::solver::domain::check_radius(value).context("--radius-a")?;
+        let s = ctx.solve_radius(value);
+        match format {
+            Format::Json => json_doc(&[radius_json(&s)], &meta)?,
+            Format::Csv => {
+                let mut t = String::from(RADIUS_CSV_HEADER);
+                push_radius_row(&mut t, &s);
+                t
+            }
+            Format::Text => radius_text(&ctx, &s),
         }
-    };
-    let s = crate::solver::solve_with(&ctx, value, control);
-    let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": control});
-    let text = match a.format.unwrap_or(Format::Text) {
-        Format::Json => {
-            let mut t = String::from("{\n  \"results\": [\n");
-            t += &indent(&serde_json::to_string_pretty(&state_json(&s))?, 4);
-            t += "\n  ],\n  \"metadata\": ";
-            t += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
-            t + "\n}\n"
+    } else {
+        let control = if given == Given::Load {
+            crate::solver::domain::check_load(value).context("--load")?;
+            Control::Load
+        } else {
+            crate::solver::domain::check_approach(value).context("--approach")?;
+            Control::Displacement
+        };
+        let s = crate::solver::solve_with(&ctx, value, control);
+        match format {
+            Format::Json => json_doc(&[state_json(&s)], &meta)?,
+            Format::Csv => {
+                let mut t = String::from(CSV_HEADER);
+                push_csv_row(&mut t, &s, 17);
+                t
+            }
+            Format::Text => state_text(&ctx, &s, control),
         }
-        Format::Csv => {
-            let mut t = String::from(CSV_HEADER);
-            push_csv_row(&mut t, &s, 17);
-            t
-        }
-        Format::Text => state_text(&ctx, &s, control),
     };
     write_output(&a.output, text.as_bytes())
 }
 
+/// `{"results": [...], "metadata": ...}` as `solve` writes it.
+fn json_doc(results: &[serde_json::Value], meta: &serde_json::Value) -> anyhow::Result<String> {
+    let mut t = String::from("{\n  \"results\": [\n");
+    let rows: Vec<String> = results
+        .iter()
+        .map(|r| serde_json::to_string_pretty(r).map(|s| indent(&s, 4)))
+        .collect::<Result<_, _>>()?;
+    t += &rows.join(",\n");
+    t += "\n  ],\n  \"metadata\": ";
+    t += indent(&serde_json::to_string_pretty(meta)?, 2).trim_start();
+    Ok(t + "\n}\n")
+}
+
+const RADIUS_CSV_HEADER: &str =
+    "lambda,A,load,approach,m_minus_1,load_stable,displacement_stable,status\n";
+
+fn push_radius_row(out: &mut String, s: &crate::solver::RadiusState) {
+    let ok = s.status == crate::solver::Status::Ok;
+    let flag = |b: bool| {
+        if ok {
+            (b as u8).to_string()
+        } else {
+            String::new()
+        }
+    };
+    let _ = writeln!(
+        out,
+        "{},{},{},{},{},{},{},{}",
+        fmt17(s.lambda),
+        fmt17(s.a),
+        fmt17(s.load),
+        fmt17(s.approach),
+        fmt17(s.m_minus_1),
+        flag(s.load_stable),
+        flag(s.displacement_stable),
+        s.status.name()
+    );
+}
+
+fn radius_json(s: &crate::solver::RadiusState) -> serde_json::Value {
+    let ok = s.status == crate::solver::Status::Ok;
+    json!({
+        "lambda": s.lambda, "A": json_num(s.a), "load": json_num(s.load),
+        "approach": json_num(s.approach), "m_minus_1": json_num(s.m_minus_1),
+        "load_stable": ok.then_some(s.load_stable), "displacement_stable": ok.then_some(s.displacement_stable),
+        "status": s.status.name(),
+    })
+}
+
+fn radius_text(ctx: &LambdaContext, s: &crate::solver::RadiusState) -> String {
+    let mut t = String::new();
+    let yes = |b: bool| if b { "stable" } else { "unstable" };
+    let _ = writeln!(
+        t,
+        "Maugis-Dugdale state, lambda = {} (contact radius given)",
+        crate::solver::domain::short(s.lambda)
+    );
+    let _ = writeln!(t, "  status            {}", s.status.name());
+    let _ = writeln!(t, "  contact radius A  {}", fmt17(s.a));
+    let _ = writeln!(t, "  load   Pbar       {}", fmt17(s.load));
+    let _ = writeln!(t, "  approach Dbar     {}", fmt17(s.approach));
+    let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", fmt17(s.m_minus_1));
+    let _ = writeln!(
+        t,
+        "  under load control {}, under displacement control {}",
+        yes(s.load_stable),
+        yes(s.displacement_stable)
+    );
+    let _ = writeln!(
+        t,
+        "  pull-off, load control          Pbar_c = {}  at A = {}",
+        fmt17(ctx.load_pulloff.load),
+        fmt17(ctx.load_pulloff.a)
+    );
+    t
+}
+
+/// A table of (lambda, A) points: the curve point at each radius, on the CPU (no root search in
+/// the load is needed), streamed in chunks.
+fn solve_radius_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
+    let format = match a.format.unwrap_or(Format::Csv) {
+        Format::Text => bail!("--format text is for a single state; use csv or json for --input"),
+        f => f,
+    };
+    let mut reader = crate::io::PointReader::open(input, "A")?;
+    let mut out = Output::create(&a.output)?;
+    let shown = out.name().display().to_string();
+    eprintln!("backend: CPU f64 (radius control: each state is the curve point at its radius)");
+    let mut rows = 0usize;
+    let mut buf = String::from(match format {
+        Format::Json => "{\n  \"results\": [\n",
+        _ => RADIUS_CSV_HEADER,
+    });
+    loop {
+        let chunk = reader.next_chunk(CHUNK_ROWS)?;
+        if chunk.is_empty() {
+            break;
+        }
+        for s in crate::solver::solve_radius_points(&chunk) {
+            if format == Format::Json {
+                if rows > 0 {
+                    buf.push_str(",\n");
+                }
+                buf += &indent(&serde_json::to_string_pretty(&radius_json(&s))?, 4);
+            } else {
+                push_radius_row(&mut buf, &s);
+            }
+            rows += 1;
+        }
+        out.write_all(buf.as_bytes())
+            .with_context(|| format!("cannot write {shown}"))?;
+        buf.clear();
+    }
+    if format == Format::Json {
+        let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": "radius", "points": rows});
+        buf.push_str("\n  ],\n  \"metadata\": ");
+        buf += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
+        buf.push_str("\n}\n");
+        out.write_all(buf.as_bytes())
+            .with_context(|| format!("cannot write {shown}"))?;
+    }
+    out.commit()
+}
+
 /// A CSV or JSON table of points, streamed in chunks of [`CHUNK_ROWS`]: parse, solve, write.
 fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
-    let control = a.control.unwrap_or(Control::Load);
+    let control = match a.control {
+        Some(Given::Displacement) => Control::Displacement,
+        _ => Control::Load,
+    };
     let format = match a.format.unwrap_or(Format::Csv) {
         Format::Text => bail!("--format text is for a single state; use csv or json for --input"),
         f => f,
@@ -331,7 +497,7 @@ fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
     let _ = writeln!(
         t,
         "Maugis-Dugdale state, lambda = {} ({} control)",
-        s.lambda,
+        crate::solver::domain::short(s.lambda),
         match control {
             Control::Load => "load",
             Control::Displacement => "displacement",

@@ -2,7 +2,8 @@
 
 mod basic;
 mod map;
-mod scene;
+mod profile;
+pub(crate) mod scene;
 
 use clap::{Parser, Subcommand, ValueEnum};
 
@@ -36,6 +37,9 @@ pub enum Command {
     Infer(scene::InferArgs),
     /// Approach-retract force curves: jump-in, jump-out and the energy lost per cycle.
     Cycle(scene::CycleArgs),
+    /// Pressure and surface gap inside and around the contact (MD, Hertz, DMT, JKR), stress
+    /// intensity and energy release rate at the contact edge.
+    Profile(profile::ProfileArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -61,5 +65,6 @@ pub fn run() -> anyhow::Result<()> {
         Command::Scene(a) => scene::scene(a),
         Command::Infer(a) => scene::infer_cmd(a),
         Command::Cycle(a) => scene::cycle(a),
+        Command::Profile(a) => profile::run(a),
     }
 }

@@ -31,16 +31,8 @@ pub struct SceneArgs {
 
 pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     let mut input: SceneInput = match (&a.file, &a.preset) {
-        (_, Some(p)) => preset(p)
-            .with_context(|| format!("no preset {p:?}; the presets are {}", PRESETS.join(", ")))?,
-        (Some(f), None) => {
-            let text = if f == "-" {
-                std::io::read_to_string(std::io::stdin())?
-            } else {
-                std::fs::read_to_string(f).with_context(|| format!("cannot read {f}"))?
-            };
-            serde_json::from_str(&text).with_context(|| format!("{f}: not a valid scene (JSON with SI keys, e.g. body1.youngs_modulus_pa; see README)"))?
-        }
+        (_, Some(p)) => preset_named(p)?,
+        (Some(f), None) => read_scene(f)?,
         (None, None) => bail!("give a scene file or --preset ({})", PRESETS.join(", ")),
     };
     if let Some(l) = &a.loads {
@@ -73,6 +65,36 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
         eprintln!("wrote {}", p.display());
     }
     Ok(())
+}
+
+/// Largest scene file read (a scene is a few hundred bytes; this keeps `/dev/zero` out).
+const MAX_SCENE_BYTES: u64 = 1 << 20;
+
+/// A scene from a JSON file (`-` is stdin).
+pub fn read_scene(f: &str) -> anyhow::Result<SceneInput> {
+    use std::io::Read;
+    let src: Box<dyn Read> = if f == "-" {
+        Box::new(std::io::stdin())
+    } else {
+        Box::new(std::fs::File::open(f).with_context(|| format!("cannot read {f}"))?)
+    };
+    let mut text = String::new();
+    src.take(MAX_SCENE_BYTES + 1)
+        .read_to_string(&mut text)
+        .with_context(|| format!("cannot read {f}"))?;
+    if text.len() as u64 > MAX_SCENE_BYTES {
+        bail!("{f}: larger than 1 MiB, not a scene file");
+    }
+    serde_json::from_str(&text).with_context(|| {
+        format!(
+            "{f}: not a valid scene (JSON with SI keys, e.g. body1.youngs_modulus_pa; see README)"
+        )
+    })
+}
+
+/// A built-in scene by name.
+pub fn preset_named(p: &str) -> anyhow::Result<SceneInput> {
+    preset(p).with_context(|| format!("no preset {p:?}; the presets are {}", PRESETS.join(", ")))
 }
 
 fn si(x: f64, unit: &str) -> String {
@@ -325,19 +347,11 @@ pub struct CycleArgs {
 
 pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     use crate::cycle::{cycle, normalised_stiffness, Drive};
-    let scene =
-        match (&a.scene, &a.preset) {
-            (Some(f), _) => Some(
-                serde_json::from_str::<SceneInput>(
-                    &std::fs::read_to_string(f).with_context(|| format!("cannot read {f}"))?,
-                )
-                .with_context(|| format!("{f}: not a valid scene"))?,
-            ),
-            (None, Some(p)) => Some(preset(p).with_context(|| {
-                format!("no preset {p:?}; the presets are {}", PRESETS.join(", "))
-            })?),
-            _ => None,
-        };
+    let scene = match (&a.scene, &a.preset) {
+        (Some(f), _) => Some(read_scene(f)?),
+        (None, Some(p)) => Some(preset_named(p)?),
+        _ => None,
+    };
     let contact = scene.as_ref().map(crate::scene::contact_of).transpose()?;
     let lambda = match (a.lambda, &contact) {
         (Some(l), None) => l,

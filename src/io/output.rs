@@ -111,16 +111,23 @@ impl Output {
         let file_name = target
             .file_name()
             .with_context(|| format!("cannot write {shown}: the path has no file name"))?;
-        let tmp = tempfile::Builder::new()
-            .prefix(&format!(".{}.", file_name.to_string_lossy()))
-            .suffix(".tmp")
-            .tempfile_in(dir)
-            .with_context(|| {
-                format!(
-                    "cannot write {shown}: cannot create a file in {}",
-                    dir.display()
-                )
-            })?;
+        let prefix = format!(".{}.", file_name.to_string_lossy());
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(&prefix).suffix(".tmp");
+        // The mode of a file created in place (0666 less the umask), or the replaced file's:
+        // tempfile's own 0600 would make every output private.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let mode = std::fs::metadata(&target).map_or(0o666, |m| m.permissions().mode());
+            builder.permissions(std::fs::Permissions::from_mode(mode));
+        }
+        let tmp = builder.tempfile_in(dir).with_context(|| {
+            format!(
+                "cannot write {shown}: cannot create a file in {}",
+                dir.display()
+            )
+        })?;
         // Keep the file, drop tempfile's own guard: removal is ours (on drop and on signals).
         let (file, tmp_path) = tmp
             .keep()
@@ -243,6 +250,19 @@ mod tests {
         let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(names.len(), 1, "temporary files left: {names:?}");
         assert!(pending().is_empty());
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            // New files get the usual mode (not tempfile's private 0600), replaced ones keep theirs.
+            let fresh = dir.path().join("fresh.txt");
+            write_output(&fresh, b"x").unwrap();
+            let mode = std::fs::metadata(&fresh).unwrap().permissions().mode() & 0o777;
+            assert_ne!(mode, 0o600, "{mode:o}");
+            std::fs::set_permissions(&p, std::fs::Permissions::from_mode(0o640)).unwrap();
+            write_output(&p, b"again").unwrap();
+            let mode = std::fs::metadata(&p).unwrap().permissions().mode() & 0o777;
+            assert_eq!(mode, 0o640);
+        }
     }
 
     #[cfg(unix)]

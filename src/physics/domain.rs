@@ -33,18 +33,22 @@ pub fn short(x: f64) -> String {
     if x == 0.0 || !x.is_finite() {
         return format!("{x}");
     }
-    let plain = format!("{x}");
-    if plain.len() <= 12 {
-        plain
-    } else {
-        let e = format!("{x:.5e}");
-        // Trim trailing zeros of the mantissa: 1.00000e300 -> 1e300.
-        match e.split_once('e') {
-            Some((m, p)) if m.contains('.') => {
-                format!("{}e{p}", m.trim_end_matches('0').trim_end_matches('.'))
-            }
-            _ => e,
+    let trim = |m: &str| -> String {
+        if m.contains('.') {
+            m.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            m.to_string()
         }
+    };
+    if (1e-4..1e7).contains(&x.abs()) {
+        // Six significant digits, plain.
+        let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+        return trim(&format!("{x:.decimals$}"));
+    }
+    let e = format!("{x:.5e}");
+    match e.split_once('e') {
+        Some((m, p)) => format!("{}e{p}", trim(m)),
+        None => e,
     }
 }
 
@@ -129,5 +133,7 @@ mod tests {
         assert_eq!(short(0.5), "0.5");
         assert_eq!(short(1.4e21), "1.4e21");
         assert_eq!(short(1.23456789e-30), "1.23457e-30");
+        assert_eq!(short(1.3361811461), "1.33618");
+        assert_eq!(short(-1234.56789012), "-1234.57");
     }
 }

@@ -2,6 +2,7 @@
 
 pub mod closed;
 pub mod domain;
+pub mod fields;
 pub mod md;
 pub mod params;
 pub mod real;

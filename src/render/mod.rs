@@ -38,7 +38,8 @@ pub fn log_label(v: f64) -> String {
 /// Tick labels for linear axes: the value without binary noise (-3.4, not -3.4000000000000004),
 /// in e-notation where it is very large or small.
 pub fn linear_label(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
+    // Within rounding of zero (a tick at -1e-17): 0, not -0.0.
+    if v.abs() < 1e-12 * 1f64.max(v.abs()) || !v.is_finite() {
         return "0".into();
     }
     let trim = |s: String| -> String {

@@ -717,3 +717,166 @@ where
     }
     Ok(())
 }
+
+/// Pressure (top) and surface gap (bottom) against r for the models of a profile: MD bold
+/// black, Hertz, DMT and JKR in colour; the Dugdale zone's edge c and range h0 dashed.
+pub fn profile<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    p: &crate::profile::Profile,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let si = p.units == "SI";
+    let md = &p.models[0];
+    let (top, bottom) = root.split_vertically(H / 2);
+    let r_max = md.r.last().copied().unwrap_or(1.0);
+    let (ru, pu, gu) = if si {
+        ("r (m)", "pressure p (Pa)", "gap h (m)")
+    } else {
+        (
+            "r / (π w R²/K)^(1/3)",
+            "pressure p / (π w K²/R)^(1/3)",
+            "gap h / (π² w² R/K²)^(1/3)",
+        )
+    };
+    let colour = |m: &str| match m {
+        "md" => (BLACK, 4),
+        "hertz" => (GRAY_, 2),
+        "dmt" => (BLUE_, 2),
+        _ => (ORANGE_, 2),
+    };
+    let label = |m: &str| match m {
+        "md" => "Maugis-Dugdale",
+        "hertz" => "Hertz",
+        "dmt" => "DMT",
+        _ => "JKR",
+    };
+    // Pressure range: the MD and closed-form values; JKR's singular tension (infinite at r = a)
+    // leaves the axes a little below the Dugdale stress.
+    let finite = |m: &crate::profile::ModelProfile| -> Vec<f64> {
+        m.pressure.iter().flatten().copied().collect()
+    };
+    let p_hi = p.models.iter().flat_map(finite).fold(0.0f64, f64::max) * 1.1;
+    let p_lo = -1.4 * p.dugdale_stress.max(0.3 * p_hi);
+    let title = if si {
+        format!(
+            "Inside the contact: λ = {:.4}, load {:.3e} N",
+            p.lambda, md.load
+        )
+    } else {
+        format!(
+            "Inside the contact: λ = {}, load {}",
+            crate::solver::domain::short(p.lambda),
+            crate::solver::domain::short(md.load)
+        )
+    };
+    let mut chart = ChartBuilder::on(&top)
+        .caption(title, ("sans-serif", 30))
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(110)
+        .build_cartesian_2d(0.0..r_max, p_lo..p_hi)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc(ru)
+        .y_desc(pu)
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .axis_desc_style(("sans-serif", 22))
+        .label_style(("sans-serif", 18))
+        .draw()?;
+    for m in p.models.iter().filter(|m| m.status == "ok") {
+        let (col, w) = colour(m.model);
+        let st = ShapeStyle::from(&col).stroke_width(w);
+        // Split at missing values (JKR's singular point), clamp into the plotted range.
+        let mut seg: Vec<(f64, f64)> = Vec::new();
+        let mut segs = Vec::new();
+        for (&r, q) in m.r.iter().zip(&m.pressure) {
+            match q {
+                Some(q) if (p_lo..=p_hi).contains(q) => seg.push((r, *q)),
+                _ => segs.push(std::mem::take(&mut seg)),
+            }
+        }
+        segs.push(seg);
+        let mut first = true;
+        for s in segs.into_iter().filter(|s| s.len() > 1) {
+            let series = chart.draw_series(LineSeries::new(s, st))?;
+            if first {
+                series
+                    .label(label(m.model))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+                first = false;
+            }
+        }
+    }
+    if let Some(c) = md.c {
+        chart.draw_series(DashedLineSeries::new(
+            vec![(c, p_lo), (c, p_hi)],
+            8,
+            6,
+            ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(1),
+        ))?;
+    }
+    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 20)?;
+
+    let g_hi = p
+        .models
+        .iter()
+        .flat_map(|m| m.gap.iter().copied())
+        .fold(p.dugdale_range * 1.5, f64::max)
+        * 1.05;
+    let mut chart = ChartBuilder::on(&bottom)
+        .margin(20)
+        .x_label_area_size(70)
+        .y_label_area_size(110)
+        .build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .x_desc(ru)
+        .y_desc(gu)
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .axis_desc_style(("sans-serif", 22))
+        .label_style(("sans-serif", 18))
+        .draw()?;
+    for m in p.models.iter().filter(|m| m.status == "ok") {
+        let (col, w) = colour(m.model);
+        let st = ShapeStyle::from(&col).stroke_width(w);
+        chart.draw_series(LineSeries::new(
+            m.r.iter().copied().zip(m.gap.iter().copied()),
+            st,
+        ))?;
+    }
+    let dashed = ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(1);
+    chart.draw_series(DashedLineSeries::new(
+        vec![(0.0, p.dugdale_range), (r_max, p.dugdale_range)],
+        8,
+        6,
+        dashed,
+    ))?;
+    chart.draw_series(std::iter::once(Text::new(
+        "Dugdale range h0: the surface forces act where the gap is below it",
+        (0.02 * r_max, p.dugdale_range + 0.06 * g_hi),
+        ("sans-serif", 18).into_font(),
+    )))?;
+    if let Some(c) = md.c {
+        chart.draw_series(DashedLineSeries::new(
+            vec![(c, 0.0), (c, g_hi)],
+            8,
+            6,
+            dashed,
+        ))?;
+        chart.draw_series(std::iter::once(Text::new(
+            "c (MD)",
+            (c, 0.92 * g_hi),
+            ("sans-serif", 18).into_font(),
+        )))?;
+    }
+    Ok(())
+}

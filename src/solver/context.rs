@@ -13,6 +13,20 @@ const MAX_ITER: u32 = 100;
 const BRACKET: f64 = 60.0;
 pub const TABLE_NODES: usize = 14;
 
+/// A state given by its contact radius: load, approach and m - 1 from the curve, and whether it
+/// is stable under load control (dPbar/dA > 0) and displacement control (dDbar/dA > 0).
+#[derive(Clone, Copy, Debug)]
+pub struct RadiusState {
+    pub lambda: f64,
+    pub a: f64,
+    pub load: f64,
+    pub approach: f64,
+    pub m_minus_1: f64,
+    pub load_stable: bool,
+    pub displacement_stable: bool,
+    pub status: Status,
+}
+
 /// Where a stable branch ends: the jump-out (pull-off) point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PullOff {
@@ -401,6 +415,40 @@ impl LambdaContext {
             root.iterations,
             root.stop,
         )
+    }
+
+    /// The state at contact radius `a` (A > 0): the curve point there, with its stability under
+    /// both controls. A falls strictly with mu, so A fixes the state; the only search is the
+    /// bisection for mu, to the last bit.
+    pub fn solve_radius(&self, a: f64) -> RadiusState {
+        let lambda = self.lambda;
+        if super::domain::check_radius(a).is_err() {
+            return RadiusState {
+                lambda,
+                a,
+                load: f64::NAN,
+                approach: f64::NAN,
+                m_minus_1: f64::NAN,
+                load_stable: false,
+                displacement_stable: false,
+                status: Status::InvalidInput,
+            };
+        }
+        let p = point(lambda, x_at_radius(lambda, a));
+        let ok = [p.load, p.approach, p.m_minus_1]
+            .iter()
+            .all(|v| v.is_finite())
+            && (p.a / a - 1.0).abs() < 1e-12;
+        RadiusState {
+            lambda,
+            a,
+            load: p.load,
+            approach: p.approach,
+            m_minus_1: p.m_minus_1,
+            load_stable: p.dload_dmu < 0.0,
+            displacement_stable: p.dapproach_dmu < 0.0,
+            status: if ok { Status::Ok } else { Status::NotConverged },
+        }
     }
 
     fn zero_gap_disp_state(&self, approach: f64) -> State {

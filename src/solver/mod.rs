@@ -7,7 +7,7 @@ pub mod naive;
 pub mod root;
 
 pub use crate::physics::domain;
-pub use context::{LambdaContext, PullOff};
+pub use context::{LambdaContext, PullOff, RadiusState};
 
 use rayon::prelude::*;
 use serde::Serialize;
@@ -144,6 +144,27 @@ pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
         .map(|&(lambda, value)| match &ctx[&lambda.to_bits()] {
             Some(c) => solve_with(c, value, control),
             None => invalid(lambda, value, control),
+        })
+        .collect()
+}
+
+/// The states at the contact radii of a list of (lambda, A) points, on all cores.
+pub fn solve_radius_points(points: &[(f64, f64)]) -> Vec<RadiusState> {
+    let ctx = contexts_for(points.iter().map(|p| p.0));
+    points
+        .par_iter()
+        .map(|&(lambda, a)| match &ctx[&lambda.to_bits()] {
+            Some(c) => c.solve_radius(a),
+            None => RadiusState {
+                lambda,
+                a,
+                load: f64::NAN,
+                approach: f64::NAN,
+                m_minus_1: f64::NAN,
+                load_stable: false,
+                displacement_stable: false,
+                status: Status::InvalidInput,
+            },
         })
         .collect()
 }

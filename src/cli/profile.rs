@@ -1,0 +1,142 @@
+//! `tabor profile`: pressure and gap inside and around the contact.
+
+use super::map::check_extension;
+use super::Format;
+use crate::io::{fmt17, write_output};
+use crate::profile::{profile, Given, Profile};
+use anyhow::{bail, Context};
+use clap::Args;
+use std::fmt::Write as _;
+
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct ProfileArgs {
+    /// Maugis parameter (or take it from --scene/--preset).
+    #[arg(long)]
+    pub lambda: Option<f64>,
+    /// Normalised load Pbar (the stable branch under load control).
+    #[arg(long, conflicts_with_all = ["approach", "radius_a", "load_n"])]
+    pub load: Option<f64>,
+    /// Normalised approach Dbar (the stable branch under displacement control).
+    #[arg(long, conflicts_with_all = ["radius_a", "load_n"])]
+    pub approach: Option<f64>,
+    /// Contact radius A (any point of the curve).
+    #[arg(long, conflicts_with = "load_n")]
+    pub radius_a: Option<f64>,
+    /// A scene file (SI units): lambda from it and the output in m, Pa and N.
+    #[arg(long, conflicts_with = "lambda")]
+    pub scene: Option<String>,
+    #[arg(long, conflicts_with_all = ["scene", "lambda"])]
+    pub preset: Option<String>,
+    /// The load in N, with a scene.
+    #[arg(long)]
+    pub load_n: Option<f64>,
+    /// Sampling points on the uniform part of the r grid (more are added near a and c).
+    #[arg(long, default_value_t = 400)]
+    pub points: usize,
+    #[arg(long, value_enum, default_value_t = Format::Json)]
+    pub format: Format,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    /// Pressure and gap against r for the four models (PNG).
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
+    /// The same figure as SVG.
+    #[arg(long)]
+    pub svg: Option<std::path::PathBuf>,
+}
+
+pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
+    if a.format == Format::Text {
+        bail!("--format text is not available for a profile: use json or csv");
+    }
+    if let Some(p) = &a.plot {
+        check_extension(p, "png", "--plot")?;
+    }
+    if let Some(p) = &a.svg {
+        check_extension(p, "svg", "--svg")?;
+    }
+    let scene = match (&a.scene, &a.preset) {
+        (Some(f), _) => Some(crate::cli::scene::read_scene(f)?),
+        (None, Some(p)) => Some(crate::cli::scene::preset_named(p)?),
+        _ => None,
+    };
+    let contact = scene.as_ref().map(crate::scene::contact_of).transpose()?;
+    let (lambda, given) = match &contact {
+        Some(c) => {
+            let f = a
+                .load_n
+                .context("with a scene, give the load in N: --load-n")?;
+            if a.load.is_some() || a.approach.is_some() || a.radius_a.is_some() {
+                bail!("with a scene, give the load in N (--load-n), not a normalised value");
+            }
+            (c.lambda(), Given::Load(f / c.force_scale()))
+        }
+        None => {
+            let l = a
+                .lambda
+                .context("give --lambda (or a scene: --scene FILE or --preset NAME)")?;
+            let g = match (a.load, a.approach, a.radius_a) {
+                (Some(p), None, None) => Given::Load(p),
+                (None, Some(d), None) => Given::Approach(d),
+                (None, None, Some(r)) => Given::Radius(r),
+                _ => bail!("give one of --load, --approach or --radius-a"),
+            };
+            if a.load_n.is_some() {
+                bail!("--load-n needs a scene (--scene or --preset)");
+            }
+            (l, g)
+        }
+    };
+    let mut p = profile(lambda, given, a.points).context(match given {
+        Given::Load(_) if contact.is_some() => "--load-n",
+        Given::Load(_) => "--load",
+        Given::Approach(_) => "--approach",
+        Given::Radius(_) => "--radius-a",
+    })?;
+    if let Some(c) = &contact {
+        p = p.to_si(c);
+    }
+    let text = match a.format {
+        Format::Csv => profile_csv(&p),
+        _ => serde_json::to_string_pretty(&p)? + "\n",
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if a.plot.is_some() || a.svg.is_some() {
+        crate::render::plots::save(
+            a.plot.as_deref(),
+            a.svg.as_deref(),
+            &|r| crate::render::plots::profile(r, &p),
+            &|r| crate::render::plots::profile(r, &p),
+        )
+        .map_err(|e| anyhow::anyhow!("drawing the profile: {e}"))?;
+    }
+    let md = &p.models[0];
+    eprintln!(
+        "lambda = {}, load {}: MD contact radius a = {}, cohesive zone to c = {}, J/w = {:.12}",
+        crate::solver::domain::short(p.lambda),
+        crate::solver::domain::short(md.load),
+        md.a.map_or("-".into(), crate::solver::domain::short),
+        md.c.map_or("-".into(), crate::solver::domain::short),
+        md.energy_release_rate_over_w.unwrap_or(f64::NAN)
+    );
+    Ok(())
+}
+
+/// One row per model and radius: `model,r,pressure,gap` (pressure empty where singular).
+pub fn profile_csv(p: &Profile) -> String {
+    let mut t = String::from("model,r,pressure,gap\n");
+    for m in &p.models {
+        for ((r, q), g) in m.r.iter().zip(&m.pressure).zip(&m.gap) {
+            let _ = writeln!(
+                t,
+                "{},{},{},{}",
+                m.model,
+                fmt17(*r),
+                q.map_or(String::new(), fmt17),
+                fmt17(*g)
+            );
+        }
+    }
+    t
+}

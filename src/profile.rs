@@ -1,0 +1,288 @@
+//! Inside the contact: pressure and gap profiles of one state under Maugis-Dugdale and, at the
+//! same load, Hertz, DMT and JKR; the stress intensity and energy release rate at the contact
+//! edge; the largest tensile stress. Units as in [`crate::physics::fields`], or SI for a scene.
+
+use crate::physics::closed::{dmt_radius, hertz_radius, jkr_approach, jkr_radius};
+use crate::physics::fields::{
+    energy_release_over_w, hertz_gap, hertz_pressure, jkr_gap, jkr_pressure, jkr_stress_intensity,
+    MdGeometry,
+};
+use crate::physics::params::Contact;
+use crate::solver::{LambdaContext, SolveError, Status};
+use serde::Serialize;
+
+/// What fixes the Maugis-Dugdale state.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Given {
+    /// The load Pbar (the stable branch under load control).
+    Load(f64),
+    /// The approach Dbar (the stable branch under displacement control).
+    Approach(f64),
+    /// The contact radius A (any point of the curve).
+    Radius(f64),
+}
+
+/// The profile of one model.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModelProfile {
+    pub model: &'static str,
+    /// `ok`, or `no_contact` where the load is below this model's pull-off (empty arrays).
+    pub status: &'static str,
+    /// Contact radius.
+    pub a: Option<f64>,
+    /// Outer radius of the zone where the surface forces act (MD: the Dugdale zone; Hertz and
+    /// JKR: the contact radius; DMT: unbounded, null).
+    pub c: Option<f64>,
+    pub load: f64,
+    pub approach: Option<f64>,
+    pub r: Vec<f64>,
+    /// Compressive positive; null where the stress is singular (JKR at r = a).
+    pub pressure: Vec<Option<f64>>,
+    pub gap: Vec<f64>,
+    /// The largest tensile stress and the radii where it acts; null where it is unbounded.
+    pub max_tension: Option<f64>,
+    pub max_tension_at: Option<(f64, f64)>,
+    /// Stress intensity factor at r = a (0 where the stress is bounded, as in MD).
+    pub stress_intensity: Option<f64>,
+    /// Energy release rate at the contact edge over w (JKR: from K_I; MD: the J-integral through
+    /// the Dugdale zone, Dugdale stress times the gap at r = c). 1 at equilibrium.
+    pub energy_release_rate_over_w: Option<f64>,
+    pub notes: Vec<String>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Profile {
+    pub lambda: f64,
+    /// `normalised` (Johnson-Greenwood units) or `SI` (m, Pa, N).
+    pub units: &'static str,
+    /// Dugdale range h0 = 2/(pi lambda) in the gap's unit.
+    pub dugdale_range: f64,
+    /// Dugdale stress lambda/2 in the pressure's unit.
+    pub dugdale_stress: f64,
+    pub models: Vec<ModelProfile>,
+}
+
+/// The sampling radii: `n` uniform points to `r_max`, and clusters on both sides of every
+/// radius in `edges`, where the fields change fastest.
+fn radii(r_max: f64, n: usize, edges: &[f64]) -> Vec<f64> {
+    let mut r: Vec<f64> = (0..n).map(|i| r_max * i as f64 / (n - 1) as f64).collect();
+    for &e in edges
+        .iter()
+        .filter(|e| e.is_finite() && **e > 0.0 && **e < r_max)
+    {
+        r.push(e);
+        for k in 1..=8 {
+            let d = 10f64.powi(-k);
+            r.push(e * (1.0 - d));
+            if e * (1.0 + d) < r_max {
+                r.push(e * (1.0 + d));
+            }
+        }
+    }
+    r.sort_by(|a, b| a.total_cmp(b));
+    r.dedup();
+    r
+}
+
+fn no_contact(model: &'static str, load: f64, why: &str) -> ModelProfile {
+    ModelProfile {
+        model,
+        status: Status::NoContact.name(),
+        a: None,
+        c: None,
+        load,
+        approach: None,
+        r: Vec::new(),
+        pressure: Vec::new(),
+        gap: Vec::new(),
+        max_tension: None,
+        max_tension_at: None,
+        stress_intensity: None,
+        energy_release_rate_over_w: None,
+        notes: vec![why.to_string()],
+    }
+}
+
+/// The most points a profile samples per model.
+pub const MAX_PROFILE_POINTS: usize = 100_000;
+
+/// The profiles of the MD state fixed by `given` and of Hertz, DMT and JKR at its load, sampled
+/// at about `points` radii.
+pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, ProfileError> {
+    if !(16..=MAX_PROFILE_POINTS).contains(&points) {
+        return Err(ProfileError::Points(points));
+    }
+    let ctx = LambdaContext::new(lambda)?;
+    let (a, load, approach, m_minus_1, status) = match given {
+        Given::Load(p) => {
+            crate::physics::domain::check_load(p)?;
+            let s = ctx.solve_load(p);
+            (s.a, s.load, s.approach, s.m_minus_1, s.status)
+        }
+        Given::Approach(d) => {
+            crate::physics::domain::check_approach(d)?;
+            let s = ctx.solve_approach(d);
+            (s.a, s.load, s.approach, s.m_minus_1, s.status)
+        }
+        Given::Radius(a) => {
+            crate::physics::domain::check_radius(a)?;
+            let s = ctx.solve_radius(a);
+            (s.a, s.load, s.approach, s.m_minus_1, s.status)
+        }
+    };
+    if status != Status::Ok {
+        return Err(ProfileError::NoState(status));
+    }
+    let mu = (m_minus_1 * (m_minus_1 + 2.0)).sqrt();
+    let md = MdGeometry { lambda, a, mu };
+    let c = md.c();
+    // A closed form with zero contact radius (Hertz at zero load) has no contact.
+    let nonzero = |a: Option<f64>| a.filter(|&a| a > 0.0);
+    let (ah, ad, aj) = (
+        nonzero(hertz_radius(load)),
+        nonzero(dmt_radius(load)),
+        nonzero(jkr_radius(load)),
+    );
+    let r_max = 1.5
+        * [Some(c), ah, ad, aj]
+            .iter()
+            .flatten()
+            .fold(0.0f64, |m, &x| m.max(x));
+    let edges: Vec<f64> = [Some(a), Some(c), ah, ad, aj]
+        .iter()
+        .flatten()
+        .copied()
+        .collect();
+    let r = radii(r_max, points, &edges);
+
+    let h0 = 2.0 / (std::f64::consts::PI * lambda);
+    let j = md.gap(c) / h0;
+    let md_profile = ModelProfile {
+        model: "md",
+        status: "ok",
+        a: Some(a),
+        c: Some(c),
+        load,
+        approach: Some(approach),
+        pressure: r.iter().map(|&x| Some(md.pressure(x))).collect(),
+        gap: r.iter().map(|&x| md.gap(x)).collect(),
+        r: r.clone(),
+        max_tension: Some(0.5 * lambda),
+        max_tension_at: Some((a, c)),
+        stress_intensity: Some(0.0),
+        energy_release_rate_over_w: Some(j),
+        notes: vec!["the stress is bounded: the Dugdale stress lambda/2 acts on a < r < c".into()],
+    };
+    let hertz = match ah {
+        Some(ah) => ModelProfile {
+            model: "hertz",
+            status: "ok",
+            a: Some(ah),
+            c: Some(ah),
+            load,
+            approach: Some(ah * ah),
+            pressure: r.iter().map(|&x| Some(hertz_pressure(ah, x))).collect(),
+            gap: r.iter().map(|&x| hertz_gap(ah, x)).collect(),
+            r: r.clone(),
+            max_tension: Some(0.0),
+            max_tension_at: None,
+            stress_intensity: Some(0.0),
+            energy_release_rate_over_w: Some(0.0),
+            notes: vec!["no surface forces: no tension anywhere".into()],
+        },
+        None => no_contact("hertz", load, "no compressive load: Hertz has no contact"),
+    };
+    let dmt = match ad {
+        Some(ad) => ModelProfile {
+            model: "dmt",
+            status: "ok",
+            a: Some(ad),
+            c: None,
+            load,
+            approach: Some(ad * ad),
+            pressure: r.iter().map(|&x| Some(hertz_pressure(ad, x))).collect(),
+            gap: r.iter().map(|&x| hertz_gap(ad, x)).collect(),
+            r: r.clone(),
+            max_tension: None,
+            max_tension_at: None,
+            stress_intensity: Some(0.0),
+            energy_release_rate_over_w: None,
+            notes: vec![
+                "Hertzian pressure and profile under the load plus 2 (the adhesive force 2 pi w R acts outside the contact, its distribution not modelled): pressure outside the contact shown as 0".into(),
+            ],
+        },
+        None => no_contact("dmt", load, "the load is below the DMT pull-off -2"),
+    };
+    let jkr = match aj {
+        Some(aj) => {
+            let k = jkr_stress_intensity(aj);
+            ModelProfile {
+                model: "jkr",
+                status: "ok",
+                a: Some(aj),
+                c: Some(aj),
+                load,
+                approach: Some(jkr_approach(aj)),
+                pressure: r
+                    .iter()
+                    .map(|&x| Some(jkr_pressure(aj, x)).filter(|p| p.is_finite()))
+                    .collect(),
+                gap: r.iter().map(|&x| jkr_gap(aj, x)).collect(),
+                r: r.clone(),
+                max_tension: None,
+                max_tension_at: Some((aj, aj)),
+                stress_intensity: Some(k),
+                energy_release_rate_over_w: Some(energy_release_over_w(k)),
+                notes: vec![
+                    "the tension is singular (infinite) at r = a: pressure there is null; see stress_intensity".into(),
+                ],
+            }
+        }
+        None => no_contact("jkr", load, "the load is below the JKR pull-off -3/2"),
+    };
+    Ok(Profile {
+        lambda,
+        units: "normalised",
+        dugdale_range: h0,
+        dugdale_stress: 0.5 * lambda,
+        models: vec![md_profile, hertz, dmt, jkr],
+    })
+}
+
+impl Profile {
+    /// The same profile in SI units for a contact: radii in m, pressure in Pa, gap and approach
+    /// in m, load in N; the stress intensity in Pa m^(1/2).
+    pub fn to_si(&self, c: &Contact) -> Profile {
+        let (fr, fd, ff) = (c.radius_scale(), c.approach_scale(), c.force_scale());
+        let fp = ff / (fr * fr);
+        let mut p = self.clone();
+        p.units = "SI";
+        p.dugdale_range *= fd;
+        p.dugdale_stress *= fp;
+        for m in &mut p.models {
+            m.a = m.a.map(|x| x * fr);
+            m.c = m.c.map(|x| x * fr);
+            m.load *= ff;
+            m.approach = m.approach.map(|x| x * fd);
+            m.r.iter_mut().for_each(|x| *x *= fr);
+            m.pressure.iter_mut().flatten().for_each(|x| *x *= fp);
+            m.gap.iter_mut().for_each(|x| *x *= fd);
+            m.max_tension = m.max_tension.map(|x| x * fp);
+            m.max_tension_at = m.max_tension_at.map(|(a, b)| (a * fr, b * fr));
+            m.stress_intensity = m.stress_intensity.map(|x| x * fp * fr.sqrt());
+        }
+        p
+    }
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum ProfileError {
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    #[error(transparent)]
+    Domain(#[from] crate::physics::domain::DomainError),
+    #[error("the Maugis-Dugdale state is `{}`: no contact there, so no profile (give a load above the pull-off, an approach above the jump-out)", .0.name())]
+    NoState(Status),
+    #[error("--points {0} is out of range: give 16..=100000")]
+    Points(usize),
+}
