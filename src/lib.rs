@@ -11,6 +11,7 @@ pub mod bench;
 pub mod cli;
 pub mod cycle;
 pub mod engine;
+pub mod export;
 pub mod gpu;
 pub mod io;
 pub mod map;

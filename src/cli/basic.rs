@@ -3,7 +3,7 @@
 use super::Format;
 use crate::engine::{cross_check, Backend, Engine, Precision};
 use crate::io::{fmt17, json_num, write_output, Output};
-use crate::physics::md::{curve_point, LAMBDA_D};
+use crate::physics::md::LAMBDA_D;
 use crate::solver::{Control, LambdaContext, State, Status};
 use anyhow::{bail, Context};
 use clap::Args;
@@ -645,74 +645,34 @@ pub struct CurveArgs {
     pub format: Format,
 }
 
-/// Most points of `tabor curve` (its rows are kept in memory).
-const MAX_CURVE_POINTS: usize = 1_000_000;
-
 pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
-    let ctx = LambdaContext::new(a.lambda).context("--lambda")?;
-    crate::solver::domain::check_radius(a.a_max).context("--a-max")?;
-    if !(2..=MAX_CURVE_POINTS).contains(&a.points) {
-        bail!(
-            "--points {} is out of range: give 2..={MAX_CURVE_POINTS}",
-            a.points
-        );
-    }
     if a.format == Format::Text {
         bail!("--format text is not available for a curve: use csv or json");
     }
-    let mut rows = Vec::new();
-    for i in 0..a.points - 1 {
-        let ar = a.a_max * (1.0 - i as f64 / (a.points - 1) as f64);
-        let x = crate::solver::context::x_at_radius(a.lambda, ar);
-        let p = curve_point(a.lambda, x.exp());
-        rows.push([
-            p.a,
-            p.load,
-            p.approach,
-            p.m_minus_1,
-            (p.dload_dmu < 0.0) as u8 as f64,
-            (p.dapproach_dmu < 0.0) as u8 as f64,
-        ]);
-    }
-    let e = ctx.end;
-    rows.push([
-        0.0,
-        e.load,
-        e.approach,
-        f64::INFINITY,
-        0.0,
-        (a.lambda <= LAMBDA_D) as u8 as f64,
-    ]);
-    let cols = [
-        "lambda",
-        "A",
-        "load",
-        "approach",
-        "m_minus_1",
-        "load_stable",
-        "displacement_stable",
-    ];
+    let c = crate::solver::curve::curve(a.lambda, a.a_max, a.points).map_err(|e| {
+        let flag = match e {
+            crate::solver::curve::CurveError::Solve(_) => "--lambda",
+            crate::solver::curve::CurveError::Domain(_) => "--a-max",
+            crate::solver::curve::CurveError::Points(_) => "--points",
+        };
+        anyhow::Error::from(e).context(flag)
+    })?;
     let text = match a.format {
-        Format::Json => {
-            let pts: Vec<_> = rows
-                .iter()
-                .map(|r| json!({"A": r[0], "load": r[1], "approach": r[2], "m_minus_1": json_num(r[3]), "load_stable": r[4] == 1.0, "displacement_stable": r[5] == 1.0}))
-                .collect();
-            serde_json::to_string_pretty(&json!({"lambda": a.lambda, "points": pts}))? + "\n"
-        }
+        Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
-            let mut t = cols.join(",") + "\n";
-            for r in &rows {
+            let mut t =
+                String::from("lambda,A,load,approach,m_minus_1,load_stable,displacement_stable\n");
+            for r in &c.points {
                 let _ = writeln!(
                     t,
                     "{},{},{},{},{},{},{}",
-                    fmt17(a.lambda),
-                    fmt17(r[0]),
-                    fmt17(r[1]),
-                    fmt17(r[2]),
-                    fmt17(r[3]),
-                    r[4] as u8,
-                    r[5] as u8
+                    fmt17(c.lambda),
+                    fmt17(r.a),
+                    fmt17(r.load),
+                    fmt17(r.approach),
+                    fmt17(r.m_minus_1),
+                    r.load_stable as u8,
+                    r.displacement_stable as u8
                 );
             }
             t

@@ -31,6 +31,19 @@ pub enum Quantity {
 }
 
 impl Quantity {
+    /// By its command-line name: a, approach, m, err-hertz, err-dmt, err-jkr.
+    pub fn from_name(name: &str) -> Option<Quantity> {
+        Some(match name {
+            "a" => Quantity::A,
+            "approach" => Quantity::Approach,
+            "m" => Quantity::M,
+            "err-hertz" => Quantity::ErrHertz,
+            "err-dmt" => Quantity::ErrDmt,
+            "err-jkr" => Quantity::ErrJkr,
+            _ => return None,
+        })
+    }
+
     fn title(self) -> &'static str {
         match self {
             Quantity::A => "Contact radius A (exact Maugis-Dugdale)",

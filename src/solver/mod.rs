@@ -2,6 +2,7 @@
 //! mirror of the shaders.
 
 pub mod context;
+pub mod curve;
 pub mod mirror;
 pub mod naive;
 pub mod root;

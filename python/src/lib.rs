@@ -1,0 +1,549 @@
+//! The Python binding: thin wrappers over tabor's library API on flat float64 arrays (the
+//! Python layer in `tabor/__init__.py` broadcasts and reshapes). Every call releases the GIL
+//! while it works, turns tabor's errors into ValueError with tabor's own message, and a panic
+//! into RuntimeError instead of an abort.
+
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::panic::AssertUnwindSafe;
+use tabor::engine::{Backend, Engine, Precision};
+use tabor::solver::{Control, LambdaContext, Status};
+
+/// Runs `f` without the GIL; errors become ValueError, panics RuntimeError.
+fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
+    let r = py.detach(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
+    match r {
+        Ok(Ok(v)) => Ok(v),
+        Ok(Err(e)) => Err(PyValueError::new_err(format!("{e:#}"))),
+        Err(p) => {
+            let msg = p
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            Err(PyRuntimeError::new_err(format!(
+                "internal error in tabor (please report): {msg}"
+            )))
+        }
+    }
+}
+
+fn backend_of(s: &str) -> PyResult<Backend> {
+    match s {
+        "cpu" => Ok(Backend::Cpu),
+        "gpu" => Ok(Backend::Gpu),
+        "auto" => Ok(Backend::Auto),
+        _ => Err(PyValueError::new_err(format!(
+            "backend = {s:?}: give \"cpu\", \"gpu\" or \"auto\""
+        ))),
+    }
+}
+
+fn precision_of(s: &str) -> PyResult<Precision> {
+    match s {
+        "f32" => Ok(Precision::F32),
+        "f64" => Ok(Precision::F64),
+        _ => Err(PyValueError::new_err(format!(
+            "precision = {s:?}: give \"f32\" or \"f64\""
+        ))),
+    }
+}
+
+fn arr<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
+    v.into_pyarray(py)
+}
+
+/// Solves (lambda, value) pairs; `given` is "load" or "approach". Returns a dict of flat
+/// arrays and the status codes with their names, plus metadata.
+#[pyfunction]
+#[pyo3(signature = (lam, value, given, backend, precision, adapter, check))]
+#[allow(clippy::too_many_arguments)]
+fn solve_points<'py>(
+    py: Python<'py>,
+    lam: PyReadonlyArray1<'py, f64>,
+    value: PyReadonlyArray1<'py, f64>,
+    given: &str,
+    backend: &str,
+    precision: &str,
+    adapter: Option<String>,
+    check: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let control = match given {
+        "load" => Control::Load,
+        "approach" => Control::Displacement,
+        _ => {
+            return Err(PyValueError::new_err(
+                "given must be \"load\" or \"approach\"",
+            ))
+        }
+    };
+    let (backend, precision) = (backend_of(backend)?, precision_of(precision)?);
+    let points: Vec<(f64, f64)> = lam
+        .as_slice()?
+        .iter()
+        .copied()
+        .zip(value.as_slice()?.iter().copied())
+        .collect();
+    let (states, engine_line, meta) = run(py, move || {
+        let (mut engine, line) = Engine::select(backend, adapter.as_deref())?;
+        engine.set_precision(precision)?;
+        let mut states = Vec::with_capacity(points.len());
+        let mut check_report = tabor::engine::CheckReport::empty(tabor::engine::GPU_TOLERANCE);
+        for chunk in points.chunks(1 << 18) {
+            let s = engine.solve_points(chunk, control)?;
+            if let Engine::Gpu(_) = engine {
+                check_report.merge(tabor::engine::cross_check(
+                    chunk,
+                    &s,
+                    control,
+                    check,
+                    tabor::engine::GPU_TOLERANCE,
+                ));
+            }
+            states.extend(s);
+        }
+        let meta = serde_json::json!({
+            "backend": engine.name(),
+            "adapter": engine.adapter(),
+            "precision": engine.precision(),
+            "cross_check": matches!(engine, Engine::Gpu(_)).then_some(check_report),
+        });
+        Ok((states, line, meta.to_string()))
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("A", arr(py, states.iter().map(|s| s.a).collect()))?;
+    d.set_item("load", arr(py, states.iter().map(|s| s.load).collect()))?;
+    d.set_item(
+        "approach",
+        arr(py, states.iter().map(|s| s.approach).collect()),
+    )?;
+    d.set_item(
+        "m_minus_1",
+        arr(py, states.iter().map(|s| s.m_minus_1).collect()),
+    )?;
+    let codes: Vec<u8> = states.iter().map(|s| s.status as u8).collect();
+    d.set_item("status_code", codes.into_pyarray(py))?;
+    d.set_item("engine", engine_line)?;
+    d.set_item("metadata_json", meta)?;
+    Ok(d)
+}
+
+/// The curve points at given contact radii, with stability under both controls.
+#[pyfunction]
+fn solve_radius<'py>(
+    py: Python<'py>,
+    lam: PyReadonlyArray1<'py, f64>,
+    a: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let points: Vec<(f64, f64)> = lam
+        .as_slice()?
+        .iter()
+        .copied()
+        .zip(a.as_slice()?.iter().copied())
+        .collect();
+    let states = run(py, move || Ok(tabor::solver::solve_radius_points(&points)))?;
+    let d = PyDict::new(py);
+    d.set_item("A", arr(py, states.iter().map(|s| s.a).collect()))?;
+    d.set_item("load", arr(py, states.iter().map(|s| s.load).collect()))?;
+    d.set_item(
+        "approach",
+        arr(py, states.iter().map(|s| s.approach).collect()),
+    )?;
+    d.set_item(
+        "m_minus_1",
+        arr(py, states.iter().map(|s| s.m_minus_1).collect()),
+    )?;
+    d.set_item(
+        "load_stable",
+        states.iter().map(|s| s.load_stable).collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "displacement_stable",
+        states
+            .iter()
+            .map(|s| s.displacement_stable)
+            .collect::<Vec<_>>(),
+    )?;
+    let codes: Vec<u8> = states.iter().map(|s| s.status as u8).collect();
+    d.set_item("status_code", codes.into_pyarray(py))?;
+    Ok(d)
+}
+
+/// The status names, indexed by code.
+#[pyfunction]
+fn status_names() -> Vec<&'static str> {
+    [
+        Status::Ok,
+        Status::NoContact,
+        Status::NotConverged,
+        Status::InvalidInput,
+    ]
+    .iter()
+    .map(|s| s.name())
+    .collect()
+}
+
+/// Pull-offs under both controls for each lambda; raises for a lambda outside the domain.
+#[pyfunction]
+fn pulloff<'py>(py: Python<'py>, lam: PyReadonlyArray1<'py, f64>) -> PyResult<Bound<'py, PyDict>> {
+    let lam: Vec<f64> = lam.as_slice()?.to_vec();
+    let ctx = run(py, move || {
+        lam.iter()
+            .map(|&l| LambdaContext::new(l).map_err(anyhow::Error::from))
+            .collect::<anyhow::Result<Vec<_>>>()
+    })?;
+    let d = PyDict::new(py);
+    let col = |f: &dyn Fn(&LambdaContext) -> f64| arr(py, ctx.iter().map(f).collect());
+    d.set_item("load_control_load", col(&|c| c.load_pulloff.load))?;
+    d.set_item("load_control_A", col(&|c| c.load_pulloff.a))?;
+    d.set_item("load_control_approach", col(&|c| c.load_pulloff.approach))?;
+    d.set_item("displacement_control_load", col(&|c| c.disp_pulloff.load))?;
+    d.set_item("displacement_control_A", col(&|c| c.disp_pulloff.a))?;
+    d.set_item(
+        "displacement_control_approach",
+        col(&|c| c.disp_pulloff.approach),
+    )?;
+    d.set_item("zero_radius_end_load", col(&|c| c.end.load))?;
+    d.set_item("zero_radius_end_approach", col(&|c| c.end.approach))?;
+    Ok(d)
+}
+
+/// A closed form elementwise: `model` hertz|dmt|jkr, `what` radius (A from Pbar) or load (Pbar
+/// from A); NaN where the model has no answer.
+#[pyfunction]
+fn closed_form<'py>(
+    py: Python<'py>,
+    model: &str,
+    what: &str,
+    x: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    use tabor::physics::closed::{dmt_radius, hertz_radius, jkr_load, jkr_radius};
+    let f: fn(f64) -> f64 = match (model, what) {
+        ("hertz", "radius") => |p| hertz_radius(p).unwrap_or(f64::NAN),
+        ("dmt", "radius") => |p| dmt_radius(p).unwrap_or(f64::NAN),
+        ("jkr", "radius") => |p| jkr_radius(p).unwrap_or(f64::NAN),
+        ("hertz", "load") => |a| if a >= 0.0 { a * a * a } else { f64::NAN },
+        ("dmt", "load") => |a| if a >= 0.0 { a * a * a - 2.0 } else { f64::NAN },
+        ("jkr", "load") => |a| if a >= 0.0 { jkr_load(a) } else { f64::NAN },
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "no closed form {model:?} for {what:?}"
+            )))
+        }
+    };
+    Ok(arr(py, x.as_slice()?.iter().map(|&v| f(v)).collect()))
+}
+
+/// The MD curve of one lambda as JSON (`tabor curve`'s columns).
+#[pyfunction]
+fn curve(py: Python<'_>, lam: f64, a_max: f64, points: usize) -> PyResult<String> {
+    run(py, move || {
+        let c = tabor::solver::curve::curve(lam, a_max, points)?;
+        Ok(serde_json::to_string(&c)?)
+    })
+}
+
+/// A scene (JSON text, or a preset name) solved: `tabor scene --format json`'s report.
+#[pyfunction]
+#[pyo3(signature = (scene_json=None, preset=None))]
+fn scene(py: Python<'_>, scene_json: Option<String>, preset: Option<String>) -> PyResult<String> {
+    run(py, move || {
+        let input: tabor::scene::SceneInput = match (scene_json, preset) {
+            (Some(j), None) => {
+                serde_json::from_str(&j).map_err(|e| anyhow::anyhow!("not a valid scene: {e}"))?
+            }
+            (None, Some(p)) => tabor::scene::preset(&p).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "no preset {p:?}; the presets are {}",
+                    tabor::scene::PRESETS.join(", ")
+                )
+            })?,
+            _ => anyhow::bail!("give a scene or a preset name"),
+        };
+        Ok(serde_json::to_string(&tabor::scene::solve_scene(&input)?)?)
+    })
+}
+
+#[pyfunction]
+fn presets() -> Vec<&'static str> {
+    tabor::scene::PRESETS.to_vec()
+}
+
+#[pyfunction]
+fn infer_pulloff(
+    py: Python<'_>,
+    force: f64,
+    radius: f64,
+    e_star: f64,
+    z0: f64,
+) -> PyResult<String> {
+    run(py, move || {
+        Ok(serde_json::to_string(&tabor::scene::infer(
+            force, radius, e_star, z0,
+        )?)?)
+    })
+}
+
+#[pyfunction]
+fn fit_pairs<'py>(
+    py: Python<'py>,
+    loads: PyReadonlyArray1<'py, f64>,
+    radii: PyReadonlyArray1<'py, f64>,
+    radius: f64,
+    z0: f64,
+) -> PyResult<String> {
+    let pairs: Vec<(f64, f64)> = loads
+        .as_slice()?
+        .iter()
+        .copied()
+        .zip(radii.as_slice()?.iter().copied())
+        .collect();
+    run(py, move || {
+        Ok(serde_json::to_string(&tabor::scene::fit_pairs(
+            &pairs, radius, z0,
+        )?)?)
+    })
+}
+
+/// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`).
+#[pyfunction]
+#[pyo3(signature = (lam, drive, stiffness, max_load))]
+fn cycle(
+    py: Python<'_>,
+    lam: f64,
+    drive: &str,
+    stiffness: Option<f64>,
+    max_load: f64,
+) -> PyResult<String> {
+    use tabor::cycle::Drive;
+    let drive = match (drive, stiffness) {
+        ("grips", None) => Drive::RigidGrips,
+        ("dead_load", None) => Drive::DeadLoad,
+        ("spring", Some(k)) => Drive::Spring(k),
+        ("spring", None) => return Err(PyValueError::new_err("drive=\"spring\" needs stiffness")),
+        (_, Some(_)) => {
+            return Err(PyValueError::new_err(
+                "stiffness applies to drive=\"spring\" only",
+            ))
+        }
+        (d, _) => {
+            return Err(PyValueError::new_err(format!(
+                "drive = {d:?}: give \"grips\", \"dead_load\" or \"spring\""
+            )))
+        }
+    };
+    run(py, move || {
+        Ok(serde_json::to_string(&tabor::cycle::cycle(
+            lam, drive, max_load,
+        )?)?)
+    })
+}
+
+/// Pressure and gap profiles (JSON): `given` load|approach|radius.
+#[pyfunction]
+fn profile(py: Python<'_>, lam: f64, given: &str, value: f64, points: usize) -> PyResult<String> {
+    use tabor::profile::Given;
+    let g = match given {
+        "load" => Given::Load(value),
+        "approach" => Given::Approach(value),
+        "radius" => Given::Radius(value),
+        _ => {
+            return Err(PyValueError::new_err(
+                "given must be load, approach or radius",
+            ))
+        }
+    };
+    run(py, move || {
+        Ok(serde_json::to_string(&tabor::profile::profile(
+            lam, g, points,
+        )?)?)
+    })
+}
+
+/// An adhesion map, kept on the Rust side for its arrays, figure, JSON and NPY files.
+#[pyclass(module = "tabor._tabor")]
+struct AdhesionMap {
+    data: tabor::map::MapData,
+    engine: Engine,
+    check: Option<tabor::engine::CheckReport>,
+}
+
+#[pymethods]
+impl AdhesionMap {
+    #[new]
+    #[pyo3(signature = (spec_json, backend, precision, adapter, check))]
+    fn new(
+        py: Python<'_>,
+        spec_json: String,
+        backend: &str,
+        precision: &str,
+        adapter: Option<String>,
+        check: usize,
+    ) -> PyResult<Self> {
+        let (backend, precision) = (backend_of(backend)?, precision_of(precision)?);
+        run(py, move || {
+            let spec: tabor::map::MapSpec = serde_json::from_str(&spec_json)?;
+            spec.validate()?;
+            let (mut engine, _) = Engine::select(backend, adapter.as_deref())?;
+            engine.set_precision(precision)?;
+            let data = tabor::map::compute(&spec, &engine)?;
+            let check = matches!(engine, Engine::Gpu(_)).then(|| {
+                let pts: Vec<(f64, f64)> = data.states.iter().map(|s| (s.lambda, s.load)).collect();
+                tabor::engine::cross_check(
+                    &pts,
+                    &data.states,
+                    Control::Load,
+                    check,
+                    tabor::engine::GPU_TOLERANCE,
+                )
+            });
+            Ok(AdhesionMap {
+                data,
+                engine,
+                check,
+            })
+        })
+    }
+
+    #[getter]
+    fn lam<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arr(py, self.data.lambdas.clone())
+    }
+
+    #[getter]
+    fn load_axis<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arr(py, self.data.rows.clone())
+    }
+
+    #[getter]
+    fn pulloff<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        arr(py, self.data.pulloff.clone())
+    }
+
+    /// Flat per-point arrays (row-major, ny rows of nx): A, load, approach, m_minus_1, region and
+    /// status codes.
+    fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let s = &self.data.states;
+        let ok = |x: f64, st: Status| if st == Status::Ok { x } else { f64::NAN };
+        let d = PyDict::new(py);
+        d.set_item("A", arr(py, s.iter().map(|s| ok(s.a, s.status)).collect()))?;
+        d.set_item("load", arr(py, s.iter().map(|s| s.load).collect()))?;
+        d.set_item(
+            "approach",
+            arr(py, s.iter().map(|s| ok(s.approach, s.status)).collect()),
+        )?;
+        d.set_item(
+            "m_minus_1",
+            arr(py, s.iter().map(|s| ok(s.m_minus_1, s.status)).collect()),
+        )?;
+        let regions: Vec<u8> = self.data.regions.iter().map(|&r| r as u8).collect();
+        d.set_item("region", regions.into_pyarray(py))?;
+        let codes: Vec<u8> = s.iter().map(|s| s.status as u8).collect();
+        d.set_item("status_code", codes.into_pyarray(py))?;
+        d.set_item(
+            "region_names",
+            tabor::map::Region::ALL
+                .iter()
+                .map(|r| r.name())
+                .collect::<Vec<_>>(),
+        )?;
+        d.set_item("shape", (self.data.spec.ny, self.data.spec.nx))?;
+        Ok(d)
+    }
+
+    /// Writes the figure (PNG or SVG by `kind`), with an optional quantity.
+    #[pyo3(signature = (path, kind, quantity=None))]
+    fn save_figure(
+        &self,
+        py: Python<'_>,
+        path: String,
+        kind: &str,
+        quantity: Option<String>,
+    ) -> PyResult<()> {
+        let q = match quantity.as_deref() {
+            None => None,
+            Some(name) => Some(
+                tabor::render::map::Quantity::from_name(name).ok_or_else(|| {
+                    PyValueError::new_err(format!(
+                        "quantity = {name:?}: give a, approach, m, err-hertz, err-dmt or err-jkr"
+                    ))
+                })?,
+            ),
+        };
+        let png = kind == "png";
+        let data = &self.data;
+        run(py, move || {
+            let (p, s) = tabor::render::map::render(data, q, png, !png)
+                .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
+            let bytes = if png {
+                p.unwrap_or_default()
+            } else {
+                s.unwrap_or_default().into_bytes()
+            };
+            tabor::io::write_output(&path, &bytes)
+        })
+    }
+
+    /// Writes the JSON document as `tabor map --json` (with the per-point arrays if `full`).
+    fn save_json(&self, py: Python<'_>, path: String, full: bool) -> PyResult<()> {
+        let (data, engine, check) = (&self.data, &self.engine, self.check.as_ref());
+        run(py, move || {
+            let mut o = tabor::io::Output::create(&path)?;
+            tabor::export::write_map_json(&mut o, data, engine, check, full, false)?;
+            o.commit()
+        })
+    }
+
+    /// Writes PREFIX_lambda.npy, ... as `tabor map --npy PREFIX`.
+    fn save_npy(&self, py: Python<'_>, prefix: String) -> PyResult<()> {
+        let data = &self.data;
+        run(py, move || {
+            let mut outs = tabor::export::NPY_FILES
+                .iter()
+                .map(|n| tabor::io::Output::create(format!("{prefix}_{n}")))
+                .collect::<anyhow::Result<Vec<_>>>()?;
+            tabor::export::write_npy(data, &mut outs)?;
+            for o in outs {
+                o.commit()?;
+            }
+            Ok(())
+        })
+    }
+
+    fn region_counts(&self) -> Vec<(&'static str, usize)> {
+        self.data
+            .region_counts()
+            .into_iter()
+            .map(|(r, n)| (r.name(), n))
+            .collect()
+    }
+
+    #[getter]
+    fn backend(&self) -> &'static str {
+        self.engine.name()
+    }
+}
+
+#[pymodule]
+fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
+    m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
+    m.add("LAMBDA_D", tabor::physics::md::LAMBDA_D)?;
+    m.add_function(wrap_pyfunction!(solve_points, m)?)?;
+    m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
+    m.add_function(wrap_pyfunction!(status_names, m)?)?;
+    m.add_function(wrap_pyfunction!(pulloff, m)?)?;
+    m.add_function(wrap_pyfunction!(closed_form, m)?)?;
+    m.add_function(wrap_pyfunction!(curve, m)?)?;
+    m.add_function(wrap_pyfunction!(scene, m)?)?;
+    m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
+    m.add_function(wrap_pyfunction!(cycle, m)?)?;
+    m.add_function(wrap_pyfunction!(profile, m)?)?;
+    m.add_class::<AdhesionMap>()?;
+    Ok(())
+}

@@ -1,0 +1,370 @@
+"""tabor: adhesive contact of elastic spheres, on NumPy arrays.
+
+Exact Maugis-Dugdale (MD) states, pull-offs, curves, adhesion maps, scenes in SI units,
+approach-retract cycles and the pressure and gap inside the contact, computed by tabor's Rust
+library (the f64 solver on all cores, or the f32 GPU kernels with a cross-check).
+
+Normalisation (Johnson & Greenwood 1997), with K = 4/3 E*:
+
+- ``lam``: the Maugis parameter lambda = 2 s0 (R / (pi w K^2))^(1/3), in 1e-8 .. 1e8
+- ``load``: Pbar = P / (pi w R), tensile negative, |Pbar| <= 1e12
+- ``approach``: Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), |Dbar| <= 1e8
+- ``A``: contact radius a (K / (pi w R^2))^(1/3), in (0, 1e4]
+- ``m_minus_1``: c/a - 1 (c the outer radius of the Dugdale zone)
+
+Closed forms in the same units: Hertz Pbar = A^3, DMT Pbar = A^3 - 2, JKR Pbar = A^3 - sqrt(6 A^3),
+Bradley (rigid) pull-off -2.
+
+Results that could not be computed are NaN, and the ``status`` array says why: ``ok``,
+``no_contact`` (below the pull-off), ``not_converged``, ``invalid_input`` (outside the domain).
+Bad arguments raise ``ValueError`` with tabor's own message.
+"""
+
+import json
+import os
+
+import numpy as np
+
+from . import _tabor
+
+__version__ = _tabor.__version__
+LAMBDA_MIN = _tabor.LAMBDA_MIN
+LAMBDA_MAX = _tabor.LAMBDA_MAX
+#: Below this lambda the contact under rigid grips shrinks to zero radius.
+LAMBDA_D = _tabor.LAMBDA_D
+STATUS_NAMES = tuple(_tabor.status_names())
+
+__all__ = [
+    "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
+    "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "cycle", "profile", "presets",
+]
+
+
+class Result(dict):
+    """A mapping of NumPy arrays (``A``, ``load``, ``approach``, ``m_minus_1``, ``status``,
+    ...) with the run's ``metadata`` (backend, adapter, precision, GPU cross-check)."""
+
+    def __init__(self, arrays, metadata):
+        super().__init__(arrays)
+        self.metadata = metadata
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+def _flat(*arrays):
+    """Broadcasts float64 inputs; returns the flat contiguous copies and the common shape."""
+    try:
+        f = [np.asarray(a, dtype=np.float64) for a in arrays]
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"inputs must be numbers or arrays of numbers: {e}") from None
+    try:
+        b = np.broadcast_arrays(*f)
+    except ValueError as e:
+        raise ValueError(f"the inputs do not broadcast to a common shape: {e}") from None
+    shape = b[0].shape
+    return [np.ascontiguousarray(x.ravel()) for x in b], shape
+
+
+def _status(codes, shape):
+    return np.array(STATUS_NAMES, dtype=object)[codes].astype(str).reshape(shape)
+
+
+def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precision="f32",
+          check=1000, adapter=None):
+    """Maugis-Dugdale states, broadcast over ``lam`` and exactly one of ``load``,
+    ``approach`` or ``radius``.
+
+    Parameters
+    ----------
+    lam : array_like
+        Maugis parameter lambda (1e-8 .. 1e8).
+    load : array_like, optional
+        Normalised load Pbar: the state on the stable branch under load control.
+    approach : array_like, optional
+        Normalised approach Dbar: the state on the stable branch under displacement control.
+    radius : array_like, optional
+        Contact radius A: the curve point there (stable or not); adds ``load_stable`` and
+        ``displacement_stable``.
+    backend : {"cpu", "gpu", "auto"}
+        ``cpu``: the exact f64 solver. ``gpu``: the f32 WGSL kernels (error if no adapter);
+        ``auto``: a GPU if there is one. Radius control always runs on the CPU.
+    precision : {"f32", "f64"}
+        GPU arithmetic; ``f64`` refines every f32 state by Newton steps in f64 on the GPU.
+    check : int
+        GPU results: re-solve this many evenly spaced points per chunk on the CPU and report the
+        errors in ``metadata["cross_check"]``.
+    adapter : str, optional
+        Use the first GPU adapter whose name contains this text.
+
+    Returns
+    -------
+    Result
+        float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1`` and a string array
+        ``status``, all of the broadcast shape; NaN only where ``status`` is not ``ok``.
+
+    Examples
+    --------
+    >>> r = tabor.solve(1.0, load=[0.5, -1.7])
+    >>> r["A"], r["status"]
+    """
+    given = [k for k, v in (("load", load), ("approach", approach), ("radius", radius))
+             if v is not None]
+    if len(given) != 1:
+        raise ValueError("give exactly one of load=, approach= or radius= "
+                         f"(got {', '.join(given) or 'none'})")
+    value = {"load": load, "approach": approach, "radius": radius}[given[0]]
+    (lam_f, val_f), shape = _flat(lam, value)
+    if not isinstance(check, (int, np.integer)) or check < 0:
+        raise ValueError(f"check = {check!r}: give a number of points >= 0")
+    if given[0] == "radius":
+        r = _tabor.solve_radius(lam_f, val_f)
+        meta = {"backend": "cpu", "precision": "f64", "control": "radius"}
+        out = {k: np.asarray(r[k]).reshape(shape)
+               for k in ("A", "load", "approach", "m_minus_1")}
+        out["load_stable"] = np.asarray(r["load_stable"], dtype=bool).reshape(shape)
+        out["displacement_stable"] = np.asarray(
+            r["displacement_stable"], dtype=bool).reshape(shape)
+    else:
+        r = _tabor.solve_points(lam_f, val_f, given[0], backend, precision, adapter, int(check))
+        meta = json.loads(r["metadata_json"])
+        meta["control"] = "load" if given[0] == "load" else "displacement"
+        meta["engine"] = r["engine"]
+        out = {k: np.asarray(r[k]).reshape(shape)
+               for k in ("A", "load", "approach", "m_minus_1")}
+    out["status"] = _status(np.asarray(r["status_code"]), shape)
+    return Result(out, meta)
+
+
+def pulloff(lam):
+    """Pull-off (jump-out) under load and displacement control, as ``tabor pulloff``.
+
+    Returns a Result of arrays of the shape of ``lam``: ``load_control_load`` (Pbar_c),
+    ``load_control_A``, ``load_control_approach``, ``displacement_control_load``,
+    ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero radius),
+    ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
+    Raises ValueError for a lambda outside 1e-8 .. 1e8.
+    """
+    (lam_f,), shape = _flat(lam)
+    r = _tabor.pulloff(lam_f)
+    return Result({k: np.asarray(v).reshape(shape) for k, v in r.items()}, {})
+
+
+def _closed(model, load=None, A=None):
+    if (load is None) == (A is None):
+        raise ValueError("give exactly one of load= (returns A) or A= (returns the load)")
+    what, x = ("radius", load) if load is not None else ("load", A)
+    (x_f,), shape = _flat(x)
+    return np.asarray(_tabor.closed_form(model, what, x_f)).reshape(shape)
+
+
+def hertz(load=None, A=None):
+    """Hertz: A = Pbar^(1/3) from ``load`` (NaN for Pbar < 0), or Pbar = A^3 from ``A``."""
+    return _closed("hertz", load, A)
+
+
+def dmt(load=None, A=None):
+    """DMT: A = (Pbar + 2)^(1/3) from ``load`` (NaN below -2), or Pbar = A^3 - 2 from ``A``."""
+    return _closed("dmt", load, A)
+
+
+def jkr(load=None, A=None):
+    """JKR: A^3 = Pbar + 3 + sqrt(9 + 6 Pbar) from ``load`` (NaN below -3/2), or
+    Pbar = A^3 - sqrt(6 A^3) from ``A``."""
+    return _closed("jkr", load, A)
+
+
+def bradley():
+    """Bradley (rigid spheres): the pull-off load -2 (no deformation, no contact radius)."""
+    return -2.0
+
+
+def curve(lam, a_max=4.0, points=200):
+    """The whole MD curve of one lambda, stable and unstable parts, as ``tabor curve``: A
+    uniform from ``a_max`` down to 0, then the A = 0 end. Returns a Result of arrays ``A``,
+    ``load``, ``approach``, ``m_minus_1`` (inf at the end), ``load_stable``,
+    ``displacement_stable``."""
+    c = json.loads(_tabor.curve(float(lam), float(a_max), int(points)))
+    pts = c["points"]
+    out = {k: np.array([p[k] if p[k] is not None else np.inf for p in pts], dtype=float)
+           for k in ("A", "load", "approach", "m_minus_1")}
+    for k in ("load_stable", "displacement_stable"):
+        out[k] = np.array([p[k] for p in pts], dtype=bool)
+    return Result(out, {"lambda": c["lambda"]})
+
+
+class AdhesionMap:
+    """An adhesion map (Johnson & Greenwood 1997), as ``tabor map`` computes it.
+
+    Attributes: ``lam`` (nx), ``load_axis`` (ny: Pbar, or Pbar - Pbar_c for
+    ``load_axis="above-pulloff"``), ``pulloff`` (nx), and (ny, nx) arrays ``A``, ``load``,
+    ``approach``, ``m_minus_1``, ``region`` (uint8 codes; ``region_names`` gives the names),
+    ``status``. ``region_counts`` maps region names to point counts.
+    """
+
+    def __init__(self, inner):
+        self._inner = inner
+        a = inner.arrays()
+        shape = tuple(a["shape"])
+        self.lam = np.asarray(inner.lam)
+        self.load_axis = np.asarray(inner.load_axis)
+        self.pulloff = np.asarray(inner.pulloff)
+        for k in ("A", "load", "approach", "m_minus_1"):
+            setattr(self, k, np.asarray(a[k]).reshape(shape))
+        self.region = np.asarray(a["region"]).reshape(shape)
+        self.region_names = tuple(a["region_names"])
+        self.status = _status(np.asarray(a["status_code"]), shape)
+        self.region_counts = dict(inner.region_counts())
+        self.backend = inner.backend
+
+    def save(self, path, quantity=None):
+        """Writes the figure (``.png`` or ``.svg``), the JSON document (``.json``) or, for a
+        path without one of these extensions, the NumPy files ``PATH_lambda.npy``, ... exactly
+        as ``tabor map --out/--svg/--json/--npy`` do."""
+        path = os.fspath(path)
+        ext = os.path.splitext(path)[1].lower()
+        if ext in (".png", ".svg"):
+            self._inner.save_figure(path, ext[1:], quantity)
+        elif ext == ".json":
+            self._inner.save_json(path, False)
+        else:
+            self._inner.save_npy(path)
+
+    def save_json(self, path, full=False):
+        """The JSON document; ``full`` adds the per-point arrays (``--json-full``)."""
+        self._inner.save_json(os.fspath(path), bool(full))
+
+
+def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="log",
+                 load_min=None, load_max=None, tolerance=0.05, strength_ratio=(0.001, 0.01),
+                 *, backend="auto", precision="f32", check=1000, adapter=None):
+    """Computes an adhesion map with the options of ``tabor map``; see :class:`AdhesionMap`.
+
+    ``load_axis``: ``"log"`` (Pbar, default 1e-3..1e3), ``"above-pulloff"`` (Pbar - Pbar_c,
+    default 1e-6..1e3) or ``"linear"`` (default -2..10). Each point is classified into the first
+    of Hertz, Bradley (rigid), DMT, JKR whose contact radius is within ``tolerance`` of the
+    exact MD one, else MD; below the pull-off: no contact.
+    """
+    defaults = {"log": (1e-3, 1e3), "above-pulloff": (1e-6, 1e3), "linear": (-2.0, 10.0)}
+    if load_axis not in defaults:
+        raise ValueError(f"load_axis = {load_axis!r}: give 'log', 'above-pulloff' or 'linear'")
+    lo, hi = defaults[load_axis]
+    spec = {
+        "lambda_min": float(lambda_min), "lambda_max": float(lambda_max),
+        "nx": int(nx), "ny": int(ny), "load_axis": load_axis,
+        "load_min": float(lo if load_min is None else load_min),
+        "load_max": float(hi if load_max is None else load_max),
+        "tolerance": float(tolerance),
+        "strength_ratios": [float(s) for s in strength_ratio],
+    }
+    inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check))
+    return AdhesionMap(inner)
+
+
+def presets():
+    """Names of the built-in scenes."""
+    return list(_tabor.presets())
+
+
+class Scene:
+    """A real contact in SI units, solved as ``tabor scene`` does.
+
+    Build it from a dict (the scene JSON keys: ``body1``/``body2`` or ``e_star_pa`` and
+    ``radius_m``, ``work_of_adhesion_j_m2``, ``z0_m`` or ``s0_pa`` or ``h0_m``, ``loads_n``, ...),
+    a JSON file (:meth:`from_file`) or a preset name (:meth:`preset`). Attributes: ``report``
+    (the whole report as a dict), ``lam``, ``recommended_model``, ``warnings`` (per load), and
+    per-load arrays ``load_n``, ``contact_radius_m``, ``approach_m`` (NaN where no contact),
+    ``model``.
+    """
+
+    def __init__(self, scene=None, *, _report=None):
+        if _report is None:
+            if not isinstance(scene, dict):
+                raise TypeError("Scene(...) takes a dict; use Scene.from_file or Scene.preset")
+            _report = json.loads(_tabor.scene(json.dumps(scene), None))
+        self.report = _report
+        self.lam = _report["lambda"]
+        self.recommended_model = _report["recommended_model"]
+        loads = _report["loads"]
+        nan = float("nan")
+        self.load_n = np.array([l["load_n"] for l in loads])
+        self.contact_radius_m = np.array(
+            [l["contact_radius_m"] if l["contact_radius_m"] is not None else nan for l in loads])
+        self.approach_m = np.array(
+            [l["approach_m"] if l["approach_m"] is not None else nan for l in loads])
+        self.model = np.array([l["model"] for l in loads])
+        self.warnings = [l["warnings"] for l in loads]
+
+    @classmethod
+    def from_file(cls, path):
+        with open(path) as f:
+            return cls(json.load(f))
+
+    @classmethod
+    def preset(cls, name):
+        return cls(_report=json.loads(_tabor.scene(None, name)))
+
+    def __repr__(self):
+        return (f"Scene({self.report.get('name')!r}, lambda={self.lam:.4g}, "
+                f"recommended model {self.recommended_model!r})")
+
+
+def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9):
+    """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
+    the Tabor self-consistency verdict (``tabor infer``). Returns a dict."""
+    return json.loads(_tabor.infer_pulloff(float(force_n), float(radius_m), float(e_star_pa),
+                                           float(z0_m)))
+
+
+def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
+    """Fits w and E* to measured (load, contact radius) pairs with the exact MD model
+    (``tabor infer --pairs``). Returns a dict."""
+    (p, a), _ = _flat(loads_n, radii_m)
+    return json.loads(_tabor.fit_pairs(p, a, float(radius_m), float(z0_m)))
+
+
+def cycle(lam, drive="grips", stiffness=None, max_load=2.0):
+    """An approach-retract cycle (``tabor cycle``): ``drive`` ``"grips"``, ``"dead_load"`` or
+    ``"spring"`` (normalised ``stiffness``). Returns a Result with the followed path as arrays
+    ``phase``, ``branch``, ``approach``, ``load``, ``A``, ``C``, ``control``, ``jump`` and the
+    metadata ``hysteresis`` (energy lost per cycle, normalised; None under dead load) and
+    ``jumps``."""
+    c = json.loads(_tabor.cycle(float(lam), drive,
+                                None if stiffness is None else float(stiffness),
+                                float(max_load)))
+    steps = c["steps"]
+    branches = ("free", "non_contact", "contact")
+    out = {
+        "phase": np.array([s["phase"] for s in steps]),
+        "branch": np.array([branches[s["point"]["branch"]] for s in steps]),
+        "approach": np.array([s["point"]["approach"] for s in steps]),
+        "load": np.array([s["point"]["load"] for s in steps]),
+        "A": np.array([s["point"]["a"] for s in steps]),
+        "C": np.array([s["point"]["c"] for s in steps]),
+        "control": np.array([s["control"] for s in steps]),
+        "jump": np.array([s["jump"] for s in steps], dtype=bool),
+    }
+    return Result(out, {"hysteresis": c["hysteresis"], "jumps": c["jumps"],
+                        "drive": c["drive"]})
+
+
+def profile(lam, load=None, approach=None, radius=None, points=400):
+    """Pressure and gap inside and around the contact (``tabor profile``) for the MD state
+    given by exactly one of ``load``, ``approach``, ``radius``, and Hertz, DMT and JKR at the
+    same load. Returns a dict with ``models``: one dict per model with arrays ``r``,
+    ``pressure`` (NaN where singular), ``gap`` and ``a``, ``c``, ``load``, the largest tension,
+    the stress intensity factor and the energy release rate over w."""
+    given = [(k, v) for k, v in (("load", load), ("approach", approach), ("radius", radius))
+             if v is not None]
+    if len(given) != 1:
+        raise ValueError("give exactly one of load=, approach= or radius=")
+    p = json.loads(_tabor.profile(float(lam), given[0][0], float(given[0][1]), int(points)))
+    for m in p["models"]:
+        m["r"] = np.array(m["r"], dtype=float)
+        m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],
+                                 dtype=float)
+        m["gap"] = np.array(m["gap"], dtype=float)
+    return p

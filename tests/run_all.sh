@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Every test: the Rust suite, then the Python package built from this checkout into a virtual
+# environment (target/py-venv) and its pytest suite (with nanite for the client test).
+# Run from anywhere: bash tests/run_all.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cargo test --release
+cargo build --release --bin tabor   # the Python tests compare with the command line
+venv=${TABOR_VENV:-target/py-venv}
+[ -x "$venv/bin/python" ] || python3 -m venv "$venv"
+"$venv/bin/python" -m pip install -q --upgrade pip
+"$venv/bin/python" -m pip install -q pytest nanite
+"$venv/bin/python" -m pip install -q ./python
+"$venv/bin/python" -m pytest -q python/tests
