@@ -78,6 +78,11 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     """Maugis-Dugdale states, broadcast over ``lam`` and exactly one of ``load``,
     ``approach`` or ``radius``.
 
+    Units (Johnson & Greenwood 1997, K = 4/3 E*): load Pbar = P / (pi w R), approach
+    Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), contact radius A = a (K / (pi w R^2))^(1/3),
+    lam = 2 s0 (R / (pi w K^2))^(1/3). Domain: lam in 1e-8..1e8, |load| <= 1e12,
+    |approach| <= 1e8, 0 < radius <= 1e4; outside it the status is ``invalid_input``.
+
     Parameters
     ----------
     lam : array_like
