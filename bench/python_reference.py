@@ -1,5 +1,5 @@
 """The public Python reference (package `adhesion`, module Adhesion.ReferenceSolutions.MaugisDugdale)
-on the 300 reference states of tests/data/points.csv, side by side with tabor.
+on the 300 reference states of data/points.csv, side by side with tabor.
 
 The package has a forward map only (contact radius -> load), solving equation (1) for m with
 brentq on a fixed bracket; the load -> state path here is a bracketed brentq on A around that

@@ -7,4 +7,4 @@ venv=${VENV:-target/adhesion-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install -q adhesion scipy numpy
 cargo build --release --quiet
-"$venv/bin/python" bench/python_reference.py tests/data/points.csv target/release/tabor
+"$venv/bin/python" bench/python_reference.py data/points.csv target/release/tabor

@@ -107,6 +107,20 @@ const LN2_LO: f32 = 1.4286068e-6;
 const LN2: f32 = 0.6931472;
 const LOG2E: f32 = 1.4426950408889634;
 const INF: f32 = 3.0e38;
+// The iteration's thresholds; src/kernel/cpu/md.rs has the same names and values (checked by
+// tests/shaders.rs through naga).
+// |F| at the f32 noise level: done.
+const F_NOISE: f32 = 8e-7;
+// The bracket closed to this relative width: done.
+const BRACKET_CLOSED: f32 = 4e-7;
+// A step below this relative size (4 ulp) is taken along the last secant, not evaluated.
+const SUB_ULP_STEP: f32 = 2.5e-7;
+// How far the search bracket reaches beyond the table: below its last node, above its first
+// (zero-radius end).
+const BRACKET_BELOW: f32 = 120.0;
+const BRACKET_ABOVE: f32 = 60.0;
+// The iteration limit when no cap is given.
+const MAX_ITER: u32 = 32u;
 
 // (atan(mu), mu - atan(mu)) from one half-angle step and a polynomial, without loops (a
 // masked loop runs as long as its slowest lane). For mu > 1, atan(mu) = pi/2 - atan(1/mu).
@@ -287,9 +301,9 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     let n = TABLE_NODES;
     var x = 0.0;
     var slope0 = 0.0;
-    var lo_x = br_dx(ci, n - 1u) - 120.0;
+    var lo_x = br_dx(ci, n - 1u) - BRACKET_BELOW;
     var f_lo = INF;
-    var hi_x = select(0.0, br_dx(ci, 0u) + 60.0, zero_end);
+    var hi_x = select(0.0, br_dx(ci, 0u) + BRACKET_ABOVE, zero_end);
     var f_hi = -INF;
     if direct {
         x = select(s * cheb_eval(ci, 2.0 * s / s_max - 1.0), 0.0, gap == 0.0);
@@ -337,7 +351,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     }
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.
-    var max_iter = select(max_iter_in, 32u, max_iter_in == 0u);
+    var max_iter = select(max_iter_in, MAX_ITER, max_iter_in == 0u);
     var m = mu_ref * exp_f(x);
     var p: Point;
     var p_prev: Point;
@@ -361,7 +375,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
         }
         // The direct start is the answer; |F| at the f32 noise level is done (below it the
         // secant slope is noise).
-        if direct || abs(fx) <= 8e-7 {
+        if direct || abs(fx) <= F_NOISE {
             done = true;
             break;
         }
@@ -372,7 +386,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
             hi_x = x;
             f_hi = fx;
         }
-        if hi_x - lo_x <= 4e-7 * max(abs(x), 1.0) {
+        if hi_x - lo_x <= BRACKET_CLOSED * max(abs(x), 1.0) {
             done = true;
             break;
         }
@@ -391,7 +405,7 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
         let finite = abs(step) < INF && step != 0.0;
         // A step below 4 ulp of x: the state there is this one moved along the last secant
         // (the error is second order in the step), not one more evaluation.
-        if finite && abs(step) <= 2.5e-7 * max(abs(x), 1.0) && have_prev && l_prev != 0.0 {
+        if finite && abs(step) <= SUB_ULP_STEP * max(abs(x), 1.0) && have_prev && l_prev != 0.0 {
             p = lerp_point(p, p_prev, step / l_prev);
             done = true;
             break;

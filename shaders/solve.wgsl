@@ -5,7 +5,7 @@
 
 const WORKGROUP: u32 = 256u;
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {
@@ -19,7 +19,7 @@ fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     out[local] = solve(ix, hi, lo, params.max_iter);
 }
 
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {
@@ -34,7 +34,7 @@ fn points(@builtin(global_invocation_id) gid: vec3<u32>) {
 // Measures the functions the kernels rely on, on this adapter: input = f32 arguments;
 // out = (own atan, own mu - atan, own exp(-x/4), bits of the built-in atan) - tests/gpu.rs
 // compares them with f64.
-@compute @workgroup_size(256)
+@compute @workgroup_size(WORKGROUP)
 fn probe(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {

@@ -1,11 +1,11 @@
 //! `tabor bench`: every solver variant on one workload, timed in one run and measured against
 //! the f64 reference, charted as throughput against error.
 
-use crate::gpu::layout::{GpuLambda, Lambda64, Out, Out64};
-use crate::gpu::prepare::{prepare64, prepare_ctx, split};
 use crate::gpu::Gpu;
+use crate::kernel::cpu::md::{solve_f32, KernelFlags};
+use crate::kernel::layout::{GpuLambda, Lambda64, Out, Out64};
+use crate::kernel::prepare::{prepare64, prepare_ctx, split};
 use crate::physics::closed::{cos_radius, dmt_radius, hertz_radius, jkr_radius};
-use crate::solver::mirror::{solve_f32, FLAG_NAIVE};
 use crate::solver::{naive, Control, LambdaContext, Status};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -20,7 +20,7 @@ pub struct Workload {
     pub points: Vec<(usize, f64, f64, f64)>,
 }
 
-const REFERENCE_POINTS: &str = include_str!("../tests/data/points.csv");
+const REFERENCE_POINTS: &str = include_str!("../data/points.csv");
 
 impl Workload {
     pub fn new(n_lambda: usize, n_load: usize) -> Workload {
@@ -102,7 +102,7 @@ fn summarize(
                 } else {
                     errs.push(e);
                     let pc = w.contexts[p.0].load_pulloff.load;
-                    if p.1 - pc >= 1e-4 * pc.abs() {
+                    if p.1 - pc >= crate::physics::tolerances::NEAR_PULLOFF * pc.abs() {
                         away = away.max(e);
                     }
                 }
@@ -195,7 +195,7 @@ pub fn run(
     let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
     // The kernel's f32 arithmetic on the CPU (the mirror), all threads; `capped` counts
     // not-converged answers from an iteration cap.
-    let mirror = |flags: u32, capped: bool| -> (f64, Vec<Option<f64>>) {
+    let mirror = |flags: KernelFlags, capped: bool| -> (f64, Vec<Option<f64>>) {
         let t = Instant::now();
         let a = pts
             .par_iter()
@@ -212,12 +212,12 @@ pub fn run(
     for (name, flags, desc) in [
         (
             "cpu-f32",
-            0,
+            KernelFlags::SHIPPED,
             "the GPU kernel's f32 algorithm on the CPU (all threads)",
         ),
         (
             "cpu-f32-naive",
-            FLAG_NAIVE,
+            KernelFlags::NAIVE,
             "f32, textbook formulas (no series, one f32 load)",
         ),
     ] {
@@ -227,7 +227,7 @@ pub fn run(
     // Without a GPU, the iteration caps are traced on the mirror.
     if gpu.is_none() {
         for k in [1u32, 2, 3, 4, 6] {
-            let (secs, a) = mirror(k << 8, true);
+            let (secs, a) = mirror(KernelFlags::capped(k), true);
             let desc = format!("the f32 algorithm stopped after {k} iteration(s)");
             push(
                 summarize(&format!("cpu-f32-iter{k}"), &desc, w, secs, &a),
@@ -244,35 +244,35 @@ pub fn run(
             })
             .collect();
         // Warm-up: each variant's pipeline is compiled on first use.
-        for flags in [0, FLAG_NAIVE] {
-            let _ = g.points(&prepared, &gp[..gp.len().min(1024)], 0, flags);
+        for flags in [KernelFlags::SHIPPED, KernelFlags::NAIVE] {
+            let _ = g.points(&prepared, &gp[..gp.len().min(1024)], Control::Load, flags);
         }
-        let mut variants: Vec<(String, u32, String)> = vec![
+        let mut variants: Vec<(String, KernelFlags, String)> = vec![
             (
                 "gpu-f32".into(),
-                0,
+                KernelFlags::SHIPPED,
                 format!("shipped WGSL kernel on {}", g.adapter.name),
             ),
             (
                 "gpu-f32-naive".into(),
-                FLAG_NAIVE,
+                KernelFlags::NAIVE,
                 "WGSL kernel with the textbook formulas".into(),
             ),
         ];
         for k in [1u32, 2, 3, 4, 6] {
             variants.push((
                 format!("gpu-f32-iter{k}"),
-                k << 8,
+                KernelFlags::capped(k),
                 format!("shipped kernel stopped after {k} iteration(s)"),
             ));
         }
         for (name, flags, desc) in variants {
             let t = Instant::now();
-            match g.points(&prepared, &gp, 0, flags) {
+            match g.points(&prepared, &gp, Control::Load, flags) {
                 Ok(out) => {
                     let s = t.elapsed().as_secs_f64();
                     let a: Vec<Option<f64>> =
-                        out.iter().map(|o| out_a(o, flags >> 8 != 0)).collect();
+                        out.iter().map(|o| out_a(o, flags.max_iter != 0)).collect();
                     push(summarize(&name, &desc, w, s, &a), &mut results);
                 }
                 Err(e) => eprintln!("{name}: {e}"),
@@ -295,17 +295,22 @@ pub fn run(
             let refine = |o: Vec<Out>| -> Result<(Vec<Out64>, Vec<Out>), crate::gpu::GpuError> {
                 let (og, ot) = o.split_at(n_grid.min(o.len()));
                 let (ig, it) = idx[..o.len()].split_at(og.len());
-                let mut r = g.polish_f64(&l64, ig, og, 0, true, 0)?;
-                r.extend(g.polish_f64(&l64, it, ot, 0, false, 0)?);
+                let mut r = g.polish_f64(&l64, ig, og, Control::Load, true, 0)?;
+                r.extend(g.polish_f64(&l64, it, ot, Control::Load, false, 0)?);
                 Ok((r, o))
             };
             // Warm-up: both pipelines of the refinement.
-            let _ = g.points(&prepared, &gp[..16], 0, 0).and_then(|o| {
-                g.polish_f64(&l64, &idx[..16], &o, 0, true, 0)?;
-                g.polish_f64(&l64, &idx[..16], &o, 0, false, 0)
-            });
+            let _ = g
+                .points(&prepared, &gp[..16], Control::Load, KernelFlags::SHIPPED)
+                .and_then(|o| {
+                    g.polish_f64(&l64, &idx[..16], &o, Control::Load, true, 0)?;
+                    g.polish_f64(&l64, &idx[..16], &o, Control::Load, false, 0)
+                });
             let t = Instant::now();
-            match g.points(&prepared, &gp, 0, 0).and_then(&refine) {
+            match g
+                .points(&prepared, &gp, Control::Load, KernelFlags::SHIPPED)
+                .and_then(&refine)
+            {
                 Ok((r, o)) => {
                     let s = t.elapsed().as_secs_f64();
                     let a: Vec<Option<f64>> = r
@@ -456,11 +461,11 @@ pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gp
     };
     let prepared: Vec<GpuLambda> = ctx.par_iter().map(prepare_ctx).collect();
     let mut maps = Vec::new();
-    let f32_errs = |flags: u32| -> Result<Vec<f64>, crate::gpu::GpuError> {
+    let f32_errs = |flags: KernelFlags| -> Result<Vec<f64>, crate::gpu::GpuError> {
         match gpu {
-            Some(g) if flags == 0 => {
+            Some(g) if flags == KernelFlags::SHIPPED => {
                 let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-                let out = g.grid(&prepared, &rows, 0, true, 0)?;
+                let out = g.grid(&prepared, &rows, Control::Load, true, KernelFlags::SHIPPED)?;
                 Ok(out
                     .iter()
                     .enumerate()
@@ -490,12 +495,12 @@ pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gp
     maps.push(AtlasMap {
         name: "shipped_f32",
         title: format!("Shipped f32 kernel ({where_})"),
-        err: f32_errs(0)?,
+        err: f32_errs(KernelFlags::SHIPPED)?,
     });
     maps.push(AtlasMap {
         name: "naive_f32",
         title: "Naive f32: textbook formulas, one f32 load".into(),
-        err: f32_errs(FLAG_NAIVE)?,
+        err: f32_errs(KernelFlags::NAIVE)?,
     });
     let naive64: Vec<f64> = (0..n)
         .into_par_iter()

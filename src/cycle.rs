@@ -29,10 +29,48 @@ pub enum Drive {
     Spring(f64),
 }
 
+/// Which part of the equilibrium path a point is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Branch {
+    /// No force: the surfaces farther apart than the force range.
+    Free,
+    /// The Dugdale zone alone (A = 0).
+    NonContact,
+    /// In contact: the Maugis-Dugdale curve.
+    Contact,
+}
+
+impl Branch {
+    pub fn name(self) -> &'static str {
+        match self {
+            Branch::Free => "free",
+            Branch::NonContact => "non_contact",
+            Branch::Contact => "contact",
+        }
+    }
+}
+
+/// The half of a cycle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Phase {
+    Approach,
+    Retract,
+}
+
+impl std::fmt::Display for Phase {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Phase::Approach => "approach",
+            Phase::Retract => "retract",
+        })
+    }
+}
+
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct PathPoint {
-    /// 0 free (no force), 1 non-contact (cohesive zone only), 2 contact (Maugis-Dugdale).
-    pub branch: u8,
+    pub branch: Branch,
     pub approach: f64,
     pub load: f64,
     pub a: f64,
@@ -42,7 +80,7 @@ pub struct PathPoint {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Step {
-    pub phase: &'static str,
+    pub phase: Phase,
     pub point: PathPoint,
     /// The controlled variable (Delta, or the load under dead load).
     pub control: f64,
@@ -52,7 +90,7 @@ pub struct Step {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct Jump {
-    pub phase: &'static str,
+    pub phase: Phase,
     pub from: PathPoint,
     /// None: under dead load the surfaces separate for good.
     pub to: Option<PathPoint>,
@@ -90,7 +128,7 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
         let c = end.c * i as f64 / (n - 1) as f64;
         let (p, d) = non_contact_point(lambda, c);
         path.push(PathPoint {
-            branch: 1,
+            branch: Branch::NonContact,
             approach: d,
             load: p,
             a: 0.0,
@@ -115,7 +153,7 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
         let mu = x_at_radius(lambda, a).exp();
         let p = curve_point(lambda, mu);
         path.push(PathPoint {
-            branch: 2,
+            branch: Branch::Contact,
             approach: p.approach,
             load: p.load,
             a: p.a,
@@ -132,7 +170,7 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
         .map(|i| {
             let d = lowest - 1.0 + (d0 - lowest + 1.0) * i as f64 / n as f64;
             PathPoint {
-                branch: 0,
+                branch: Branch::Free,
                 approach: d,
                 load: 0.0,
                 a: 0.0,
@@ -204,7 +242,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
     let mut jumped = false;
     loop {
         steps.push(Step {
-            phase: "approach",
+            phase: Phase::Approach,
             point: path[i],
             control: u[i],
             jump: jumped,
@@ -221,12 +259,12 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             Some((j, t)) => {
                 let to = lerp(&path[j], &path[j + 1], t);
                 jumps.push(Jump {
-                    phase: "approach",
+                    phase: Phase::Approach,
                     from: path[i],
                     to: Some(to),
                 });
                 steps.push(Step {
-                    phase: "approach",
+                    phase: Phase::Approach,
                     point: to,
                     control: u[i],
                     jump: true,
@@ -241,7 +279,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
     let mut separated = false;
     loop {
         steps.push(Step {
-            phase: "retract",
+            phase: Phase::Retract,
             point: path[i],
             control: u[i],
             jump: jumped,
@@ -258,12 +296,12 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             Some((j, t)) => {
                 let to = lerp(&path[j], &path[j + 1], t);
                 jumps.push(Jump {
-                    phase: "retract",
+                    phase: Phase::Retract,
                     from: path[i],
                     to: Some(to),
                 });
                 steps.push(Step {
-                    phase: "retract",
+                    phase: Phase::Retract,
                     point: to,
                     control: u[i],
                     jump: true,
@@ -272,7 +310,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             }
             None => {
                 jumps.push(Jump {
-                    phase: "retract",
+                    phase: Phase::Retract,
                     from: path[i],
                     to: None,
                 });
@@ -332,7 +370,7 @@ mod tests {
     fn retract_jump(c: &Cycle) -> &Jump {
         c.jumps
             .iter()
-            .find(|j| j.phase == "retract")
+            .find(|j| j.phase == Phase::Retract)
             .expect("a jump-out")
     }
 
@@ -390,7 +428,7 @@ mod tests {
         let (w2, w10) = (w(2.0), w(1e10));
         assert!(w2 > 0.4 && (w10 / w2 - 1.0).abs() < 0.02, "{w2} {w10}");
         let c = cycle(1.0, Drive::RigidGrips, 1e12).unwrap();
-        let j = c.jumps.iter().find(|j| j.phase == "retract").unwrap();
+        let j = c.jumps.iter().find(|j| j.phase == Phase::Retract).unwrap();
         let ctx = LambdaContext::new(1.0).unwrap();
         assert!(
             (j.from.load - ctx.disp_pulloff.load).abs() < 5e-3,
@@ -407,7 +445,10 @@ mod tests {
     fn branches_meet_at_zero_radius() {
         let lambda = 0.3;
         let path = equilibrium_path(lambda, 1.0, 100);
-        let k = path.iter().position(|p| p.branch == 2).unwrap();
+        let k = path
+            .iter()
+            .position(|p| p.branch == Branch::Contact)
+            .unwrap();
         let (last_nc, first_c) = (path[k - 1], path[k]);
         assert!(
             (last_nc.load - first_c.load).abs() < 1e-3

@@ -1,15 +1,15 @@
 //! Where the work runs: the GPU kernels (f32) or the CPU reference (f64), chosen once, with a
 //! one-line reason, and the cross-check of GPU results against the CPU.
 
-use crate::gpu::layout::{Lambda64, Out, Out64};
-use crate::gpu::prepare::{prepare64, split};
 use crate::gpu::{Gpu, GpuError};
+use crate::kernel::layout::{KernelFlags, Lambda64, Out, Out64};
+use crate::kernel::prepare::{prepare64, split};
 use crate::solver::{self, Control, LambdaContext, State, Status};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashMap;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Backend {
     /// A hardware GPU, else a software adapter, else the CPU.
@@ -22,7 +22,7 @@ pub enum Backend {
 
 /// The GPU's arithmetic: the f32 kernels, or their states refined by Newton steps in f64 on the
 /// GPU (adapters with SHADER_F64). The CPU path is f64 either way.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
     F32,
@@ -137,8 +137,8 @@ impl Engine {
                 let out = g.points(
                     &prepare_contexts(&ctx, &lambdas),
                     &pts,
-                    control_code(control),
-                    0,
+                    control,
+                    KernelFlags::SHIPPED,
                 )?;
                 let idx: Vec<(u32, f64)> = pts
                     .iter()
@@ -176,7 +176,13 @@ impl Engine {
                 .collect()),
             Engine::Gpu(g) => {
                 let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-                let out = g.grid(&prepare_contexts(ctx, lambdas), &rows, 0, true, 0)?;
+                let out = g.grid(
+                    &prepare_contexts(ctx, lambdas),
+                    &rows,
+                    Control::Load,
+                    true,
+                    KernelFlags::SHIPPED,
+                )?;
                 let idx: Vec<(u32, f64)> = (0..out.len())
                     .map(|i| ((i % nx) as u32, gaps[i / nx]))
                     .collect();
@@ -210,9 +216,9 @@ impl Engine {
                 let out = g.grid(
                     &prepare_contexts(ctx, lambdas),
                     &rows,
-                    control_code(control),
+                    control,
                     false,
-                    0,
+                    KernelFlags::SHIPPED,
                 )?;
                 let nx = lambdas.len();
                 let idx: Vec<(u32, f64)> = (0..out.len())
@@ -235,13 +241,13 @@ pub fn contexts(lambdas: &[f64]) -> Vec<Option<LambdaContext>> {
 fn prepare_contexts(
     ctx: &[Option<LambdaContext>],
     lambdas: &[f64],
-) -> Vec<crate::gpu::layout::GpuLambda> {
+) -> Vec<crate::kernel::layout::GpuLambda> {
     ctx.par_iter()
         .zip(lambdas)
         .map(|(c, &l)| {
             c.as_ref().map_or_else(
-                || crate::gpu::prepare::prepare(l),
-                crate::gpu::prepare::prepare_ctx,
+                || crate::kernel::prepare::prepare(l),
+                crate::kernel::prepare::prepare_ctx,
             )
         })
         .collect()
@@ -252,13 +258,6 @@ fn kind(g: &Gpu) -> &'static str {
         "software adapter"
     } else {
         "hardware"
-    }
-}
-
-pub fn control_code(c: Control) -> u32 {
-    match c {
-        Control::Load => 0,
-        Control::Displacement => 1,
     }
 }
 
@@ -300,7 +299,7 @@ fn finish(
         .zip(lambdas)
         .map(|(c, &l)| prepare64(c.as_ref(), l))
         .collect();
-    let r = g.polish_f64(&l64, idx, out, control_code(control), gaps, 0)?;
+    let r = g.polish_f64(&l64, idx, out, control, gaps, 0)?;
     Ok(idx
         .par_iter()
         .zip(out)
@@ -337,7 +336,7 @@ pub fn kernel_certifies(ctx: &LambdaContext, value: f64, control: Control) -> bo
 /// The relative error of A the f32 kernels are held to: away from the load-controlled pull-off
 /// (closer than 1e-4 |Pbar_c| the cross-check reports points apart) and everywhere under
 /// displacement control (with [`kernel_certifies`]).
-pub const GPU_TOLERANCE: f64 = 1e-5;
+pub const GPU_TOLERANCE: f64 = crate::physics::tolerances::F32_TOLERANCE;
 
 /// A refined result as a State: the f64 numbers, or the kernel's where it took no step (no
 /// contact, invalid input, the zero-radius end).
@@ -479,8 +478,10 @@ pub fn cross_check(
         if r.status == Status::Ok && r.a > 0.0 {
             let e = ((g.a - r.a) / r.a).abs();
             let close = control == Control::Load
-                && solver::LambdaContext::new(r.lambda)
-                    .is_ok_and(|c| r.load - c.load_pulloff.load < 1e-4 * c.load_pulloff.load.abs());
+                && solver::LambdaContext::new(r.lambda).is_ok_and(|c| {
+                    r.load - c.load_pulloff.load
+                        < crate::physics::tolerances::NEAR_PULLOFF * c.load_pulloff.load.abs()
+                });
             if close {
                 near += 1;
                 near_max = near_max.max(e);

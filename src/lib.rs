@@ -8,12 +8,14 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod bench;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod cycle;
 pub mod engine;
 pub mod export;
 pub mod gpu;
 pub mod io;
+pub mod kernel;
 pub mod map;
 pub mod physics;
 pub mod profile;

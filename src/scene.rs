@@ -53,7 +53,7 @@ pub enum SceneControl {
 pub struct LoadResult {
     pub load_n: f64,
     pub load_normalised: f64,
-    pub status: &'static str,
+    pub status: Status,
     pub contact_radius_m: Option<f64>,
     pub approach_m: Option<f64>,
     /// Hertz peak pressure for this contact radius, 2 E* a / (pi R) (Pa): the pressure scale.
@@ -264,7 +264,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         results.push(LoadResult {
             load_n: p,
             load_normalised: st.load,
-            status: st.status.name(),
+            status: st.status,
             contact_radius_m: ok.then_some(a),
             approach_m: ok.then_some(st.approach * ds),
             pressure_scale_pa: ok.then_some(2.0 * c.e_star * a / (std::f64::consts::PI * c.radius)),
@@ -290,7 +290,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         Region::Jkr,
         Region::Md,
     ];
-    let contact: Vec<&LoadResult> = results.iter().filter(|r| r.status == "ok").collect();
+    let contact: Vec<&LoadResult> = results.iter().filter(|r| r.status == Status::Ok).collect();
     let rec = order
         .iter()
         .copied()
@@ -347,7 +347,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
             let out = cyc
                 .jumps
                 .iter()
-                .find(|j| j.phase == "retract")
+                .find(|j| j.phase == crate::cycle::Phase::Retract)
                 .map_or(ctx.disp_pulloff.load, |j| j.from.load);
             (
                 out * fs,

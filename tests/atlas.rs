@@ -4,9 +4,9 @@
 
 mod common;
 use common::logspace;
-use tabor::gpu::prepare::{prepare, split};
+use tabor::kernel::cpu::md::{solve_f32, KernelFlags};
+use tabor::kernel::prepare::{prepare, split};
 use tabor::physics::closed::{dmt_radius, jkr_radius};
-use tabor::solver::mirror::{solve_f32, FLAG_NAIVE};
 use tabor::solver::{naive, Control, LambdaContext, Status};
 
 #[test]
@@ -19,7 +19,7 @@ fn shipped_f32_algorithm_holds_over_the_extreme_ranges() {
         for &gap in &logspace(-8.0, 6.0, 57) {
             let load = c.load_pulloff.load + gap;
             let (h, lo) = split(load);
-            let o = solve_f32(&g, h, lo, Control::Load, false, 0);
+            let o = solve_f32(&g, h, lo, Control::Load, false, KernelFlags::SHIPPED);
             assert_eq!(o.status(), Status::Ok, "lambda {l} gap {gap}");
             assert!(o.a.is_finite() && o.other.is_finite() && o.m_minus_1.is_finite());
             let e = (o.a as f64 / c.solve_load_gap(gap, load).a - 1.0).abs();
@@ -50,7 +50,14 @@ fn displacement_kernel_holds_its_contract_where_it_certifies() {
             let reference = c.solve_approach(d);
             assert_eq!(reference.status, Status::Ok);
             let (h, lo) = split(d);
-            let o = solve_f32(&g, h, lo, Control::Displacement, false, 0);
+            let o = solve_f32(
+                &g,
+                h,
+                lo,
+                Control::Displacement,
+                false,
+                KernelFlags::SHIPPED,
+            );
             let e = if o.status() == Status::Ok {
                 (o.a as f64 / reference.a - 1.0).abs()
             } else {
@@ -78,7 +85,7 @@ fn naive32_err(l: f64, gap: f64) -> f64 {
     let c = LambdaContext::new(l).unwrap();
     let load = c.load_pulloff.load + gap;
     let (h, lo) = split(load);
-    let o = solve_f32(&prepare(l), h, lo, Control::Load, false, FLAG_NAIVE);
+    let o = solve_f32(&prepare(l), h, lo, Control::Load, false, KernelFlags::NAIVE);
     (o.a as f64 / c.solve_load_gap(gap, load).a - 1.0).abs()
 }
 

@@ -5,9 +5,10 @@
 mod common;
 use common::*;
 use tabor::engine::{Backend, Engine, Precision};
-use tabor::gpu::prepare::{prepare, prepare_all, split};
 use tabor::gpu::Gpu;
-use tabor::solver::{mirror::solve_f32, solve_grid, Control, LambdaContext, Status};
+use tabor::kernel::cpu::md::{solve_f32, KernelFlags};
+use tabor::kernel::prepare::{prepare, prepare_all, split};
+use tabor::solver::{solve_grid, Control, LambdaContext, Status};
 
 /// The f32 kernels' contract: relative error of A away from pull-off.
 const F32_TOL: f64 = 1e-5;
@@ -73,7 +74,9 @@ fn reference_points_on_the_gpu() {
             (i as u32, h, l)
         })
         .collect();
-    let out = g.points(&prepared, &pts, 0, 0).unwrap();
+    let out = g
+        .points(&prepared, &pts, Control::Load, KernelFlags::SHIPPED)
+        .unwrap();
     let mut worst_far = 0f64;
     for (i, (r, o)) in rows.iter().zip(&out).enumerate() {
         assert_eq!(o.status(), Status::Ok, "id {i}");
@@ -87,7 +90,14 @@ fn reference_points_on_the_gpu() {
             assert!(e < 1e-4, "id {i} near pull-off: {e:e}");
         }
         // The CPU mirror computes the same thing.
-        let m = solve_f32(&prepared[i], pts[i].1, pts[i].2, Control::Load, false, 0);
+        let m = solve_f32(
+            &prepared[i],
+            pts[i].1,
+            pts[i].2,
+            Control::Load,
+            false,
+            KernelFlags::SHIPPED,
+        );
         assert!(
             rel(o.a as f64, m.a as f64) < 2e-5,
             "id {i}: gpu {} mirror {}",
@@ -149,7 +159,9 @@ fn extreme_lambdas_and_loads() {
             refs.push((i, gap, c.solve_load(load)));
         }
     }
-    let out = g.points(&prepared, &pts, 0, 0).unwrap();
+    let out = g
+        .points(&prepared, &pts, Control::Load, KernelFlags::SHIPPED)
+        .unwrap();
     let mut worst = 0f64;
     for (o, (i, gap, r)) in out.iter().zip(&refs) {
         let lambda = lambdas[*i];

@@ -2,14 +2,14 @@
 //! WGSL layouts byte for byte.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use tabor::gpu::layout::{Branch, GpuLambda, Lambda64, Out, Out64, Params, Point64};
+use tabor::kernel::layout::{Branch, GpuLambda, Lambda64, Out, Out64, Params, Point64};
 
 fn parse(src: &str) -> naga::Module {
     naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)))
 }
 
 fn module() -> naga::Module {
-    parse(&tabor::gpu::shader_source())
+    parse(&tabor::kernel::shader_source())
 }
 
 /// The size naga lays out for the WGSL struct `name` of `m`.
@@ -83,4 +83,45 @@ fn f64_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("Point64"), std::mem::size_of::<Point64>());
     assert_eq!(size_of("Out64"), std::mem::size_of::<Out64>());
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
+}
+
+/// The value of a named WGSL `const` of `m` (a scalar literal).
+fn wgsl_const(m: &naga::Module, name: &str) -> f64 {
+    let (_, c) = m
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some(name))
+        .unwrap_or_else(|| panic!("no const {name}"));
+    match m.global_expressions[c.init] {
+        naga::Expression::Literal(naga::Literal::F32(v)) => v as f64,
+        naga::Expression::Literal(naga::Literal::F64(v)) => v,
+        naga::Expression::Literal(naga::Literal::U32(v)) => v as f64,
+        ref e => panic!("const {name} is not a scalar literal: {e:?}"),
+    }
+}
+
+/// The shader and its CPU mirror use the same thresholds, and every kernel the host's
+/// workgroup size: read from the WGSL through naga, so neither side can drift.
+#[test]
+fn shader_constants_match_the_host() {
+    use tabor::kernel::cpu::md;
+    let m = module();
+    for (name, v) in [
+        ("F_NOISE", md::F_NOISE as f64),
+        ("BRACKET_CLOSED", md::BRACKET_CLOSED as f64),
+        ("SUB_ULP_STEP", md::SUB_ULP_STEP as f64),
+        ("BRACKET_BELOW", md::BRACKET_BELOW as f64),
+        ("BRACKET_ABOVE", md::BRACKET_ABOVE as f64),
+        ("MAX_ITER", md::MAX_ITER as f64),
+        ("TABLE_NODES", tabor::solver::context::TABLE_NODES as f64),
+    ] {
+        assert_eq!(wgsl_const(&m, name), v, "{name}");
+    }
+    let size = tabor::physics::tolerances::WORKGROUP_SIZE as u32;
+    let p64 = parse(tabor::kernel::polish64_source());
+    for module in [&m, &p64] {
+        for e in &module.entry_points {
+            assert_eq!(e.workgroup_size, [size, 1, 1], "{}", e.name);
+        }
+    }
 }

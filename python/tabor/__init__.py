@@ -341,10 +341,9 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0):
                                 None if stiffness is None else float(stiffness),
                                 float(max_load)))
     steps = c["steps"]
-    branches = ("free", "non_contact", "contact")
     out = {
         "phase": np.array([s["phase"] for s in steps]),
-        "branch": np.array([branches[s["point"]["branch"]] for s in steps]),
+        "branch": np.array([s["point"]["branch"] for s in steps]),
         "approach": np.array([s["point"]["approach"] for s in steps]),
         "load": np.array([s["point"]["load"] for s in steps]),
         "A": np.array([s["point"]["a"] for s in steps]),

@@ -12,7 +12,7 @@ import pytest
 import tabor
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-DATA = ROOT / "tests" / "data"
+DATA = ROOT / "data"
 IN_CI = os.environ.get("CI") == "true"
 
 # The f64 contract, as tests/common/mod.rs: relative error of A and m-1 within 1e-12, within

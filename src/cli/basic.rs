@@ -1,7 +1,7 @@
 //! `tabor solve`, `tabor pulloff`, `tabor curve`.
 
-use super::Format;
-use crate::engine::{cross_check, Backend, Engine, Precision};
+use super::{BackendArg, Format, PrecisionArg};
+use crate::engine::{cross_check, Backend, Engine};
 use crate::io::{fmt17, json_num, write_output, Output};
 use crate::physics::md::LAMBDA_D;
 use crate::solver::{Control, LambdaContext, State, Status};
@@ -40,8 +40,8 @@ pub struct SolveArgs {
     #[arg(long, value_enum)]
     pub format: Option<Format>,
     /// Where a CSV of points is solved; `auto` takes a GPU if there is one.
-    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = Backend::Cpu)]
-    pub backend: Backend,
+    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = BackendArg::Cpu)]
+    pub backend: BackendArg,
     #[command(flatten)]
     pub gpu: GpuArgs,
     /// Put the solve time into the output (JSON metadata) or on stderr; off by default so that
@@ -61,8 +61,8 @@ pub struct GpuArgs {
     pub check: CheckCount,
     /// GPU arithmetic: the f32 kernels, or f64 (their states refined by Newton steps in f64 on
     /// the GPU; needs an adapter with SHADER_F64, see `tabor info`). The CPU path is f64.
-    #[arg(long, value_enum, default_value_t = Precision::F32)]
-    pub precision: Precision,
+    #[arg(long, value_enum, default_value_t = PrecisionArg::F32)]
+    pub precision: PrecisionArg,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -87,9 +87,9 @@ pub use crate::engine::GPU_TOLERANCE;
 pub const CHUNK_ROWS: usize = 1 << 16;
 
 /// Chooses the engine for `--backend` and `--precision`, and says which in one line on stderr.
-pub fn engine_for(backend: Backend, gpu: &GpuArgs) -> anyhow::Result<Engine> {
-    let (mut engine, line) = Engine::select(backend, gpu.adapter.as_deref())?;
-    engine.set_precision(gpu.precision)?;
+pub fn engine_for(backend: BackendArg, gpu: &GpuArgs) -> anyhow::Result<Engine> {
+    let (mut engine, line) = Engine::select(backend.into(), gpu.adapter.as_deref())?;
+    engine.set_precision(gpu.precision.into())?;
     eprintln!("{line}");
     Ok(engine)
 }
@@ -172,7 +172,7 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
             c.name()
         );
     }
-    if a.backend != Backend::Cpu {
+    if a.backend != BackendArg::Cpu {
         eprintln!("note: a single state is solved by the f64 CPU solver; --backend applies to --input files");
     }
     let ctx = LambdaContext::new(lambda).context("--lambda")?;

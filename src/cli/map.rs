@@ -1,11 +1,11 @@
 //! `tabor map`: the adhesion map, its figure and its tables.
 
 use super::basic::GpuArgs;
-use crate::engine::{cross_check, Backend, Engine};
+use super::{BackendArg, LoadAxisArg, QuantityArg};
+use crate::engine::{cross_check, Engine};
 use crate::export::{write_map_json, write_npy, NPY_FILES};
 use crate::io::Output;
 use crate::map::{compute, LoadAxis, MapSpec};
-use crate::render::map::Quantity;
 use crate::solver::Control;
 use anyhow::Context;
 use clap::Args;
@@ -27,8 +27,8 @@ pub struct MapArgs {
     #[arg(long, default_value_t = 1024)]
     pub ny: usize,
     /// log: Pbar on a log axis (classic); above-pulloff: Pbar - Pbar_c on a log axis; linear.
-    #[arg(long, value_enum, default_value_t = LoadAxis::Log)]
-    pub load_axis: LoadAxis,
+    #[arg(long, value_enum, default_value_t = LoadAxisArg::Log)]
+    pub load_axis: LoadAxisArg,
     /// Lowest load (default 1e-3 for log, 1e-6 for above-pulloff, -2 for linear).
     #[arg(long, allow_hyphen_values = true)]
     pub load_min: Option<f64>,
@@ -43,7 +43,7 @@ pub struct MapArgs {
     pub strength_ratio: Vec<f64>,
     /// Draw this quantity with a colorbar instead of the regions.
     #[arg(long, value_enum)]
-    pub quantity: Option<Quantity>,
+    pub quantity: Option<QuantityArg>,
     /// PNG output.
     #[arg(long, default_value = "map.png")]
     pub out: PathBuf,
@@ -63,15 +63,16 @@ pub struct MapArgs {
     /// Write PREFIX_lambda.npy, PREFIX_load.npy, PREFIX_region.npy, PREFIX_A.npy, ... .
     #[arg(long)]
     pub npy: Option<String>,
-    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = Backend::Auto)]
-    pub backend: Backend,
+    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = BackendArg::Auto)]
+    pub backend: BackendArg,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
 
 impl MapArgs {
     pub fn spec(&self) -> MapSpec {
-        let (lo, hi) = match self.load_axis {
+        let load_axis: LoadAxis = self.load_axis.into();
+        let (lo, hi) = match load_axis {
             LoadAxis::Log => (1e-3, 1e3),
             LoadAxis::AbovePulloff => (1e-6, 1e3),
             LoadAxis::Linear => (-2.0, 10.0),
@@ -80,7 +81,7 @@ impl MapArgs {
             lambda_min: self.lambda_min,
             lambda_max: self.lambda_max,
             nx: self.nx,
-            load_axis: self.load_axis,
+            load_axis,
             load_min: self.load_min.unwrap_or(lo),
             load_max: self.load_max.unwrap_or(hi),
             ny: self.ny,
@@ -141,8 +142,8 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
             .context("--npy")?,
         None => Vec::new(),
     };
-    let (mut engine, line) = Engine::select(a.backend, a.gpu.adapter.as_deref())?;
-    engine.set_precision(a.gpu.precision)?;
+    let (mut engine, line) = Engine::select(a.backend.into(), a.gpu.adapter.as_deref())?;
+    engine.set_precision(a.gpu.precision.into())?;
     eprintln!("{line}");
     let mut data = compute(&spec, &engine)?;
     // GPU maps are cross-checked on a sample of points against the f64 solver.
@@ -161,8 +162,9 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         None
     };
     let t = Instant::now();
-    let (png_bytes, svg_text) = crate::render::map::render(&data, a.quantity, true, svg.is_some())
-        .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
+    let (png_bytes, svg_text) =
+        crate::render::map::render(&data, a.quantity.map(Into::into), true, svg.is_some())
+            .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
     data.timings.render_s = t.elapsed().as_secs_f64();
     let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
         let shown = o.name().display().to_string();

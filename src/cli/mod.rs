@@ -44,6 +44,95 @@ pub enum Command {
     Info,
 }
 
+/// Where the work runs (`--backend`); the library's [`crate::engine::Backend`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum BackendArg {
+    /// A hardware GPU, else a software adapter, else the CPU.
+    Auto,
+    /// The WGSL kernels (f32) on a GPU adapter; an error if there is none.
+    Gpu,
+    /// The f64 reference solver on all CPU cores.
+    Cpu,
+}
+
+impl From<BackendArg> for crate::engine::Backend {
+    fn from(b: BackendArg) -> Self {
+        match b {
+            BackendArg::Auto => Self::Auto,
+            BackendArg::Gpu => Self::Gpu,
+            BackendArg::Cpu => Self::Cpu,
+        }
+    }
+}
+
+/// The GPU's arithmetic (`--precision`); the library's [`crate::engine::Precision`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PrecisionArg {
+    F32,
+    F64,
+}
+
+impl From<PrecisionArg> for crate::engine::Precision {
+    fn from(p: PrecisionArg) -> Self {
+        match p {
+            PrecisionArg::F32 => Self::F32,
+            PrecisionArg::F64 => Self::F64,
+        }
+    }
+}
+
+/// A map's load axis (`--load-axis`); the library's [`crate::map::LoadAxis`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum LoadAxisArg {
+    /// Pbar on a log axis (positive loads): the classic map.
+    Log,
+    /// Pbar - Pbar_c on a log axis: the tensile range down to the pull-off.
+    AbovePulloff,
+    /// Pbar on a linear axis (tensile loads included).
+    Linear,
+}
+
+impl From<LoadAxisArg> for crate::map::LoadAxis {
+    fn from(a: LoadAxisArg) -> Self {
+        match a {
+            LoadAxisArg::Log => Self::Log,
+            LoadAxisArg::AbovePulloff => Self::AbovePulloff,
+            LoadAxisArg::Linear => Self::Linear,
+        }
+    }
+}
+
+/// A quantity drawn with a colorbar (`--quantity`); the library's
+/// [`crate::render::map::Quantity`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum QuantityArg {
+    /// Contact radius A (log scale).
+    A,
+    /// Approach Dbar.
+    Approach,
+    /// c/a - 1 (log scale).
+    M,
+    /// |A_Hertz / A - 1| (log scale).
+    ErrHertz,
+    /// |A_DMT / A - 1| (log scale).
+    ErrDmt,
+    /// |A_JKR / A - 1| (log scale).
+    ErrJkr,
+}
+
+impl From<QuantityArg> for crate::render::map::Quantity {
+    fn from(q: QuantityArg) -> Self {
+        match q {
+            QuantityArg::A => Self::A,
+            QuantityArg::Approach => Self::Approach,
+            QuantityArg::M => Self::M,
+            QuantityArg::ErrHertz => Self::ErrHertz,
+            QuantityArg::ErrDmt => Self::ErrDmt,
+            QuantityArg::ErrJkr => Self::ErrJkr,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum Format {
     Text,

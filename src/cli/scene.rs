@@ -401,7 +401,7 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         _ => {
             let mut t = String::from("phase,branch,approach,load,A,C,control,jump\n");
             for s in &c.steps {
-                let b = ["free", "non_contact", "contact"][s.point.branch as usize];
+                let b = s.point.branch.name();
                 let _ = writeln!(
                     t,
                     "{},{b},{:.16e},{:.16e},{:.16e},{:.16e},{:.16e},{}",

@@ -1,7 +1,10 @@
 //! The wgpu context: adapter choice, device, pipelines and reusable buffers, and the chunked
 //! dispatch with streamed readback.
 
-use super::layout::{flag_max_iter, GpuLambda, Lambda64, Out, Out64, Params, Point64, FLAG_NAIVE};
+use crate::kernel::layout::{
+    control_code, GpuLambda, KernelFlags, Lambda64, Out, Out64, Params, Point64,
+};
+use crate::solver::Control;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
@@ -123,13 +126,52 @@ fn choose_adapter(wanted: Option<&str>) -> Result<wgpu::Adapter, GpuError> {
     Ok(adapters.remove(0))
 }
 
-/// Which kernel variant: the entry point and the pipeline constants of `shaders/md.wgsl`.
+/// The kernels' entry points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Entry {
+    /// A lambda x load grid (`shaders/solve.wgsl`).
+    Grid,
+    /// A list of points.
+    Points,
+    /// The kernels' own functions at given arguments.
+    Probe,
+    /// The f64 refinement (`shaders/polish64.wgsl`, its own module).
+    Polish,
+}
+
+impl Entry {
+    fn name(self) -> &'static str {
+        match self {
+            Entry::Grid => "grid",
+            Entry::Points => "points",
+            Entry::Probe => "probe",
+            Entry::Polish => "polish",
+        }
+    }
+}
+
+/// One kernel variant: the entry point and the values of its pipeline overrides.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct Variant {
-    entry: &'static str,
-    control: u32,
+    entry: Entry,
+    control: Control,
     rows_are_gaps: bool,
     naive: bool,
+}
+
+impl Variant {
+    /// The WGSL `override` constants (names as in `shaders/md.wgsl` and `polish64.wgsl`).
+    fn overrides(&self) -> Vec<(&'static str, f64)> {
+        let mut v = vec![
+            ("CONTROL", control_code(self.control) as f64),
+            ("ROWS_ARE_GAPS", self.rows_are_gaps as u32 as f64),
+        ];
+        // The f64 module has no NAIVE override.
+        if self.entry != Entry::Polish {
+            v.push(("NAIVE", self.naive as u32 as f64));
+        }
+        v
+    }
 }
 
 /// Device, queue, the shader module and its pipelines (compiled on first use, then reused).
@@ -155,7 +197,7 @@ pub struct Gpu {
     error: Arc<Mutex<Option<String>>>,
 }
 
-const WORKGROUP: usize = 256;
+const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
 
 impl Gpu {
     pub fn new(adapter_name: Option<&str>) -> Result<Gpu, GpuError> {
@@ -195,7 +237,7 @@ impl Gpu {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("md"),
-            source: wgpu::ShaderSource::Wgsl(super::shader_source().into()),
+            source: wgpu::ShaderSource::Wgsl(crate::kernel::shader_source().into()),
         });
         let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
             binding,
@@ -269,33 +311,27 @@ impl Gpu {
         if let Some(p) = cache.get(&v) {
             return Ok(p.clone());
         }
-        let mut constants = vec![
-            ("CONTROL", v.control as f64),
-            ("ROWS_ARE_GAPS", v.rows_are_gaps as u32 as f64),
-        ];
+        let constants = v.overrides();
         // The f64 refinement is its own module (the f32 one must build where f64 does not
-        // exist), with no NAIVE constant.
-        let module = if v.entry == "polish" {
+        // exist).
+        let module = if v.entry == Entry::Polish {
             self.polish_module.get_or_init(|| {
                 self.device
                     .create_shader_module(wgpu::ShaderModuleDescriptor {
                         label: Some("polish64"),
-                        source: wgpu::ShaderSource::Wgsl(
-                            include_str!("../../shaders/polish64.wgsl").into(),
-                        ),
+                        source: wgpu::ShaderSource::Wgsl(crate::kernel::polish64_source().into()),
                     })
             })
         } else {
-            constants.push(("NAIVE", v.naive as u32 as f64));
             &self.module
         };
         let p = self
             .device
             .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some(v.entry),
+                label: Some(v.entry.name()),
                 layout: Some(&self.pipeline_layout),
                 module,
-                entry_point: Some(v.entry),
+                entry_point: Some(v.entry.name()),
                 compilation_options: wgpu::PipelineCompilationOptions {
                     constants: &constants,
                     ..Default::default()
@@ -320,9 +356,9 @@ impl Gpu {
         &self,
         lambdas: &[GpuLambda],
         rows: &[(f32, f32)],
-        control: u32,
+        control: Control,
         rows_are_gaps: bool,
-        flags: u32,
+        flags: KernelFlags,
     ) -> Result<Vec<Out>, GpuError> {
         let words: Vec<u32> = rows
             .iter()
@@ -330,10 +366,10 @@ impl Gpu {
             .collect();
         let total = lambdas.len() * rows.len();
         let v = Variant {
-            entry: "grid",
+            entry: Entry::Grid,
             control,
             rows_are_gaps,
-            naive: flags & FLAG_NAIVE != 0,
+            naive: flags.naive,
         };
         self.run(
             v,
@@ -342,7 +378,7 @@ impl Gpu {
             0,
             total,
             lambdas.len() as u32,
-            flag_max_iter(flags),
+            flags.max_iter,
         )
     }
 
@@ -351,28 +387,20 @@ impl Gpu {
         &self,
         lambdas: &[GpuLambda],
         points: &[(u32, f32, f32)],
-        control: u32,
-        flags: u32,
+        control: Control,
+        flags: KernelFlags,
     ) -> Result<Vec<Out>, GpuError> {
         let words: Vec<u32> = points
             .iter()
             .flat_map(|&(c, h, l)| [c, h.to_bits(), l.to_bits(), 0])
             .collect();
         let v = Variant {
-            entry: "points",
+            entry: Entry::Points,
             control,
             rows_are_gaps: false,
-            naive: flags & FLAG_NAIVE != 0,
+            naive: flags.naive,
         };
-        self.run(
-            v,
-            lambdas,
-            &words,
-            16,
-            points.len(),
-            0,
-            flag_max_iter(flags),
-        )
+        self.run(v, lambdas, &words, 16, points.len(), 0, flags.max_iter)
     }
 
     /// Refines f32 results in f64 (adapters with SHADER_F64): `points` are (lambda index, value)
@@ -384,7 +412,7 @@ impl Gpu {
         lambdas: &[Lambda64],
         points: &[(u32, f64)],
         start: &[Out],
-        control: u32,
+        control: Control,
         gaps: bool,
         max_steps: u32,
     ) -> Result<Vec<Out64>, GpuError> {
@@ -403,7 +431,7 @@ impl Gpu {
             })
             .collect();
         let v = Variant {
-            entry: "polish",
+            entry: Entry::Polish,
             control,
             rows_are_gaps: gaps,
             naive: false,
@@ -425,8 +453,8 @@ impl Gpu {
     pub fn probe(&self, xs: &[f32]) -> Result<Vec<[f32; 4]>, GpuError> {
         let words: Vec<u32> = xs.iter().map(|x| x.to_bits()).collect();
         let v = Variant {
-            entry: "probe",
-            control: 0,
+            entry: Entry::Probe,
+            control: Control::Load,
             rows_are_gaps: false,
             naive: false,
         };

@@ -2,7 +2,9 @@
 
 pub mod closed;
 pub mod domain;
+pub mod f32math;
 pub mod fields;
 pub mod md;
 pub mod params;
 pub mod real;
+pub mod tolerances;

@@ -204,7 +204,7 @@ impl Real for f32 {
     }
     #[inline(always)]
     fn atan_parts(self) -> (Self, Self) {
-        crate::solver::mirror::atan_parts_f32(self)
+        crate::physics::f32math::atan_parts_f32(self)
     }
 }
 

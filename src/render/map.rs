@@ -13,7 +13,7 @@ pub const WIDTH: u32 = 1600;
 pub const HEIGHT: u32 = 1200;
 
 /// A continuous quantity drawn with a colorbar instead of the regions.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Quantity {
     /// Contact radius A (log scale).

@@ -559,13 +559,13 @@ where
 {
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(W * 3 / 5);
-    let steps = |ph: &str| -> Vec<&crate::cycle::Step> {
+    let steps = |ph: crate::cycle::Phase| -> Vec<&crate::cycle::Step> {
         c.steps.iter().filter(|s| s.phase == ph).collect()
     };
     let xs: Vec<f64> = c
         .path
         .iter()
-        .filter(|p| p.branch > 0)
+        .filter(|p| p.branch != crate::cycle::Branch::Free)
         .map(|p| p.approach)
         .collect();
     let (xmin, xmax) = (
@@ -615,7 +615,8 @@ where
         .label("equilibrium path (all states)")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], faint));
     // Retract first and wide, approach on top and thin: where they coincide both stay visible.
-    for (ph, col, width) in [("retract", ORANGE_, 6), ("approach", BLUE_, 2)] {
+    use crate::cycle::Phase;
+    for (ph, col, width) in [(Phase::Retract, ORANGE_, 6), (Phase::Approach, BLUE_, 2)] {
         let st = ShapeStyle::from(&col).stroke_width(width);
         let mut seg: Vec<(f64, f64)> = Vec::new();
         let mut first = true;
@@ -623,7 +624,7 @@ where
             if s.jump && !seg.is_empty() {
                 let s2 = chart.draw_series(LineSeries::new(std::mem::take(&mut seg), st))?;
                 if first {
-                    s2.label(ph)
+                    s2.label(ph.to_string())
                         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
                     first = false;
                 }
@@ -635,14 +636,14 @@ where
         if !seg.is_empty() {
             let s2 = chart.draw_series(LineSeries::new(seg, st))?;
             if first {
-                s2.label(ph)
+                s2.label(ph.to_string())
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
             }
         }
     }
     // Jumps: dashed lines with an arrowhead drawn in pixel space.
     for j in &c.jumps {
-        let col = if j.phase == "approach" {
+        let col = if j.phase == crate::cycle::Phase::Approach {
             BLUE_
         } else {
             ORANGE_
@@ -687,7 +688,11 @@ where
         ("sans-serif", 20).into_font(),
     ))?;
 
-    let contact: Vec<&crate::cycle::PathPoint> = c.path.iter().filter(|p| p.branch == 2).collect();
+    let contact: Vec<&crate::cycle::PathPoint> = c
+        .path
+        .iter()
+        .filter(|p| p.branch == crate::cycle::Branch::Contact)
+        .collect();
     let amax = contact.iter().map(|p| p.a).fold(0.0, f64::max) * 1.05;
     let mut ch = ChartBuilder::on(&right)
         .caption("contact radius against load", ("sans-serif", 22))
@@ -707,10 +712,10 @@ where
         contact.iter().map(|p| (p.load, p.a)),
         faint,
     ))?;
-    for (ph, col, r) in [("retract", ORANGE_, 4), ("approach", BLUE_, 2)] {
+    for (ph, col, r) in [(Phase::Retract, ORANGE_, 4), (Phase::Approach, BLUE_, 2)] {
         let pts: Vec<(f64, f64)> = steps(ph)
             .iter()
-            .filter(|s| s.point.branch == 2)
+            .filter(|s| s.point.branch == crate::cycle::Branch::Contact)
             .map(|s| (s.point.load, s.point.a))
             .collect();
         ch.draw_series(pts.iter().map(|&p| Circle::new(p, r, col.filled())))?;

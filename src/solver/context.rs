@@ -4,6 +4,7 @@ use super::root::{bisect_sign, secant_bracketed, Stop};
 use super::{Control, SolveError, State, Status};
 use crate::physics::md::{curve_point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D};
 use crate::physics::real::{Dd, Real};
+use crate::physics::tolerances::carries_load_plus_2;
 
 /// Newton tolerance on x = ln(mu), relative; the residual's rounding noise stops it earlier.
 const X_TOL: f64 = 1e-15;
@@ -12,6 +13,8 @@ const MAX_ITER: u32 = 100;
 /// lambda in 1e-8..1e8.
 const BRACKET: f64 = 60.0;
 pub const TABLE_NODES: usize = 14;
+/// The first table node's distance from the pull-off in x; node k lies at TABLE_DX0 2^k.
+pub const TABLE_DX0: f64 = 0.01 * BRACKET / 81.92;
 
 /// A state given by its contact radius: load, approach and m - 1 from the curve, and whether it
 /// is stable under load control (dPbar/dA > 0) and displacement control (dDbar/dA > 0).
@@ -186,9 +189,9 @@ impl LambdaContext {
         .ok_or(SolveError::NoPullOff(lambda))?;
         let load_pulloff = pulloff_at(lambda, xc);
         let load_plus_2_c = point(lambda, xc).load_plus_2;
-        let small = lambda < 1.0;
+        let small = carries_load_plus_2(lambda);
         let load_table = std::array::from_fn(|k| {
-            let x = xc - 0.01 * 2f64.powi(k as i32) * BRACKET / 81.92;
+            let x = xc - TABLE_DX0 * 2f64.powi(k as i32);
             let p = point(lambda, x);
             let gap = if small {
                 p.load_plus_2 - load_plus_2_c
@@ -252,7 +255,7 @@ impl LambdaContext {
         let p = point(self.lambda, x);
         let (load, approach, other, residual) = match control {
             Control::Load => {
-                let r = if self.lambda < 1.0 {
+                let r = if carries_load_plus_2(self.lambda) {
                     (p.load_plus_2 - self.load_plus_2_c) - gap
                 } else {
                     (p.load - self.load_pulloff.load) - gap
@@ -294,7 +297,7 @@ impl LambdaContext {
         // The residual is written as a difference from the pull-off so that its relative
         // accuracy does not degrade as the load approaches Pbar_c. On the DMT side the load is
         // carried as Pbar + 2 (exact in floating point near -2).
-        let small = lambda < 1.0;
+        let small = carries_load_plus_2(lambda);
         let gap = if small {
             (load + 2.0) - self.load_plus_2_c
         } else {
@@ -307,7 +310,7 @@ impl LambdaContext {
     pub fn solve_load_gap(&self, gap: f64, load: f64) -> State {
         let lambda = self.lambda;
         let pc = self.load_pulloff;
-        let small = lambda < 1.0;
+        let small = carries_load_plus_2(lambda);
         if !gap.is_finite() {
             return State::failed(lambda, load, f64::NAN, Status::InvalidInput);
         }

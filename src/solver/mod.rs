@@ -3,7 +3,6 @@
 
 pub mod context;
 pub mod curve;
-pub mod mirror;
 pub mod naive;
 pub mod root;
 
@@ -15,7 +14,7 @@ use serde::Serialize;
 use std::collections::HashMap;
 
 /// What a solve is given: the load (dead load) or the approach (rigid grips).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Control {
     Load,

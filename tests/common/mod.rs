@@ -1,5 +1,5 @@
 //! Shared test helpers: the reference tables (copied from the 50-digit reference, see
-//! tests/data/README.md) and the named tolerances of the accuracy contract.
+//! data/README.md) and the named tolerances of the accuracy contract.
 #![allow(dead_code)]
 
 use std::collections::HashMap;
@@ -23,7 +23,7 @@ pub fn bound(load: f64, pulloff: f64) -> f64 {
 pub type Row = HashMap<String, String>;
 
 pub fn table(name: &str) -> Vec<Row> {
-    let path = format!("{}/tests/data/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/data/{name}", env!("CARGO_MANIFEST_DIR"));
     let mut rdr = csv::Reader::from_path(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let headers = rdr.headers().unwrap().clone();
     rdr.records()

@@ -65,7 +65,7 @@ fn interior_branch(
     let mut s_max = 0.0;
     let mut prev: Option<(f64, f64)> = None;
     for k in 0..TABLE_NODES {
-        let dx = -0.0073242 * 2f64.powi(k as i32);
+        let dx = -crate::solver::context::TABLE_DX0 * 2f64.powi(k as i32);
         let p = point(lambda, x_end + dx);
         let gap = value(&p) - end;
         t[k] = gap.max(1e-37).ln() as f32;
@@ -130,7 +130,7 @@ pub fn prepare(lambda: f64) -> GpuLambda {
 
 pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
     let lambda = ctx.lambda;
-    let small = lambda < 1.0;
+    let small = crate::physics::tolerances::carries_load_plus_2(lambda);
     let xc = ctx.load_pulloff.x;
     let load_end = if small {
         ctx.load_plus_2_c
@@ -204,7 +204,7 @@ pub fn prepare64(ctx: Option<&LambdaContext>, lambda: f64) -> Lambda64 {
             ..bytemuck::Zeroable::zeroed()
         };
     };
-    let small = ctx.lambda < 1.0;
+    let small = crate::physics::tolerances::carries_load_plus_2(ctx.lambda);
     let jo = ctx.disp_pulloff;
     Lambda64 {
         lambda: ctx.lambda,

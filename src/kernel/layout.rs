@@ -60,12 +60,41 @@ pub struct Params {
     pub max_iter: u32,
 }
 
-/// Variant switches for benchmarks, as the `flags` of the host API: bit 0 the naive formulas
-/// (no series), bits 8..15 a fixed iteration cap (0 = iterate to convergence).
-pub const FLAG_NAIVE: u32 = 1;
+/// The kernel variants that benchmarks compare with the shipped one.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct KernelFlags {
+    /// The textbook formulas (no series, one f32 load): the WGSL override `NAIVE`.
+    pub naive: bool,
+    /// A fixed iteration cap; 0 iterates to convergence (`Params.max_iter`).
+    pub max_iter: u32,
+}
 
-pub fn flag_max_iter(flags: u32) -> u32 {
-    (flags >> 8) & 0xff
+impl KernelFlags {
+    /// The shipped kernel.
+    pub const SHIPPED: KernelFlags = KernelFlags {
+        naive: false,
+        max_iter: 0,
+    };
+    /// The textbook formulas.
+    pub const NAIVE: KernelFlags = KernelFlags {
+        naive: true,
+        max_iter: 0,
+    };
+    /// The shipped kernel stopped after `n` iterations (the best iterate is returned).
+    pub fn capped(n: u32) -> KernelFlags {
+        KernelFlags {
+            naive: false,
+            max_iter: n,
+        }
+    }
+}
+
+/// The WGSL override `CONTROL` of a control.
+pub fn control_code(c: crate::solver::Control) -> u32 {
+    match c {
+        crate::solver::Control::Load => 0,
+        crate::solver::Control::Displacement => 1,
+    }
 }
 
 /// One result. WGSL twin: `struct Out`. `code` = status | iterations << 8.

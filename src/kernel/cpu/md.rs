@@ -1,118 +1,25 @@
-//! The shaders' f32 arithmetic, on the CPU: read it side by side with `shaders/md.wgsl`.
+//! The CPU mirror of `shaders/md.wgsl`: the f32 solve of one point, line by line as the kernel
+//! does it. Read it side by side with the shader.
 
-/// `(atan(mu), mu - atan(mu))` in f32 from one half-angle step and a polynomial, with no loop
-/// (no built-in atan: lavapipe's inverse trigonometric built-ins are off by up to 1.6e-4).
-/// For mu > 1, `atan(mu) = pi/2 - atan(1/mu)`. Max relative error about 3 ulp (measured by the
-/// tests below against f64).
-pub fn atan_parts_f32(mu: f32) -> (f32, f32) {
-    let big = mu > 1.0;
-    let t0 = if big { 1.0 / mu } else { mu };
-    // atan t0 = 2 atan t, t <= tan(pi/8); t0 - 2 t = t0 t^2 exactly, so there is no cancellation.
-    let t = t0 / (1.0 + (1.0 + t0 * t0).sqrt());
-    let z = t * t;
-    // (t - atan t) / t^3 on z in [0, tan^2(pi/8)]: degree-5 Chebyshev fit, relative error 1.6e-9.
-    let g = 0.333_333_34
-        + z * (-0.199_999_78
-            + z * (0.142_841_52 + z * (-0.110_713_65 + z * (0.086_246_76 + z * -0.050_481_386))));
-    let d0 = z * (t0 + 2.0 * t * g); // t0 - atan(t0)
-    if big {
-        let at = std::f32::consts::FRAC_PI_2 - (t0 - d0);
-        (at, mu - at)
-    } else {
-        (mu - d0, d0)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn f32_atan_parts_are_accurate_over_the_whole_range() {
-        let (mut worst_at, mut worst_d) = (0.0f64, 0.0f64);
-        for i in 0..20001 {
-            let mu = 10f32.powf(-9.0 + 19.0 * i as f32 / 20000.0);
-            let (at, d) = atan_parts_f32(mu);
-            let m = mu as f64;
-            let at64 = m.atan();
-            let (_, d64) = crate::physics::real::Real::atan_parts(m);
-            worst_at = worst_at.max((at as f64 / at64 - 1.0).abs());
-            worst_d = worst_d.max((d as f64 / d64 - 1.0).abs());
-        }
-        assert!(worst_at < 3.0e-7, "atan: {worst_at:e}");
-        assert!(worst_d < 6.0e-7, "mu - atan: {worst_d:e}");
-    }
-}
-
-use crate::gpu::layout::{Branch, GpuLambda, Out, TABLE_NODES};
-use crate::gpu::prepare::cheb_eval;
+use crate::kernel::layout::{Branch, GpuLambda, Out, TABLE_NODES};
+use crate::kernel::prepare::cheb_eval;
+use crate::physics::f32math::{atan_parts_f32, exp_f32, ln_f32, log1p_f32};
 use crate::physics::md::{curve_point, CurvePoint};
 use crate::solver::{Control, Status};
 
-const LN2_HI: f32 = 0.693_145_75;
-const LN2_LO: f32 = 1.428_606_8e-6;
-const LOG2E: f32 = std::f32::consts::LOG2_E;
-
-/// 2^n for integer n in the normal range (WGSL: `ldexp`).
-fn ldexp(x: f32, n: i32) -> f32 {
-    x * f32::from_bits(((n + 127).clamp(1, 254) as u32) << 23)
-}
-
-/// exp with Cody-Waite reduction and a degree-7 Taylor polynomial: within 2 ulp for all
-/// |x| < 87 (the Vulkan built-in is allowed 3 + 2|x| ulp).
-pub fn exp_f32(x: f32) -> f32 {
-    let x = x.clamp(-87.0, 88.0);
-    let n = (x * LOG2E).round();
-    let r = (x - n * LN2_HI) - n * LN2_LO;
-    let p = 1.0
-        + r * (1.0
-            + r * (0.5
-                + r * (1.0 / 6.0
-                    + r * (1.0 / 24.0
-                        + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
-    let n = n as i32;
-    // Two steps so that 2^n never overflows on its own.
-    ldexp(ldexp(p, n / 2), n - n / 2)
-}
-
-/// ln y for y > 0 from the exponent and 2 atanh((m-1)/(m+1)), m in [sqrt(1/2), sqrt(2)).
-pub fn ln_f32(y: f32) -> f32 {
-    if y <= 0.0 {
-        return f32::NEG_INFINITY;
-    }
-    if !y.is_finite() {
-        return f32::INFINITY;
-    }
-    // frexp for normal numbers (WGSL: `frexp`).
-    let bits = y.to_bits();
-    let mut e = ((bits >> 23) & 0xff) as i32 - 126;
-    let mut m = f32::from_bits((bits & 0x807f_ffff) | (126 << 23));
-    if m < std::f32::consts::FRAC_1_SQRT_2 {
-        m *= 2.0;
-        e -= 1;
-    }
-    let u = (m - 1.0) / (m + 1.0);
-    let z = u * u;
-    let series = 2.0
-        * u
-        * (1.0
-            + z * (1.0 / 3.0
-                + z * (1.0 / 5.0 + z * (1.0 / 7.0 + z * (1.0 / 9.0 + z * (1.0 / 11.0))))));
-    e as f32 * LN2_HI + (e as f32 * LN2_LO + series)
-}
-
-/// ln(1 + q), accurate for small q (the residual near convergence): ln(u) q / (u - 1) with
-/// u = 1 + q cancels the rounding of u (Goldberg); -inf for u <= 0.
-pub fn log1p_f32(q: f32) -> f32 {
-    let u = 1.0 + q;
-    // Above u = 2 the correction is not needed (and q = inf would make it NaN).
-    let c = if u > 2.0 { 1.0 } else { q / (u - 1.0) };
-    if u == 1.0 {
-        q
-    } else {
-        ln_f32(u) * c
-    }
-}
+// The iteration's thresholds, named as in shaders/md.wgsl (tests/shaders.rs compares them).
+/// |F| at the f32 noise level: done.
+pub const F_NOISE: f32 = 8e-7;
+/// The bracket closed to this relative width: done.
+pub const BRACKET_CLOSED: f32 = 4e-7;
+/// A step below this relative size (4 ulp) is taken along the last secant, not evaluated.
+pub const SUB_ULP_STEP: f32 = 2.5e-7;
+/// How far the search bracket reaches below the table's last node.
+pub const BRACKET_BELOW: f32 = 120.0;
+/// How far it reaches above the first node (zero-radius end).
+pub const BRACKET_ABOVE: f32 = 60.0;
+/// The iteration limit when no cap is given.
+pub const MAX_ITER: u32 = 32;
 
 fn branch(g: &GpuLambda, control: Control) -> &Branch {
     match control {
@@ -121,7 +28,7 @@ fn branch(g: &GpuLambda, control: Control) -> &Branch {
     }
 }
 
-pub use crate::gpu::layout::FLAG_NAIVE;
+pub use crate::kernel::layout::KernelFlags;
 
 /// The curve point from the formulas as printed: `(m^2 - 2) arcsec m + mu` and `m - 1` by
 /// subtraction, which cancel as m -> 1 (the JKR side). Same atan as the shipped kernel.
@@ -210,18 +117,17 @@ fn lerp_point(p: &CurvePoint<f32>, q: &CurvePoint<f32>, c: f32) -> CurvePoint<f3
 /// The f32 solve of one point, exactly as `shaders/md.wgsl` does it. The load (approach) comes
 /// as an unevaluated pair `hi + lo` (about 48 bits), so that its distance from the branch end is
 /// exact: an f32 load near Pbar_c = -2 is already off by 1e-4 of a gap of 1e-3. With `is_gap`
-/// the pair is that distance itself. `flags` as the host API's: bit 0 [`FLAG_NAIVE`], bits
-/// 8..15 an iteration cap (0: iterate to convergence, at most 32).
+/// the pair is that distance itself. `flags`: the textbook formulas, and an iteration cap (0:
+/// iterate to convergence, at most [`MAX_ITER`]).
 pub fn solve_f32(
     g: &GpuLambda,
     hi: f32,
     lo: f32,
     control: Control,
     is_gap: bool,
-    flags: u32,
+    flags: KernelFlags,
 ) -> Out {
-    let naive = flags & FLAG_NAIVE != 0;
-    let max_iter = crate::gpu::layout::flag_max_iter(flags);
+    let (naive, max_iter) = (flags.naive, flags.max_iter);
     let fail = |st: Status| Out {
         a: f32::NAN,
         other: f32::NAN,
@@ -257,8 +163,12 @@ pub fn solve_f32(
     let s = gap.sqrt();
     let direct = gap == 0.0 || (!naive && s < b.s_max);
     let n = TABLE_NODES;
-    let (mut lo_x, mut f_lo) = (b.dx[n - 1] - 120.0, f32::INFINITY);
-    let end_dx = if zero_end { b.dx[0] + 60.0 } else { 0.0 };
+    let (mut lo_x, mut f_lo) = (b.dx[n - 1] - BRACKET_BELOW, f32::INFINITY);
+    let end_dx = if zero_end {
+        b.dx[0] + BRACKET_ABOVE
+    } else {
+        0.0
+    };
     let (mut hi_x, mut f_hi) = (end_dx, f32::NEG_INFINITY);
     let mut slope0 = 0.0f32;
     let mut x = if direct {
@@ -310,7 +220,7 @@ pub fn solve_f32(
     };
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.
-    let max_iter = if max_iter == 0 { 32 } else { max_iter };
+    let max_iter = if max_iter == 0 { MAX_ITER } else { max_iter };
     let mut m = b.mu_ref * exp_f32(x);
     let mut p = CurvePoint::<f32>::default();
     let mut prev: Option<(CurvePoint<f32>, f32, f32)> = None; // point, F, ln step to the next
@@ -329,7 +239,7 @@ pub fn solve_f32(
         }
         // The direct start is the answer; |F| at the f32 noise level (a relative error of the
         // gap of 8e-7) is done: below it the secant slope is noise.
-        if direct || fx.abs() <= 8e-7 {
+        if direct || fx.abs() <= F_NOISE {
             done = true;
             break;
         }
@@ -338,7 +248,7 @@ pub fn solve_f32(
         } else {
             (hi_x, f_hi) = (x, fx);
         }
-        if hi_x - lo_x <= 4e-7 * x.abs().max(1.0) {
+        if hi_x - lo_x <= BRACKET_CLOSED * x.abs().max(1.0) {
             done = true;
             break;
         }
@@ -357,9 +267,9 @@ pub fn solve_f32(
         let finite = step.is_finite() && step != 0.0;
         // A step below 4 ulp of x: the state there is this one moved along the last secant
         // (the error is second order in the step), not one more evaluation.
-        if let Some((q, _, l_prev)) =
-            prev.filter(|&(_, _, l)| finite && step.abs() <= 2.5e-7 * x.abs().max(1.0) && l != 0.0)
-        {
+        if let Some((q, _, l_prev)) = prev.filter(|&(_, _, l)| {
+            finite && step.abs() <= SUB_ULP_STEP * x.abs().max(1.0) && l != 0.0
+        }) {
             p = lerp_point(&p, &q, step / l_prev);
             done = true;
             break;
@@ -430,12 +340,19 @@ mod solver_tests {
 #[cfg(test)]
 mod convergence_tests {
     use super::*;
-    use crate::gpu::prepare::{prepare, split};
+    use crate::kernel::prepare::{prepare, split};
     use crate::solver::LambdaContext;
 
     fn solve(lambda: f64, load: f64) -> (Out, f64) {
         let (h, l) = split(load);
-        let o = solve_f32(&prepare(lambda), h, l, Control::Load, false, 0);
+        let o = solve_f32(
+            &prepare(lambda),
+            h,
+            l,
+            Control::Load,
+            false,
+            KernelFlags::SHIPPED,
+        );
         let exact = LambdaContext::new(lambda).unwrap().solve_load(load).a;
         (o, (o.a as f64 / exact - 1.0).abs())
     }
@@ -467,7 +384,7 @@ mod convergence_tests {
         for g in &prepared {
             for &load in &axis {
                 let (h, l) = split(load);
-                let o = solve_f32(g, h, l, Control::Load, false, 0);
+                let o = solve_f32(g, h, l, Control::Load, false, KernelFlags::SHIPPED);
                 assert_eq!(o.status(), Status::Ok);
                 total += o.iterations();
                 most = most.max(o.iterations());

@@ -1,0 +1,36 @@
+//! Every WGSL shader is parsed and validated with naga at build time, as vello does, so a broken
+//! shader fails the build on a machine without a GPU (tests/shaders.rs also checks the struct
+//! layouts against the Rust side).
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+
+fn validate(name: &str, src: &str, caps: Capabilities) {
+    let module = naga::front::wgsl::parse_str(src)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(src)));
+    if let Err(e) = Validator::new(ValidationFlags::all(), caps).validate(&module) {
+        panic!("{name}: {}", e.emit_to_string(src));
+    }
+}
+
+fn main() {
+    for f in [
+        "shaders/md.wgsl",
+        "shaders/solve.wgsl",
+        "shaders/polish64.wgsl",
+    ] {
+        println!("cargo:rerun-if-changed={f}");
+    }
+    let read = |f: &str| std::fs::read_to_string(f).unwrap_or_else(|e| panic!("{f}: {e}"));
+    // The f32 kernels are one module: the shared functions, then the entry points.
+    let md = read("shaders/md.wgsl") + "\n" + &read("shaders/solve.wgsl");
+    validate(
+        "shaders/md.wgsl + shaders/solve.wgsl",
+        &md,
+        Capabilities::default(),
+    );
+    validate(
+        "shaders/polish64.wgsl",
+        &read("shaders/polish64.wgsl"),
+        Capabilities::FLOAT64,
+    );
+}

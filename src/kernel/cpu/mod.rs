@@ -1,0 +1,3 @@
+//! CPU mirrors of the WGSL kernels, one file per kernel.
+
+pub mod md;
