@@ -25,27 +25,6 @@ pub fn atan_parts_f32(mu: f32) -> (f32, f32) {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn f32_atan_parts_are_accurate_over_the_whole_range() {
-        let (mut worst_at, mut worst_d) = (0.0f64, 0.0f64);
-        for i in 0..20001 {
-            let mu = 10f32.powf(-9.0 + 19.0 * i as f32 / 20000.0);
-            let (at, d) = atan_parts_f32(mu);
-            let m = mu as f64;
-            let at64 = m.atan();
-            let (_, d64) = crate::physics::real::Real::atan_parts(m);
-            worst_at = worst_at.max((at as f64 / at64 - 1.0).abs());
-            worst_d = worst_d.max((d as f64 / d64 - 1.0).abs());
-        }
-        assert!(worst_at < 3.0e-7, "atan: {worst_at:e}");
-        assert!(worst_d < 6.0e-7, "mu - atan: {worst_d:e}");
-    }
-}
-
 const LN2_HI: f32 = 0.693_145_75;
 const LN2_LO: f32 = 1.428_606_8e-6;
 const LOG2E: f32 = std::f32::consts::LOG2_E;
@@ -108,5 +87,26 @@ pub fn log1p_f32(q: f32) -> f32 {
         q
     } else {
         ln_f32(u) * c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn f32_atan_parts_are_accurate_over_the_whole_range() {
+        let (mut worst_at, mut worst_d) = (0.0f64, 0.0f64);
+        for i in 0..20001 {
+            let mu = 10f32.powf(-9.0 + 19.0 * i as f32 / 20000.0);
+            let (at, d) = atan_parts_f32(mu);
+            let m = mu as f64;
+            let at64 = m.atan();
+            let (_, d64) = crate::physics::real::Real::atan_parts(m);
+            worst_at = worst_at.max((at as f64 / at64 - 1.0).abs());
+            worst_d = worst_d.max((d as f64 / d64 - 1.0).abs());
+        }
+        assert!(worst_at < 3.0e-7, "atan: {worst_at:e}");
+        assert!(worst_d < 6.0e-7, "mu - atan: {worst_d:e}");
     }
 }
