@@ -44,11 +44,12 @@ pub enum InputError {
         line: u64,
         value: f64,
     },
-    #[error("{source_name}, line {line}: {err}")]
+    #[error("{source_name}, line {line}: not a CSV table")]
     Csv {
         source_name: String,
         line: u64,
-        err: String,
+        #[source]
+        err: csv::Error,
     },
     #[error("{source_name}: a header row but no data rows")]
     NoRows { source_name: String },
@@ -232,7 +233,7 @@ fn csv_error(source_name: &str, e: csv::Error) -> InputError {
     InputError::Csv {
         source_name: source_name.into(),
         line,
-        err: e.to_string(),
+        err: e,
     }
 }
 

@@ -764,7 +764,8 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
             &|r| plots::curves(r, &a.lambda),
         ),
     };
-    r.map_err(|e| anyhow::anyhow!("drawing the plot: {e}"))?;
+    r.map_err(anyhow::Error::from_boxed)
+        .context("drawing the plot")?;
     eprintln!("wrote {}", a.out.display());
     Ok(())
 }
@@ -855,7 +856,8 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
         &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
         &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
     )
-    .map_err(|e| anyhow::anyhow!("drawing the chart: {e}"))?;
+    .map_err(anyhow::Error::from_boxed)
+        .context("drawing the chart")?;
     eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());
     Ok(())
 }
@@ -905,7 +907,8 @@ pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
             err: &m.err,
         };
         crate::render::atlas::write(&em, &path)
-            .map_err(|e| anyhow::anyhow!("drawing {}: {e}", path.display()))?;
+            .map_err(anyhow::Error::from_boxed)
+            .with_context(|| format!("drawing {}", path.display()))?;
         eprintln!("{}: {}", path.display(), m.title);
     }
     Ok(())

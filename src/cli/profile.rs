@@ -109,7 +109,8 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
             &|r| crate::render::plots::profile(r, &p),
             &|r| crate::render::plots::profile(r, &p),
         )
-        .map_err(|e| anyhow::anyhow!("drawing the profile: {e}"))?;
+        .map_err(anyhow::Error::from_boxed)
+        .context("drawing the profile")?;
     }
     let md = &p.models[0];
     eprintln!(

@@ -61,7 +61,8 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
             &|root| crate::render::plots::scene(root, &r),
             &|root| crate::render::plots::scene(root, &r),
         )
-        .map_err(|e| anyhow::anyhow!("drawing the scene: {e}"))?;
+        .map_err(anyhow::Error::from_boxed)
+        .context("drawing the scene")?;
         eprintln!("wrote {}", p.display());
     }
     Ok(())
@@ -444,7 +445,8 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             &|r| crate::render::plots::cycle(r, &c),
             &|r| crate::render::plots::cycle(r, &c),
         )
-        .map_err(|e| anyhow::anyhow!("drawing the cycle: {e}"))?;
+        .map_err(anyhow::Error::from_boxed)
+        .context("drawing the cycle")?;
         eprintln!("wrote {}", p.display());
     }
     Ok(())

@@ -15,8 +15,12 @@ pub enum GpuError {
     NoAdapter,
     #[error("no adapter name contains {wanted:?}; available: {available}")]
     NoMatch { wanted: String, available: String },
-    #[error("could not open a device on {adapter}: {err}")]
-    Device { adapter: String, err: String },
+    #[error("could not open a device on {adapter}")]
+    Device {
+        adapter: String,
+        #[source]
+        err: wgpu::RequestDeviceError,
+    },
     #[error("the GPU reported an error: {0}")]
     Runtime(String),
     #[error("{0}")]
@@ -219,9 +223,9 @@ impl Gpu {
             },
             ..Default::default()
         }))
-        .map_err(|e| GpuError::Device {
+        .map_err(|err| GpuError::Device {
             adapter: info.name.clone(),
-            err: e.to_string(),
+            err,
         })?;
         // Errors are collected, never panicked on: they become GpuError::Runtime.
         let error = Arc::new(Mutex::new(None::<String>));

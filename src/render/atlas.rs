@@ -26,7 +26,7 @@ pub fn write(m: &ErrorMap, png: &Path) -> Result<(), Err> {
         draw(&root, m)?;
         root.present()?;
     }
-    crate::io::write_atomic(png, &png_bytes(&rgb, W, H)?).map_err(|e| e.to_string())?;
+    crate::io::write_atomic(png, &png_bytes(&rgb, W, H)?)?;
     Ok(())
 }
 

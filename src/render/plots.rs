@@ -501,7 +501,7 @@ where
         tolerance: r.tolerance,
         strength_ratios: vec![],
     };
-    let d = crate::map::compute(&spec, &crate::engine::Engine::Cpu).map_err(|e| e.to_string())?;
+    let d = crate::map::compute(&spec, &crate::engine::Engine::Cpu)?;
     let mut ch = ChartBuilder::on(&right)
         .caption("on the adhesion map", ("sans-serif", 22))
         .margin(20)
