@@ -174,7 +174,17 @@ fn scene_infer_cycle_bench_and_atlas() {
         "json",
     ]);
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    assert!(v["w_md_j_m2"].as_f64().unwrap() > v["w_dmt_j_m2"].as_f64().unwrap());
+    // The MD w and lambda reproduce the measured force: -Pbar_c(lambda) pi w R = 12.2 nN.
+    let (w, l) = (
+        v["w_md_j_m2"].as_f64().unwrap(),
+        v["lambda_md"].as_f64().unwrap(),
+    );
+    let pc = tabor::solver::LambdaContext::new(l)
+        .unwrap()
+        .load_pulloff
+        .load;
+    let f = -pc * std::f64::consts::PI * w * 20e-9;
+    assert!((f / 12.2e-9 - 1.0).abs() < 1e-8, "{f}");
     // A cycle: CSV with both phases and a jump.
     let o = tabor(&["cycle", "--lambda", "3", "-o", &p("c.csv")]);
     assert!(o.status.success());

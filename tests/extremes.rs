@@ -110,7 +110,25 @@ fn dmt_limit_at_small_lambda() {
 fn both_sides_of_lambda_d() {
     let below = LambdaContext::new(LAMBDA_D * (1.0 - 1e-3)).unwrap();
     assert!(below.disp_pulloff.at_zero_radius());
-    assert_eq!(below.disp_pulloff.approach, below.end.approach);
+    // Below lambda_D the rigid-grip jump-out is the A -> 0 end: against the reference table.
+    for row in common::table("pulloff.csv") {
+        let l = common::num(&row, "lambda");
+        if l >= LAMBDA_D {
+            continue;
+        }
+        let c = LambdaContext::new(l).unwrap();
+        assert!(c.disp_pulloff.at_zero_radius(), "lambda {l}");
+        let d = common::num(&row, "Dbar_A0");
+        assert!(
+            (c.disp_pulloff.approach - d).abs() <= 1e-12 * d.abs().max(1.0),
+            "lambda {l}"
+        );
+        let p = common::num(&row, "Pbar_disp");
+        assert!(
+            (c.disp_pulloff.load - p).abs() <= 1e-12 * p.abs(),
+            "lambda {l}"
+        );
+    }
     let above = LambdaContext::new(LAMBDA_D * 1.05).unwrap();
     assert!(!above.disp_pulloff.at_zero_radius());
     assert!(above.disp_pulloff.a > 0.0 && above.disp_pulloff.a < 0.1);

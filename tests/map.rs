@@ -83,7 +83,7 @@ fn figures_tables_and_determinism() {
     let png2 = dir.path().join("m2.png");
     tabor::render::map::write(&d, None, Some(&png2), None).unwrap();
     assert_eq!(std::fs::read(&png).unwrap(), std::fs::read(&png2).unwrap());
-    // A quantity map too.
+    // A quantity map: a viridis colorbar, and colours from the whole scale in the plot.
     tabor::render::map::write(
         &d,
         Some(tabor::render::map::Quantity::ErrJkr),
@@ -91,6 +91,24 @@ fn figures_tables_and_determinism() {
         None,
     )
     .unwrap();
+    let q = image::open(&png2).unwrap().to_rgb8();
+    let viridis = |t: f64| {
+        let c = tabor::render::viridis(t);
+        image::Rgb([c.0, c.1, c.2])
+    };
+    // Both ends of the scale are drawn (the colorbar samples mid-rows, so within a few levels).
+    let has = |c: image::Rgb<u8>| {
+        q.pixels().any(|p| {
+            (0..3)
+                .map(|k| (p[k] as i32 - c[k] as i32).abs())
+                .sum::<i32>()
+                <= 6
+        })
+    };
+    assert!(has(viridis(0.0)) && has(viridis(1.0)), "no colour scale");
+    let distinct: std::collections::HashSet<_> = q.pixels().map(|p| p.0).collect();
+    assert!(distinct.len() > 200, "{} colours", distinct.len());
+    assert_ne!(std::fs::read(&png).unwrap(), std::fs::read(&png2).unwrap());
 }
 
 #[test]

@@ -105,3 +105,38 @@ fn curve_points_and_stability_flags_match_reference_curves() {
         );
     }
 }
+
+/// Displacement control against an independent reference: the stable part of the reference
+/// curves under rigid grips, solved from their Dbar. A is held to the f64 contract times the
+/// condition number of A given Dbar, `|Dbar| / (A |dDbar/dA|)`, which grows without bound at
+/// the jump-out (and like 1/A^2 at the zero-radius end below lambda_D).
+#[test]
+fn solve_approach_reproduces_the_reference_curves() {
+    use tabor::physics::md::curve_point;
+    let (mut worst, mut n) = (0f64, 0);
+    for row in table("curves.csv") {
+        let (l, a) = (num(&row, "lambda"), num(&row, "A"));
+        if num(&row, "disp_stable") != 1.0 || a == 0.0 {
+            continue;
+        }
+        let d = num(&row, "Dbar");
+        let s = LambdaContext::new(l).unwrap().solve_approach(d);
+        assert_eq!(s.status, Status::Ok, "lambda {l} A {a}");
+        let mu = (s.m_minus_1 * (s.m_minus_1 + 2.0)).sqrt();
+        let (p, q) = (
+            curve_point(l, mu * (1.0 - 1e-6)),
+            curve_point(l, mu * (1.0 + 1e-6)),
+        );
+        let cond = d.abs().max(1.0) / (a * ((q.approach - p.approach) / (q.a - p.a)).abs());
+        let e = rel(s.a, a);
+        assert!(
+            e <= F64_TOL * cond.max(1.0),
+            "lambda {l} A {a}: {e:e}, condition {cond:.1e}"
+        );
+        worst = worst.max(e / cond.max(1.0));
+        n += 1;
+    }
+    eprintln!(
+        "solve_approach on {n} reference curve points: worst error {worst:.2e} per unit condition"
+    );
+}

@@ -857,7 +857,7 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
         &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
     )
     .map_err(anyhow::Error::from_boxed)
-        .context("drawing the chart")?;
+    .context("drawing the chart")?;
     eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());
     Ok(())
 }

@@ -165,7 +165,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let (png_bytes, svg_text) =
         crate::render::map::render(&data, a.quantity.map(Into::into), true, svg.is_some())
             .map_err(anyhow::Error::from_boxed)
-        .context("rendering the figure")?;
+            .context("rendering the figure")?;
     data.timings.render_s = t.elapsed().as_secs_f64();
     let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
         let shown = o.name().display().to_string();

@@ -189,7 +189,8 @@ pub struct Gpu {
     polish_module: std::sync::OnceLock<wgpu::ShaderModule>,
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: Mutex<HashMap<Variant, wgpu::ComputePipeline>>,
-    params: wgpu::Buffer,
+    /// At most this many points per dispatch (0: as the limits allow); see `limit_dispatch`.
+    max_dispatch: std::sync::atomic::AtomicUsize,
     /// Points per dispatch by the workgroup count limit (65,535 workgroups).
     by_workgroups: usize,
     /// The adapter runs f64 shaders (SHADER_F64): the f64 refinement is available.
@@ -276,12 +277,6 @@ impl Gpu {
             bind_group_layouts: &[Some(&layout)],
             immediate_size: 0,
         });
-        let params = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("params"),
-            size: std::mem::size_of::<Params>() as u64,
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            mapped_at_creation: false,
-        });
         let max_binding = limits
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
@@ -296,7 +291,7 @@ impl Gpu {
             polish_module: std::sync::OnceLock::new(),
             pipeline_layout: pl,
             pipelines: Mutex::new(HashMap::new()),
-            params,
+            max_dispatch: std::sync::atomic::AtomicUsize::new(0),
             by_workgroups,
             f64: f64_ok,
             refine_f64: false,
@@ -345,6 +340,14 @@ impl Gpu {
         self.check()?;
         cache.insert(v, p.clone());
         Ok(p)
+    }
+
+    /// Splits every run into dispatches of at most `n` points (0: as the adapter's limits
+    /// allow). Results do not depend on it; tests use it to exercise the chunked path that
+    /// only huge inputs reach otherwise.
+    pub fn limit_dispatch(&self, n: usize) {
+        self.max_dispatch
+            .store(n, std::sync::atomic::Ordering::Relaxed);
     }
 
     fn check(&self) -> Result<(), GpuError> {
@@ -526,9 +529,11 @@ impl Gpu {
         });
         // Points per dispatch: within the workgroup limit and the binding size of the output
         // (and of the per-point input).
+        let limit = self.max_dispatch.load(std::sync::atomic::Ordering::Relaxed);
         let chunk = self
             .by_workgroups
             .min(self.max_binding as usize / out_bytes.max(input_stride))
+            .min(if limit > 0 { limit } else { usize::MAX })
             .min(total);
         let out_size = (chunk * out_bytes) as u64;
         let out_buf = d.create_buffer(&wgpu::BufferDescriptor {
@@ -554,8 +559,13 @@ impl Gpu {
                 count: n as u32,
                 max_iter,
             };
-            self.queue
-                .write_buffer(&self.params, 0, bytemuck::bytes_of(&p));
+            // A buffer per dispatch, not one shared by the Gpu: threads sharing a Gpu would
+            // otherwise overwrite each other's parameters between write and submit.
+            let params = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("params"),
+                contents: bytemuck::bytes_of(&p),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
             // The point kernel sees only this chunk's input; the grid kernel reads its rows whole.
             let input_binding = if input_stride > 0 {
                 wgpu::BufferBinding {
@@ -576,7 +586,7 @@ impl Gpu {
                 entries: &[
                     wgpu::BindGroupEntry {
                         binding: 0,
-                        resource: self.params.as_entire_binding(),
+                        resource: params.as_entire_binding(),
                     },
                     wgpu::BindGroupEntry {
                         binding: 1,
