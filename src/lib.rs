@@ -1,8 +1,81 @@
-//! tabor: adhesion maps for elastic spheres in contact.
+//! tabor: adhesive contact of elastic spheres. Exact Maugis-Dugdale (MD) states, pull-offs,
+//! curves, adhesion maps (Johnson & Greenwood 1997), scenes in SI units, approach-retract cycles
+//! and the pressure and gap inside the contact; the f64 solver on all cores, or the f32 WGSL
+//! kernels on a GPU through [`engine::Engine`] with a cross-check.
 //!
-//! Layout: [`physics`] (equations), [`solver`] (f64 reference and f32 mirror), `gpu` (wgpu host
-//! code for the WGSL kernels in `shaders/`), `map` (classification), `render` (figures) and the
-//! command line in `src/cli`.
+//! Units are Johnson & Greenwood's (`docs/PHYSICS.md`): lambda the Maugis parameter, load
+//! `Pbar = P / (pi w R)`, approach `Dbar`, contact radius `A`. Every quantity has a domain
+//! ([`physics::domain`]); outside it a state is `invalid_input`, never a number.
+//!
+//! # Layers
+//!
+//! Each uses only those above it in this list: [`physics`] (normalisation, domain, closed forms,
+//! the MD curve, fields, number types) -> [`solver`] (f64 contexts, root finding, batches,
+//! curves) -> [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda
+//! preparation, the CPU mirror of each shader) -> [`gpu`] (device, pipelines, dispatch) ->
+//! [`engine`] (backend choice, cross-check) -> [`map`], [`scene`], [`cycle`], [`profile`] ->
+//! [`render`], [`export`], [`io`] -> the command line (feature `cli`).
+//!
+//! # Examples
+//!
+//! A state at a load, and one at an approach, on the exact solver:
+//!
+//! ```
+//! use tabor::solver::{solve_one, Control, Status};
+//! let s = solve_one(1.0, 0.5, Control::Load);
+//! assert_eq!(s.status, Status::Ok);
+//! assert!((s.a - 1.7289400402050878).abs() < 1e-14);
+//! let d = solve_one(1.0, s.approach, Control::Displacement);
+//! assert!((d.a / s.a - 1.0).abs() < 1e-12);
+//! // Outside the domain: a status, not a number.
+//! assert_eq!(solve_one(1e-22, 1.0, Control::Load).status, Status::InvalidInput);
+//! ```
+//!
+//! Pull-offs under both controls, and the whole curve of one lambda:
+//!
+//! ```
+//! let c = tabor::solver::LambdaContext::new(10.0).unwrap();
+//! assert!((c.load_pulloff.load + 1.501624860426358).abs() < 1e-12);
+//! assert!(c.disp_pulloff.load > c.load_pulloff.load); // rigid grips hold on less
+//! let curve = tabor::solver::curve::curve(1.0, 4.0, 5).unwrap();
+//! assert_eq!(curve.points.last().unwrap().a, 0.0); // it ends at the A = 0 end
+//! ```
+//!
+//! An adhesion map as arrays, on the CPU (or `Engine::select(Backend::Auto, None)` for a GPU):
+//!
+//! ```
+//! use tabor::engine::Engine;
+//! use tabor::map::{compute, LoadAxis, MapSpec, Region};
+//! let spec = MapSpec {
+//!     lambda_min: 1e-3, lambda_max: 1e3, nx: 32,
+//!     load_axis: LoadAxis::Log, load_min: 1e-3, load_max: 1e3, ny: 16,
+//!     tolerance: 0.05, strength_ratios: vec![],
+//! };
+//! let m = compute(&spec, &Engine::Cpu).unwrap();
+//! // Small lambda at the largest load: Hertz; row-major, row 0 the smallest load.
+//! assert_eq!(m.region_at(0, 15), Region::Hertz);
+//! assert_eq!(m.states.len(), 32 * 16);
+//! ```
+//!
+//! A real contact in SI units, and the work of adhesion from a pull-off force:
+//!
+//! ```
+//! let r = tabor::scene::solve_scene(&tabor::scene::preset("afm-si").unwrap()).unwrap();
+//! assert!(r.lambda > 0.1 && r.lambda < 0.12);
+//! let inf = tabor::scene::infer(12.2e-9, 20e-9, 91e9, 0.3e-9).unwrap();
+//! assert!(inf.w_dmt_j_m2 < inf.w_md_j_m2.unwrap() && inf.w_md_j_m2.unwrap() < inf.w_jkr_j_m2);
+//! ```
+//!
+//! An approach-retract cycle under rigid grips, and the pressure inside a contact:
+//!
+//! ```
+//! use tabor::cycle::{cycle, Drive};
+//! let c = cycle(1.0, Drive::RigidGrips, 2.0).unwrap();
+//! assert!((c.hysteresis.unwrap() - 0.4963).abs() < 2e-3);
+//! let p = tabor::profile::profile(1.0, tabor::profile::Given::Load(0.0), 100).unwrap();
+//! let md = &p.models[0];
+//! assert!((md.energy_release_rate_over_w.unwrap() - 1.0).abs() < 1e-12); // J = w
+//! ```
 
 // `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
