@@ -257,7 +257,7 @@ fn scene(py: Python<'_>, scene_json: Option<String>, preset: Option<String>) -> 
             (None, Some(p)) => tabor::scene::preset(&p).ok_or_else(|| {
                 anyhow::anyhow!(
                     "no preset {p:?}; the presets are {}",
-                    tabor::scene::PRESETS.join(", ")
+                    tabor::scene::preset_names().join(", ")
                 )
             })?,
             _ => anyhow::bail!("give a scene or a preset name"),
@@ -268,7 +268,7 @@ fn scene(py: Python<'_>, scene_json: Option<String>, preset: Option<String>) -> 
 
 #[pyfunction]
 fn presets() -> Vec<&'static str> {
-    tabor::scene::PRESETS.to_vec()
+    tabor::scene::preset_names()
 }
 
 #[pyfunction]

@@ -2,7 +2,7 @@
 
 use super::Format;
 use crate::io::write_output;
-use crate::scene::{infer, preset, solve_scene, SceneInput, SceneResult, PRESETS};
+use crate::scene::{infer, preset, preset_names, solve_scene, SceneInput, SceneResult};
 use anyhow::{bail, Context};
 use clap::Args;
 use std::fmt::Write as _;
@@ -33,7 +33,7 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     let mut input: SceneInput = match (&a.file, &a.preset) {
         (_, Some(p)) => preset_named(p)?,
         (Some(f), None) => read_scene(f)?,
-        (None, None) => bail!("give a scene file or --preset ({})", PRESETS.join(", ")),
+        (None, None) => bail!("give a scene file or --preset ({})", preset_names().join(", ")),
     };
     if let Some(l) = &a.loads {
         input.loads_n = Some(l.clone());
@@ -95,7 +95,7 @@ pub fn read_scene(f: &str) -> anyhow::Result<SceneInput> {
 
 /// A built-in scene by name.
 pub fn preset_named(p: &str) -> anyhow::Result<SceneInput> {
-    preset(p).with_context(|| format!("no preset {p:?}; the presets are {}", PRESETS.join(", ")))
+    preset(p).with_context(|| format!("no preset {p:?}; the presets are {}", preset_names().join(", ")))
 }
 
 fn si(x: f64, unit: &str) -> String {
