@@ -78,22 +78,23 @@ impl Engine {
         }
     }
 
-    pub fn name(&self) -> &'static str {
+    /// The one place that dispatches on the backend.
+    fn solver(&self) -> &dyn Solve {
         match self {
-            Engine::Cpu => "cpu",
-            Engine::Gpu(_) => "gpu",
+            Engine::Cpu => &CpuSolver,
+            Engine::Gpu(g) => g.as_ref(),
         }
+    }
+
+    pub fn name(&self) -> &'static str {
+        self.solver().name()
     }
 
     pub fn precision(&self) -> &'static str {
-        match self {
-            Engine::Cpu => "f64",
-            Engine::Gpu(g) if g.refine_f64 => "f64 (f32 kernel, then f64 Newton steps on the GPU)",
-            Engine::Gpu(_) => "f32",
-        }
+        self.solver().precision()
     }
 
-    /// Sets the GPU's arithmetic; f64 needs an adapter with SHADER_F64.
+    /// Sets the GPU's arithmetic; f64 needs an adapter with SHADER_F64 (the CPU is f64 anyway).
     pub fn set_precision(&mut self, p: Precision) -> Result<(), GpuError> {
         if let Engine::Gpu(g) = self {
             if p == Precision::F64 && !g.f64 {
@@ -105,10 +106,7 @@ impl Engine {
     }
 
     pub fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
-        match self {
-            Engine::Cpu => None,
-            Engine::Gpu(g) => Some(&g.adapter),
-        }
+        self.solver().adapter()
     }
 
     /// Solves a list of (lambda, value) points.
@@ -117,37 +115,7 @@ impl Engine {
         points: &[(f64, f64)],
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
-        match self {
-            Engine::Cpu => Ok(solver::solve_points(points, control)),
-            Engine::Gpu(g) => {
-                let mut index: HashMap<u64, u32> = HashMap::new();
-                let mut lambdas = Vec::new();
-                let pts: Vec<(u32, f32, f32)> = points
-                    .iter()
-                    .map(|&(l, v)| {
-                        let i = *index.entry(l.to_bits()).or_insert_with(|| {
-                            lambdas.push(l);
-                            (lambdas.len() - 1) as u32
-                        });
-                        let (h, lo) = split(v);
-                        (i, h, lo)
-                    })
-                    .collect();
-                let ctx = contexts(&lambdas);
-                let out = g.points(
-                    &prepare_contexts(&ctx, &lambdas),
-                    &pts,
-                    control,
-                    KernelFlags::SHIPPED,
-                )?;
-                let idx: Vec<(u32, f64)> = pts
-                    .iter()
-                    .zip(points)
-                    .map(|(p, &(_, v))| (p.0, v))
-                    .collect();
-                finish(g, &ctx, &lambdas, &idx, &out, control, false)
-            }
-        }
+        self.solver().solve_points(points, control)
     }
 
     /// Solves the grid lambdas x gaps, load = Pbar_c(lambda) + gap (row-major, one row per gap):
@@ -163,32 +131,7 @@ impl Engine {
         lambdas: &[f64],
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
-        let nx = lambdas.len();
-        match self {
-            Engine::Cpu => Ok((0..nx * gaps.len())
-                .into_par_iter()
-                .map(|i| match &ctx[i % nx] {
-                    Some(c) => c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx]),
-                    None => {
-                        State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput)
-                    }
-                })
-                .collect()),
-            Engine::Gpu(g) => {
-                let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-                let out = g.grid(
-                    &prepare_contexts(ctx, lambdas),
-                    &rows,
-                    Control::Load,
-                    true,
-                    KernelFlags::SHIPPED,
-                )?;
-                let idx: Vec<(u32, f64)> = (0..out.len())
-                    .map(|i| ((i % nx) as u32, gaps[i / nx]))
-                    .collect();
-                finish(g, ctx, lambdas, &idx, &out, Control::Load, true)
-            }
-        }
+        self.solver().solve_grid_gaps_with(ctx, lambdas, gaps)
     }
 
     /// Solves the grid lambdas x values (row-major, one row per value).
@@ -209,24 +152,166 @@ impl Engine {
         values: &[f64],
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
-        match self {
-            Engine::Cpu => Ok(solver::solve_grid_with(ctx, lambdas, values, control)),
-            Engine::Gpu(g) => {
-                let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-                let out = g.grid(
-                    &prepare_contexts(ctx, lambdas),
-                    &rows,
-                    control,
-                    false,
-                    KernelFlags::SHIPPED,
-                )?;
-                let nx = lambdas.len();
-                let idx: Vec<(u32, f64)> = (0..out.len())
-                    .map(|i| ((i % nx) as u32, values[i / nx]))
-                    .collect();
-                finish(g, ctx, lambdas, &idx, &out, control, false)
-            }
+        self.solver().solve_grid_with(ctx, lambdas, values, control)
+    }
+}
+
+/// What a backend does; [`Engine`] dispatches to one of its two implementations.
+trait Solve {
+    fn name(&self) -> &'static str;
+    fn precision(&self) -> &'static str;
+    fn adapter(&self) -> Option<&crate::gpu::AdapterSummary>;
+    fn solve_points(&self, points: &[(f64, f64)], control: Control)
+        -> Result<Vec<State>, GpuError>;
+    fn solve_grid_gaps_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        gaps: &[f64],
+    ) -> Result<Vec<State>, GpuError>;
+    fn solve_grid_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        values: &[f64],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError>;
+}
+
+/// The f64 reference solver on all cores.
+struct CpuSolver;
+
+impl Solve for CpuSolver {
+    fn name(&self) -> &'static str {
+        "cpu"
+    }
+    fn precision(&self) -> &'static str {
+        "f64"
+    }
+    fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
+        None
+    }
+    fn solve_points(
+        &self,
+        points: &[(f64, f64)],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        Ok(solver::solve_points(points, control))
+    }
+    fn solve_grid_gaps_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        gaps: &[f64],
+    ) -> Result<Vec<State>, GpuError> {
+        let nx = lambdas.len();
+        Ok((0..nx * gaps.len())
+            .into_par_iter()
+            .map(|i| match &ctx[i % nx] {
+                Some(c) => c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx]),
+                None => State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput),
+            })
+            .collect())
+    }
+    fn solve_grid_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        values: &[f64],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        Ok(solver::solve_grid_with(ctx, lambdas, values, control))
+    }
+}
+
+/// The f32 WGSL kernels (and the f64 refinement) on an adapter.
+impl Solve for Gpu {
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+    fn precision(&self) -> &'static str {
+        if self.refine_f64 {
+            "f64 (f32 kernel, then f64 Newton steps on the GPU)"
+        } else {
+            "f32"
         }
+    }
+    fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
+        Some(&self.adapter)
+    }
+    fn solve_points(
+        &self,
+        points: &[(f64, f64)],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        let g = self;
+        let mut index: HashMap<u64, u32> = HashMap::new();
+        let mut lambdas = Vec::new();
+        let pts: Vec<(u32, f32, f32)> = points
+            .iter()
+            .map(|&(l, v)| {
+                let i = *index.entry(l.to_bits()).or_insert_with(|| {
+                    lambdas.push(l);
+                    (lambdas.len() - 1) as u32
+                });
+                let (h, lo) = split(v);
+                (i, h, lo)
+            })
+            .collect();
+        let ctx = contexts(&lambdas);
+        let out = g.points(
+            &prepare_contexts(&ctx, &lambdas),
+            &pts,
+            control,
+            KernelFlags::SHIPPED,
+        )?;
+        let idx: Vec<(u32, f64)> = pts
+            .iter()
+            .zip(points)
+            .map(|(p, &(_, v))| (p.0, v))
+            .collect();
+        finish(g, &ctx, &lambdas, &idx, &out, control, false)
+    }
+    fn solve_grid_gaps_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        gaps: &[f64],
+    ) -> Result<Vec<State>, GpuError> {
+        let nx = lambdas.len();
+        let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
+        let out = self.grid(
+            &prepare_contexts(ctx, lambdas),
+            &rows,
+            Control::Load,
+            true,
+            KernelFlags::SHIPPED,
+        )?;
+        let idx: Vec<(u32, f64)> = (0..out.len())
+            .map(|i| ((i % nx) as u32, gaps[i / nx]))
+            .collect();
+        finish(self, ctx, lambdas, &idx, &out, Control::Load, true)
+    }
+    fn solve_grid_with(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        values: &[f64],
+        control: Control,
+    ) -> Result<Vec<State>, GpuError> {
+        let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
+        let out = self.grid(
+            &prepare_contexts(ctx, lambdas),
+            &rows,
+            control,
+            false,
+            KernelFlags::SHIPPED,
+        )?;
+        let nx = lambdas.len();
+        let idx: Vec<(u32, f64)> = (0..out.len())
+            .map(|i| ((i % nx) as u32, values[i / nx]))
+            .collect();
+        finish(self, ctx, lambdas, &idx, &out, control, false)
     }
 }
 

@@ -33,7 +33,10 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     let mut input: SceneInput = match (&a.file, &a.preset) {
         (_, Some(p)) => preset_named(p)?,
         (Some(f), None) => read_scene(f)?,
-        (None, None) => bail!("give a scene file or --preset ({})", preset_names().join(", ")),
+        (None, None) => bail!(
+            "give a scene file or --preset ({})",
+            preset_names().join(", ")
+        ),
     };
     if let Some(l) = &a.loads {
         input.loads_n = Some(l.clone());
@@ -95,7 +98,12 @@ pub fn read_scene(f: &str) -> anyhow::Result<SceneInput> {
 
 /// A built-in scene by name.
 pub fn preset_named(p: &str) -> anyhow::Result<SceneInput> {
-    preset(p).with_context(|| format!("no preset {p:?}; the presets are {}", preset_names().join(", ")))
+    preset(p).with_context(|| {
+        format!(
+            "no preset {p:?}; the presets are {}",
+            preset_names().join(", ")
+        )
+    })
 }
 
 fn si(x: f64, unit: &str) -> String {

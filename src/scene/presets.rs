@@ -23,7 +23,10 @@ fn all() -> &'static [Preset] {
 
 /// A built-in scene by name.
 pub fn preset(name: &str) -> Option<SceneInput> {
-    all().iter().find(|p| p.preset == name).map(|p| p.scene.clone())
+    all()
+        .iter()
+        .find(|p| p.preset == name)
+        .map(|p| p.scene.clone())
 }
 
 /// The built-in scenes' names, in the order of `data/presets.json`.
