@@ -192,6 +192,47 @@ pub const MAX_SCENE_LOADS: usize = 100_000;
 
 pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let c = contact_of(s)?;
+    let tol = checked_tolerance(s)?;
+    let lambda = c.lambda();
+    let ctx = LambdaContext::new(lambda).map_err(|_| ParamError::OutOfRange {
+        field: "the Maugis parameter lambda of these inputs",
+        value: lambda,
+        allowed:
+            "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
+    })?;
+    let loads = scene_loads(s)?;
+    let results = loads
+        .iter()
+        .map(|&p| load_result(s, &c, &ctx, tol, p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let (rec, recommendation) = recommend(&results, tol, lambda, c.tabor());
+    let (pulloff_control, control_name) = pulloff_under_control(s, &c, &ctx)?;
+    let (fs, rs) = (c.force_scale(), c.radius_scale());
+    Ok(SceneResult {
+        pulloff_force_under_control_N: pulloff_control,
+        control: control_name,
+        name: s.name.clone().unwrap_or_else(|| "scene".into()),
+        e_star_pa: c.e_star,
+        k_pa: c.k(),
+        radius_m: c.radius,
+        work_of_adhesion_j_m2: c.work,
+        s0_pa: c.s0,
+        lambda,
+        tabor_parameter: c.tabor(),
+        tolerance: tol,
+        pulloff_force_load_control_N: ctx.load_pulloff.load * fs,
+        pulloff_force_displacement_control_N: ctx.disp_pulloff.load * fs,
+        pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
+        zero_load_contact_radius_m: ctx.solve_load(0.0).a * rs,
+        recommended_model: rec.name(),
+        recommendation,
+        loads: results,
+        source: s.source.clone(),
+    })
+}
+
+/// The scene's tolerance (default 0.05) and shear strength, checked.
+fn checked_tolerance(s: &SceneInput) -> Result<f64, ParamError> {
     let tol = s.tolerance.unwrap_or(0.05);
     if !(tol > 0.0 && tol < 1.0) {
         return Err(ParamError::OutOfRange {
@@ -200,15 +241,6 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
             allowed: "in (0, 1)",
         });
     }
-    let spacing = s.atomic_spacing_m.unwrap_or(0.25e-9);
-    let lambda = c.lambda();
-    let ctx = LambdaContext::new(lambda).map_err(|_| ParamError::OutOfRange {
-        field: "the Maugis parameter lambda of these inputs",
-        value: lambda,
-        allowed:
-            "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
-    })?;
-    let (fs, rs, ds) = (c.force_scale(), c.radius_scale(), c.approach_scale());
     if let Some(t) = s.shear_strength_pa {
         if !(t.is_finite() && t >= 0.0) {
             return Err(ParamError::OutOfRange {
@@ -218,6 +250,11 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
             });
         }
     }
+    Ok(tol)
+}
+
+/// The loads of the scene (N): `loads_n`, or `load_range_n` spaced linearly, or zero.
+fn scene_loads(s: &SceneInput) -> Result<Vec<f64>, ParamError> {
     let count = s.loads_n.as_ref().map_or(0, Vec::len) + s.load_range_n.map_or(0, |r| r.2);
     if count > MAX_SCENE_LOADS {
         return Err(ParamError::OutOfRange {
@@ -226,72 +263,84 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
             allowed: "at most 100000; for more use `tabor solve` on a file",
         });
     }
-    let loads: Vec<f64> = match (&s.loads_n, s.load_range_n) {
-        (Some(l), None) => l.clone(),
-        (None, Some((a, b, n))) if n >= 2 => (0..n)
+    match (&s.loads_n, s.load_range_n) {
+        (Some(l), None) => Ok(l.clone()),
+        (None, Some((a, b, n))) if n >= 2 => Ok((0..n)
             .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
-            .collect(),
-        (None, None) => vec![0.0],
-        _ => {
-            return Err(ParamError::Missing(
-                "give loads_n or load_range_n = [min, max, count >= 2], not both",
-            ))
-        }
-    };
-    let mut results = Vec::new();
-    let mut counts = std::collections::BTreeMap::new();
-    for &p in &loads {
-        if !p.is_finite() {
-            return Err(ParamError::OutOfRange {
-                field: "loads_n",
-                value: p,
-                allowed: "finite (N)",
-            });
-        }
-        crate::solver::domain::check_load(p / fs).map_err(|_| ParamError::OutOfRange {
+            .collect()),
+        (None, None) => Ok(vec![0.0]),
+        _ => Err(ParamError::Missing(
+            "give loads_n or load_range_n = [min, max, count >= 2], not both",
+        )),
+    }
+}
+
+/// One load of the scene: the MD state in SI units, the model it needs and why, warnings.
+fn load_result(
+    s: &SceneInput,
+    c: &Contact,
+    ctx: &LambdaContext,
+    tol: f64,
+    p: f64,
+) -> Result<LoadResult, ParamError> {
+    let (fs, rs, ds) = (c.force_scale(), c.radius_scale(), c.approach_scale());
+    let spacing = s.atomic_spacing_m.unwrap_or(0.25e-9);
+    if !p.is_finite() {
+        return Err(ParamError::OutOfRange {
             field: "loads_n",
             value: p,
-            allowed: "a load whose normalised value P / (pi w R) is within -1e12..1e12",
-        })?;
-        let st = ctx.solve_load(p / fs);
-        let region = classify(&st, tol);
-        *counts.entry(region as u8).or_insert(0usize) += 1;
-        let ok = st.status == Status::Ok;
-        let cr = criteria(lambda, st.load, st.a, st.approach);
-        let a = st.a * rs;
-        let mut warnings = Vec::new();
-        if ok && a / c.radius > 0.1 {
-            warnings.push(format!(
-                "a/R = {:.2} > 0.1: small-strain (half-space) theory breaks down",
-                a / c.radius
-            ));
-        }
-        // A 1.35 nm contact on a 0.25 nm lattice is only about 5 atoms across (the AFM example).
-        if ok && a < 10.0 * spacing {
-            warnings.push(format!("the contact radius is {:.1} atomic spacings: continuum theory is questionable here", a / spacing));
-        }
-        results.push(LoadResult {
-            load_n: p,
-            load_normalised: st.load,
-            status: st.status,
-            contact_radius_m: ok.then_some(a),
-            approach_m: ok.then_some(st.approach * ds),
-            pressure_scale_pa: ok.then_some(2.0 * c.e_star * a / (std::f64::consts::PI * c.radius)),
-            a_over_r: ok.then_some(a / c.radius),
-            err_hertz: if ok { opt(cr.err_hertz) } else { None },
-            err_dmt: if ok { opt(cr.err_dmt) } else { None },
-            err_jkr: if ok { opt(cr.err_jkr) } else { None },
-            rigid_measure: ok.then_some(cr.rigid),
-            model: region.name(),
-            why: why(region, &cr, tol),
-            friction_n: s
-                .shear_strength_pa
-                .filter(|_| ok)
-                .map(|t| t * std::f64::consts::PI * a * a),
-            warnings,
+            allowed: "finite (N)",
         });
     }
-    // The simplest model adequate at every load of the scene, in the map's order.
+    crate::solver::domain::check_load(p / fs).map_err(|_| ParamError::OutOfRange {
+        field: "loads_n",
+        value: p,
+        allowed: "a load whose normalised value P / (pi w R) is within -1e12..1e12",
+    })?;
+    let st = ctx.solve_load(p / fs);
+    let region = classify(&st, tol);
+    let ok = st.status == Status::Ok;
+    let cr = criteria(ctx.lambda, st.load, st.a, st.approach);
+    let a = st.a * rs;
+    let mut warnings = Vec::new();
+    if ok && a / c.radius > 0.1 {
+        warnings.push(format!(
+            "a/R = {:.2} > 0.1: small-strain (half-space) theory breaks down",
+            a / c.radius
+        ));
+    }
+    // A 1.35 nm contact on a 0.25 nm lattice is only about 5 atoms across (the AFM example).
+    if ok && a < 10.0 * spacing {
+        warnings.push(format!(
+            "the contact radius is {:.1} atomic spacings: continuum theory is questionable here",
+            a / spacing
+        ));
+    }
+    Ok(LoadResult {
+        load_n: p,
+        load_normalised: st.load,
+        status: st.status,
+        contact_radius_m: ok.then_some(a),
+        approach_m: ok.then_some(st.approach * ds),
+        pressure_scale_pa: ok.then_some(2.0 * c.e_star * a / (std::f64::consts::PI * c.radius)),
+        a_over_r: ok.then_some(a / c.radius),
+        err_hertz: if ok { opt(cr.err_hertz) } else { None },
+        err_dmt: if ok { opt(cr.err_dmt) } else { None },
+        err_jkr: if ok { opt(cr.err_jkr) } else { None },
+        rigid_measure: ok.then_some(cr.rigid),
+        model: region.name(),
+        why: why(region, &cr, tol),
+        friction_n: s
+            .shear_strength_pa
+            .filter(|_| ok)
+            .map(|t| t * std::f64::consts::PI * a * a),
+        warnings,
+    })
+}
+
+/// The simplest model adequate at every load of the scene in contact, in the map's order, and
+/// the sentence that says so.
+fn recommend(results: &[LoadResult], tol: f64, lambda: f64, tabor: f64) -> (Region, String) {
     let order = [
         Region::Hertz,
         Region::Rigid,
@@ -320,7 +369,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let recommendation = if contact.is_empty() {
         "no load of the scene is above the pull-off".to_string()
     } else if rec == Region::Md {
-        format!("no closed form is within {}% at every load in contact: use Maugis-Dugdale (lambda = {:.3}, Tabor parameter {:.3})", 100.0 * tol, lambda, c.tabor())
+        format!("no closed form is within {}% at every load in contact: use Maugis-Dugdale (lambda = {:.3}, Tabor parameter {:.3})", 100.0 * tol, lambda, tabor)
     } else {
         format!(
             "{} is within {}% at all {} loads in contact (lambda = {:.3}, Tabor parameter {:.3})",
@@ -328,11 +377,20 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
             100.0 * tol,
             contact.len(),
             lambda,
-            c.tabor()
+            tabor
         )
     };
-    let zero = ctx.solve_load(0.0);
-    let (pulloff_control, control_name) = match &s.control {
+    (rec, recommendation)
+}
+
+/// The pull-off force (N) under the scene's control, and the control's description.
+fn pulloff_under_control(
+    s: &SceneInput,
+    c: &Contact,
+    ctx: &LambdaContext,
+) -> Result<(f64, String), ParamError> {
+    let fs = c.force_scale();
+    Ok(match &s.control {
         None | Some(SceneControl::Load) => (ctx.load_pulloff.load * fs, "load".to_string()),
         Some(SceneControl::Displacement) => {
             (ctx.disp_pulloff.load * fs, "displacement".to_string())
@@ -345,14 +403,13 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
                     allowed: "> 0 (N/m)",
                 });
             }
-            let kbar = crate::cycle::normalised_stiffness(*k, &c);
-            let cyc = crate::cycle::cycle(lambda, crate::cycle::Drive::Spring(kbar), 1.0).map_err(
-                |_| ParamError::OutOfRange {
+            let kbar = crate::cycle::normalised_stiffness(*k, c);
+            let cyc = crate::cycle::cycle(ctx.lambda, crate::cycle::Drive::Spring(kbar), 1.0)
+                .map_err(|_| ParamError::OutOfRange {
                     field: "control.cantilever_n_m",
                     value: *k,
                     allowed: "a stiffness whose normalised value is positive and finite",
-                },
-            )?;
+                })?;
             let out = cyc
                 .jumps
                 .iter()
@@ -363,27 +420,6 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
                 format!("cantilever k = {k} N/m (normalised {kbar:.4e})"),
             )
         }
-    };
-    Ok(SceneResult {
-        pulloff_force_under_control_N: pulloff_control,
-        control: control_name,
-        name: s.name.clone().unwrap_or_else(|| "scene".into()),
-        e_star_pa: c.e_star,
-        k_pa: c.k(),
-        radius_m: c.radius,
-        work_of_adhesion_j_m2: c.work,
-        s0_pa: c.s0,
-        lambda,
-        tabor_parameter: c.tabor(),
-        tolerance: tol,
-        pulloff_force_load_control_N: ctx.load_pulloff.load * fs,
-        pulloff_force_displacement_control_N: ctx.disp_pulloff.load * fs,
-        pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
-        zero_load_contact_radius_m: zero.a * rs,
-        recommended_model: rec.name(),
-        recommendation,
-        loads: results,
-        source: s.source.clone(),
     })
 }
 
