@@ -151,48 +151,63 @@ pub fn run(
     progress: &mut dyn FnMut(&VariantResult),
 ) -> Vec<VariantResult> {
     let mut results = Vec::new();
-    let mut push = |r: VariantResult, results: &mut Vec<VariantResult>| {
-        progress(&r);
-        results.push(r);
-    };
-    let pts = &w.points;
+    {
+        let mut push = |r: VariantResult| {
+            progress(&r);
+            results.push(r);
+        };
+        cpu_f64_variants(w, &mut push);
+        let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
+        // Without a GPU, the iteration caps are traced on the mirror.
+        mirror_variants(w, &prepared, gpu.is_none(), &mut push);
+        if let Some(g) = gpu {
+            gpu_variants(w, g, &prepared, &mut push);
+        }
+        reference_variants(w, &mut push);
+    }
+    results
+}
 
-    // CPU f64, all threads and one thread.
+/// The exact f64 solver on all threads and on one.
+fn cpu_f64_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
+    let pts = &w.points;
     let t = Instant::now();
     let a: Vec<Option<f64>> = pts.par_iter().map(|p| Some(f64_solve(w, p))).collect();
     let s = t.elapsed().as_secs_f64();
-    push(
-        summarize(
-            "cpu-f64",
-            &format!(
-                "exact solver, f64, {} threads (the reference for the grid)",
-                rayon::current_num_threads()
-            ),
-            w,
-            s,
-            &a,
+    push(summarize(
+        "cpu-f64",
+        &format!(
+            "exact solver, f64, {} threads (the reference for the grid)",
+            rayon::current_num_threads()
         ),
-        &mut results,
-    );
+        w,
+        s,
+        &a,
+    ));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("thread pool");
     let t = Instant::now();
     let a: Vec<Option<f64>> = pool.install(|| pts.iter().map(|p| Some(f64_solve(w, p))).collect());
-    push(
-        summarize(
-            "cpu-f64-1t",
-            "exact solver, f64, 1 thread",
-            w,
-            t.elapsed().as_secs_f64(),
-            &a,
-        ),
-        &mut results,
-    );
+    push(summarize(
+        "cpu-f64-1t",
+        "exact solver, f64, 1 thread",
+        w,
+        t.elapsed().as_secs_f64(),
+        &a,
+    ));
+}
 
-    // The f32 kernels' arithmetic on the CPU (the mirror), shipped and naive.
-    let prepared: Vec<GpuLambda> = w.contexts.par_iter().map(prepare_ctx).collect();
+/// The kernels' f32 arithmetic on the CPU (the mirror), shipped and naive, and with iteration
+/// caps when `trace_caps`.
+fn mirror_variants(
+    w: &Workload,
+    prepared: &[GpuLambda],
+    trace_caps: bool,
+    push: &mut dyn FnMut(VariantResult),
+) {
+    let pts = &w.points;
     // The kernel's f32 arithmetic on the CPU (the mirror), all threads; `capped` counts
     // not-converged answers from an iteration cap.
     let mirror = |flags: KernelFlags, capped: bool| -> (f64, Vec<Option<f64>>) {
@@ -222,113 +237,122 @@ pub fn run(
         ),
     ] {
         let (secs, a) = mirror(flags, false);
-        push(summarize(name, desc, w, secs, &a), &mut results);
+        push(summarize(name, desc, w, secs, &a));
     }
     // Without a GPU, the iteration caps are traced on the mirror.
-    if gpu.is_none() {
+    if trace_caps {
         for k in [1u32, 2, 3, 4, 6] {
             let (secs, a) = mirror(KernelFlags::capped(k), true);
             let desc = format!("the f32 algorithm stopped after {k} iteration(s)");
-            push(
-                summarize(&format!("cpu-f32-iter{k}"), &desc, w, secs, &a),
-                &mut results,
-            );
+            push(summarize(&format!("cpu-f32-iter{k}"), &desc, w, secs, &a));
         }
     }
-    if let Some(g) = gpu {
-        let gp: Vec<(u32, f32, f32)> = pts
-            .iter()
-            .map(|p| {
-                let (h, l) = split(p.1);
-                (p.0 as u32, h, l)
-            })
-            .collect();
-        // Warm-up: each variant's pipeline is compiled on first use.
-        for flags in [KernelFlags::SHIPPED, KernelFlags::NAIVE] {
-            let _ = g.points(&prepared, &gp[..gp.len().min(1024)], Control::Load, flags);
-        }
-        let mut variants: Vec<(String, KernelFlags, String)> = vec![
-            (
-                "gpu-f32".into(),
-                KernelFlags::SHIPPED,
-                format!("shipped WGSL kernel on {}", g.adapter.name),
-            ),
-            (
-                "gpu-f32-naive".into(),
-                KernelFlags::NAIVE,
-                "WGSL kernel with the textbook formulas".into(),
-            ),
-        ];
-        for k in [1u32, 2, 3, 4, 6] {
-            variants.push((
-                format!("gpu-f32-iter{k}"),
-                KernelFlags::capped(k),
-                format!("shipped kernel stopped after {k} iteration(s)"),
-            ));
-        }
-        for (name, flags, desc) in variants {
-            let t = Instant::now();
-            match g.points(&prepared, &gp, Control::Load, flags) {
-                Ok(out) => {
-                    let s = t.elapsed().as_secs_f64();
-                    let a: Vec<Option<f64>> =
-                        out.iter().map(|o| out_a(o, flags.max_iter != 0)).collect();
-                    push(summarize(&name, &desc, w, s, &a), &mut results);
-                }
-                Err(e) => eprintln!("{name}: {e}"),
-            }
-        }
-        // The f32 kernel's states refined by Newton steps in f64 on the GPU (SHADER_F64).
-        if g.f64 {
-            let l64: Vec<Lambda64> = w
-                .contexts
-                .iter()
-                .map(|c| prepare64(Some(c), c.lambda))
-                .collect();
-            // Grid points are refined from their exact gap, the reference states from their load
-            // (as the f64 solver is given them).
-            let n_grid = pts.iter().filter(|p| p.2.is_finite()).count();
-            let idx: Vec<(u32, f64)> = pts
-                .iter()
-                .map(|p| (p.0 as u32, if p.2.is_finite() { p.2 } else { p.1 }))
-                .collect();
-            let refine = |o: Vec<Out>| -> Result<(Vec<Out64>, Vec<Out>), crate::gpu::GpuError> {
-                let (og, ot) = o.split_at(n_grid.min(o.len()));
-                let (ig, it) = idx[..o.len()].split_at(og.len());
-                let mut r = g.polish_f64(&l64, ig, og, Control::Load, true, 0)?;
-                r.extend(g.polish_f64(&l64, it, ot, Control::Load, false, 0)?);
-                Ok((r, o))
-            };
-            // Warm-up: both pipelines of the refinement.
-            let _ = g
-                .points(&prepared, &gp[..16], Control::Load, KernelFlags::SHIPPED)
-                .and_then(|o| {
-                    g.polish_f64(&l64, &idx[..16], &o, Control::Load, true, 0)?;
-                    g.polish_f64(&l64, &idx[..16], &o, Control::Load, false, 0)
-                });
-            let t = Instant::now();
-            match g
-                .points(&prepared, &gp, Control::Load, KernelFlags::SHIPPED)
-                .and_then(&refine)
-            {
-                Ok((r, o)) => {
-                    let s = t.elapsed().as_secs_f64();
-                    let a: Vec<Option<f64>> = r
-                        .iter()
-                        .zip(&o)
-                        .map(|(r, o)| {
-                            let s = crate::engine::to_state64(0.0, 0.0, o, r, Control::Load);
-                            (s.status == Status::Ok).then_some(s.a)
-                        })
-                        .collect();
-                    let desc = "shipped kernel, then Newton steps in f64 on the GPU";
-                    push(summarize("gpu-f64", desc, w, s, &a), &mut results);
-                }
-                Err(e) => eprintln!("gpu-f64: {e}"),
-            }
-        }
-    }
+}
 
+/// The WGSL kernels on the adapter: shipped, naive, capped, and refined in f64.
+fn gpu_variants(
+    w: &Workload,
+    g: &Gpu,
+    prepared: &[GpuLambda],
+    push: &mut dyn FnMut(VariantResult),
+) {
+    let pts = &w.points;
+    let gp: Vec<(u32, f32, f32)> = pts
+        .iter()
+        .map(|p| {
+            let (h, l) = split(p.1);
+            (p.0 as u32, h, l)
+        })
+        .collect();
+    // Warm-up: each variant's pipeline is compiled on first use.
+    for flags in [KernelFlags::SHIPPED, KernelFlags::NAIVE] {
+        let _ = g.points(&prepared, &gp[..gp.len().min(1024)], Control::Load, flags);
+    }
+    let mut variants: Vec<(String, KernelFlags, String)> = vec![
+        (
+            "gpu-f32".into(),
+            KernelFlags::SHIPPED,
+            format!("shipped WGSL kernel on {}", g.adapter.name),
+        ),
+        (
+            "gpu-f32-naive".into(),
+            KernelFlags::NAIVE,
+            "WGSL kernel with the textbook formulas".into(),
+        ),
+    ];
+    for k in [1u32, 2, 3, 4, 6] {
+        variants.push((
+            format!("gpu-f32-iter{k}"),
+            KernelFlags::capped(k),
+            format!("shipped kernel stopped after {k} iteration(s)"),
+        ));
+    }
+    for (name, flags, desc) in variants {
+        let t = Instant::now();
+        match g.points(&prepared, &gp, Control::Load, flags) {
+            Ok(out) => {
+                let s = t.elapsed().as_secs_f64();
+                let a: Vec<Option<f64>> =
+                    out.iter().map(|o| out_a(o, flags.max_iter != 0)).collect();
+                push(summarize(&name, &desc, w, s, &a));
+            }
+            Err(e) => eprintln!("{name}: {e}"),
+        }
+    }
+    // The f32 kernel's states refined by Newton steps in f64 on the GPU (SHADER_F64).
+    if g.f64 {
+        let l64: Vec<Lambda64> = w
+            .contexts
+            .iter()
+            .map(|c| prepare64(Some(c), c.lambda))
+            .collect();
+        // Grid points are refined from their exact gap, the reference states from their load
+        // (as the f64 solver is given them).
+        let n_grid = pts.iter().filter(|p| p.2.is_finite()).count();
+        let idx: Vec<(u32, f64)> = pts
+            .iter()
+            .map(|p| (p.0 as u32, if p.2.is_finite() { p.2 } else { p.1 }))
+            .collect();
+        let refine = |o: Vec<Out>| -> Result<(Vec<Out64>, Vec<Out>), crate::gpu::GpuError> {
+            let (og, ot) = o.split_at(n_grid.min(o.len()));
+            let (ig, it) = idx[..o.len()].split_at(og.len());
+            let mut r = g.polish_f64(&l64, ig, og, Control::Load, true, 0)?;
+            r.extend(g.polish_f64(&l64, it, ot, Control::Load, false, 0)?);
+            Ok((r, o))
+        };
+        // Warm-up: both pipelines of the refinement.
+        let _ = g
+            .points(&prepared, &gp[..16], Control::Load, KernelFlags::SHIPPED)
+            .and_then(|o| {
+                g.polish_f64(&l64, &idx[..16], &o, Control::Load, true, 0)?;
+                g.polish_f64(&l64, &idx[..16], &o, Control::Load, false, 0)
+            });
+        let t = Instant::now();
+        match g
+            .points(&prepared, &gp, Control::Load, KernelFlags::SHIPPED)
+            .and_then(&refine)
+        {
+            Ok((r, o)) => {
+                let s = t.elapsed().as_secs_f64();
+                let a: Vec<Option<f64>> = r
+                    .iter()
+                    .zip(&o)
+                    .map(|(r, o)| {
+                        let s = crate::engine::to_state64(0.0, 0.0, o, r, Control::Load);
+                        (s.status == Status::Ok).then_some(s.a)
+                    })
+                    .collect();
+                let desc = "shipped kernel, then Newton steps in f64 on the GPU";
+                push(summarize("gpu-f64", desc, w, s, &a));
+            }
+            Err(e) => eprintln!("gpu-f64: {e}"),
+        }
+    }
+}
+
+/// The public Python reference's naive f64 method and the closed forms as stand-ins for MD.
+fn reference_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
+    let pts = &w.points;
     // The naive f64 method of the public Python reference, on a subsample (it is slow).
     let step = (pts.len() / 4000).max(1);
     let sub = Workload {
@@ -342,7 +366,7 @@ pub fn run(
         .par_iter()
         .map(|p| naive::solve_load(&sub.contexts[p.0], p.1))
         .collect();
-    push(summarize("naive-f64-fixed-bracket", "f64 textbook formulas, Brent on m in [1, 1e12] (the public Python method), every n-th point", &sub, t.elapsed().as_secs_f64(), &a), &mut results);
+    push(summarize("naive-f64-fixed-bracket", "f64 textbook formulas, Brent on m in [1, 1e12] (the public Python method), every n-th point", &sub, t.elapsed().as_secs_f64(), &a));
 
     // Closed forms as stand-ins for MD.
     let closed: [ClosedForm; 4] = [
@@ -358,12 +382,8 @@ pub fn run(
     for (name, desc, f) in closed {
         let t = Instant::now();
         let a: Vec<Option<f64>> = pts.par_iter().map(|p| f(w.lambdas[p.0], p.1)).collect();
-        push(
-            summarize(name, desc, w, t.elapsed().as_secs_f64(), &a),
-            &mut results,
-        );
+        push(summarize(name, desc, w, t.elapsed().as_secs_f64(), &a));
     }
-    results
 }
 
 /// The variants on the Pareto front: among those with no failure, none is both faster and more
