@@ -266,7 +266,7 @@ fn gpu_variants(
         .collect();
     // Warm-up: each variant's pipeline is compiled on first use.
     for flags in [KernelFlags::SHIPPED, KernelFlags::NAIVE] {
-        let _ = g.points(&prepared, &gp[..gp.len().min(1024)], Control::Load, flags);
+        let _ = g.points(prepared, &gp[..gp.len().min(1024)], Control::Load, flags);
     }
     let mut variants: Vec<(String, KernelFlags, String)> = vec![
         (
@@ -289,7 +289,7 @@ fn gpu_variants(
     }
     for (name, flags, desc) in variants {
         let t = Instant::now();
-        match g.points(&prepared, &gp, Control::Load, flags) {
+        match g.points(prepared, &gp, Control::Load, flags) {
             Ok(out) => {
                 let s = t.elapsed().as_secs_f64();
                 let a: Vec<Option<f64>> =
@@ -322,14 +322,14 @@ fn gpu_variants(
         };
         // Warm-up: both pipelines of the refinement.
         let _ = g
-            .points(&prepared, &gp[..16], Control::Load, KernelFlags::SHIPPED)
+            .points(prepared, &gp[..16], Control::Load, KernelFlags::SHIPPED)
             .and_then(|o| {
                 g.polish_f64(&l64, &idx[..16], &o, Control::Load, true, 0)?;
                 g.polish_f64(&l64, &idx[..16], &o, Control::Load, false, 0)
             });
         let t = Instant::now();
         match g
-            .points(&prepared, &gp, Control::Load, KernelFlags::SHIPPED)
+            .points(prepared, &gp, Control::Load, KernelFlags::SHIPPED)
             .and_then(&refine)
         {
             Ok((r, o)) => {
