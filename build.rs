@@ -1,8 +1,15 @@
 //! Every WGSL shader is parsed and validated with naga at build time, as vello does, so a broken
 //! shader fails the build on a machine without a GPU (tests/shaders.rs also checks the struct
-//! layouts against the Rust side).
+//! layouts against the Rust side). The shaders are validated as the host builds them: after the
+//! prelude of constants it generates from `src/physics/tolerances.rs`.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
+
+/// The constants the host gives the shaders (the same file the crate compiles).
+#[allow(dead_code)]
+mod tolerances {
+    include!("src/physics/tolerances.rs");
+}
 
 fn validate(name: &str, src: &str, caps: Capabilities) {
     let module = naga::front::wgsl::parse_str(src)
@@ -17,12 +24,14 @@ fn main() {
         "shaders/md.wgsl",
         "shaders/solve.wgsl",
         "shaders/polish64.wgsl",
+        "src/physics/tolerances.rs",
     ] {
         println!("cargo:rerun-if-changed={f}");
     }
     let read = |f: &str| std::fs::read_to_string(f).unwrap_or_else(|e| panic!("{f}: {e}"));
+    let prelude = tolerances::wgsl_prelude();
     // The f32 kernels are one module: the shared functions, then the entry points.
-    let md = read("shaders/md.wgsl") + "\n" + &read("shaders/solve.wgsl");
+    let md = prelude.clone() + &read("shaders/md.wgsl") + "\n" + &read("shaders/solve.wgsl");
     validate(
         "shaders/md.wgsl + shaders/solve.wgsl",
         &md,
@@ -30,7 +39,7 @@ fn main() {
     );
     validate(
         "shaders/polish64.wgsl",
-        &read("shaders/polish64.wgsl"),
+        &(prelude + &read("shaders/polish64.wgsl")),
         Capabilities::FLOAT64,
     );
 }

@@ -10,9 +10,9 @@ struct Branch {
     end_hi: f32,
     end_lo: f32,
     s_max: f32,
-    cheb: array<f32, 8>,
-    t: array<f32, 14>,
-    dx: array<f32, 14>,
+    cheb: array<f32, CHEB_TERMS>,
+    t: array<f32, TABLE_NODES>,
+    dx: array<f32, TABLE_NODES>,
 }
 
 // Twin of gpu::layout::GpuLambda (88 x 4 bytes).
@@ -100,27 +100,15 @@ const STATUS_OK: u32 = 0u;
 const STATUS_NO_CONTACT: u32 = 1u;
 const STATUS_NOT_CONVERGED: u32 = 2u;
 const STATUS_INVALID: u32 = 3u;
-const TABLE_NODES: u32 = 14u;
 const HALF_PI: f32 = 1.5707963267948966;
 const LN2_HI: f32 = 0.69314575;
 const LN2_LO: f32 = 1.4286068e-6;
 const LN2: f32 = 0.6931472;
 const LOG2E: f32 = 1.4426950408889634;
 const INF: f32 = 3.0e38;
-// The iteration's thresholds; src/kernel/cpu/md.rs has the same names and values (checked by
-// tests/shaders.rs through naga).
-// |F| at the f32 noise level: done.
-const F_NOISE: f32 = 8e-7;
-// The bracket closed to this relative width: done.
-const BRACKET_CLOSED: f32 = 4e-7;
-// A step below this relative size (4 ulp) is taken along the last secant, not evaluated.
-const SUB_ULP_STEP: f32 = 2.5e-7;
-// How far the search bracket reaches beyond the table: below its last node, above its first
-// (zero-radius end).
-const BRACKET_BELOW: f32 = 120.0;
-const BRACKET_ABOVE: f32 = 60.0;
-// The iteration limit when no cap is given.
-const MAX_ITER: u32 = 32u;
+// TABLE_NODES, CHEB_TERMS and the iteration's thresholds (F_NOISE, BRACKET_CLOSED,
+// SUB_ULP_STEP, BRACKET_BELOW, BRACKET_ABOVE, MAX_ITER) come from the host's prelude
+// (physics::tolerances::wgsl_prelude), shared with the CPU mirror.
 
 // (atan(mu), mu - atan(mu)) from one half-angle step and a polynomial, without loops (a
 // masked loop runs as long as its slowest lane). For mu > 1, atan(mu) = pi/2 - atan(1/mu).

@@ -55,8 +55,6 @@ override ROWS_ARE_GAPS: bool = false; // values are distances above the branch e
 @group(0) @binding(2) var<storage, read> input: array<Point64>;
 @group(0) @binding(3) var<storage, read_write> out: array<Out64>;
 
-// Threads per workgroup: physics::tolerances::WORKGROUP_SIZE (tests/shaders.rs checks it).
-const WORKGROUP64: u32 = 256u;
 const STATUS_OK: u32 = 0u;
 const STATUS_NOT_CONVERGED: u32 = 2u;
 const HALF_PI: f64 = 1.5707963267948966;
@@ -130,7 +128,7 @@ fn curve_point64(lambda: f64, mu: f64) -> Point {
     return p;
 }
 
-@compute @workgroup_size(WORKGROUP64)
+@compute @workgroup_size(WORKGROUP)
 fn polish(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;
     if local >= params.count {

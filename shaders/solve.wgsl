@@ -3,8 +3,6 @@
 //           (2 words per row: hi, lo). Nothing is uploaded per point.
 //   points: a list; `input` holds 4 words per point: lambda index, load hi, load lo, unused.
 
-const WORKGROUP: u32 = 256u;
-
 @compute @workgroup_size(WORKGROUP)
 fn grid(@builtin(global_invocation_id) gid: vec3<u32>) {
     let local = gid.x;

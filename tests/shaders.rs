@@ -68,7 +68,7 @@ fn rust_structs_match_wgsl_layout() {
 /// structs match the Rust ones.
 #[test]
 fn f64_module_validates_and_matches_rust_layout() {
-    let m = parse(include_str!("../shaders/polish64.wgsl"));
+    let m = parse(&tabor::kernel::polish64_source());
     Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
         .validate(&m)
         .unwrap_or_else(|e| panic!("{e:?}"));
@@ -118,7 +118,7 @@ fn shader_constants_match_the_host() {
         assert_eq!(wgsl_const(&m, name), v, "{name}");
     }
     let size = tabor::physics::tolerances::WORKGROUP_SIZE as u32;
-    let p64 = parse(tabor::kernel::polish64_source());
+    let p64 = parse(&tabor::kernel::polish64_source());
     for module in [&m, &p64] {
         for e in &module.entry_points {
             assert_eq!(e.workgroup_size, [size, 1, 1], "{}", e.name);

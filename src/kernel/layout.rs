@@ -3,8 +3,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-pub const TABLE_NODES: usize = crate::solver::context::TABLE_NODES;
-pub const CHEB_TERMS: usize = 8;
+pub use crate::physics::tolerances::{CHEB_TERMS, TABLE_NODES};
 
 /// One stable branch (load control or displacement control) of one lambda, prepared in f64 on
 /// the host. WGSL twin: `struct Branch`.

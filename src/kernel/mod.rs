@@ -7,17 +7,17 @@ pub mod cpu;
 pub mod layout;
 pub mod prepare;
 
-/// The WGSL source of the f32 kernels: the shared functions, then the entry points.
+/// The WGSL source of the f32 kernels: the host's prelude of shared constants, the shared
+/// functions, then the entry points.
 pub fn shader_source() -> String {
-    concat!(
-        include_str!("../../shaders/md.wgsl"),
-        "\n",
-        include_str!("../../shaders/solve.wgsl")
-    )
-    .to_string()
+    crate::physics::tolerances::wgsl_prelude()
+        + include_str!("../../shaders/md.wgsl")
+        + "\n"
+        + include_str!("../../shaders/solve.wgsl")
 }
 
-/// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64).
-pub fn polish64_source() -> &'static str {
-    include_str!("../../shaders/polish64.wgsl")
+/// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64), after the
+/// same prelude.
+pub fn polish64_source() -> String {
+    crate::physics::tolerances::wgsl_prelude() + include_str!("../../shaders/polish64.wgsl")
 }

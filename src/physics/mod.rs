@@ -7,4 +7,5 @@ pub mod fields;
 pub mod md;
 pub mod params;
 pub mod real;
+/// Every threshold of the contract and of the solvers' branching, named once.
 pub mod tolerances;

@@ -12,7 +12,7 @@ const MAX_ITER: u32 = 100;
 /// Width of the search bracket in x below the pull-off: enough for loads up to 1e12 at every
 /// lambda in 1e-8..1e8.
 const BRACKET: f64 = 60.0;
-pub const TABLE_NODES: usize = 14;
+pub use crate::physics::tolerances::TABLE_NODES;
 /// The first table node's distance from the pull-off in x; node k lies at TABLE_DX0 2^k.
 pub const TABLE_DX0: f64 = 0.01 * BRACKET / 81.92;
 

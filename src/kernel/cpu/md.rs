@@ -7,19 +7,10 @@ use crate::physics::f32math::{atan_parts_f32, exp_f32, ln_f32, log1p_f32};
 use crate::physics::md::{curve_point, CurvePoint};
 use crate::solver::{Control, Status};
 
-// The iteration's thresholds, named as in shaders/md.wgsl (tests/shaders.rs compares them).
-/// |F| at the f32 noise level: done.
-pub const F_NOISE: f32 = 8e-7;
-/// The bracket closed to this relative width: done.
-pub const BRACKET_CLOSED: f32 = 4e-7;
-/// A step below this relative size (4 ulp) is taken along the last secant, not evaluated.
-pub const SUB_ULP_STEP: f32 = 2.5e-7;
-/// How far the search bracket reaches below the table's last node.
-pub const BRACKET_BELOW: f32 = 120.0;
-/// How far it reaches above the first node (zero-radius end).
-pub const BRACKET_ABOVE: f32 = 60.0;
-/// The iteration limit when no cap is given.
-pub const MAX_ITER: u32 = 32;
+// The iteration's thresholds, shared with the shader through its prelude.
+pub use crate::physics::tolerances::{
+    BRACKET_ABOVE, BRACKET_BELOW, BRACKET_CLOSED, F_NOISE, MAX_ITER, SUB_ULP_STEP,
+};
 
 fn branch(g: &GpuLambda, control: Control) -> &Branch {
     match control {
