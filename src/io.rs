@@ -254,6 +254,21 @@ pub fn parse_points(
     PointReader::new(bytes, source_name, ("lambda", value_column))?.next_chunk(usize::MAX)
 }
 
+/// A CSV table in memory with the csv crate: fields quoted where they need it, `\n` line
+/// ends. Write records, then take the bytes with [`csv_finish`].
+pub fn csv_writer() -> csv::Writer<Vec<u8>> {
+    csv::WriterBuilder::new()
+        .has_headers(false)
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new())
+}
+
+/// The bytes of a [`csv_writer`].
+pub fn csv_finish(w: csv::Writer<Vec<u8>>) -> anyhow::Result<Vec<u8>> {
+    w.into_inner()
+        .map_err(|e| anyhow::anyhow!("CSV output: {}", e.error()))
+}
+
 /// A number with 17 significant digits; empty where it could not be computed.
 pub fn fmt17(x: f64) -> String {
     if x.is_nan() {

@@ -184,9 +184,10 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         match format {
             Format::Json => json_doc(&[radius_json(&s)], &meta)?,
             Format::Csv => {
-                let mut t = String::from(RADIUS_CSV_HEADER);
-                push_radius_row(&mut t, &s);
-                t
+                let mut w = crate::io::csv_writer();
+                w.write_record(RADIUS_CSV_HEADER)?;
+                w.write_record(radius_fields(&s))?;
+                String::from_utf8(crate::io::csv_finish(w)?)?
             }
             Format::Text => radius_text(&ctx, &s),
         }
@@ -202,9 +203,10 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         match format {
             Format::Json => json_doc(&[state_json(&s)], &meta)?,
             Format::Csv => {
-                let mut t = String::from(CSV_HEADER);
-                push_csv_row(&mut t, &s, 17);
-                t
+                let mut w = crate::io::csv_writer();
+                w.write_record(CSV_HEADER)?;
+                w.write_record(state_fields(&s, 17, control))?;
+                String::from_utf8(crate::io::csv_finish(w)?)?
             }
             Format::Text => state_text(&ctx, &s, control),
         }
@@ -225,10 +227,19 @@ fn json_doc(results: &[serde_json::Value], meta: &serde_json::Value) -> anyhow::
     Ok(t + "\n}\n")
 }
 
-const RADIUS_CSV_HEADER: &str =
-    "lambda,A,load,approach,m_minus_1,load_stable,displacement_stable,status\n";
+const RADIUS_CSV_HEADER: [&str; 8] = [
+    "lambda",
+    "A",
+    "load",
+    "approach",
+    "m_minus_1",
+    "load_stable",
+    "displacement_stable",
+    "status",
+];
 
-fn push_radius_row(out: &mut String, s: &crate::solver::RadiusState) {
+/// The CSV fields of a state given by its radius.
+fn radius_fields(s: &crate::solver::RadiusState) -> [String; 8] {
     let ok = s.status == crate::solver::Status::Ok;
     let flag = |b: bool| {
         if ok {
@@ -237,9 +248,7 @@ fn push_radius_row(out: &mut String, s: &crate::solver::RadiusState) {
             String::new()
         }
     };
-    let _ = writeln!(
-        out,
-        "{},{},{},{},{},{},{},{}",
+    [
         fmt17(s.lambda),
         fmt17(s.a),
         fmt17(s.load),
@@ -247,8 +256,8 @@ fn push_radius_row(out: &mut String, s: &crate::solver::RadiusState) {
         fmt17(s.m_minus_1),
         flag(s.load_stable),
         flag(s.displacement_stable),
-        s.status.name()
-    );
+        s.status.name().to_string(),
+    ]
 }
 
 fn radius_json(s: &crate::solver::RadiusState) -> serde_json::Value {
@@ -301,28 +310,39 @@ fn solve_radius_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
     let shown = out.name().display().to_string();
     eprintln!("backend: CPU f64 (radius control: each state is the curve point at its radius)");
     let mut rows = 0usize;
-    let mut buf = String::from(match format {
-        Format::Json => "{\n  \"results\": [\n",
-        _ => RADIUS_CSV_HEADER,
-    });
+    let mut buf = String::new();
+    if format == Format::Json {
+        buf.push_str("{\n  \"results\": [\n");
+    } else {
+        let mut w = crate::io::csv_writer();
+        w.write_record(RADIUS_CSV_HEADER)?;
+        out.write_all(&crate::io::csv_finish(w)?)
+            .with_context(|| format!("cannot write {shown}"))?;
+    }
     loop {
         let chunk = reader.next_chunk(CHUNK_ROWS)?;
         if chunk.is_empty() {
             break;
         }
-        for s in crate::solver::solve_radius_points(&chunk) {
-            if format == Format::Json {
+        let states = crate::solver::solve_radius_points(&chunk);
+        if format == Format::Json {
+            for s in &states {
                 if rows > 0 {
                     buf.push_str(",\n");
                 }
-                buf += &indent(&serde_json::to_string_pretty(&radius_json(&s))?, 4);
-            } else {
-                push_radius_row(&mut buf, &s);
+                buf += &indent(&serde_json::to_string_pretty(&radius_json(s))?, 4);
+                rows += 1;
             }
-            rows += 1;
+            out.write_all(buf.as_bytes())
+        } else {
+            let mut w = crate::io::csv_writer();
+            for s in &states {
+                w.write_record(radius_fields(s))?;
+            }
+            rows += states.len();
+            out.write_all(&crate::io::csv_finish(w)?)
         }
-        out.write_all(buf.as_bytes())
-            .with_context(|| format!("cannot write {shown}"))?;
+        .with_context(|| format!("cannot write {shown}"))?;
         buf.clear();
     }
     if format == Format::Json {
@@ -357,10 +377,14 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
     let mut check = crate::engine::CheckReport::empty(GPU_TOLERANCE);
     let (mut rows, mut solve_s) = (0usize, 0.0);
     let mut buf = String::new();
-    buf.push_str(match format {
-        Format::Json => "{\n  \"results\": [\n",
-        _ => CSV_HEADER,
-    });
+    if format == Format::Json {
+        buf.push_str("{\n  \"results\": [\n");
+    } else {
+        let mut w = crate::io::csv_writer();
+        w.write_record(CSV_HEADER)?;
+        out.write_all(&crate::io::csv_finish(w)?)
+            .with_context(|| format!("cannot write {shown}"))?;
+    }
     loop {
         let chunk = reader.next_chunk(CHUNK_ROWS)?;
         if chunk.is_empty() {
@@ -378,23 +402,27 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
                 GPU_TOLERANCE,
             ));
         }
-        for s in &states {
-            match format {
-                Format::Json => {
-                    if rows > 0 {
-                        buf.push_str(",\n");
-                    }
-                    buf += &indent(
-                        &serde_json::to_string_pretty(&state_json_digits(s, digits))?,
-                        4,
-                    );
+        if format == Format::Json {
+            for s in &states {
+                if rows > 0 {
+                    buf.push_str(",\n");
                 }
-                _ => push_csv_row(&mut buf, s, digits),
+                buf += &indent(
+                    &serde_json::to_string_pretty(&state_json_digits(s, digits, control))?,
+                    4,
+                );
+                rows += 1;
             }
-            rows += 1;
+            out.write_all(buf.as_bytes())
+        } else {
+            let mut w = crate::io::csv_writer();
+            for s in &states {
+                w.write_record(state_fields(s, digits, control))?;
+            }
+            rows += states.len();
+            out.write_all(&crate::io::csv_finish(w)?)
         }
-        out.write_all(buf.as_bytes())
-            .with_context(|| format!("cannot write {shown}"))?;
+        .with_context(|| format!("cannot write {shown}"))?;
         buf.clear();
         progress.set(reader.bytes_read());
     }
@@ -438,25 +466,22 @@ fn indent(text: &str, n: usize) -> String {
         .join("\n")
 }
 
-const CSV_HEADER: &str = "lambda,load,A,approach,m_minus_1,status\n";
+const CSV_HEADER: [&str; 6] = ["lambda", "load", "A", "approach", "m_minus_1", "status"];
 
-/// One CSV row: the given numbers with 17 digits, the computed ones with `digits`.
-fn push_csv_row(out: &mut String, s: &State, digits: usize) {
-    let (load, approach) = if s.load.is_nan() || s.approach.is_nan() {
-        (fmt17(s.load), fmt17(s.approach))
-    } else {
-        (fmt17(s.load), fmt_digits(s.approach, digits))
+/// The CSV fields of a state: what was given with 17 digits, what was computed with `digits`.
+fn state_fields(s: &State, digits: usize, control: Control) -> [String; 6] {
+    let (load, approach) = match control {
+        Control::Load => (fmt17(s.load), fmt_digits(s.approach, digits)),
+        Control::Displacement => (fmt_digits(s.load, digits), fmt17(s.approach)),
     };
-    let _ = writeln!(
-        out,
-        "{},{},{},{},{},{}",
+    [
         fmt17(s.lambda),
         load,
         fmt_digits(s.a, digits),
         approach,
         fmt_digits(s.m_minus_1, digits),
-        s.status.name()
-    );
+        s.status.name().to_string(),
+    ]
 }
 
 pub fn state_json(s: &State) -> serde_json::Value {
@@ -468,7 +493,7 @@ pub fn state_json(s: &State) -> serde_json::Value {
 }
 
 /// As [`state_json`], computed numbers rounded to `digits` significant digits.
-fn state_json_digits(s: &State, digits: usize) -> serde_json::Value {
+fn state_json_digits(s: &State, digits: usize, control: Control) -> serde_json::Value {
     if digits >= 17 {
         return state_json(s);
     }
@@ -476,11 +501,11 @@ fn state_json_digits(s: &State, digits: usize) -> serde_json::Value {
     let mut v = state_json(s);
     v["A"] = json_num(r(s.a));
     v["m_minus_1"] = json_num(r(s.m_minus_1));
-    v["approach"] = json_num(if s.approach.is_nan() {
-        s.approach
-    } else {
-        r(s.approach)
-    });
+    // The computed one of load and approach (the other was given).
+    match control {
+        Control::Load => v["approach"] = json_num(r(s.approach)),
+        Control::Displacement => v["load"] = json_num(r(s.load)),
+    }
     v
 }
 
@@ -572,16 +597,12 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
     };
     let text = match a.format {
         Format::Csv => {
-            let mut t = cols.join(",") + "\n";
+            let mut w = crate::io::csv_writer();
+            w.write_record(cols)?;
             for c in &rows {
-                t += &vals(c)
-                    .iter()
-                    .map(|&v| fmt17(v))
-                    .collect::<Vec<_>>()
-                    .join(",");
-                t.push('\n');
+                w.write_record(vals(c).map(fmt17))?;
             }
-            t
+            String::from_utf8(crate::io::csv_finish(w)?)?
         }
         Format::Json => {
             let res: Vec<_> = rows
@@ -660,22 +681,20 @@ pub fn curve(a: CurveArgs) -> anyhow::Result<()> {
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
-            let mut t =
-                String::from("lambda,A,load,approach,m_minus_1,load_stable,displacement_stable\n");
+            let mut w = crate::io::csv_writer();
+            w.write_record(RADIUS_CSV_HEADER[..7].iter())?;
             for r in &c.points {
-                let _ = writeln!(
-                    t,
-                    "{},{},{},{},{},{},{}",
+                w.write_record([
                     fmt17(c.lambda),
                     fmt17(r.a),
                     fmt17(r.load),
                     fmt17(r.approach),
                     fmt17(r.m_minus_1),
-                    r.load_stable as u8,
-                    r.displacement_stable as u8
-                );
+                    (r.load_stable as u8).to_string(),
+                    (r.displacement_stable as u8).to_string(),
+                ])?;
             }
-            t
+            String::from_utf8(crate::io::csv_finish(w)?)?
         }
     };
     write_output(&a.output, text.as_bytes())

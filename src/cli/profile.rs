@@ -6,7 +6,6 @@ use crate::io::{fmt17, write_output};
 use crate::profile::{profile, Given, Profile};
 use anyhow::{bail, Context};
 use clap::Args;
-use std::fmt::Write as _;
 
 #[derive(Args, Debug)]
 #[command(allow_negative_numbers = true)]
@@ -98,7 +97,7 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         p = p.to_si(c);
     }
     let text = match a.format {
-        Format::Csv => profile_csv(&p),
+        Format::Csv => profile_csv(&p)?,
         _ => serde_json::to_string_pretty(&p)? + "\n",
     };
     write_output(&a.output, text.as_bytes())?;
@@ -125,19 +124,18 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
 }
 
 /// One row per model and radius: `model,r,pressure,gap` (pressure empty where singular).
-pub fn profile_csv(p: &Profile) -> String {
-    let mut t = String::from("model,r,pressure,gap\n");
+pub fn profile_csv(p: &Profile) -> anyhow::Result<String> {
+    let mut w = crate::io::csv_writer();
+    w.write_record(["model", "r", "pressure", "gap"])?;
     for m in &p.models {
         for ((r, q), g) in m.r.iter().zip(&m.pressure).zip(&m.gap) {
-            let _ = writeln!(
-                t,
-                "{},{},{},{}",
-                m.model,
+            w.write_record([
+                m.model.to_string(),
                 fmt17(*r),
                 q.map_or(String::new(), fmt17),
-                fmt17(*g)
-            );
+                fmt17(*g),
+            ])?;
         }
     }
-    t
+    Ok(String::from_utf8(crate::io::csv_finish(w)?)?)
 }

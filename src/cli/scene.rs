@@ -408,22 +408,24 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
-            let mut t = String::from("phase,branch,approach,load,A,C,control,jump\n");
+            let mut w = crate::io::csv_writer();
+            w.write_record([
+                "phase", "branch", "approach", "load", "A", "C", "control", "jump",
+            ])?;
+            let e = |x: f64| format!("{x:.16e}");
             for s in &c.steps {
-                let b = s.point.branch.name();
-                let _ = writeln!(
-                    t,
-                    "{},{b},{:.16e},{:.16e},{:.16e},{:.16e},{:.16e},{}",
-                    s.phase,
-                    s.point.approach,
-                    s.point.load,
-                    s.point.a,
-                    s.point.c,
-                    s.control,
-                    s.jump as u8
-                );
+                w.write_record([
+                    s.phase.to_string(),
+                    s.point.branch.name().to_string(),
+                    e(s.point.approach),
+                    e(s.point.load),
+                    e(s.point.a),
+                    e(s.point.c),
+                    e(s.control),
+                    (s.jump as u8).to_string(),
+                ])?;
             }
-            t
+            String::from_utf8(crate::io::csv_finish(w)?)?
         }
     };
     write_output(&a.output, text.as_bytes())?;
