@@ -4,6 +4,33 @@ use crate::physics::params::{Contact, ForceRange, ParamError};
 use crate::solver::{LambdaContext, Status};
 use serde::Serialize;
 
+/// The cost as argmin sees it.
+struct Cost<'a>(&'a dyn Fn(&[f64]) -> f64);
+
+impl argmin::core::CostFunction for Cost<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+    fn cost(&self, p: &Self::Param) -> Result<f64, argmin::core::Error> {
+        Ok((self.0)(p))
+    }
+}
+
+/// Minimises `f` from `start` with argmin's Nelder-Mead (a simplex of steps 0.5 in both
+/// coordinates, stopped when the cost values agree to 1e-20 or after 2000 iterations).
+fn nelder_mead(f: &dyn Fn(&[f64]) -> f64, start: [f64; 2]) -> Option<(f64, f64)> {
+    use argmin::core::{Executor, State};
+    use argmin::solver::neldermead::NelderMead;
+    let [x, y] = start;
+    let simplex = vec![vec![x, y], vec![x + 0.5, y], vec![x, y + 0.5]];
+    let solver = NelderMead::new(simplex).with_sd_tolerance(1e-20).ok()?;
+    let res = Executor::new(Cost(f), solver)
+        .configure(|s| s.max_iters(2000))
+        .run()
+        .ok()?;
+    let p = res.state().get_best_param()?;
+    Some((p[0], p[1]))
+}
+
 /// A fit of w and E* to measured (load, contact radius) pairs with the exact MD model.
 #[derive(Clone, Debug, Serialize)]
 pub struct PairsFit {
@@ -86,30 +113,12 @@ pub fn fit_pairs(pairs: &[(f64, f64)], radius: f64, z0: f64) -> Result<PairsFit,
             }
         }
     }
-    let (mut f, mut lw, mut le) = best;
-    let mut step = 0.5;
-    while step > 1e-9 {
-        let mut moved = false;
-        for (dw, de) in [
-            (step, 0.0),
-            (-step, 0.0),
-            (0.0, step),
-            (0.0, -step),
-            (step, step),
-            (-step, -step),
-            (step, -step),
-            (-step, step),
-        ] {
-            let c = cost(lw + dw, le + de);
-            if c < f {
-                (f, lw, le) = (c, lw + dw, le + de);
-                moved = true;
-            }
-        }
-        if !moved {
-            step *= 0.5;
-        }
-    }
+    // From the best grid point, Nelder-Mead (argmin) on (ln w, ln E*). It replaced a hand-written
+    // compass search: both reach the minimum of a test valley to 1e-6, Nelder-Mead with 154 cost
+    // evaluations against 497 (`nelder_mead_reaches_the_compass_minimum_with_fewer_evaluations`).
+    let (_, lw0, le0) = best;
+    let (lw, le) = nelder_mead(&|p: &[f64]| cost(p[0], p[1]), [lw0, le0])
+        .ok_or(ParamError::Missing("the fit did not converge"))?;
     let r = residuals(lw, le).ok_or(ParamError::Missing("the fit left the valid range"))?;
     // A minimum on the edge of the searched box, or pairs the model leaves out of contact, mean
     // the data do not determine the parameters: no number is better than a wrong one.
@@ -159,5 +168,59 @@ mod fit_tests {
         );
         assert!((fit.e_star_pa / e - 1.0).abs() < 1e-5, "{}", fit.e_star_pa);
         assert!(fit.rms_relative_residual < 1e-6);
+    }
+
+    /// The compass search this replaced, for the comparison below.
+    fn compass(f: &dyn Fn(&[f64]) -> f64, start: [f64; 2]) -> (f64, f64) {
+        let ([mut x, mut y], mut step) = (start, 0.5);
+        let mut fx = f(&[x, y]);
+        while step > 1e-9 {
+            let mut moved = false;
+            for (dx, dy) in [
+                (1.0, 0.0),
+                (-1.0, 0.0),
+                (0.0, 1.0),
+                (0.0, -1.0),
+                (1.0, 1.0),
+                (-1.0, -1.0),
+                (1.0, -1.0),
+                (-1.0, 1.0),
+            ] {
+                let c = f(&[x + step * dx, y + step * dy]);
+                if c < fx {
+                    (fx, x, y) = (c, x + step * dx, y + step * dy);
+                    moved = true;
+                }
+            }
+            if !moved {
+                step *= 0.5;
+            }
+        }
+        (x, y)
+    }
+
+    #[test]
+    fn nelder_mead_reaches_the_compass_minimum_with_fewer_evaluations() {
+        // A smooth valley like the fit's cost near its minimum, in (ln w, ln E*).
+        let calls = std::cell::Cell::new(0usize);
+        let f = |p: &[f64]| {
+            calls.set(calls.get() + 1);
+            let (u, v) = (p[0] - (-3.1), p[1] - 14.7);
+            (u + 0.3 * v).powi(2) * 40.0 + (v - 0.2 * u).powi(2)
+        };
+        let (x1, y1) = nelder_mead(&f, [-2.0, 13.0]).unwrap();
+        let nm = calls.replace(0);
+        let (x2, y2) = compass(&f, [-2.0, 13.0]);
+        let cs = calls.get();
+        eprintln!("Nelder-Mead {nm} evaluations, compass search {cs}");
+        assert!(
+            (x1 + 3.1).abs() < 1e-6 && (y1 - 14.7).abs() < 1e-6,
+            "{x1} {y1}"
+        );
+        assert!(
+            (x2 + 3.1).abs() < 1e-6 && (y2 - 14.7).abs() < 1e-6,
+            "{x2} {y2}"
+        );
+        assert!(nm < cs, "{nm} vs {cs}");
     }
 }
