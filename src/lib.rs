@@ -86,6 +86,7 @@ pub mod cli;
 pub mod cycle;
 pub mod engine;
 pub mod export;
+pub mod figure_data;
 pub mod gpu;
 pub mod io;
 pub mod kernel;

@@ -770,18 +770,24 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
         super::map::check_extension(p, "svg", "--svg")?;
     }
     let r = match a.kind {
-        PlotKind::Pulloff => plots::save(
-            Some(&a.out),
-            a.svg.as_deref(),
-            &|r| plots::pulloff(r),
-            &|r| plots::pulloff(r),
-        ),
-        PlotKind::Curves => plots::save(
-            Some(&a.out),
-            a.svg.as_deref(),
-            &|r| plots::curves(r, &a.lambda),
-            &|r| plots::curves(r, &a.lambda),
-        ),
+        PlotKind::Pulloff => {
+            let d = crate::figure_data::pulloff_data()?;
+            plots::save(
+                Some(&a.out),
+                a.svg.as_deref(),
+                &|r| plots::pulloff(r, &d),
+                &|r| plots::pulloff(r, &d),
+            )
+        }
+        PlotKind::Curves => {
+            let d = crate::figure_data::curves_data(&a.lambda)?;
+            plots::save(
+                Some(&a.out),
+                a.svg.as_deref(),
+                &|r| plots::curves(r, &d),
+                &|r| plots::curves(r, &d),
+            )
+        }
     };
     r.map_err(anyhow::Error::from_boxed)
         .context("drawing the plot")?;

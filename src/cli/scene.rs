@@ -58,11 +58,12 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     };
     write_output(&a.output, text.as_bytes())?;
     if let Some(p) = &a.plot {
+        let fig = crate::figure_data::scene_data(&r)?;
         crate::render::plots::save(
             Some(p),
             None,
-            &|root| crate::render::plots::scene(root, &r),
-            &|root| crate::render::plots::scene(root, &r),
+            &|root| crate::render::plots::scene(root, &r, &fig),
+            &|root| crate::render::plots::scene(root, &r, &fig),
         )
         .map_err(anyhow::Error::from_boxed)
         .context("drawing the scene")?;

@@ -4,9 +4,7 @@ use super::{fonts, log_label, png_bytes};
 use crate::physics::closed::{
     cos_pulloff, dmt_radius, hertz_radius, jkr_radius, JKR_PULLOFF_DISPLACEMENT, JKR_PULLOFF_LOAD,
 };
-use crate::physics::md::{curve_point, LAMBDA_D};
-use crate::solver::context::x_at_radius;
-use crate::solver::LambdaContext;
+use crate::physics::md::LAMBDA_D;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -73,18 +71,15 @@ const GRAY_: RGBColor = RGBColor(120, 120, 120);
 
 /// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
 /// JKR limits and the Johnson-Greenwood fit.
-pub fn pulloff<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>) -> Result<(), Err>
+pub fn pulloff<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    data: &crate::figure_data::PulloffData,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let lambdas: Vec<f64> = (0..=400)
-        .map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 400.0))
-        .collect();
-    let ctx: Vec<LambdaContext> = lambdas
-        .iter()
-        .map(|&l| LambdaContext::new(l).expect("lambda in range"))
-        .collect();
+    let (lambdas, ctx) = (&data.lambdas, &data.contexts);
     let mut chart = ChartBuilder::on(root)
         .caption(
             "Pull-off force against the Maugis parameter",
@@ -109,7 +104,7 @@ where
         .draw_series(LineSeries::new(
             lambdas
                 .iter()
-                .zip(&ctx)
+                .zip(ctx)
                 .map(|(&l, c)| (l, c.load_pulloff.load)),
             thick(BLUE_),
         ))?
@@ -119,7 +114,7 @@ where
         .draw_series(LineSeries::new(
             lambdas
                 .iter()
-                .zip(&ctx)
+                .zip(ctx)
                 .map(|(&l, c)| (l, c.disp_pulloff.load)),
             thick(ORANGE_),
         ))?
@@ -169,7 +164,10 @@ where
 
 /// A(P) for several lambda: the exact MD curve (stable under load control solid, unstable
 /// dashed) with Hertz, DMT and JKR.
-pub fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, lambdas: &[f64]) -> Result<(), Err>
+pub fn curves<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    series: &[crate::figure_data::CurveSeries],
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
@@ -217,16 +215,9 @@ where
         RGBColor(86, 180, 233),
         RGBColor(230, 159, 0),
     ];
-    for (k, &l) in lambdas.iter().enumerate() {
+    for (k, cs) in series.iter().enumerate() {
+        let (l, pts) = (cs.lambda, &cs.points);
         let col = palette[k % palette.len()];
-        let pts: Vec<(f64, f64, bool)> = (1..=400)
-            .map(|i| {
-                let a = 2.6 * i as f64 / 400.0;
-                let p = curve_point(l, x_at_radius(l, a).exp());
-                (p.load, p.a, p.dload_dmu < 0.0)
-            })
-            .filter(|p| p.0 <= 4.0)
-            .collect();
         let stable: Vec<(f64, f64)> = pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
         let unstable: Vec<(f64, f64)> = pts.iter().filter(|p| !p.2).map(|p| (p.0, p.1)).collect();
         let st = ShapeStyle::from(&col).stroke_width(4);
@@ -240,12 +231,7 @@ where
             5,
             ShapeStyle::from(&col).stroke_width(2),
         ))?;
-        let c = LambdaContext::new(l)?;
-        chart.draw_series(std::iter::once(Circle::new(
-            (c.load_pulloff.load, c.load_pulloff.a),
-            7,
-            col.filled(),
-        )))?;
+        chart.draw_series(std::iter::once(Circle::new(cs.pulloff, 7, col.filled())))?;
     }
     chart.draw_series(std::iter::once(Text::new(
         "dots: pull-off under load control; thin dashes: unstable branch",
@@ -387,6 +373,7 @@ where
 pub fn scene<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &crate::scene::SceneResult,
+    fig: &crate::figure_data::SceneFigure,
 ) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
@@ -403,14 +390,7 @@ where
         .map(|l| l.load_n)
         .fold(pc.abs() * 2.0, f64::max)
         * 1.1;
-    let ctx = LambdaContext::new(r.lambda)?;
-    let md: Vec<(f64, f64)> = (0..=300)
-        .map(|i| {
-            let p = pc + (pmax - pc) * (i as f64 / 300.0).powi(2);
-            (p, ctx.solve_load(p / fs).a * rs)
-        })
-        .filter(|q| q.1.is_finite())
-        .collect();
+    let md = &fig.md;
     let amax = md.iter().map(|q| q.1).fold(0.0, f64::max) * 1.1;
     let mut chart = ChartBuilder::on(&left)
         .caption(&r.name, ("sans-serif", 24))
@@ -475,7 +455,7 @@ where
     }
     let st = ShapeStyle::from(&BLACK).stroke_width(3);
     chart
-        .draw_series(LineSeries::new(md, st))?
+        .draw_series(LineSeries::new(md.iter().copied(), st))?
         .label("Maugis-Dugdale (exact)")
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
     for l in &r.loads {
@@ -490,18 +470,7 @@ where
     super::legend(&mut chart, SeriesLabelPosition::LowerRight, 18)?;
 
     // Right: where the scene sits on the map (normalised loads).
-    let spec = crate::map::MapSpec {
-        lambda_min: 1e-3,
-        lambda_max: 1e3,
-        nx: 160,
-        load_axis: crate::map::LoadAxis::Linear,
-        load_min: -2.0,
-        load_max: 10.0,
-        ny: 160,
-        tolerance: r.tolerance,
-        strength_ratios: vec![],
-    };
-    let d = crate::map::compute(&spec, &crate::engine::Engine::Cpu)?;
+    let d = &fig.map;
     let mut ch = ChartBuilder::on(&right)
         .caption("on the adhesion map", ("sans-serif", 22))
         .margin(20)

@@ -1,0 +1,104 @@
+//! The numbers behind the line figures, computed apart from the drawing code: `render` draws
+//! what these return and solves nothing itself.
+
+use crate::map::{compute, LoadAxis, MapData, MapError, MapSpec};
+use crate::physics::md::curve_point;
+use crate::scene::SceneResult;
+use crate::solver::context::x_at_radius;
+use crate::solver::{LambdaContext, SolveError};
+
+/// The pull-off figure: lambda 1e-4..1e4 (401 points) and each one's pull-offs.
+pub struct PulloffData {
+    pub lambdas: Vec<f64>,
+    pub contexts: Vec<LambdaContext>,
+}
+
+pub fn pulloff_data() -> Result<PulloffData, SolveError> {
+    let lambdas: Vec<f64> = (0..=400)
+        .map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 400.0))
+        .collect();
+    let contexts = lambdas
+        .iter()
+        .map(|&l| LambdaContext::new(l))
+        .collect::<Result<_, _>>()?;
+    Ok(PulloffData { lambdas, contexts })
+}
+
+/// One MD curve of the A(P) figure: (Pbar, A, stable under load control) for A up to 2.6 and
+/// Pbar up to 4, and the load-controlled pull-off (Pbar_c, A_c).
+pub struct CurveSeries {
+    pub lambda: f64,
+    pub points: Vec<(f64, f64, bool)>,
+    pub pulloff: (f64, f64),
+}
+
+pub fn curves_data(lambdas: &[f64]) -> Result<Vec<CurveSeries>, SolveError> {
+    lambdas
+        .iter()
+        .map(|&l| {
+            let c = LambdaContext::new(l)?;
+            let points = (1..=400)
+                .map(|i| {
+                    let a = 2.6 * i as f64 / 400.0;
+                    let p = curve_point(l, x_at_radius(l, a).exp());
+                    (p.load, p.a, p.dload_dmu < 0.0)
+                })
+                .filter(|p| p.0 <= 4.0)
+                .collect();
+            Ok(CurveSeries {
+                lambda: l,
+                points,
+                pulloff: (c.load_pulloff.load, c.load_pulloff.a),
+            })
+        })
+        .collect()
+}
+
+/// The scene figure: its MD a(P) in SI units (from the pull-off to 1.1 times the largest load
+/// or twice the pull-off force) and the adhesion map it is placed on.
+pub struct SceneFigure {
+    pub md: Vec<(f64, f64)>,
+    pub map: MapData,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum FigureError {
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    #[error(transparent)]
+    Map(#[from] MapError),
+}
+
+pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
+    let fs = std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m;
+    let rs =
+        (std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m * r.radius_m / r.k_pa).cbrt();
+    let pc = r.pulloff_force_load_control_N;
+    let pmax = r
+        .loads
+        .iter()
+        .map(|l| l.load_n)
+        .fold(pc.abs() * 2.0, f64::max)
+        * 1.1;
+    let ctx = LambdaContext::new(r.lambda)?;
+    let md = (0..=300)
+        .map(|i| {
+            let p = pc + (pmax - pc) * (i as f64 / 300.0).powi(2);
+            (p, ctx.solve_load(p / fs).a * rs)
+        })
+        .filter(|q| q.1.is_finite())
+        .collect();
+    let spec = MapSpec {
+        lambda_min: 1e-3,
+        lambda_max: 1e3,
+        nx: 160,
+        load_axis: LoadAxis::Linear,
+        load_min: -2.0,
+        load_max: 10.0,
+        ny: 160,
+        tolerance: r.tolerance,
+        strength_ratios: vec![],
+    };
+    let map = compute(&spec, &crate::engine::Engine::Cpu)?;
+    Ok(SceneFigure { md, map })
+}
