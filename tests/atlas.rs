@@ -140,3 +140,38 @@ fn closed_forms_leave_their_range_where_documented() {
     assert!(worst(0.08, dmt_radius) <= 0.05);
     assert!(worst(0.09, dmt_radius) > 0.05);
 }
+
+/// The f64 refinement's arithmetic on the CPU (the mirror of polish64.wgsl), started from the
+/// f32 kernel's mirror: the 300 reference states meet the f64 solver's own bound, without a GPU.
+#[test]
+fn f64_refinement_mirror_meets_the_f64_contract() {
+    use tabor::kernel::cpu::polish64::{point64, polish_f64};
+    use tabor::kernel::prepare::prepare64;
+    let mut worst = 0f64;
+    for r in common::table("points.csv") {
+        let (l, load) = (common::num(&r, "lambda"), common::num(&r, "Pbar"));
+        let c = LambdaContext::new(l).unwrap();
+        let (h, lo) = split(load);
+        let o = solve_f32(
+            &prepare(l),
+            h,
+            lo,
+            Control::Load,
+            false,
+            KernelFlags::SHIPPED,
+        );
+        let p = polish_f64(
+            &prepare64(Some(&c), l),
+            &point64(0, load, &o),
+            Control::Load,
+            false,
+            0,
+        );
+        assert_eq!(p.status(), Status::Ok, "lambda {l} load {load}");
+        let b = common::bound(load, common::num(&r, "Pbar_pulloff_load"));
+        let e = common::rel(p.a, common::num(&r, "A"));
+        assert!(e <= b, "lambda {l} load {load}: {e:e} > {b:e}");
+        worst = worst.max(e / b);
+    }
+    eprintln!("f64 refinement (CPU mirror), reference states: worst error/bound {worst:.2}");
+}

@@ -429,13 +429,7 @@ impl Gpu {
         let input: Vec<Point64> = points
             .iter()
             .zip(start)
-            .map(|(&(ci, value), o)| Point64 {
-                value,
-                ci,
-                code: o.code,
-                m_minus_1: o.m_minus_1,
-                _pad: 0,
-            })
+            .map(|(&(ci, value), o)| crate::kernel::cpu::polish64::point64(ci, value, o))
             .collect();
         let v = Variant {
             entry: Entry::Polish,

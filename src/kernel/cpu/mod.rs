@@ -1,3 +1,4 @@
 //! CPU mirrors of the WGSL kernels, one file per kernel.
 
 pub mod md;
+pub mod polish64;
