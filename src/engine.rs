@@ -1,13 +1,16 @@
 //! Where the work runs: the GPU kernels (f32) or the CPU reference (f64), chosen once, with a
 //! one-line reason, and the cross-check of GPU results against the CPU.
 
-use crate::gpu::{Gpu, GpuError};
+use crate::gpu::Gpu;
+/// What can go wrong on an engine (only the GPU backend fails).
+pub use crate::gpu::GpuError as EngineError;
 use crate::kernel::layout::{KernelFlags, Lambda64, Out, Out64};
 use crate::kernel::prepare::{prepare64, split};
 use crate::solver::{self, Control, LambdaContext, State, Status};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::collections::HashMap;
+use EngineError as GpuError;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -3,7 +3,6 @@
 //! Maugis-Dugdale one.
 
 use crate::engine::Engine;
-use crate::gpu::GpuError;
 use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
 
 use crate::solver::context::{point, x_at_radius};
@@ -183,7 +182,7 @@ pub enum MapError {
     #[error("{0}")]
     Spec(String),
     #[error(transparent)]
-    Gpu(#[from] GpuError),
+    Engine(#[from] crate::engine::EngineError),
 }
 
 /// Most points a map holds (its states stay in memory for classification and rendering).
