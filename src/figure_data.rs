@@ -59,6 +59,11 @@ pub fn curves_data(lambdas: &[f64]) -> Result<Vec<CurveSeries>, SolveError> {
 pub struct SceneFigure {
     pub md: Vec<(f64, f64)>,
     pub map: MapData,
+    /// The force unit pi w R (N) and the radius unit (m) of the scene.
+    pub force_scale: f64,
+    pub radius_scale: f64,
+    /// The load range drawn: from the pull-off force to the largest load (N).
+    pub loads: (f64, f64),
 }
 
 #[derive(Debug, thiserror::Error)]
@@ -100,5 +105,11 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
         strength_ratios: vec![],
     };
     let map = compute(&spec, &crate::engine::Engine::Cpu)?;
-    Ok(SceneFigure { md, map })
+    Ok(SceneFigure {
+        md,
+        map,
+        force_scale: fs,
+        radius_scale: rs,
+        loads: (pc, pmax),
+    })
 }

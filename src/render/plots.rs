@@ -380,16 +380,8 @@ where
 {
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(W * 3 / 5);
-    let fs = std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m;
-    let rs =
-        (std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m * r.radius_m / r.k_pa).cbrt();
-    let pc = r.pulloff_force_load_control_N;
-    let pmax = r
-        .loads
-        .iter()
-        .map(|l| l.load_n)
-        .fold(pc.abs() * 2.0, f64::max)
-        * 1.1;
+    let (fs, rs) = (fig.force_scale, fig.radius_scale);
+    let (pc, pmax) = fig.loads;
     let md = &fig.md;
     let amax = md.iter().map(|q| q.1).fold(0.0, f64::max) * 1.1;
     let mut chart = ChartBuilder::on(&left)
