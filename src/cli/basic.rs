@@ -772,21 +772,11 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     let r = match a.kind {
         PlotKind::Pulloff => {
             let d = crate::figure_data::pulloff_data()?;
-            plots::save(
-                Some(&a.out),
-                a.svg.as_deref(),
-                &|r| plots::pulloff(r, &d),
-                &|r| plots::pulloff(r, &d),
-            )
+            plots::save(Some(&a.out), a.svg.as_deref(), &|r| plots::pulloff(r, &d))
         }
         PlotKind::Curves => {
             let d = crate::figure_data::curves_data(&a.lambda)?;
-            plots::save(
-                Some(&a.out),
-                a.svg.as_deref(),
-                &|r| plots::curves(r, &d),
-                &|r| plots::curves(r, &d),
-            )
+            plots::save(Some(&a.out), a.svg.as_deref(), &|r| plots::curves(r, &d))
         }
     };
     r.map_err(anyhow::Error::from_boxed)
@@ -875,12 +865,9 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     )?;
     let title = format!("Speed against accuracy ({machine})");
     let (png, svg) = (a.out_dir.join("bench.png"), a.out_dir.join("bench.svg"));
-    crate::render::plots::save(
-        Some(&png),
-        Some(&svg),
-        &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
-        &|r| crate::render::plots::bench_chart(r, &results, &front, &title),
-    )
+    crate::render::plots::save(Some(&png), Some(&svg), &|r| {
+        crate::render::plots::bench_chart(r, &results, &front, &title)
+    })
     .map_err(anyhow::Error::from_boxed)
     .context("drawing the chart")?;
     eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());

@@ -102,12 +102,9 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     };
     write_output(&a.output, text.as_bytes())?;
     if a.plot.is_some() || a.svg.is_some() {
-        crate::render::plots::save(
-            a.plot.as_deref(),
-            a.svg.as_deref(),
-            &|r| crate::render::plots::profile(r, &p),
-            &|r| crate::render::plots::profile(r, &p),
-        )
+        crate::render::plots::save(a.plot.as_deref(), a.svg.as_deref(), &|r| {
+            crate::render::plots::profile(r, &p)
+        })
         .map_err(anyhow::Error::from_boxed)
         .context("drawing the profile")?;
     }

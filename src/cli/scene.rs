@@ -59,12 +59,9 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     write_output(&a.output, text.as_bytes())?;
     if let Some(p) = &a.plot {
         let fig = crate::figure_data::scene_data(&r)?;
-        crate::render::plots::save(
-            Some(p),
-            None,
-            &|root| crate::render::plots::scene(root, &r, &fig),
-            &|root| crate::render::plots::scene(root, &r, &fig),
-        )
+        crate::render::plots::save(Some(p), None, &|root| {
+            crate::render::plots::scene(root, &r, &fig)
+        })
         .map_err(anyhow::Error::from_boxed)
         .context("drawing the scene")?;
         eprintln!("wrote {}", p.display());
@@ -450,14 +447,9 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         ),
     }
     if let Some(p) = &a.plot {
-        crate::render::plots::save(
-            Some(p),
-            None,
-            &|r| crate::render::plots::cycle(r, &c),
-            &|r| crate::render::plots::cycle(r, &c),
-        )
-        .map_err(anyhow::Error::from_boxed)
-        .context("drawing the cycle")?;
+        crate::render::plots::save(Some(p), None, &|r| crate::render::plots::cycle(r, &c))
+            .map_err(anyhow::Error::from_boxed)
+            .context("drawing the cycle")?;
         eprintln!("wrote {}", p.display());
     }
     Ok(())

@@ -1,6 +1,6 @@
 //! The failure atlas: one error map per method over lambda and the distance above pull-off.
 
-use super::{colorbar, fonts, log_label, png_bytes, viridis};
+use super::{colorbar, fonts, log_label, viridis};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -18,15 +18,16 @@ pub struct ErrorMap<'a> {
     pub err: &'a [f64],
 }
 
+/// Draws the map as SVG and writes it rasterised with anti-aliasing, as every figure.
 pub fn write(m: &ErrorMap, png: &Path) -> Result<(), Err> {
     fonts();
-    let mut rgb = vec![0u8; (W * H * 3) as usize];
+    let mut s = String::new();
     {
-        let root = BitMapBackend::with_buffer(&mut rgb, (W, H)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
         draw(&root, m)?;
         root.present()?;
     }
-    crate::io::write_atomic(png, &png_bytes(&rgb, W, H)?)?;
+    crate::io::write_atomic(png, &super::svg_to_png(&s)?)?;
     Ok(())
 }
 

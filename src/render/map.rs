@@ -121,7 +121,8 @@ fn line_color(k: usize) -> RGBColor {
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
 
-/// Draws the figure: PNG bytes and/or an SVG document, as asked.
+/// Draws the figure: PNG bytes and/or an SVG document, as asked. The figure is drawn once, as
+/// SVG; the PNG is that SVG rasterised with anti-aliasing, so the two look the same.
 pub fn render(
     d: &MapData,
     q: Option<Quantity>,
@@ -129,29 +130,18 @@ pub fn render(
     svg: bool,
 ) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
     fonts();
+    let mut s = String::new();
+    {
+        let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
+        draw(&root, d, q)?;
+        root.present()?;
+    }
     let png = if png {
-        let mut rgb = vec![0u8; (WIDTH * HEIGHT * 3) as usize];
-        {
-            let root = BitMapBackend::with_buffer(&mut rgb, (WIDTH, HEIGHT)).into_drawing_area();
-            draw(&root, d, q)?;
-            root.present()?;
-        }
-        Some(super::png_bytes(&rgb, WIDTH, HEIGHT)?)
+        Some(super::svg_to_png(&s)?)
     } else {
         None
     };
-    let svg = if svg {
-        let mut s = String::new();
-        {
-            let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
-            draw(&root, d, q)?;
-            root.present()?;
-        }
-        Some(s)
-    } else {
-        None
-    };
-    Ok((png, svg))
+    Ok((png, svg.then_some(s)))
 }
 
 /// Writes the figure as PNG and/or SVG files.

@@ -59,6 +59,39 @@ pub fn linear_label(v: f64) -> String {
     }
 }
 
+/// Rasterises an SVG drawn by plotters into an anti-aliased PNG of the same size, with the
+/// same embedded font (no system fonts: the same bytes on every machine).
+pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, Box<dyn std::error::Error + Send + Sync>> {
+    use resvg::{tiny_skia, usvg};
+    use std::sync::{Arc, OnceLock};
+    static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+    let fontdb = FONTS
+        .get_or_init(|| {
+            let mut db = usvg::fontdb::Database::new();
+            db.load_font_data(include_bytes!("../../assets/fonts/DejaVuSans.ttf").to_vec());
+            db.set_sans_serif_family("DejaVu Sans");
+            Arc::new(db)
+        })
+        .clone();
+    let opt = usvg::Options {
+        fontdb,
+        font_family: "DejaVu Sans".into(),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &opt)?;
+    let size = tree.size().to_int_size();
+    let mut pixmap = tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("empty figure")?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    resvg::render(&tree, tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    // Opaque RGB, as the figures were before (the background is white).
+    let rgb: Vec<u8> = pixmap
+        .data()
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    Ok(png_bytes(&rgb, size.width(), size.height())?)
+}
+
 /// Encodes an RGB buffer as PNG (deterministic: same pixels, same bytes).
 pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, image::ImageError> {
     use image::ImageEncoder;

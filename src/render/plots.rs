@@ -1,6 +1,6 @@
 //! Line plots for the gallery: pull-off against lambda, and A(P) curves.
 
-use super::{fonts, log_label, png_bytes};
+use super::{fonts, log_label};
 use crate::physics::closed::{
     cos_pulloff, dmt_radius, hertz_radius, jkr_radius, JKR_PULLOFF_DISPLACEMENT, JKR_PULLOFF_LOAD,
 };
@@ -13,48 +13,31 @@ type Err = Box<dyn std::error::Error + Send + Sync>;
 pub const W: u32 = 1400;
 pub const H: u32 = 1000;
 
-/// A figure drawn into a PNG buffer or an SVG string (the same drawing code, instantiated for
-/// each backend).
-pub type DrawPng<'a> =
-    &'a dyn for<'b> Fn(&DrawingArea<BitMapBackend<'b>, Shift>) -> Result<(), Err>;
+/// A figure's drawing code, on the SVG backend (the PNG is that SVG rasterised).
 pub type DrawSvg<'a> = &'a dyn for<'b> Fn(&DrawingArea<SVGBackend<'b>, Shift>) -> Result<(), Err>;
 
-/// Draws with `f` into PNG bytes and/or with `g` into an SVG document of W x H, as asked.
-pub fn render(
-    png: bool,
-    svg: bool,
-    f: DrawPng,
-    g: DrawSvg,
-) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
+/// Draws with `g` as an SVG document of W x H, and rasterises it with anti-aliasing into PNG
+/// bytes, as asked.
+pub fn render(png: bool, svg: bool, g: DrawSvg) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
     fonts();
+    // Drawn once, as SVG; the PNG is that SVG rasterised with anti-aliasing.
+    let mut s = String::new();
+    {
+        let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
+        g(&root)?;
+        root.present()?;
+    }
     let png = if png {
-        let mut rgb = vec![0u8; (W * H * 3) as usize];
-        {
-            let root = BitMapBackend::with_buffer(&mut rgb, (W, H)).into_drawing_area();
-            f(&root)?;
-            root.present()?;
-        }
-        Some(png_bytes(&rgb, W, H)?)
+        Some(super::svg_to_png(&s)?)
     } else {
         None
     };
-    let svg = if svg {
-        let mut s = String::new();
-        {
-            let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
-            g(&root)?;
-            root.present()?;
-        }
-        Some(s)
-    } else {
-        None
-    };
-    Ok((png, svg))
+    Ok((png, svg.then_some(s)))
 }
 
-/// Draws with `f` into a PNG file and/or with `g` into an SVG file of W x H.
-pub fn save(png: Option<&Path>, svg: Option<&Path>, f: DrawPng, g: DrawSvg) -> Result<(), Err> {
-    let (png_bytes, svg_text) = render(png.is_some(), svg.is_some(), f, g)?;
+/// Draws with `g` into a PNG file and/or an SVG file of W x H.
+pub fn save(png: Option<&Path>, svg: Option<&Path>, g: DrawSvg) -> Result<(), Err> {
+    let (png_bytes, svg_text) = render(png.is_some(), svg.is_some(), g)?;
     if let (Some(p), Some(b)) = (png, png_bytes) {
         crate::io::write_output(p, &b)?;
     }
