@@ -1,5 +1,7 @@
 //! Figures: plotters draws axes, log ticks, labels and legends with an embedded font (identical
-//! output on every machine); the map raster is coloured here and placed as one bitmap.
+//! output on every machine); the map raster is coloured here and placed as one bitmap. Every
+//! figure is drawn once, as SVG; its PNG is that SVG rasterised by resvg with anti-aliasing and
+//! the same font ([`svg_to_png`]), so the two formats show the same figure.
 
 pub mod atlas;
 pub mod map;
