@@ -298,6 +298,85 @@ fn radius_text(ctx: &LambdaContext, s: &crate::solver::RadiusState) -> String {
     t
 }
 
+/// A CSV or JSON table of results written as it is computed: the header (or the JSON opening),
+/// chunks of rows, then the JSON metadata and the commit. Memory stays one chunk.
+struct StreamTable {
+    out: Output,
+    shown: String,
+    json: bool,
+    rows: usize,
+}
+
+impl StreamTable {
+    fn start(out: Output, format: Format, header: &[&str]) -> anyhow::Result<StreamTable> {
+        let shown = out.name().display().to_string();
+        let mut t = StreamTable {
+            out,
+            shown,
+            json: format == Format::Json,
+            rows: 0,
+        };
+        if t.json {
+            t.put(b"{\n  \"results\": [\n")?;
+        } else {
+            let mut w = crate::io::csv_writer();
+            w.write_record(header)?;
+            t.put(&crate::io::csv_finish(w)?)?;
+        }
+        Ok(t)
+    }
+
+    fn put(&mut self, bytes: &[u8]) -> anyhow::Result<()> {
+        let shown = &self.shown;
+        self.out
+            .write_all(bytes)
+            .with_context(|| format!("cannot write {shown}"))
+    }
+
+    /// One chunk of rows: each item as a JSON object or as CSV fields.
+    fn rows<T, const N: usize>(
+        &mut self,
+        items: &[T],
+        json: impl Fn(&T) -> serde_json::Value,
+        csv: impl Fn(&T) -> [String; N],
+    ) -> anyhow::Result<()> {
+        let bytes = if self.json {
+            let mut buf = String::new();
+            for (k, item) in items.iter().enumerate() {
+                if self.rows + k > 0 {
+                    buf.push_str(",\n");
+                }
+                buf += &indent(&serde_json::to_string_pretty(&json(item))?, 4);
+            }
+            buf.into_bytes()
+        } else {
+            let mut w = crate::io::csv_writer();
+            for item in items {
+                w.write_record(csv(item))?;
+            }
+            crate::io::csv_finish(w)?
+        };
+        self.rows += items.len();
+        self.put(&bytes)
+    }
+
+    /// Closes the JSON with `metadata` (built from the row count), and puts the output in place.
+    fn finish(
+        mut self,
+        metadata: impl FnOnce(usize) -> anyhow::Result<serde_json::Value>,
+    ) -> anyhow::Result<()> {
+        if self.json {
+            let meta = metadata(self.rows)?;
+            let tail = format!(
+                "\n  ],\n  \"metadata\": {}\n}}\n",
+                indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start()
+            );
+            self.put(tail.as_bytes())?;
+        }
+        self.out.commit()
+    }
+}
+
 /// A table of (lambda, A) points: the curve point at each radius, on the CPU (no root search in
 /// the load is needed), streamed in chunks.
 fn solve_radius_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
@@ -306,54 +385,19 @@ fn solve_radius_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
         f => f,
     };
     let mut reader = crate::io::PointReader::open(input, "A")?;
-    let mut out = Output::create(&a.output)?;
-    let shown = out.name().display().to_string();
+    let mut table = StreamTable::start(Output::create(&a.output)?, format, &RADIUS_CSV_HEADER)?;
     eprintln!("backend: CPU f64 (radius control: each state is the curve point at its radius)");
-    let mut rows = 0usize;
-    let mut buf = String::new();
-    if format == Format::Json {
-        buf.push_str("{\n  \"results\": [\n");
-    } else {
-        let mut w = crate::io::csv_writer();
-        w.write_record(RADIUS_CSV_HEADER)?;
-        out.write_all(&crate::io::csv_finish(w)?)
-            .with_context(|| format!("cannot write {shown}"))?;
-    }
     loop {
         let chunk = reader.next_chunk(CHUNK_ROWS)?;
         if chunk.is_empty() {
             break;
         }
         let states = crate::solver::solve_radius_points(&chunk);
-        if format == Format::Json {
-            for s in &states {
-                if rows > 0 {
-                    buf.push_str(",\n");
-                }
-                buf += &indent(&serde_json::to_string_pretty(&radius_json(s))?, 4);
-                rows += 1;
-            }
-            out.write_all(buf.as_bytes())
-        } else {
-            let mut w = crate::io::csv_writer();
-            for s in &states {
-                w.write_record(radius_fields(s))?;
-            }
-            rows += states.len();
-            out.write_all(&crate::io::csv_finish(w)?)
-        }
-        .with_context(|| format!("cannot write {shown}"))?;
-        buf.clear();
+        table.rows(&states, radius_json, radius_fields)?;
     }
-    if format == Format::Json {
-        let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": "radius", "points": rows});
-        buf.push_str("\n  ],\n  \"metadata\": ");
-        buf += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
-        buf.push_str("\n}\n");
-        out.write_all(buf.as_bytes())
-            .with_context(|| format!("cannot write {shown}"))?;
-    }
-    out.commit()
+    table.finish(|rows| {
+        Ok(json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": "radius", "points": rows}))
+    })
 }
 
 /// A CSV or JSON table of points, streamed in chunks of [`CHUNK_ROWS`]: parse, solve, write.
@@ -367,24 +411,14 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
         f => f,
     };
     let mut reader = crate::io::PointReader::open(input, value_column(control))?;
-    let mut out = Output::create(&a.output)?;
-    let shown = out.name().display().to_string();
+    let mut table = StreamTable::start(Output::create(&a.output)?, format, &CSV_HEADER)?;
     let engine = engine_for(a.backend, &a.gpu)?;
     let digits = digits_of(&engine);
     let is_gpu = matches!(engine, Engine::Gpu(_));
     let len = std::fs::metadata(input).map_or(0, |m| m.len());
     let mut progress = crate::progress::Progress::new("solving", len, "bytes");
     let mut check = crate::engine::CheckReport::empty(GPU_TOLERANCE);
-    let (mut rows, mut solve_s) = (0usize, 0.0);
-    let mut buf = String::new();
-    if format == Format::Json {
-        buf.push_str("{\n  \"results\": [\n");
-    } else {
-        let mut w = crate::io::csv_writer();
-        w.write_record(CSV_HEADER)?;
-        out.write_all(&crate::io::csv_finish(w)?)
-            .with_context(|| format!("cannot write {shown}"))?;
-    }
+    let mut solve_s = 0.0;
     loop {
         let chunk = reader.next_chunk(CHUNK_ROWS)?;
         if chunk.is_empty() {
@@ -402,35 +436,19 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
                 GPU_TOLERANCE,
             ));
         }
-        if format == Format::Json {
-            for s in &states {
-                if rows > 0 {
-                    buf.push_str(",\n");
-                }
-                buf += &indent(
-                    &serde_json::to_string_pretty(&state_json_digits(s, digits, control))?,
-                    4,
-                );
-                rows += 1;
-            }
-            out.write_all(buf.as_bytes())
-        } else {
-            let mut w = crate::io::csv_writer();
-            for s in &states {
-                w.write_record(state_fields(s, digits, control))?;
-            }
-            rows += states.len();
-            out.write_all(&crate::io::csv_finish(w)?)
-        }
-        .with_context(|| format!("cannot write {shown}"))?;
-        buf.clear();
+        table.rows(
+            &states,
+            |s| state_json_digits(s, digits, control),
+            |s| state_fields(s, digits, control),
+        )?;
         progress.set(reader.bytes_read());
     }
     progress.finish();
     if is_gpu {
         eprintln!("{check}");
     }
-    if format == Format::Json {
+    let rows = table.rows;
+    table.finish(|rows| {
         let mut meta = json!({
             "tabor_version": env!("CARGO_PKG_VERSION"),
             "backend": engine.name(),
@@ -446,15 +464,12 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
         if a.timings {
             meta["solve_seconds"] = json!(solve_s);
         }
-        buf.push_str("\n  ],\n  \"metadata\": ");
-        buf += indent(&serde_json::to_string_pretty(&meta)?, 2).trim_start();
-        buf.push_str("\n}\n");
-        out.write_all(buf.as_bytes())
-            .with_context(|| format!("cannot write {shown}"))?;
-    } else if a.timings {
+        Ok(meta)
+    })?;
+    if format != Format::Json && a.timings {
         eprintln!("solved {rows} points in {solve_s:.3} s");
     }
-    out.commit()
+    Ok(())
 }
 
 /// Every line of `text` indented by `n` spaces.

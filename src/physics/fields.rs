@@ -14,8 +14,6 @@
 //! sum over s < C (see [`MdGeometry::gap`]).
 
 use super::real::Real;
-#[cfg(test)]
-use std::f64::consts::FRAC_PI_2;
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
@@ -81,6 +79,20 @@ impl MdGeometry {
         } else {
             0.0
         }
+    }
+
+    /// The load the pressure carries, `2 pi integral p r dr`, from the pressure formula itself
+    /// (a high-order rule with r = A sin(theta) inside the contact, the Dugdale annulus exactly):
+    /// equation (2)'s load, which the tests check it reproduces.
+    pub fn load(&self) -> f64 {
+        let (a, c) = (self.a, self.c());
+        let half_pi = std::f64::consts::FRAC_PI_2;
+        let inner = integrate01(|u| {
+            let th = u * half_pi;
+            let r = a * th.sin();
+            self.pressure(r) * r * a * th.cos() * half_pi
+        });
+        2.0 * PI * inner - 0.5 * self.lambda * PI * (c * c - a * a)
     }
 
     /// The surface gap at r (zero inside the contact).
@@ -179,18 +191,6 @@ pub fn energy_release_over_w(k_i: f64) -> f64 {
 mod tests {
     use super::*;
 
-    /// 2 pi times the integral of p r dr, by the same rule: the inner part with r = A sin(theta)
-    /// (smooth), the cohesive annulus exactly.
-    pub(crate) fn load_of(g: &MdGeometry) -> f64 {
-        let (a, c) = (g.a, g.c());
-        let inner = integrate01(|u| {
-            let th = u * FRAC_PI_2;
-            let r = a * th.sin();
-            g.pressure(r) * r * a * th.cos() * FRAC_PI_2
-        });
-        2.0 * PI * inner - 0.5 * g.lambda * PI * (c * c - a * a)
-    }
-
     #[test]
     fn md_fields_satisfy_the_md_equations() {
         use crate::physics::md::curve_point;
@@ -205,7 +205,7 @@ mod tests {
                 let h0 = 2.0 / (PI * l);
                 let e = (g.gap(g.c()) / h0 - 1.0).abs();
                 assert!(e < 1e-12, "lambda {l} mu {mu}: gap at C off by {e:e}");
-                let e = (load_of(&g) - p.load).abs() / p.load.abs().max(1.0);
+                let e = (g.load() - p.load).abs() / p.load.abs().max(1.0);
                 assert!(e < 1e-10, "lambda {l} mu {mu}: load off by {e:e}");
                 assert!(
                     g.gap(p.a * (1.0 + 1e-12)).abs() < 1e-9,

@@ -1,6 +1,6 @@
 //! The failure atlas: one error map per method over lambda and the distance above pull-off.
 
-use super::{colorbar, fonts, log_label, viridis};
+use super::{colorbar, log_label, viridis};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -20,14 +20,8 @@ pub struct ErrorMap<'a> {
 
 /// Draws the map as SVG and writes it rasterised with anti-aliasing, as every figure.
 pub fn write(m: &ErrorMap, png: &Path) -> Result<(), Err> {
-    fonts();
-    let mut s = String::new();
-    {
-        let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
-        draw(&root, m)?;
-        root.present()?;
-    }
-    crate::io::write_atomic(png, &super::svg_to_png(&s)?)?;
+    let (bytes, _) = super::draw_figure((W, H), true, false, |root| draw(root, m))?;
+    crate::io::write_atomic(png, &bytes.unwrap_or_default())?;
     Ok(())
 }
 

@@ -1,7 +1,7 @@
 //! The adhesion map figure (PNG and SVG): regions or a continuous quantity, criteria lines,
 //! pull-off, large-deformation lines, labels, legend and caption.
 
-use super::{fonts, log_label};
+use super::log_label;
 use crate::map::{criteria, LoadAxis, MapData, Region};
 use crate::solver::Status;
 use plotters::coord::Shift;
@@ -129,19 +129,7 @@ pub fn render(
     png: bool,
     svg: bool,
 ) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
-    fonts();
-    let mut s = String::new();
-    {
-        let root = SVGBackend::with_string(&mut s, (WIDTH, HEIGHT)).into_drawing_area();
-        draw(&root, d, q)?;
-        root.present()?;
-    }
-    let png = if png {
-        Some(super::svg_to_png(&s)?)
-    } else {
-        None
-    };
-    Ok((png, svg.then_some(s)))
+    super::draw_figure((WIDTH, HEIGHT), png, svg, |root| draw(root, d, q))
 }
 
 /// Writes the figure as PNG and/or SVG files.

@@ -61,6 +61,29 @@ pub fn linear_label(v: f64) -> String {
     }
 }
 
+/// Draws a figure of `size` once, as SVG, and rasterises it to PNG if asked: the one drawing
+/// path of every figure. Returns (PNG bytes, SVG text) as asked.
+#[allow(clippy::type_complexity)]
+pub fn draw_figure(
+    size: (u32, u32),
+    png: bool,
+    svg: bool,
+    draw: impl FnOnce(
+        &plotters::prelude::DrawingArea<plotters::prelude::SVGBackend, plotters::coord::Shift>,
+    ) -> Result<(), Box<dyn std::error::Error + Send + Sync>>,
+) -> Result<(Option<Vec<u8>>, Option<String>), Box<dyn std::error::Error + Send + Sync>> {
+    use plotters::prelude::*;
+    fonts();
+    let mut s = String::new();
+    {
+        let root = SVGBackend::with_string(&mut s, size).into_drawing_area();
+        draw(&root)?;
+        root.present()?;
+    }
+    let png = if png { Some(svg_to_png(&s)?) } else { None };
+    Ok((png, svg.then_some(s)))
+}
+
 /// Rasterises an SVG drawn by plotters into an anti-aliased PNG of the same size, with the
 /// same embedded font (no system fonts: the same bytes on every machine).
 pub fn svg_to_png(svg: &str) -> Result<Vec<u8>, Box<dyn std::error::Error + Send + Sync>> {

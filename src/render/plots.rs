@@ -1,6 +1,6 @@
 //! Line plots for the gallery: pull-off against lambda, and A(P) curves.
 
-use super::{fonts, log_label};
+use super::log_label;
 use crate::physics::closed::{
     cos_pulloff, dmt_radius, hertz_radius, jkr_radius, JKR_PULLOFF_DISPLACEMENT, JKR_PULLOFF_LOAD,
 };
@@ -19,20 +19,7 @@ pub type DrawSvg<'a> = &'a dyn for<'b> Fn(&DrawingArea<SVGBackend<'b>, Shift>) -
 /// Draws with `g` as an SVG document of W x H, and rasterises it with anti-aliasing into PNG
 /// bytes, as asked.
 pub fn render(png: bool, svg: bool, g: DrawSvg) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
-    fonts();
-    // Drawn once, as SVG; the PNG is that SVG rasterised with anti-aliasing.
-    let mut s = String::new();
-    {
-        let root = SVGBackend::with_string(&mut s, (W, H)).into_drawing_area();
-        g(&root)?;
-        root.present()?;
-    }
-    let png = if png {
-        Some(super::svg_to_png(&s)?)
-    } else {
-        None
-    };
-    Ok((png, svg.then_some(s)))
+    super::draw_figure((W, H), png, svg, |root| g(root))
 }
 
 /// Draws with `g` into a PNG file and/or an SVG file of W x H.

@@ -30,6 +30,46 @@ pub struct RadiusState {
     pub status: Status,
 }
 
+impl RadiusState {
+    /// A state that could not be computed: empty fields and `status`.
+    pub fn failed(lambda: f64, a: f64, status: Status) -> RadiusState {
+        RadiusState {
+            lambda,
+            a,
+            load: f64::NAN,
+            approach: f64::NAN,
+            m_minus_1: f64::NAN,
+            load_stable: false,
+            displacement_stable: false,
+            status,
+        }
+    }
+}
+
+/// The state at contact radius `a` (A > 0): the curve point there, with its stability under
+/// both controls. A falls strictly with mu, so A fixes the state; the only search is the
+/// bisection for mu, to the last bit, and no pull-off is needed (no per-lambda context).
+pub fn solve_radius(lambda: f64, a: f64) -> RadiusState {
+    if super::domain::check_lambda(lambda).is_err() || super::domain::check_radius(a).is_err() {
+        return RadiusState::failed(lambda, a, Status::InvalidInput);
+    }
+    let p = point(lambda, x_at_radius(lambda, a));
+    let ok = [p.load, p.approach, p.m_minus_1]
+        .iter()
+        .all(|v| v.is_finite())
+        && (p.a / a - 1.0).abs() < 1e-12;
+    RadiusState {
+        lambda,
+        a,
+        load: p.load,
+        approach: p.approach,
+        m_minus_1: p.m_minus_1,
+        load_stable: p.dload_dmu < 0.0,
+        displacement_stable: p.dapproach_dmu < 0.0,
+        status: if ok { Status::Ok } else { Status::NotConverged },
+    }
+}
+
 /// Where a stable branch ends: the jump-out (pull-off) point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PullOff {
@@ -420,38 +460,9 @@ impl LambdaContext {
         )
     }
 
-    /// The state at contact radius `a` (A > 0): the curve point there, with its stability under
-    /// both controls. A falls strictly with mu, so A fixes the state; the only search is the
-    /// bisection for mu, to the last bit.
+    /// The state at contact radius `a`; see [`solve_radius`].
     pub fn solve_radius(&self, a: f64) -> RadiusState {
-        let lambda = self.lambda;
-        if super::domain::check_radius(a).is_err() {
-            return RadiusState {
-                lambda,
-                a,
-                load: f64::NAN,
-                approach: f64::NAN,
-                m_minus_1: f64::NAN,
-                load_stable: false,
-                displacement_stable: false,
-                status: Status::InvalidInput,
-            };
-        }
-        let p = point(lambda, x_at_radius(lambda, a));
-        let ok = [p.load, p.approach, p.m_minus_1]
-            .iter()
-            .all(|v| v.is_finite())
-            && (p.a / a - 1.0).abs() < 1e-12;
-        RadiusState {
-            lambda,
-            a,
-            load: p.load,
-            approach: p.approach,
-            m_minus_1: p.m_minus_1,
-            load_stable: p.dload_dmu < 0.0,
-            displacement_stable: p.dapproach_dmu < 0.0,
-            status: if ok { Status::Ok } else { Status::NotConverged },
-        }
+        solve_radius(self.lambda, a)
     }
 
     fn zero_gap_disp_state(&self, approach: f64) -> State {

@@ -150,22 +150,9 @@ pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
 
 /// The states at the contact radii of a list of (lambda, A) points, on all cores.
 pub fn solve_radius_points(points: &[(f64, f64)]) -> Vec<RadiusState> {
-    let ctx = contexts_for(points.iter().map(|p| p.0));
     points
         .par_iter()
-        .map(|&(lambda, a)| match &ctx[&lambda.to_bits()] {
-            Some(c) => c.solve_radius(a),
-            None => RadiusState {
-                lambda,
-                a,
-                load: f64::NAN,
-                approach: f64::NAN,
-                m_minus_1: f64::NAN,
-                load_stable: false,
-                displacement_stable: false,
-                status: Status::InvalidInput,
-            },
-        })
+        .map(|&(lambda, a)| context::solve_radius(lambda, a))
         .collect()
 }
 
