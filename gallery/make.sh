@@ -3,23 +3,32 @@
 #   bash gallery/make.sh
 # Uses the GPU kernels when an adapter exists (the figures are identical within the plotted
 # resolution either way; set TABOR_BACKEND=cpu to force the f64 path).
+# Figures are one journal column wide (85 mm, PNG at 300 dpi) unless named *_double (175 mm).
+# The speed chart is redrawn from the recorded gallery/bench.json (the run the README quotes);
+# BENCH=measure runs the benchmark again.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet
 T=./target/release/tabor
 G=gallery
 
-$T map --out $G/map.png --svg $G/map.svg --json $G/map.json
+$T map --out $G/map.png --svg $G/map.svg --pdf $G/map.pdf --json $G/map.json
+$T map --double-column --out $G/map_double.png --pdf $G/map_double.pdf
 $T map --load-axis above-pulloff --out $G/map_tensile.png --svg $G/map_tensile.svg
 $T map --quantity a --out $G/map_A.png
 $T map --quantity approach --load-axis above-pulloff --out $G/map_approach.png
 $T map --quantity err-jkr --out $G/map_err_jkr.png
 $T map --quantity err-dmt --out $G/map_err_dmt.png
-$T plot pulloff --out $G/pulloff.png --svg $G/pulloff.svg
+$T plot pulloff --out $G/pulloff.png --svg $G/pulloff.svg --pdf $G/pulloff.pdf
 $T plot curves --lambda 0.1,1,10 --out $G/curves.png --svg $G/curves.svg
-$T bench --out-dir $G
+if [ "${BENCH:-replot}" = measure ]; then
+    $T bench --out-dir $G
+else
+    $T bench --replot $G/bench.json --out-dir $G
+fi
 $T atlas --out-dir $G/atlas
 $T scene --preset afm-si --plot $G/scene_afm.png > $G/scene_afm.txt
+$T scene --preset afm-si --double-column --plot $G/scene_afm_double.png > /dev/null
 $T scene --preset pdms-glass --plot $G/scene_pdms.png > $G/scene_pdms.txt
 for l in 0.1 1 10; do
     $T cycle --lambda $l --plot $G/cycle_grips_$l.png -o $G/cycle_grips_$l.csv

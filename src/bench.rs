@@ -67,7 +67,7 @@ impl Workload {
     }
 }
 
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct VariantResult {
     pub name: String,
     pub description: String,

@@ -96,11 +96,11 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
     let spec = MapSpec {
         lambda_min: 1e-3,
         lambda_max: 1e3,
-        nx: 160,
+        nx: 400,
         load_axis: LoadAxis::Linear,
         load_min: -2.0,
         load_max: 10.0,
-        ny: 160,
+        ny: 400,
         tolerance: r.tolerance,
         strength_ratios: vec![],
     };

@@ -220,3 +220,79 @@ fn scene_infer_cycle_bench_and_atlas() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(std::path::Path::new(&p("a/naive_f32.png")).exists());
 }
+
+#[test]
+fn figures_for_print_in_png_svg_and_pdf() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // The format follows the name; --svg and --pdf add the same figure in those formats.
+    let o = tabor(&[
+        "plot",
+        "pulloff",
+        "--out",
+        &p("a.pdf"),
+        "--svg",
+        &p("a.svg"),
+        "--width-mm",
+        "85",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(std::fs::read(p("a.pdf")).unwrap().starts_with(b"%PDF-"));
+    assert!(std::fs::read_to_string(p("a.svg"))
+        .unwrap()
+        .contains("width=\"85mm\""));
+    // 85 mm at 300 dpi is 1004 pixels; two columns at 150 dpi, 1033.
+    let o = tabor(&[
+        "plot",
+        "curves",
+        "--out",
+        &p("c.png"),
+        "--width-mm",
+        "85",
+        "--dpi",
+        "300",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(image::open(p("c.png")).unwrap().width(), 1004);
+    let o = tabor(&[
+        "plot",
+        "curves",
+        "--out",
+        &p("d.png"),
+        "--double-column",
+        "--dpi",
+        "150",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(image::open(p("d.png")).unwrap().width(), 1033);
+    // Bad sizes and formats: one line, no file.
+    for (args, needle) in [
+        (
+            vec!["plot", "curves", "--out", "e.png", "--width-mm", "5"],
+            "--width-mm 5",
+        ),
+        (
+            vec!["plot", "curves", "--out", "e.png", "--dpi", "1e9"],
+            "--dpi 1e9",
+        ),
+        (
+            vec!["plot", "curves", "--out", "e.jpg"],
+            ".png, .svg or .pdf",
+        ),
+        (
+            vec!["plot", "curves", "--out", "e.png", "--pdf", "e.svg"],
+            ".pdf",
+        ),
+    ] {
+        let mut a: Vec<String> = args.iter().map(|s| s.to_string()).collect();
+        for s in a.iter_mut().filter(|s| s.starts_with("e.")) {
+            *s = p(s);
+        }
+        let a: Vec<&str> = a.iter().map(|s| s.as_str()).collect();
+        let o = tabor(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{a:?}: {err}");
+        assert!(err.contains(needle), "{a:?}: {err}");
+        assert!(!dir.path().join(a[3].rsplit('/').next().unwrap()).exists());
+    }
+}

@@ -67,28 +67,32 @@ fn figures_tables_and_determinism() {
     let dir = tempfile::tempdir().unwrap();
     let d = compute(&spec(96, 96, LoadAxis::AbovePulloff), &Engine::Cpu).unwrap();
     let (png, svg) = (dir.path().join("m.png"), dir.path().join("m.svg"));
-    tabor::render::map::write(&d, None, Some(&png), Some(&svg)).unwrap();
+    let print = tabor::render::Print::single_column();
+    let out = |png: &std::path::Path, svg: Option<&std::path::Path>| tabor::render::Outputs {
+        png: Some(png.to_path_buf()),
+        svg: svg.map(|p| p.to_path_buf()),
+        pdf: None,
+    };
+    tabor::render::map::save(&d, None, &print, &out(&png, Some(&svg))).unwrap();
     let img = image::open(&png).unwrap();
-    assert_eq!(
-        (img.width(), img.height()),
-        (tabor::render::map::WIDTH, tabor::render::map::HEIGHT)
-    );
+    // One column (85 mm) at 300 dpi.
+    assert_eq!(img.width(), 1004);
     let text = std::fs::read_to_string(&svg).unwrap();
     assert!(
         text.starts_with("<svg")
-            && text.contains("width=\"1600\"")
+            && text.contains("width=\"85mm\"")
             && text.contains("Maugis parameter")
     );
     // Same input, same bytes.
     let png2 = dir.path().join("m2.png");
-    tabor::render::map::write(&d, None, Some(&png2), None).unwrap();
+    tabor::render::map::save(&d, None, &print, &out(&png2, None)).unwrap();
     assert_eq!(std::fs::read(&png).unwrap(), std::fs::read(&png2).unwrap());
     // A quantity map: a viridis colorbar, and colours from the whole scale in the plot.
-    tabor::render::map::write(
+    tabor::render::map::save(
         &d,
         Some(tabor::render::map::Quantity::ErrJkr),
-        Some(&png2),
-        None,
+        &print,
+        &out(&png2, None),
     )
     .unwrap();
     let q = image::open(&png2).unwrap().to_rgb8();

@@ -457,8 +457,8 @@ fn map_outputs_are_checked_before_the_work_and_written_together() {
     );
     // Formats follow the names.
     refused(
-        &["map", "--nx", "8", "--ny", "8", "--out", &p("x.svg")],
-        ".png",
+        &["map", "--nx", "8", "--ny", "8", "--out", &p("x.txt")],
+        ".png, .svg or .pdf",
     );
     refused(
         &[

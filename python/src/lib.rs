@@ -453,14 +453,16 @@ impl AdhesionMap {
         Ok(d)
     }
 
-    /// Writes the figure (PNG or SVG by `kind`), with an optional quantity.
-    #[pyo3(signature = (path, kind, quantity=None))]
+    /// Writes the figure (PNG, SVG or PDF by the extension of `path`), with an optional
+    /// quantity, `width_mm` wide (85: one column) with a PNG of `dpi`.
+    #[pyo3(signature = (path, quantity=None, width_mm=85.0, dpi=300.0))]
     fn save_figure(
         &self,
         py: Python<'_>,
         path: String,
-        kind: &str,
         quantity: Option<String>,
+        width_mm: f64,
+        dpi: f64,
     ) -> PyResult<()> {
         let q = match quantity.as_deref() {
             None => None,
@@ -472,18 +474,11 @@ impl AdhesionMap {
                 })?,
             ),
         };
-        let png = kind == "png";
+        let print = tabor::render::Print::new(width_mm, dpi).map_err(PyValueError::new_err)?;
+        let out = tabor::render::Outputs::from_path(std::path::Path::new(&path))
+            .map_err(PyValueError::new_err)?;
         let data = &self.data;
-        run(py, move || {
-            let (p, s) = tabor::render::map::render(data, q, png, !png)
-                .map_err(|e| anyhow::anyhow!("rendering the figure: {e}"))?;
-            let bytes = if png {
-                p.unwrap_or_default()
-            } else {
-                s.unwrap_or_default().into_bytes()
-            };
-            tabor::io::write_output(&path, &bytes)
-        })
+        run(py, move || tabor::render::map::save(data, q, &print, &out))
     }
 
     /// Writes the JSON document as `tabor map --json` (with the per-point arrays if `full`).

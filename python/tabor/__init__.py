@@ -225,14 +225,15 @@ class AdhesionMap:
         self.region_counts = dict(inner.region_counts())
         self.backend = inner.backend
 
-    def save(self, path, quantity=None):
-        """Writes the figure (``.png`` or ``.svg``), the JSON document (``.json``) or, for a
-        path without one of these extensions, the NumPy files ``PATH_lambda.npy``, ... exactly
-        as ``tabor map --out/--svg/--json/--npy`` do."""
+    def save(self, path, quantity=None, width_mm=85.0, dpi=300.0):
+        """Writes the figure (``.png``, ``.svg`` or ``.pdf``, ``width_mm`` wide: 85 for one
+        journal column, 175 for two; the PNG at ``dpi``), the JSON document (``.json``) or, for
+        a path without one of these extensions, the NumPy files ``PATH_lambda.npy``, ... exactly
+        as ``tabor map --out/--svg/--pdf/--json/--npy`` do."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
-        if ext in (".png", ".svg"):
-            self._inner.save_figure(path, ext[1:], quantity)
+        if ext in (".png", ".svg", ".pdf"):
+            self._inner.save_figure(path, quantity, float(width_mm), float(dpi))
         elif ext == ".json":
             self._inner.save_json(path, False)
         else:

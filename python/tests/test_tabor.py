@@ -157,14 +157,18 @@ def test_a_map_as_arrays_and_files_as_the_command_line_writes_them(tmp_path):
     names = m.region_names
     assert names[m.region[-1, 0]] == "hertz"  # largest load, smallest lambda
     assert sum(m.region_counts.values()) == 48 * 32
-    for ext in ("png", "svg", "json"):
+    for ext in ("png", "svg", "pdf", "json"):
         m.save(tmp_path / f"py.{ext}")
     m.save(tmp_path / "py")
     subprocess.run([tabor_bin(), "map", "--nx", "48", "--ny", "32", "--backend", "cpu",
                     "--out", str(tmp_path / "cli.png"), "--svg", str(tmp_path / "cli.svg"),
+                    "--pdf", str(tmp_path / "cli.pdf"),
                     "--json", str(tmp_path / "cli.json"), "--npy", str(tmp_path / "cli")],
                    check=True, capture_output=True)
-    for ext in ("png", "svg", "json"):
+    # Two journal columns at 300 dpi: 175 mm is 2067 pixels (the PNG header holds the width).
+    m.save(tmp_path / "wide.png", width_mm=175)
+    assert int.from_bytes((tmp_path / "wide.png").read_bytes()[16:20], "big") == 2067
+    for ext in ("png", "svg", "pdf", "json"):
         assert (tmp_path / f"py.{ext}").read_bytes() == (tmp_path / f"cli.{ext}").read_bytes(), ext
     for n in ("lambda", "A", "region"):
         assert (tmp_path / f"py_{n}.npy").read_bytes() == (tmp_path / f"cli_{n}.npy").read_bytes()

@@ -769,10 +769,11 @@ pub struct PlotArgs {
     /// Maugis parameters of the curves.
     #[arg(long, value_delimiter = ',', default_value = "0.1,1,10")]
     pub lambda: Vec<f64>,
+    /// The figure: .png, .svg or .pdf.
     #[arg(long, default_value = "plot.png")]
     pub out: std::path::PathBuf,
-    #[arg(long)]
-    pub svg: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
 }
 
 pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
@@ -780,22 +781,20 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     for &l in &a.lambda {
         crate::solver::domain::check_lambda(l).context("--lambda")?;
     }
-    super::map::check_extension(&a.out, "png", "--out")?;
-    if let Some(p) = &a.svg {
-        super::map::check_extension(p, "svg", "--svg")?;
-    }
+    let out = a.figure.outputs(Some(&a.out), "--out")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    use crate::render::Kind;
     let r = match a.kind {
         PlotKind::Pulloff => {
             let d = crate::figure_data::pulloff_data()?;
-            plots::save(Some(&a.out), a.svg.as_deref(), &|r| plots::pulloff(r, &d))
+            plots::save(Kind::Pulloff, &print, &out, &|r| plots::pulloff(r, &d))
         }
         PlotKind::Curves => {
             let d = crate::figure_data::curves_data(&a.lambda)?;
-            plots::save(Some(&a.out), a.svg.as_deref(), &|r| plots::curves(r, &d))
+            plots::save(Kind::Curves, &print, &out, &|r| plots::curves(r, &d))
         }
     };
-    r.map_err(anyhow::Error::from_boxed)
-        .context("drawing the plot")?;
+    r.context("drawing the plot")?;
     eprintln!("wrote {}", a.out.display());
     Ok(())
 }
@@ -812,12 +811,33 @@ pub struct BenchArgs {
     /// Skip the GPU variants even if an adapter exists.
     #[arg(long)]
     pub no_gpu: bool,
+    /// Redraw bench.png and bench.svg from a saved bench.json instead of measuring (to restyle
+    /// the chart of a recorded run).
+    #[arg(long)]
+    pub replot: Option<std::path::PathBuf>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
 
 pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     use crate::bench;
+    if let Some(saved) = &a.replot {
+        #[derive(serde::Deserialize)]
+        struct Saved {
+            metadata: serde_json::Value,
+            results: Vec<bench::VariantResult>,
+        }
+        let text = std::fs::read_to_string(saved)
+            .with_context(|| format!("--replot {}: cannot read", saved.display()))?;
+        let s: Saved = serde_json::from_str(&text).with_context(|| {
+            format!(
+                "--replot {}: not a bench.json written by tabor bench",
+                saved.display()
+            )
+        })?;
+        let machine = s.metadata["machine"].as_str().unwrap_or("unknown machine");
+        return bench_chart(&a.out_dir, &s.results, machine);
+    }
     let (nl, np) = if a.quick { (120, 60) } else { (600, 300) };
     let t = std::time::Instant::now();
     let w = bench::Workload::new(nl, np);
@@ -878,14 +898,34 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
         &a.out_dir.join("bench.txt"),
         format!("{machine}\n{text}").as_bytes(),
     )?;
+    bench_chart(&a.out_dir, &results, &machine)?;
+    eprintln!("wrote bench.json, bench.txt");
+    Ok(())
+}
+
+/// The speed-accuracy chart of `results`: bench.png and bench.svg in `dir`.
+fn bench_chart(
+    dir: &std::path::Path,
+    results: &[crate::bench::VariantResult],
+    machine: &str,
+) -> anyhow::Result<()> {
+    let front = crate::bench::pareto(results);
     let title = format!("Speed against accuracy ({machine})");
-    let (png, svg) = (a.out_dir.join("bench.png"), a.out_dir.join("bench.svg"));
-    crate::render::plots::save(Some(&png), Some(&svg), &|r| {
-        crate::render::plots::bench_chart(r, &results, &front, &title)
-    })
-    .map_err(anyhow::Error::from_boxed)
+    let (png, svg) = (dir.join("bench.png"), dir.join("bench.svg"));
+    // A wide chart: many labelled markers.
+    let out = crate::render::Outputs {
+        png: Some(png.clone()),
+        svg: Some(svg),
+        pdf: None,
+    };
+    crate::render::plots::save(
+        crate::render::Kind::Bench,
+        &crate::render::Print::double_column(),
+        &out,
+        &|r| crate::render::plots::bench_chart(r, results, &front, &title),
+    )
     .context("drawing the chart")?;
-    eprintln!("wrote {}, bench.svg, bench.json, bench.txt", png.display());
+    eprintln!("wrote {}, bench.svg", png.display());
     Ok(())
 }
 
@@ -933,8 +973,11 @@ pub fn atlas(a: AtlasArgs) -> anyhow::Result<()> {
             ny: a.ny,
             err: &m.err,
         };
-        crate::render::atlas::write(&em, &path)
-            .map_err(anyhow::Error::from_boxed)
+        let out = crate::render::Outputs {
+            png: Some(path.clone()),
+            ..Default::default()
+        };
+        crate::render::atlas::save(&em, &crate::render::Print::double_column(), &out)
             .with_context(|| format!("drawing {}", path.display()))?;
         eprintln!("{}: {}", path.display(), m.title);
     }

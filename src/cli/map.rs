@@ -44,12 +44,11 @@ pub struct MapArgs {
     /// Draw this quantity with a colorbar instead of the regions.
     #[arg(long, value_enum)]
     pub quantity: Option<QuantityArg>,
-    /// PNG output.
+    /// The figure: .png, .svg or .pdf.
     #[arg(long, default_value = "map.png")]
     pub out: PathBuf,
-    /// SVG output.
-    #[arg(long)]
-    pub svg: Option<PathBuf>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
     /// JSON with metadata, axes and per-lambda model thresholds.
     #[arg(long)]
     pub json: Option<PathBuf>,
@@ -115,19 +114,16 @@ pub fn check_extension(path: &Path, ext: &str, flag: &str) -> anyhow::Result<()>
 pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
     spec.validate()?;
-    check_extension(&a.out, "png", "--out")?;
-    if let Some(p) = &a.svg {
-        check_extension(p, "svg", "--svg")?;
-    }
+    let figure = a.figure.outputs(Some(&a.out), "--out")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     // Every output is opened before the work: a bad path fails at once, and none is put in
     // place unless all of them were written.
-    let mut png = Output::create(&a.out).context("--out")?;
-    let mut svg = a
-        .svg
-        .as_ref()
-        .map(Output::create)
-        .transpose()
-        .context("--svg")?;
+    let open = |p: &Option<PathBuf>| -> anyhow::Result<Option<Output>> {
+        p.as_ref()
+            .map(|p| Output::create(p).with_context(|| p.display().to_string()))
+            .transpose()
+    };
+    let mut figure_out = [open(&figure.png)?, open(&figure.svg)?, open(&figure.pdf)?];
     let mut json_out = a
         .json
         .as_ref()
@@ -162,21 +158,29 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         None
     };
     let t = Instant::now();
-    let (png_bytes, svg_text) =
-        crate::render::map::render(&data, a.quantity.map(Into::into), true, svg.is_some())
-            .map_err(anyhow::Error::from_boxed)
-            .context("rendering the figure")?;
+    let want = crate::render::Formats {
+        png: figure.png.is_some(),
+        svg: figure.svg.is_some(),
+        pdf: figure.pdf.is_some(),
+    };
+    let fig = crate::render::map::render(&data, a.quantity.map(Into::into), &print, want)
+        .map_err(anyhow::Error::from_boxed)
+        .context("rendering the figure")?;
     data.timings.render_s = t.elapsed().as_secs_f64();
     let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
         let shown = o.name().display().to_string();
         o.write_all(bytes)
             .with_context(|| format!("cannot write {shown}"))
     };
-    if let Some(b) = &png_bytes {
-        put(&mut png, b)?;
-    }
-    if let (Some(o), Some(s)) = (svg.as_mut(), &svg_text) {
-        put(o, s.as_bytes())?;
+    let bytes = [
+        fig.png.as_deref(),
+        fig.svg.as_ref().map(|s| s.as_bytes()),
+        fig.pdf.as_deref(),
+    ];
+    for (o, b) in figure_out.iter_mut().zip(bytes) {
+        if let (Some(o), Some(b)) = (o.as_mut(), b) {
+            put(o, b)?;
+        }
     }
     if let Some(o) = json_out.as_mut() {
         let shown = o.name().display().to_string();
@@ -186,8 +190,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     if !npy.is_empty() {
         write_npy(&data, &mut npy)?;
     }
-    png.commit()?;
-    for o in svg.into_iter().chain(json_out).chain(npy) {
+    for o in figure_out.into_iter().flatten().chain(json_out).chain(npy) {
         o.commit()?;
     }
     let tm = &data.timings;
@@ -199,10 +202,11 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         tm.classify_s,
         tm.render_s,
         a.out.display(),
-        a.svg
-            .as_ref()
+        [&a.figure.svg, &a.figure.pdf]
+            .into_iter()
+            .flatten()
             .map(|p| format!(", {}", p.display()))
-            .unwrap_or_default()
+            .collect::<String>()
     );
     let counts: Vec<String> = data
         .region_counts()

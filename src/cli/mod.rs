@@ -157,3 +157,56 @@ pub fn run() -> anyhow::Result<()> {
         Command::Profile(a) => profile::run(a),
     }
 }
+
+/// How a figure is written: its files (the format of each by its extension) and its printed
+/// size.
+#[derive(clap::Args, Debug, Clone)]
+pub struct FigureArgs {
+    /// The same figure as SVG (vector; text as text).
+    #[arg(long)]
+    pub svg: Option<std::path::PathBuf>,
+    /// The same figure as a vector PDF.
+    #[arg(long)]
+    pub pdf: Option<std::path::PathBuf>,
+    /// Printed width in millimetres; fonts are 7-9.5 pt at this width [default: 85, one
+    /// journal column].
+    #[arg(long, conflicts_with = "double_column")]
+    pub width_mm: Option<f64>,
+    /// Two journal columns wide (175 mm).
+    #[arg(long)]
+    pub double_column: bool,
+    /// PNG resolution at the printed width (85 mm at 300 dpi is 1004 pixels wide).
+    #[arg(long, default_value_t = crate::render::DEFAULT_DPI)]
+    pub dpi: f64,
+}
+
+impl FigureArgs {
+    /// The printed size; `default_mm` where no width is given.
+    pub fn print(&self, default_mm: f64) -> anyhow::Result<crate::render::Print> {
+        let mm = match (self.width_mm, self.double_column) {
+            (Some(w), _) => w,
+            (None, true) => crate::render::DOUBLE_COLUMN_MM,
+            (None, false) => default_mm,
+        };
+        crate::render::Print::new(mm, self.dpi).map_err(anyhow::Error::msg)
+    }
+
+    /// The files: `main` (given by `flag`, any of .png, .svg, .pdf) with --svg and --pdf.
+    pub fn outputs(
+        &self,
+        main: Option<&std::path::Path>,
+        flag: &str,
+    ) -> anyhow::Result<crate::render::Outputs> {
+        let mut o = crate::render::Outputs::default();
+        if let Some(p) = main {
+            o.add(p).map_err(|e| anyhow::anyhow!("{flag} {e}"))?;
+        }
+        for (p, ext, f) in [(&self.svg, "svg", "--svg"), (&self.pdf, "pdf", "--pdf")] {
+            if let Some(p) = p {
+                map::check_extension(p, ext, f)?;
+                o.add(p).map_err(|e| anyhow::anyhow!("{f} {e}"))?;
+            }
+        }
+        Ok(o)
+    }
+}

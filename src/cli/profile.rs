@@ -1,6 +1,5 @@
 //! `tabor profile`: pressure and gap inside and around the contact.
 
-use super::map::check_extension;
 use super::Format;
 use crate::io::{fmt17, write_output};
 use crate::profile::{profile, Given, Profile};
@@ -37,24 +36,19 @@ pub struct ProfileArgs {
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    /// Pressure and gap against r for the four models (PNG).
+    /// Pressure and gap against r for the four models (.png, .svg or .pdf).
     #[arg(long)]
     pub plot: Option<std::path::PathBuf>,
-    /// The same figure as SVG.
-    #[arg(long)]
-    pub svg: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: crate::cli::FigureArgs,
 }
 
 pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for a profile: use json or csv");
     }
-    if let Some(p) = &a.plot {
-        check_extension(p, "png", "--plot")?;
-    }
-    if let Some(p) = &a.svg {
-        check_extension(p, "svg", "--svg")?;
-    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(crate::cli::scene::read_scene(f)?),
         (None, Some(p)) => Some(crate::cli::scene::preset_named(p)?),
@@ -101,11 +95,10 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         _ => serde_json::to_string_pretty(&p)? + "\n",
     };
     write_output(&a.output, text.as_bytes())?;
-    if a.plot.is_some() || a.svg.is_some() {
-        crate::render::plots::save(a.plot.as_deref(), a.svg.as_deref(), &|r| {
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Profile, &print, &figure, &|r| {
             crate::render::plots::profile(r, &p)
         })
-        .map_err(anyhow::Error::from_boxed)
         .context("drawing the profile")?;
     }
     let md = &p.models[0];

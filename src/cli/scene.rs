@@ -24,9 +24,11 @@ pub struct SceneArgs {
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    /// Draw a(P) for the scene and its place on the adhesion map (PNG).
+    /// Draw a(P) for the scene and its place on the adhesion map (.png, .svg or .pdf).
     #[arg(long)]
     pub plot: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
 }
 
 pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
@@ -48,23 +50,21 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     if a.format == Format::Csv {
         bail!("--format csv is not available for a scene: use text or json");
     }
-    if let Some(p) = &a.plot {
-        super::map::check_extension(p, "png", "--plot")?;
-    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let r = solve_scene(&input)?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         _ => scene_text(&r),
     };
     write_output(&a.output, text.as_bytes())?;
-    if let Some(p) = &a.plot {
+    if !figure.is_empty() {
         let fig = crate::figure_data::scene_data(&r)?;
-        crate::render::plots::save(Some(p), None, &|root| {
+        crate::render::plots::save(crate::render::Kind::Scene, &print, &figure, &|root| {
             crate::render::plots::scene(root, &r, &fig)
         })
-        .map_err(anyhow::Error::from_boxed)
         .context("drawing the scene")?;
-        eprintln!("wrote {}", p.display());
+        eprintln!("wrote the figure");
     }
     Ok(())
 }
@@ -347,9 +347,11 @@ pub struct CycleArgs {
     pub output: String,
     #[arg(long, value_enum, default_value_t = Format::Csv)]
     pub format: Format,
-    /// Force against displacement and contact radius against load (PNG).
+    /// Force against displacement and contact radius against load (.png, .svg or .pdf).
     #[arg(long)]
     pub plot: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
 }
 
 pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
@@ -374,9 +376,8 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for a cycle: use csv or json (a summary goes to stderr)");
     }
-    if let Some(p) = &a.plot {
-        super::map::check_extension(p, "png", "--plot")?;
-    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
         bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
             DriveKind::Grips => "grips",
@@ -446,11 +447,12 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             "  energy lost per cycle: not defined (under dead load the surfaces separate for good)"
         ),
     }
-    if let Some(p) = &a.plot {
-        crate::render::plots::save(Some(p), None, &|r| crate::render::plots::cycle(r, &c))
-            .map_err(anyhow::Error::from_boxed)
-            .context("drawing the cycle")?;
-        eprintln!("wrote {}", p.display());
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
+            crate::render::plots::cycle(r, &c)
+        })
+        .context("drawing the cycle")?;
+        eprintln!("wrote the figure");
     }
     Ok(())
 }

@@ -1,12 +1,10 @@
 //! The failure atlas: one error map per method over lambda and the distance above pull-off.
 
-use super::{colorbar, log_label, viridis};
+use super::map::{MARGIN, X_AREA, Y_AREA};
+use super::{colorbar, log_label, viridis, Kind, Outputs, Print, AXIS, NOTE, TICK, TITLE};
 use plotters::prelude::*;
-use std::path::Path;
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
-pub const W: u32 = 1400;
-pub const H: u32 = 1050;
 
 /// An error map: `err` is row-major (ny rows of nx, row 0 the smallest gap), NaN marks a failure.
 pub struct ErrorMap<'a> {
@@ -18,11 +16,14 @@ pub struct ErrorMap<'a> {
     pub err: &'a [f64],
 }
 
-/// Draws the map as SVG and writes it rasterised with anti-aliasing, as every figure.
-pub fn write(m: &ErrorMap, png: &Path) -> Result<(), Err> {
-    let (bytes, _) = super::draw_figure((W, H), true, false, |root| draw(root, m))?;
-    crate::io::write_atomic(png, &bytes.unwrap_or_default())?;
-    Ok(())
+/// Draws the map in the formats asked for.
+pub fn render(m: &ErrorMap, print: &Print, want: super::Formats) -> Result<super::Rendered, Err> {
+    super::draw_figure(Kind::Atlas, print, want, &|root| draw(root, m))
+}
+
+/// Draws the map and writes it to the files in `out`, as every figure.
+pub fn save(m: &ErrorMap, print: &Print, out: &Outputs) -> anyhow::Result<()> {
+    super::save(Kind::Atlas, print, out, &|root| draw(root, m))
 }
 
 /// log10 of the error is coloured from -16 (dark) to 0 (yellow); failures are magenta.
@@ -34,14 +35,19 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let (upper, _) = root.split_vertically(H - 40);
-    let (plot_area, bar) = upper.split_horizontally(W - 170);
-    let plot = root.clone();
+    let (w, h) = root.dim_in_pixel();
+    let note = "magenta: failed (no answer, NaN, or off by more than 50%); colour: relative error of A against the exact f64 solver";
+    let lines = super::wrap(root, note, NOTE, w as i32 - 160);
+    let lh = super::line_height(NOTE);
+    let (upper, lower) = root.split_vertically(h - (lines.len() as i32 * lh + 32) as u32);
+    let (plot_area, bar) = upper.split_horizontally(w - (TICK * 4.2) as u32);
     let mut chart = ChartBuilder::on(&plot_area)
-        .caption(&m.title, ("sans-serif", 28))
-        .margin(24)
-        .x_label_area_size(90)
-        .y_label_area_size(110)
+        .caption(&m.title, ("sans-serif", TITLE))
+        .margin(MARGIN)
+        .margin_top(MARGIN + (TICK * 0.5) as i32)
+        .margin_right(MARGIN + (TICK * 0.9) as i32)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(Y_AREA)
         .build_cartesian_2d(
             (m.lambdas.0..m.lambdas.1).log_scale(),
             (m.gaps.0..m.gaps.1).log_scale(),
@@ -70,17 +76,27 @@ where
         .configure_mesh()
         .disable_mesh()
         .x_desc("Maugis parameter  λ")
-        .y_desc("load above pull-off  (P − Pc) / (π w R)")
-        .axis_desc_style(("sans-serif", 26))
-        .label_style(("sans-serif", 20))
+        .y_desc("load above pull-off  \\bar{P} − \\bar{P}_{c}")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .x_label_formatter(&|v| log_label(*v))
         .y_label_formatter(&|v| log_label(*v))
         .draw()?;
-    plot.draw(&Rectangle::new(
-        [(30, H as i32 - 34), (54, H as i32 - 14)],
+    lower.draw(&Rectangle::new(
+        [(32, 8), (32 + lh, lh)],
         RGBColor(255, 0, 255).filled(),
     ))?;
-    plot.draw(&Text::new("failed: no answer, NaN, or off by more than 50%.  Colour: relative error of A against the exact f64 solver.", (62, H as i32 - 34), ("sans-serif", 19).into_font()))?;
-    colorbar(&bar, -16.0, 0.0, &|v| format!("1e{v:.0}"))?;
+    for (k, l) in lines.into_iter().enumerate() {
+        lower.draw(&Text::new(
+            l,
+            (48 + lh, 4 + k as i32 * lh),
+            ("sans-serif", NOTE).into_font(),
+        ))?;
+    }
+    let ticks: Vec<(f64, String)> = super::round_ticks(-16.0, 0.0)
+        .into_iter()
+        .map(|v| (v, format!("10^{{{}}}", super::minus(&format!("{v:.0}")))))
+        .collect();
+    colorbar(&bar, -16.0, 0.0, &ticks)?;
     Ok(())
 }

@@ -7,10 +7,6 @@ use crate::solver::Status;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use rayon::prelude::*;
-use std::path::Path;
-
-pub const WIDTH: u32 = 1600;
-pub const HEIGHT: u32 = 1200;
 
 /// A continuous quantity drawn with a colorbar instead of the regions.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -46,12 +42,12 @@ impl Quantity {
 
     fn title(self) -> &'static str {
         match self {
-            Quantity::A => "Contact radius A (exact Maugis-Dugdale)",
-            Quantity::Approach => "Approach Δ = δ (K² / (π² w² R))^(1/3) (exact Maugis-Dugdale)",
-            Quantity::M => "Cohesive zone c/a − 1 (exact Maugis-Dugdale)",
-            Quantity::ErrHertz => "Error of Hertz: |A_Hertz / A − 1|",
-            Quantity::ErrDmt => "Error of DMT: |A_DMT / A − 1|",
-            Quantity::ErrJkr => "Error of JKR: |A_JKR / A − 1|",
+            Quantity::A => "Contact radius A (exact MD)",
+            Quantity::Approach => "Approach Δ (exact MD)",
+            Quantity::M => "Cohesive zone c/a − 1 (exact MD)",
+            Quantity::ErrHertz => "Error of Hertz |A_{Hertz}/A − 1|",
+            Quantity::ErrDmt => "Error of DMT |A_{DMT}/A − 1|",
+            Quantity::ErrJkr => "Error of JKR |A_{JKR}/A − 1|",
         }
     }
     fn log(self) -> bool {
@@ -64,13 +60,6 @@ impl Quantity {
             v.log10()
         } else {
             (v / 0.1).asinh()
-        }
-    }
-    fn inverse(self, t: f64) -> f64 {
-        if self.log() {
-            10f64.powf(t)
-        } else {
-            0.1 * t.sinh()
         }
     }
     /// The value at a solved point (NaN where undefined), before the log transform.
@@ -121,84 +110,129 @@ fn line_color(k: usize) -> RGBColor {
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
 
-/// Draws the figure: PNG bytes and/or an SVG document, as asked. The figure is drawn once, as
-/// SVG; the PNG is that SVG rasterised with anti-aliasing, so the two look the same.
+/// Draws the map (regions, or `q` with a colorbar) at its print size, in the formats asked for.
 pub fn render(
     d: &MapData,
     q: Option<Quantity>,
-    png: bool,
-    svg: bool,
-) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
-    super::draw_figure((WIDTH, HEIGHT), png, svg, |root| draw(root, d, q))
+    print: &Print,
+    want: Formats,
+) -> Result<Rendered, Err> {
+    super::draw_figure(kind(q), print, want, &|root| draw(root, d, q))
 }
 
-/// Writes the figure as PNG and/or SVG files.
-pub fn write(
-    d: &MapData,
-    q: Option<Quantity>,
-    png: Option<&Path>,
-    svg: Option<&Path>,
-) -> Result<(), Err> {
-    let (png_bytes, svg_text) = render(d, q, png.is_some(), svg.is_some())?;
-    if let (Some(p), Some(b)) = (png, png_bytes) {
-        crate::io::write_output(p, &b)?;
-    }
-    if let (Some(p), Some(s)) = (svg, svg_text) {
-        crate::io::write_output(p, s.as_bytes())?;
-    }
-    Ok(())
+/// Draws the map and writes it to the files in `out`.
+pub fn save(d: &MapData, q: Option<Quantity>, print: &Print, out: &Outputs) -> anyhow::Result<()> {
+    super::save(kind(q), print, out, &|root| draw(root, d, q))
 }
 
-/// The y-axis description as pieces, `true` for a piece drawn with an overbar (plotters' font
-/// layout cannot place combining marks, so the bar is drawn as a line).
-fn y_label(axis: LoadAxis) -> Vec<(&'static str, bool)> {
+fn kind(q: Option<Quantity>) -> Kind {
+    if q.is_some() {
+        Kind::QuantityMap
+    } else {
+        Kind::Map
+    }
+}
+
+/// The y-axis description (markup: an overbar on the normalised load).
+fn y_desc(axis: LoadAxis) -> &'static str {
     match axis {
-        LoadAxis::AbovePulloff => vec![
-            ("load above pull-off  ", false),
-            ("P", true),
-            (" − ", false),
-            ("P", true),
-            ("c", false),
-        ],
-        _ => vec![("load  ", false), ("P", true), (" = P / (π w R)", false)],
+        LoadAxis::AbovePulloff => "load above pull-off  \\bar{P} − \\bar{P}_{c}",
+        _ => "load  \\bar{P} = P/(πwR)",
     }
 }
 
-/// Draws `pieces` rotated (reading upwards), centred at height `cy`, with bars over the barred
-/// pieces.
-fn draw_rotated_label<DB: DrawingBackend>(
-    area: &DrawingArea<DB, Shift>,
-    pieces: &[(&str, bool)],
-    x: i32,
-    cy: i32,
-    size: f64,
-) -> Result<(), Err>
-where
-    DB::ErrorType: 'static,
-{
-    use plotters::style::FontTransform;
-    let flat: TextStyle = ("sans-serif", size).into_font().into();
-    let all: String = pieces.iter().map(|p| p.0).collect();
-    let (w, _) = area.estimate_text_size(&all, &flat)?;
-    let y0 = cy + w as i32 / 2;
-    let style = ("sans-serif", size)
-        .into_font()
-        .transform(FontTransform::Rotate270)
-        .color(&BLACK);
-    area.draw(&Text::new(all.clone(), (x, y0), style))?;
-    let mut prefix = String::new();
-    for (text, barred) in pieces {
-        let (a, _) = area.estimate_text_size(&prefix, &flat).unwrap_or((0, 0));
-        prefix.push_str(text);
-        if *barred {
-            let (b, _) = area.estimate_text_size(&prefix, &flat)?;
-            area.draw(&PathElement::new(
-                vec![(x + 1, y0 - a as i32 - 2), (x + 1, y0 - b as i32 + 2)],
-                BLACK.stroke_width(2),
-            ))?;
-        }
+/// The map's lines in chart coordinates, traced once: each criterion at the tolerance (Hertz,
+/// Bradley, DMT, JKR) and the pull-off (the edge of the no-contact region).
+struct Traced {
+    criteria: [Vec<Vec<(f64, f64)>>; 4],
+    pulloff: Vec<Vec<(f64, f64)>>,
+}
+
+const CRITERIA: [&str; 4] = ["Hertz", "Bradley (rigid)", "DMT", "JKR"];
+
+/// Traces on a grid strided to about the plot's resolution: finer lines would not show.
+fn trace(d: &MapData) -> Traced {
+    let sp = &d.spec;
+    let (nx, ny) = (sp.nx, sp.ny);
+    let k = nx.max(ny).div_ceil(800).max(1);
+    let (mx, my) = ((nx - 1) / k + 1, (ny - 1) / k + 1);
+    let fields: Vec<[f64; 5]> = (0..mx * my)
+        .into_par_iter()
+        .map(|j| {
+            let i = (j / mx) * k * nx + (j % mx) * k;
+            let s = &d.states[i];
+            let contact = if d.regions[i] == Region::NoContact {
+                0.0
+            } else {
+                1.0
+            };
+            if s.status != Status::Ok {
+                return [1e9, 1e9, 1e9, 1e9, contact];
+            }
+            let c = criteria(s.lambda, s.load, s.a, s.approach);
+            let f = |v: f64| if v.is_finite() { v } else { 1e9 };
+            [
+                f(c.err_hertz),
+                f(c.rigid),
+                f(c.err_dmt),
+                f(c.err_jkr),
+                contact,
+            ]
+        })
+        .collect();
+    let scaled = |path: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
+        path.into_iter()
+            .map(|(x, y)| to_chart(d, x * k as f64, y * k as f64))
+            .collect()
+    };
+    let paths = |c: usize, level: f64| -> Vec<Vec<(f64, f64)>> {
+        let field: Vec<f64> = fields.iter().map(|f| f[c]).collect();
+        contour_paths(&field, mx, my, level)
+            .into_iter()
+            .map(scaled)
+            .collect()
+    };
+    let contact: Vec<f64> = fields.iter().map(|f| f[4]).collect();
+    let has_edge = contact.contains(&0.0) && contact.contains(&1.0);
+    Traced {
+        criteria: [0, 1, 2, 3].map(|c| paths(c, sp.tolerance)),
+        pulloff: if has_edge { paths(4, 0.5) } else { Vec::new() },
     }
-    Ok(())
+}
+
+fn criterion_style(c: usize) -> ShapeStyle {
+    ShapeStyle::from(&line_color(c)).stroke_width(6)
+}
+
+fn large_deformation_style() -> ShapeStyle {
+    ShapeStyle::from(&BLACK).stroke_width(4)
+}
+
+/// The legend: only lines that are drawn (none where no point is in contact).
+fn entries(d: &MapData, t: &Traced) -> Vec<Entry> {
+    let mut e: Vec<Entry> = (0..4)
+        .filter(|&c| !t.criteria[c].is_empty())
+        .map(|c| Entry {
+            label: format!("{} within {}%", CRITERIA[c], d.spec.tolerance * 100.0),
+            style: criterion_style(c),
+            dashed: false,
+        })
+        .collect();
+    if !t.pulloff.is_empty() {
+        e.push(Entry {
+            label: "pull-off (load control)".into(),
+            style: BLACK.stroke_width(6),
+            dashed: false,
+        });
+    }
+    if d.large_deformation.iter().any(|l| l.points.len() >= 2) {
+        e.push(Entry {
+            label: "a/R = 0.1 at σ_{0}/K".into(),
+            style: large_deformation_style(),
+            dashed: true,
+        });
+    }
+    e
 }
 
 fn draw<DB: DrawingBackend>(
@@ -210,59 +244,59 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let (upper, caption_area) = root.split_vertically(HEIGHT - 70);
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    let sp = &d.spec;
+    let traced = trace(d);
+    let legend = entries(d, &traced);
+    let pad = 32;
+    let tol = format!("{}%", sp.tolerance * 100.0);
+    let caption = match q {
+        None => super::wrap(root, &format!("Each point shows the simplest model whose contact radius A is within {tol} of the exact Maugis-Dugdale (MD) one: Hertz |A_{{H}}/A − 1| ≤ {tol} (loads ≥ 0); Bradley (rigid) (πλ/2)·max(A², |Δ|) ≤ {tol}; DMT |A_{{DMT}}/A − 1| ≤ {tol}; JKR |A_{{JKR}}/A − 1| ≤ {tol}; else MD. White: below the pull-off, no contact."), NOTE, w - 2 * pad),
+        Some(_) => Vec::new(),
+    };
+    let bottom = super::legend_rows_height(root, &legend, NOTE, w - 2 * pad)
+        + caption.len() as i32 * super::line_height(NOTE)
+        + 28;
+    let (upper, lower) = root.split_vertically(h - bottom);
+    let bar_w = (TICK * 4.2) as i32;
     let (plot_area, bar_area) = if q.is_some() {
-        upper.split_horizontally(WIDTH - 190)
+        upper.split_horizontally(w - bar_w)
     } else {
         (upper.clone(), upper.clone())
     };
-    let sp = &d.spec;
     let title = match q {
-        None => format!(
-            "Adhesion map: simplest adequate model (tolerance {}%)",
-            sp.tolerance * 100.0
-        ),
+        None => format!("Adhesion map (tolerance {tol})"),
         Some(q) => q.title().to_string(),
     };
     let x_range = (sp.lambda_min..sp.lambda_max).log_scale();
+    let builder = || {
+        let mut b = ChartBuilder::on(&plot_area);
+        b.caption(title.clone(), ("sans-serif", TITLE))
+            .margin(MARGIN)
+            .margin_top(MARGIN + (TICK * 0.5) as i32)
+            .margin_right(MARGIN + (TICK * 0.9) as i32)
+            .x_label_area_size(X_AREA)
+            .y_label_area_size(Y_AREA);
+        b
+    };
     if sp.load_axis == LoadAxis::Linear {
-        let mut chart = ChartBuilder::on(&plot_area)
-            .caption(title, ("sans-serif", 34))
-            .margin(24)
-            .x_label_area_size(80)
-            .y_label_area_size(110)
-            .build_cartesian_2d(x_range, sp.load_min..sp.load_max)?;
-        body(&mut chart, d, q)?;
+        let mut chart = builder().build_cartesian_2d(x_range, sp.load_min..sp.load_max)?;
+        body(&mut chart, d, q, &traced, Panel::Full)?;
     } else {
-        let mut chart = ChartBuilder::on(&plot_area)
-            .caption(title, ("sans-serif", 34))
-            .margin(24)
-            .x_label_area_size(80)
-            .y_label_area_size(110)
-            .build_cartesian_2d(x_range, (sp.load_min..sp.load_max).log_scale())?;
-        body(&mut chart, d, q)?;
+        let mut chart =
+            builder().build_cartesian_2d(x_range, (sp.load_min..sp.load_max).log_scale())?;
+        body(&mut chart, d, q, &traced, Panel::Full)?;
     }
-    let (_, ph) = plot_area.dim_in_pixel();
-    draw_rotated_label(
-        &plot_area,
-        &y_label(sp.load_axis),
-        14,
-        (ph as i32 - 60) / 2 + 40,
-        28.0,
-    )?;
     if let Some(q) = q {
         colorbar(&bar_area, d, q)?;
     }
-    let tol = format!("{}%", sp.tolerance * 100.0);
-    let lines = [
-        format!("Regions: the first model whose contact radius A is within {tol} of the exact Maugis-Dugdale (MD) one: Hertz |A_H/A − 1| ≤ {tol} (loads ≥ 0);"),
-        format!("Bradley (rigid) (πλ/2)·max(A², |approach|) ≤ {tol};  DMT |A_DMT/A − 1| ≤ {tol};  JKR |A_JKR/A − 1| ≤ {tol};  else MD.  White: below the pull-off, no contact.  Dashed: a/R = 0.1."),
-    ];
-    for (k, l) in lines.iter().enumerate() {
-        caption_area.draw(&Text::new(
-            l.as_str(),
-            (30, 8 + 28 * k as i32),
-            ("sans-serif", 19).into_font().color(&BLACK),
+    let used = super::draw_legend_rows(&lower, &legend, NOTE, (pad, 8), w - 2 * pad)?;
+    for (k, l) in caption.iter().enumerate() {
+        lower.draw(&Text::new(
+            l.clone(),
+            (pad, used + 16 + super::line_height(NOTE) * k as i32),
+            ("sans-serif", NOTE).into_font().color(&BLACK),
         ))?;
     }
     Ok(())
@@ -305,12 +339,31 @@ fn quantity_range(d: &MapData, q: Quantity) -> (f64, f64) {
     }
 }
 
-use super::viridis;
+use super::{
+    viridis, Entry, Formats, Kind, Outputs, Placer, Print, Rendered, AXIS, NOTE, REGION, TICK,
+    TITLE,
+};
 
+/// Layout of every chart: margin, and the room for the tick labels and axis descriptions.
+pub(crate) const MARGIN: i32 = 28;
+pub(crate) const X_AREA: i32 = (TICK * 1.15 + AXIS * 1.25) as i32;
+pub(crate) const Y_AREA: i32 = (TICK * 2.3 + AXIS * 1.3) as i32;
+
+/// A whole map figure, or a small panel of one (the scene figure's): the panel has short axis
+/// names and smaller region labels, and no a/R lines.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Panel {
+    Full,
+    Inset,
+}
+
+/// The raster, the axes, the lines and the labels of a map.
 fn body<'a, DB: DrawingBackend + 'a, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
     d: &MapData,
     q: Option<Quantity>,
+    traced: &Traced,
+    panel: Panel,
 ) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
@@ -318,7 +371,8 @@ where
 {
     let sp = &d.spec;
     let y_log = sp.load_axis != LoadAxis::Linear;
-    // The raster: one pixel of the plotting area per bitmap pixel, nearest grid point.
+    // The raster: one bitmap pixel per drawing unit, nearest grid point (the SVG and PDF embed
+    // it; the lines on top are vectors).
     let (px, py) = chart.plotting_area().get_pixel_range();
     let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
     let range = q.map(|q| quantity_range(d, q));
@@ -351,12 +405,17 @@ where
     if let Some(el) = BitMapElement::with_owned_buffer(top_left, (w, h), buf) {
         chart.draw_series(std::iter::once(el))?;
     }
+    let (x_desc, y_desc) = match panel {
+        Panel::Full => ("Maugis parameter  λ", y_desc(sp.load_axis)),
+        Panel::Inset => ("λ", "\\bar{P}"),
+    };
     chart
         .configure_mesh()
         .disable_mesh()
-        .x_desc("Maugis parameter  λ")
-        .axis_desc_style(("sans-serif", 28))
-        .label_style(("sans-serif", 22))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .x_label_formatter(&|v| log_label(*v))
         .y_label_formatter(&|v| {
             if y_log {
@@ -367,101 +426,94 @@ where
         })
         .draw()?;
 
-    // Criteria lines at the tolerance, and the pull-off (edge of the no-contact region), traced
-    // on a grid strided to about the plot's pixel resolution: finer lines would not show.
-    let (nx, ny) = (sp.nx, sp.ny);
-    let k = nx.max(ny).div_ceil(800).max(1);
-    let (mx, my) = ((nx - 1) / k + 1, (ny - 1) / k + 1);
-    let fields: Vec<[f64; 5]> = (0..mx * my)
-        .into_par_iter()
-        .map(|j| {
-            let i = (j / mx) * k * nx + (j % mx) * k;
-            let s = &d.states[i];
-            let contact = if d.regions[i] == Region::NoContact {
-                0.0
-            } else {
-                1.0
-            };
-            if s.status != Status::Ok {
-                return [1e9, 1e9, 1e9, 1e9, contact];
-            }
-            let c = criteria(s.lambda, s.load, s.a, s.approach);
-            let f = |v: f64| if v.is_finite() { v } else { 1e9 };
-            [
-                f(c.err_hertz),
-                f(c.rigid),
-                f(c.err_dmt),
-                f(c.err_jkr),
-                contact,
-            ]
-        })
-        .collect();
-    let scaled = |path: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
-        path.into_iter()
-            .map(|(x, y)| to_chart(d, x * k as f64, y * k as f64))
-            .collect()
+    let mut placer = Placer::default();
+    let pixels = |chart: &ChartContext<'a, DB, _>, path: &[(f64, f64)]| -> Vec<(i32, i32)> {
+        path.iter().map(|p| chart.backend_coord(p)).collect()
     };
-    let names = ["Hertz", "Bradley (rigid)", "DMT", "JKR"];
-    // A legend only for lines that were drawn (none where no point is in contact).
-    let mut labelled = false;
-    for (c, name) in names.iter().enumerate() {
-        let field: Vec<f64> = fields.iter().map(|f| f[c]).collect();
-        let style = ShapeStyle::from(&line_color(c)).stroke_width(3);
-        let mut first = true;
-        for path in contour_paths(&field, mx, my, sp.tolerance) {
-            let series = chart.draw_series(LineSeries::new(scaled(path), style))?;
-            if first {
-                labelled = true;
-                series
-                    .label(format!("{name} within {}%", sp.tolerance * 100.0))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], style));
-                first = false;
-            }
+    for (c, paths) in traced.criteria.iter().enumerate() {
+        for path in paths {
+            placer.lines.push(pixels(chart, path));
+            chart.draw_series(LineSeries::new(path.clone(), criterion_style(c)))?;
         }
     }
-    let contact: Vec<f64> = fields.iter().map(|f| f[4]).collect();
-    let mut first = true;
-    let has_edge = contact.contains(&0.0) && contact.contains(&1.0);
-    for path in contour_paths(&contact, mx, my, 0.5)
-        .into_iter()
-        .filter(|_| has_edge)
-    {
-        let s = chart.draw_series(LineSeries::new(scaled(path), BLACK.stroke_width(3)))?;
-        if first {
-            labelled = true;
-            s.label("pull-off (load control)").legend(|(x, y)| {
-                PathElement::new(vec![(x, y), (x + 30, y)], BLACK.stroke_width(3))
-            });
-            first = false;
-        }
+    for path in &traced.pulloff {
+        placer.lines.push(pixels(chart, path));
+        chart.draw_series(LineSeries::new(path.clone(), BLACK.stroke_width(6)))?;
     }
-    for (k, line) in d.large_deformation.iter().enumerate() {
-        if line.points.len() < 2 {
-            continue;
-        }
-        let style = ShapeStyle::from(&BLACK).stroke_width(2);
-        chart.draw_series(DashedLineSeries::new(line.points.clone(), 12, 8, style))?;
-        let (lx, ly) = line.points[line.points.len() * (7 - 2 * k.min(2)) / 10];
-        chart.draw_series(std::iter::once(Text::new(
-            format!("a/R = 0.1, σ0/K = {}", line.strength_ratio),
-            (lx, ly),
-            ("sans-serif", 20).into_font(),
-        )))?;
+    let lines: Vec<_> = d
+        .large_deformation
+        .iter()
+        .filter(|l| l.points.len() >= 2 && panel == Panel::Full)
+        .collect();
+    for line in &lines {
+        placer.lines.push(pixels(chart, &line.points));
+        chart.draw_series(DashedLineSeries::new(
+            line.points.clone(),
+            24,
+            16,
+            large_deformation_style(),
+        ))?;
     }
     if q.is_none() {
-        region_labels(chart, d)?;
+        region_labels(chart, d, &mut placer, panel)?;
     }
-    if labelled {
-        super::legend(chart, SeriesLabelPosition::LowerRight, 20)?;
+    // Each a/R line's strength ratio beside it, where the label crosses no line and no label.
+    let frame = {
+        let (x, y) = chart.plotting_area().get_pixel_range();
+        (x.start + 4, y.start + 4, x.end - 4, y.end - 4)
+    };
+    for line in lines {
+        let text = format!("σ_{{0}}/K = {}", line.strength_ratio);
+        let tw = super::text_width(chart.plotting_area(), &text, NOTE);
+        let th = super::line_height(NOTE);
+        let n = line.points.len();
+        // Around points along the line, nearest first, on every side.
+        let spots = [0.7, 0.5, 0.85, 0.3, 0.6, 0.4, 0.75, 0.2, 0.9, 0.1]
+            .iter()
+            .flat_map(|f| {
+                let (x, y) = chart.backend_coord(&line.points[((n - 1) as f64 * f) as usize]);
+                [12, 36, 72].into_iter().flat_map(move |r| {
+                    [
+                        (x + r, y + r),
+                        (x - tw - r, y - th - r),
+                        (x + r, y - th - r),
+                        (x - tw - r, y + r),
+                        (x + r, y - th / 2),
+                        (x - tw - r, y - th / 2),
+                    ]
+                    .map(|(x0, y0)| (x0, y0, x0 + tw, y0 + th))
+                })
+            })
+            .collect::<Vec<_>>();
+        // Where every spot crosses a line (a crowded map), the one crossing fewest, on no label.
+        let found = placer
+            .take(spots.iter().copied(), frame)
+            .or_else(|| placer.take_least_crossing(spots, frame));
+        if let Some(b) = found {
+            let style = ("sans-serif", NOTE).into_font().color(&BLACK).pos(
+                plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Left,
+                    plotters::style::text_anchor::VPos::Top,
+                ),
+            );
+            chart.plotting_area().strip_coord_spec().draw(&Text::new(
+                text,
+                (b.0 - frame.0 + 4, b.1 - frame.1 + 4),
+                style,
+            ))?;
+        }
     }
     Ok(())
 }
 
-/// Region names at each region's pole of inaccessibility, found on a coarse grid: the cell of
-/// the region farthest from any other region (and from the frame).
+/// Region names at the freest spot of each region: cells of a coarse grid ranked by their
+/// distance from any other region (and from the frame), the first whose label box crosses no
+/// line and no label placed before.
 fn region_labels<'a, DB: DrawingBackend + 'a, Y>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
     d: &MapData,
+    placer: &mut Placer,
+    panel: Panel,
 ) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
@@ -469,7 +521,13 @@ where
 {
     // All-pairs distances on a C x C grid: 48 keeps it to ~5M per region.
     const C: usize = 48;
+    let sizes: &[f64] = if panel == Panel::Full {
+        &[REGION, NOTE]
+    } else {
+        &[NOTE]
+    };
     let (nx, ny) = (d.spec.nx, d.spec.ny);
+    let frac = |c: usize, n: usize| ((c * 2 + 1) * (n - 1)) as f64 / (2 * C - 1) as f64;
     let coarse: Vec<Region> = (0..C * C)
         .map(|k| {
             let (cx, cy) = (k % C, k / C);
@@ -479,6 +537,10 @@ where
             )
         })
         .collect();
+    let frame = {
+        let (x, y) = chart.plotting_area().get_pixel_range();
+        (x.start + 2, y.start + 2, x.end - 2, y.end - 2)
+    };
     for r in Region::ALL {
         if r == Region::NoContact || coarse.iter().filter(|&&x| x == r).count() < 12 {
             continue;
@@ -490,46 +552,99 @@ where
                 .collect();
             ys.iter().sum::<f64>() / ys.len() as f64
         };
-        let mut best = (f64::NEG_INFINITY, 0usize);
-        for k in 0..C * C {
-            if coarse[k] != r {
-                continue;
-            }
-            let (x, y) = ((k % C) as f64, (k / C) as f64);
-            // Labels are wide: horizontal distance counts a third.
-            let mut dist = (x + 1.0)
-                .min(C as f64 - x)
-                .min(3.0 * (y + 1.0))
-                .min(3.0 * (C as f64 - y))
-                / 3.0;
-            for (j, &cj) in coarse.iter().enumerate() {
-                if cj != r {
-                    let (u, v) = ((j % C) as f64, (j / C) as f64);
-                    dist = dist.min((((x - u) / 3.0).powi(2) + (y - v).powi(2)).sqrt());
+        let mut ranked: Vec<(f64, usize)> = (0..C * C)
+            .filter(|&k| coarse[k] == r)
+            .map(|k| {
+                let (x, y) = ((k % C) as f64, (k / C) as f64);
+                // Labels are wide: horizontal distance counts a third.
+                let mut dist = (x + 1.0)
+                    .min(C as f64 - x)
+                    .min(3.0 * (y + 1.0))
+                    .min(3.0 * (C as f64 - y))
+                    / 3.0;
+                for (j, &cj) in coarse.iter().enumerate() {
+                    if cj != r {
+                        let (u, v) = ((j % C) as f64, (j / C) as f64);
+                        dist = dist.min((((x - u) / 3.0).powi(2) + (y - v).powi(2)).sqrt());
+                    }
                 }
-            }
-            // Among equally free cells, prefer the region's vertical middle.
-            let score = dist.min(6.0) - 0.01 * (y - mid_y).abs();
-            if score > best.0 {
-                best = (score, k);
-            }
-        }
-        let (cx, cy) = (best.1 % C, best.1 / C);
-        let fx = ((cx * 2 + 1) * (nx - 1)) as f64 / (2 * C - 1) as f64;
-        let fy = ((cy * 2 + 1) * (ny - 1)) as f64 / (2 * C - 1) as f64;
-        let style = ("sans-serif", 30).into_font().color(&BLACK).pos(
+                // Among equally free cells, prefer the region's vertical middle.
+                (dist.min(6.0) - 0.01 * (y - mid_y).abs(), k)
+            })
+            .collect();
+        ranked.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let label = match r {
+            Region::Rigid => "Bradley".to_string(),
+            Region::Md => "MD".to_string(),
+            _ => r.label().to_string(),
+        };
+        // The larger size where it fits, else the smaller one; no label rather than one on a line.
+        let Some((b, size)) = sizes.iter().find_map(|&size| {
+            let (tw, th) = (
+                super::text_width(chart.plotting_area(), &label, size),
+                super::line_height(size),
+            );
+            let spots: Vec<_> = ranked
+                .iter()
+                .map(|&(_, k)| {
+                    let (x, y) =
+                        chart.backend_coord(&to_chart(d, frac(k % C, nx), frac(k / C, ny)));
+                    (x - tw / 2, y - th / 2, x + tw / 2, y + th / 2)
+                })
+                .collect();
+            placer.take(spots, frame).map(|b| (b, size))
+        }) else {
+            continue;
+        };
+        let style = ("sans-serif", size).into_font().color(&BLACK).pos(
             plotters::style::text_anchor::Pos::new(
                 plotters::style::text_anchor::HPos::Center,
                 plotters::style::text_anchor::VPos::Center,
             ),
         );
-        chart.draw_series(std::iter::once(Text::new(
-            r.label().to_string(),
-            to_chart(d, fx, fy),
+        let (x0, y0) = (frame.0 - 2, frame.1 - 2);
+        chart.plotting_area().strip_coord_spec().draw(&Text::new(
+            label,
+            ((b.0 + b.2) / 2 - x0, (b.1 + b.3) / 2 - y0),
             style,
-        )))?;
+        ))?;
     }
     Ok(())
+}
+
+/// Draws a small map (regions and their boundaries, no legend) into `area`: the scene figure's
+/// panel. Returns the chart so that the caller can mark points on it.
+pub(crate) fn inset<'a, DB: DrawingBackend + 'a>(
+    area: &'a DrawingArea<DB, Shift>,
+    d: &MapData,
+    caption: &str,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<
+            plotters::coord::combinators::LogCoord<f64>,
+            plotters::coord::types::RangedCoordf64,
+        >,
+    >,
+    Err,
+>
+where
+    DB::ErrorType: 'static,
+{
+    let sp = &d.spec;
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", AXIS))
+        .margin(MARGIN)
+        .margin_right(MARGIN + (TICK * 0.9) as i32)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size((TICK * 1.6 + AXIS * 1.3) as i32)
+        .build_cartesian_2d(
+            (sp.lambda_min..sp.lambda_max).log_scale(),
+            sp.load_min..sp.load_max,
+        )?;
+    body(&mut chart, d, None, &trace(d), Panel::Inset)?;
+    Ok(chart)
 }
 
 /// Marching-squares contour paths of `field` (row-major, nx x ny) at `level`, in fractional grid
@@ -592,12 +707,32 @@ where
     DB::ErrorType: 'static,
 {
     let (lo, hi) = quantity_range(d, q);
-    let log = q.log();
-    super::colorbar(area, lo, hi, &|v| {
-        if log {
-            format!("1e{:.1}", v).replace(".0", "")
-        } else {
-            format!("{:.2}", q.inverse(v))
+    let ticks: Vec<(f64, String)> = if q.log() {
+        super::round_ticks(lo, hi)
+            .into_iter()
+            .map(|v| {
+                let e = crate::physics::domain::short((v * 10.0).round() / 10.0);
+                (v, format!("10^{{{}}}", super::minus(&e)))
+            })
+            .collect()
+    } else {
+        // The signed-log scale: round values (0, +-0.1, +-1, +-10, ...) at their places.
+        let mut vals = vec![0.0];
+        for e in -1..=8 {
+            for m in [1.0, 3.0] {
+                let v = m * 10f64.powi(e);
+                vals.extend([v, -v]);
+            }
         }
-    })
+        let mut t: Vec<(f64, f64)> = vals.into_iter().map(|v| (q.transform(v), v)).collect();
+        t.retain(|p| (lo..=hi).contains(&p.0));
+        t.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // At most seven, evenly thinned.
+        let k = t.len().div_ceil(7).max(1);
+        t.into_iter()
+            .step_by(k)
+            .map(|(c, v)| (c, super::minus(&super::linear_label(v))))
+            .collect()
+    };
+    super::colorbar(area, lo, hi, &ticks)
 }

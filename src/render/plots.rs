@@ -7,31 +7,47 @@ use crate::physics::closed::{
 use crate::physics::md::LAMBDA_D;
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
-pub const W: u32 = 1400;
-pub const H: u32 = 1000;
 
-/// A figure's drawing code, on the SVG backend (the PNG is that SVG rasterised).
-pub type DrawSvg<'a> = &'a dyn for<'b> Fn(&DrawingArea<SVGBackend<'b>, Shift>) -> Result<(), Err>;
+use super::map::{MARGIN, X_AREA, Y_AREA};
+pub use super::DrawSvg;
+use super::{sample, sample_dashed, Kind, Outputs, Print, AXIS, NOTE, TICK, TITLE};
 
-/// Draws with `g` as an SVG document of W x H, and rasterises it with anti-aliasing into PNG
-/// bytes, as asked.
-pub fn render(png: bool, svg: bool, g: DrawSvg) -> Result<(Option<Vec<u8>>, Option<String>), Err> {
-    super::draw_figure((W, H), png, svg, |root| g(root))
+/// Draws a figure of `kind` with `g` and writes it to the files in `out`.
+pub fn save(kind: Kind, print: &Print, out: &Outputs, g: DrawSvg) -> anyhow::Result<()> {
+    super::save(kind, print, out, g)
 }
 
-/// Draws with `g` into a PNG file and/or an SVG file of W x H.
-pub fn save(png: Option<&Path>, svg: Option<&Path>, g: DrawSvg) -> Result<(), Err> {
-    let (png_bytes, svg_text) = render(png.is_some(), svg.is_some(), g)?;
-    if let (Some(p), Some(b)) = (png, png_bytes) {
-        crate::io::write_output(p, &b)?;
+/// A chart builder with the common layout: title, margin, and room for ticks and axis names.
+fn builder<'a, 'b, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+) -> ChartBuilder<'a, 'b, DB> {
+    let mut b = ChartBuilder::on(area);
+    if !title.is_empty() {
+        b.caption(title, ("sans-serif", TITLE));
     }
-    if let (Some(p), Some(s)) = (svg, svg_text) {
-        crate::io::write_output(p, s.as_bytes())?;
+    // On the right, room for half of the last tick label.
+    b.margin(MARGIN)
+        .margin_top(MARGIN + (TICK * 0.5) as i32)
+        .margin_right(MARGIN + (TICK * 0.9) as i32)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(Y_AREA);
+    b
+}
+
+/// Splits a two-panel figure: side by side when wide, stacked when narrow (one column).
+fn two_panels<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+) -> (DrawingArea<DB, Shift>, DrawingArea<DB, Shift>) {
+    let (w, h) = root.dim_in_pixel();
+    if w as f64 / h as f64 > 1.2 {
+        root.split_horizontally(w * 3 / 5)
+    } else {
+        root.split_vertically(h * 11 / 20)
     }
-    Ok(())
 }
 
 const BLUE_: RGBColor = RGBColor(0, 114, 178);
@@ -40,7 +56,7 @@ const GREEN_: RGBColor = RGBColor(0, 158, 115);
 const GRAY_: RGBColor = RGBColor(120, 120, 120);
 
 /// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
-/// JKR limits and the Johnson-Greenwood fit.
+/// JKR limits and the Carpick-Ogletree-Salmeron fit.
 pub fn pulloff<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     data: &crate::figure_data::PulloffData,
@@ -50,26 +66,25 @@ where
 {
     root.fill(&WHITE)?;
     let (lambdas, ctx) = (&data.lambdas, &data.contexts);
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            "Pull-off force against the Maugis parameter",
-            ("sans-serif", 34),
-        )
-        .margin(24)
-        .x_label_area_size(80)
-        .y_label_area_size(100)
-        .build_cartesian_2d((1e-4..1e4f64).log_scale(), -2.1..-0.7f64)?;
+    let mut chart = builder(root, "Pull-off force").build_cartesian_2d(
+        (1e-4..1e4f64)
+            .log_scale()
+            .with_key_points(vec![1e-4, 1e-2, 1.0, 1e2, 1e4]),
+        -2.1..-0.7f64,
+    )?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
         .x_desc("Maugis parameter  λ")
-        .y_desc("pull-off load  P / (π w R)")
-        .axis_desc_style(("sans-serif", 28))
-        .label_style(("sans-serif", 22))
+        .y_desc("pull-off load  \\bar{P}_{c} = P_{c}/(πwR)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .x_label_formatter(&|v| log_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
-    let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(4);
+    let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(8);
     chart
         .draw_series(LineSeries::new(
             lambdas
@@ -78,8 +93,8 @@ where
                 .map(|(&l, c)| (l, c.load_pulloff.load)),
             thick(BLUE_),
         ))?
-        .label("Maugis-Dugdale, load control (dead load)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], thick(BLUE_)));
+        .label("MD, load control")
+        .legend(sample(thick(BLUE_)));
     chart
         .draw_series(LineSeries::new(
             lambdas
@@ -88,47 +103,58 @@ where
                 .map(|(&l, c)| (l, c.disp_pulloff.load)),
             thick(ORANGE_),
         ))?
-        .label("Maugis-Dugdale, displacement control (rigid grips)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], thick(ORANGE_)));
+        .label("MD, rigid grips")
+        .legend(sample(thick(ORANGE_)));
+    let cos = ShapeStyle::from(&GREEN_).stroke_width(6);
     chart
         .draw_series(DashedLineSeries::new(
             lambdas.iter().map(|&l| (l, cos_pulloff(l))),
-            10,
-            8,
-            ShapeStyle::from(&GREEN_).stroke_width(3),
+            20,
+            16,
+            cos,
         ))?
-        .label("Johnson-Greenwood fit (COS), load control")
-        .legend(move |(x, y)| {
-            PathElement::new(
-                vec![(x, y), (x + 30, y)],
-                ShapeStyle::from(&GREEN_).stroke_width(3),
-            )
-        });
-    let gray = ShapeStyle::from(&GRAY_).stroke_width(2);
+        .label("COS fit (Carpick 1999)")
+        .legend(sample_dashed(cos));
+    let gray = ShapeStyle::from(&GRAY_).stroke_width(4);
     for (y, text) in [
-        (-2.0, "DMT / Bradley: −2"),
+        (-2.0, "DMT, Bradley: −2"),
         (JKR_PULLOFF_LOAD, "JKR, load control: −3/2"),
         (JKR_PULLOFF_DISPLACEMENT, "JKR, displacement control: −5/6"),
     ] {
-        chart.draw_series(DashedLineSeries::new(vec![(1e-4, y), (1e4, y)], 6, 6, gray))?;
+        chart.draw_series(DashedLineSeries::new(
+            vec![(1e-4, y), (1e4, y)],
+            12,
+            12,
+            gray,
+        ))?;
         chart.draw_series(std::iter::once(Text::new(
             text,
-            (2e-4, y + 0.045),
-            ("sans-serif", 20).into_font().color(&GRAY_),
+            (1.6e-4, y + 0.02),
+            ("sans-serif", NOTE)
+                .into_font()
+                .color(&GRAY_)
+                .pos(Pos::new(HPos::Left, VPos::Bottom)),
         )))?;
     }
     chart.draw_series(DashedLineSeries::new(
         vec![(LAMBDA_D, -2.1), (LAMBDA_D, -0.7)],
-        4,
-        6,
-        ShapeStyle::from(&BLACK).stroke_width(1),
+        8,
+        12,
+        ShapeStyle::from(&BLACK).stroke_width(2),
     ))?;
     chart.draw_series(std::iter::once(Text::new(
-        "λ_D = 0.938: below it, rigid grips lose contact at zero radius",
-        (LAMBDA_D * 1.15, -0.75),
-        ("sans-serif", 20).into_font(),
+        "λ_{D} = 0.938",
+        (LAMBDA_D * 1.25, -1.25),
+        ("sans-serif", NOTE)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Center)),
     )))?;
-    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 22)?;
+    // In the empty band between the two JKR limits, right of the transition.
+    let (x0, y0) = chart.backend_coord(&(1.2, -0.93));
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let at = SeriesLabelPosition::Coordinate(x0 - px.start, y0 - py.start);
+    super::legend(&mut chart, at, NOTE)?;
     Ok(())
 }
 
@@ -142,23 +168,19 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(root)
-        .caption(
-            "Contact radius against load: Maugis-Dugdale and the closed forms",
-            ("sans-serif", 32),
-        )
-        .margin(24)
-        .x_label_area_size(80)
-        .y_label_area_size(90)
+    let mut chart = builder(root, "Contact radius against load")
         .build_cartesian_2d(-2.2..4.0f64, 0.0..2.6f64)?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
-        .x_desc("load  P / (π w R)")
-        .y_desc("contact radius  A = a (K / (π w R²))^(1/3)")
-        .axis_desc_style(("sans-serif", 26))
-        .label_style(("sans-serif", 22))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("load  \\bar{P} = P/(πwR)")
+        .y_desc("contact radius  A = a (K/πwR²)^{1/3}")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
     let grid: Vec<f64> = (0..=600).map(|i| -2.2 + 6.2 * i as f64 / 600.0).collect();
     let closed = [
@@ -167,16 +189,16 @@ where
         ("JKR", ORANGE_, jkr_radius),
     ];
     for (name, col, f) in closed {
-        let st = ShapeStyle::from(&col).stroke_width(2);
+        let st = ShapeStyle::from(&col).stroke_width(4);
         chart
             .draw_series(DashedLineSeries::new(
                 grid.iter().filter_map(|&p| f(p).map(|a| (p, a))),
-                8,
-                6,
+                16,
+                12,
                 st,
             ))?
-            .label(format!("{name} (closed form)"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+            .label(name)
+            .legend(sample_dashed(st));
     }
     let palette = [
         RGBColor(0, 0, 0),
@@ -190,25 +212,28 @@ where
         let col = palette[k % palette.len()];
         let stable: Vec<(f64, f64)> = pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
         let unstable: Vec<(f64, f64)> = pts.iter().filter(|p| !p.2).map(|p| (p.0, p.1)).collect();
-        let st = ShapeStyle::from(&col).stroke_width(4);
+        let st = ShapeStyle::from(&col).stroke_width(8);
         chart
             .draw_series(LineSeries::new(stable, st))?
-            .label(format!("Maugis-Dugdale, λ = {l}"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+            .label(format!("MD, λ = {l}"))
+            .legend(sample(st));
         chart.draw_series(DashedLineSeries::new(
             unstable,
-            5,
-            5,
-            ShapeStyle::from(&col).stroke_width(2),
+            10,
+            10,
+            ShapeStyle::from(&col).stroke_width(4),
         ))?;
-        chart.draw_series(std::iter::once(Circle::new(cs.pulloff, 7, col.filled())))?;
+        chart.draw_series(std::iter::once(Circle::new(cs.pulloff, 14, col.filled())))?;
     }
     chart.draw_series(std::iter::once(Text::new(
-        "dots: pull-off under load control; thin dashes: unstable branch",
-        (-2.1, 0.08),
-        ("sans-serif", 20).into_font(),
+        "dots: pull-off; thin dashes: unstable",
+        (3.9, 0.06),
+        ("sans-serif", NOTE)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Right, VPos::Bottom)),
     )))?;
-    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, 22)?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, NOTE)?;
     Ok(())
 }
 
@@ -234,23 +259,19 @@ where
         speeds.iter().cloned().fold(f64::INFINITY, f64::min),
         speeds.iter().cloned().fold(0.0, f64::max),
     );
-    let mut chart = ChartBuilder::on(root)
-        .caption(title, ("sans-serif", 30))
-        .margin(24)
-        .x_label_area_size(80)
-        .y_label_area_size(110)
-        .build_cartesian_2d(
-            (1e-13..3.0f64).log_scale(),
-            ((smin / 3.0).max(1.0)..smax * 5.0).log_scale(),
-        )?;
+    let mut chart = builder(root, title).build_cartesian_2d(
+        (1e-13..3.0f64).log_scale(),
+        ((smin / 3.0).max(1.0)..smax * 5.0).log_scale(),
+    )?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
         .x_desc("max relative error of A against the exact solution")
         .y_desc("throughput (solves per second)")
-        .axis_desc_style(("sans-serif", 26))
-        .label_style(("sans-serif", 20))
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .x_label_formatter(&|v| log_label(*v))
         .y_label_formatter(&|v| log_label(*v))
         .draw()?;
@@ -261,15 +282,10 @@ where
     chart
         .draw_series(LineSeries::new(
             pf,
-            ShapeStyle::from(&GREEN_).stroke_width(3),
+            ShapeStyle::from(&GREEN_).stroke_width(6),
         ))?
-        .label("Pareto front (no variant is both faster and more accurate)")
-        .legend(|(x, y)| {
-            PathElement::new(
-                vec![(x, y), (x + 30, y)],
-                ShapeStyle::from(&GREEN_).stroke_width(3),
-            )
-        });
+        .label("Pareto front")
+        .legend(sample(ShapeStyle::from(&GREEN_).stroke_width(6)));
     // Markers first; then each label at the first nearby spot that overlaps no marker and no
     // label placed before it (boxes in pixels; the text width is estimated from the font size).
     let mut taken: Vec<(i32, i32, i32, i32)> = Vec::new();
@@ -283,13 +299,13 @@ where
             GRAY_
         };
         let style = if r.failures > 0 {
-            ShapeStyle::from(&col).stroke_width(3)
+            ShapeStyle::from(&col).stroke_width(6)
         } else {
             col.filled()
         };
-        chart.draw_series(std::iter::once(Circle::new((x, y), 9, style)))?;
+        chart.draw_series(std::iter::once(Circle::new((x, y), 18, style)))?;
         let (px, py) = chart.backend_coord(&(x, y));
-        taken.push((px - 11, py - 11, px + 11, py + 11));
+        taken.push((px - 22, py - 22, px + 22, py + 22));
     }
     let plot = chart.plotting_area().get_pixel_range();
     let overlaps = |b: (i32, i32, i32, i32), o: &(i32, i32, i32, i32)| {
@@ -306,12 +322,15 @@ where
             r.name.clone()
         };
         let (px, py) = chart.backend_coord(&(x, y));
-        let (w, h) = ((label.chars().count() as f64 * 9.4) as i32, 20);
+        let (w, h) = (
+            super::text_width(root, &label, NOTE),
+            super::line_height(NOTE),
+        );
         let right_first = x <= 1e-2;
         let mut spots = Vec::new();
-        for dy in [0, -22, 22, -44, 44, -66, 66] {
+        for dy in [0, -1, 1, -2, 2, -3, 3].map(|k| k * (h + 4)) {
             for right in [right_first, !right_first] {
-                let x0 = if right { px + 14 } else { px - 14 - w };
+                let x0 = if right { px + 28 } else { px - 28 - w };
                 spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
             }
         }
@@ -321,25 +340,23 @@ where
             .find(|b| inside(b) && !taken.iter().any(|o| overlaps(*b, o)))
             .unwrap_or(spots[0]);
         taken.push(spot);
-        let style = ("sans-serif", 18).into_font().color(&BLACK).pos(
-            plotters::style::text_anchor::Pos::new(
-                plotters::style::text_anchor::HPos::Left,
-                plotters::style::text_anchor::VPos::Center,
-            ),
-        );
+        let style = ("sans-serif", NOTE)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Center));
         root.draw(&Text::new(label, (spot.0, (spot.1 + spot.3) / 2), style))?;
     }
     chart.draw_series(std::iter::once(Text::new(
-        "orange: GPU kernels; blue: CPU solvers; gray: closed forms; hollow: some points failed",
+        "orange: GPU; blue: CPU; gray: closed forms; hollow: some points failed",
         (2e-13, smin / 2.2),
-        ("sans-serif", 18).into_font(),
+        ("sans-serif", NOTE).into_font(),
     )))?;
-    super::legend(&mut chart, SeriesLabelPosition::UpperRight, 20)?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
     Ok(())
 }
 
-/// A scene: a(P) in SI units (MD bold, the recommended model dashed, the others faint) and, right,
-/// the scene's lambda and loads on a small adhesion map.
+/// A scene: a(P) in SI units with engineering prefixes (MD bold, the recommended model dashed,
+/// the others faint) and the scene's lambda and loads on the adhesion map.
 pub fn scene<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     r: &crate::scene::SceneResult,
@@ -349,39 +366,28 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let (left, right) = root.split_horizontally(W * 3 / 5);
+    let (left, right) = two_panels(root);
     let (fs, rs) = (fig.force_scale, fig.radius_scale);
     let (pc, pmax) = fig.loads;
     let md = &fig.md;
     let amax = md.iter().map(|q| q.1).fold(0.0, f64::max) * 1.1;
-    let mut chart = ChartBuilder::on(&left)
-        .caption(&r.name, ("sans-serif", 24))
-        .margin(20)
-        .x_label_area_size(70)
-        .y_label_area_size(100)
-        .build_cartesian_2d(pc * 1.4..pmax, 0.0..amax)?;
+    // Display units: the prefix that keeps the ticks between 1 and 1000.
+    let (fu, fp) = super::si_prefix(pmax.max(pc.abs() * 1.4));
+    let (au, ap) = super::si_prefix(amax);
+    let p_lo = pc * 1.4;
+    let mut chart =
+        builder(&left, &r.name).build_cartesian_2d(p_lo / fu..pmax / fu, 0.0..amax / au)?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
-        .x_desc("load P (N)")
-        .y_desc("contact radius a (m)")
-        .axis_desc_style(("sans-serif", 22))
-        .label_style(("sans-serif", 16))
-        .x_label_formatter(&|v| {
-            if v.abs() < 1e-6 * pmax {
-                "0".into()
-            } else {
-                format!("{v:.2e}")
-            }
-        })
-        .y_label_formatter(&|v| {
-            if v.abs() < 1e-6 * amax {
-                "0".into()
-            } else {
-                format!("{v:.2e}")
-            }
-        })
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc(format!("load  P ({fp}N)"))
+        .y_desc(format!("contact radius  a ({ap}m)"))
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
     let closed = [
         (
@@ -396,86 +402,79 @@ where
     for (key, name, col, f) in closed {
         let rec = r.recommended_model == key;
         let st = if rec {
-            ShapeStyle::from(&col).stroke_width(4)
+            ShapeStyle::from(&col).stroke_width(8)
         } else {
-            ShapeStyle::from(&col.mix(0.35)).stroke_width(2)
+            ShapeStyle::from(&col.mix(0.35)).stroke_width(4)
         };
         let pts: Vec<(f64, f64)> = (0..=300)
             .filter_map(|i| {
-                let p = pc * 1.4 + (pmax - pc * 1.4) * i as f64 / 300.0;
-                f(p / fs).map(|a| (p, a * rs)).filter(|q| q.1 <= amax)
+                let p = p_lo + (pmax - p_lo) * i as f64 / 300.0;
+                f(p / fs)
+                    .map(|a| (p / fu, a * rs / au))
+                    .filter(|q| q.1 <= amax / au)
             })
             .collect();
         chart
-            .draw_series(DashedLineSeries::new(pts, 8, 6, st))?
+            .draw_series(DashedLineSeries::new(pts, 16, 12, st))?
             .label(if rec {
                 format!("{name} (recommended)")
             } else {
                 name.to_string()
             })
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+            .legend(sample_dashed(st));
     }
-    let st = ShapeStyle::from(&BLACK).stroke_width(3);
+    let st = ShapeStyle::from(&BLACK).stroke_width(6);
     chart
-        .draw_series(LineSeries::new(md.iter().copied(), st))?
+        .draw_series(LineSeries::new(
+            md.iter().map(|&(p, a)| (p / fu, a / au)),
+            st,
+        ))?
         .label("Maugis-Dugdale (exact)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+        .legend(sample(st));
     for l in &r.loads {
         if let Some(a) = l.contact_radius_m {
             chart.draw_series(std::iter::once(Circle::new(
-                (l.load_n, a),
-                6,
+                (l.load_n / fu, a / au),
+                12,
                 BLACK.filled(),
             )))?;
         }
     }
-    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 18)?;
+    super::legend(&mut chart, SeriesLabelPosition::LowerRight, NOTE)?;
 
-    // Right: where the scene sits on the map (normalised loads).
+    // Where the scene sits on the map (normalised loads), drawn as `tabor map` draws.
     let d = &fig.map;
-    let mut ch = ChartBuilder::on(&right)
-        .caption("on the adhesion map", ("sans-serif", 22))
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(60)
-        .build_cartesian_2d((1e-3..1e3f64).log_scale(), -2.0..10.0f64)?;
-    let (px, py) = ch.plotting_area().get_pixel_range();
-    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
-    let mut buf = vec![0u8; (w * h * 3) as usize];
-    for rr in 0..h {
-        let iy = ((1.0 - (rr as f64 + 0.5) / h as f64) * 159.0).round() as usize;
-        for c in 0..w {
-            let ix = (((c as f64 + 0.5) / w as f64) * 159.0).round() as usize;
-            let col = crate::render::map::region_color(d.region_at(ix, iy));
-            let k = ((rr * w + c) * 3) as usize;
-            buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
-        }
-    }
-    if let Some(el) = BitMapElement::with_owned_buffer((1e-3, 10.0), (w, h), buf) {
-        ch.draw_series(std::iter::once(el))?;
-    }
-    ch.configure_mesh()
-        .disable_mesh()
-        .x_desc("λ")
-        .y_desc("P / (π w R)")
-        .axis_desc_style(("sans-serif", 20))
-        .label_style(("sans-serif", 16))
-        .x_label_formatter(&|v| log_label(*v))
-        .draw()?;
-    let l = r.lambda.clamp(1e-3, 1e3);
+    let mut ch = super::map::inset(&right, d, "on the adhesion map")?;
+    let l = r.lambda.clamp(d.spec.lambda_min, d.spec.lambda_max);
     for ld in &r.loads {
-        let y = ld.load_normalised.clamp(-2.0, 10.0);
+        let y = ld.load_normalised.clamp(d.spec.load_min, d.spec.load_max);
         ch.draw_series(std::iter::once(Cross::new(
             (l, y),
-            8,
-            BLACK.stroke_width(3),
+            16,
+            BLACK.stroke_width(6),
         )))?;
     }
+    let right_half = l > (d.spec.lambda_min * d.spec.lambda_max).sqrt();
     ch.draw_series(std::iter::once(Text::new(
-        format!("λ = {:.3}", r.lambda),
-        (l.clamp(2e-3, 50.0), 9.0),
-        ("sans-serif", 20).into_font(),
+        format!(
+            "λ = {}",
+            crate::physics::domain::short((r.lambda * 1e3).round() / 1e3)
+        ),
+        (
+            l * if right_half { 0.8 } else { 1.25 },
+            d.spec.load_max - 0.04 * (d.spec.load_max - d.spec.load_min),
+        ),
+        ("sans-serif", NOTE).into_font().color(&BLACK).pos(Pos::new(
+            if right_half { HPos::Right } else { HPos::Left },
+            VPos::Top,
+        )),
     )))?;
+    ch.draw_series(DashedLineSeries::new(
+        vec![(l, d.spec.load_min), (l, d.spec.load_max)],
+        8,
+        12,
+        ShapeStyle::from(&BLACK.mix(0.6)).stroke_width(2),
+    ))?;
     Ok(())
 }
 
@@ -489,7 +488,7 @@ where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
-    let (left, right) = root.split_horizontally(W * 3 / 5);
+    let (left, right) = two_panels(root);
     let steps = |ph: crate::cycle::Phase| -> Vec<&crate::cycle::Step> {
         c.steps.iter().filter(|s| s.phase == ph).collect()
     };
@@ -499,40 +498,49 @@ where
         .filter(|p| p.branch != crate::cycle::Branch::Free)
         .map(|p| p.approach)
         .collect();
-    let (xmin, xmax) = (
-        xs.iter().cloned().fold(f64::INFINITY, f64::min),
-        xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
-    );
+    // The range holds every jump's landing too, so that each arrow ends inside the axes.
+    let landings = c
+        .jumps
+        .iter()
+        .filter_map(|j| j.to.as_ref().map(|t| t.approach));
+    let (xmin, xmax) = xs
+        .iter()
+        .cloned()
+        .chain(landings)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
     let pad = 0.08 * (xmax - xmin);
-    let (ymin, ymax) = (
-        c.path.iter().map(|p| p.load).fold(0.0, f64::min),
-        c.path.iter().map(|p| p.load).fold(0.0, f64::max),
-    );
+    let (ymin, ymax) = c
+        .path
+        .iter()
+        .map(|p| p.load)
+        .chain(c.jumps.iter().filter_map(|j| j.to.as_ref().map(|t| t.load)))
+        .fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
     let drive = match c.drive {
         crate::cycle::Drive::RigidGrips => "rigid grips".to_string(),
         crate::cycle::Drive::DeadLoad => "dead load".to_string(),
         crate::cycle::Drive::Spring(k) => format!("spring, k = {k:.3}"),
     };
-    let mut chart = ChartBuilder::on(&left)
-        .caption(
-            format!("Approach and retract, λ = {}, {drive}", c.lambda),
-            ("sans-serif", 26),
-        )
-        .margin(20)
-        .x_label_area_size(70)
-        .y_label_area_size(90)
-        .build_cartesian_2d(
-            xmin - pad..xmax + pad,
-            ymin * 1.15 - 0.05..ymax * 1.05 + 0.05,
-        )?;
+    let mut chart = builder(
+        &left,
+        &format!("Approach and retract, λ = {}, {drive}", c.lambda),
+    )
+    .build_cartesian_2d(
+        xmin - pad..xmax + pad,
+        ymin * 1.15 - 0.05..ymax * 1.05 + 0.05,
+    )?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
-        .x_desc("approach  δ (K² / (π² w² R))^(1/3)")
-        .y_desc("load  P / (π w R)")
-        .axis_desc_style(("sans-serif", 22))
-        .label_style(("sans-serif", 18))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("approach  Δ = δ (K²/π²w²R)^{1/3}")
+        .y_desc("load  \\bar{P} = P/(πwR)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
     let eq: Vec<(f64, f64)> = c
         .path
@@ -540,14 +548,14 @@ where
         .filter(|p| p.approach >= xmin - pad)
         .map(|p| (p.approach, p.load))
         .collect();
-    let faint = ShapeStyle::from(&RGBColor(170, 170, 170)).stroke_width(6);
+    let faint = ShapeStyle::from(&RGBColor(170, 170, 170)).stroke_width(12);
     chart
         .draw_series(LineSeries::new(eq, faint))?
-        .label("equilibrium path (all states)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], faint));
+        .label("equilibrium path")
+        .legend(sample(faint));
     // Retract first and wide, approach on top and thin: where they coincide both stay visible.
     use crate::cycle::Phase;
-    for (ph, col, width) in [(Phase::Retract, ORANGE_, 6), (Phase::Approach, BLUE_, 2)] {
+    for (ph, col, width) in [(Phase::Retract, ORANGE_, 12), (Phase::Approach, BLUE_, 4)] {
         let st = ShapeStyle::from(&col).stroke_width(width);
         let mut seg: Vec<(f64, f64)> = Vec::new();
         let mut first = true;
@@ -555,8 +563,7 @@ where
             if s.jump && !seg.is_empty() {
                 let s2 = chart.draw_series(LineSeries::new(std::mem::take(&mut seg), st))?;
                 if first {
-                    s2.label(ph.to_string())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+                    s2.label(ph.to_string()).legend(sample(st));
                     first = false;
                 }
             }
@@ -567,8 +574,7 @@ where
         if !seg.is_empty() {
             let s2 = chart.draw_series(LineSeries::new(seg, st))?;
             if first {
-                s2.label(ph.to_string())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+                s2.label(ph.to_string()).legend(sample(st));
             }
         }
     }
@@ -581,25 +587,25 @@ where
         };
         let from = (j.from.approach, j.from.load);
         let to = match &j.to {
-            Some(t) => (t.approach.max(xmin - pad), t.load),
+            Some(t) => (t.approach, t.load),
             None => (j.from.approach, ymax * 1.05 + 0.05),
         };
         chart.draw_series(DashedLineSeries::new(
             vec![from, to],
-            6,
-            4,
-            ShapeStyle::from(&col).stroke_width(2),
+            12,
+            8,
+            ShapeStyle::from(&col).stroke_width(4),
         ))?;
         let (p0, p1) = (chart.backend_coord(&from), chart.backend_coord(&to));
         let (dx, dy) = ((p1.0 - p0.0) as f64, (p1.1 - p0.1) as f64);
         let len = (dx * dx + dy * dy).sqrt().max(1.0);
         let (ux, uy) = (dx / len, dy / len);
         let tip = p1;
-        let base = (tip.0 as f64 - 16.0 * ux, tip.1 as f64 - 16.0 * uy);
+        let base = (tip.0 as f64 - 32.0 * ux, tip.1 as f64 - 32.0 * uy);
         let wing = |s: f64| {
             (
-                (base.0 - 7.0 * uy * s) as i32,
-                (base.1 + 7.0 * ux * s) as i32,
+                (base.0 - 14.0 * uy * s) as i32,
+                (base.1 + 14.0 * ux * s) as i32,
             )
         };
         root.draw(&Polygon::new(
@@ -607,16 +613,44 @@ where
             col.filled(),
         ))?;
     }
-    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, 18)?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, NOTE)?;
     let energy = match c.hysteresis {
-        Some(w) => format!("energy lost per cycle: {w:.4}"),
-        None => "the surfaces separate: no closed cycle".into(),
+        Some(w) => format!("energy lost: {w:.4}"),
+        None => "no closed cycle".into(),
     };
-    let (lw, lh) = left.dim_in_pixel();
-    left.draw(&Text::new(
+    // In a corner that no curve crosses (the legend holds the upper left).
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let mut placer = super::Placer::default();
+    placer.lines.push(
+        c.path
+            .iter()
+            .map(|p| chart.backend_coord(&(p.approach, p.load)))
+            .collect(),
+    );
+    let (tw, th) = (
+        super::text_width(root, &energy, NOTE),
+        super::line_height(NOTE),
+    );
+    let frame = (px.start, py.start, px.end, py.end);
+    let corners = [
+        (px.end - 20 - tw, py.end - 20 - th),
+        (px.start + 20, py.end - 20 - th),
+        (px.end - 20 - tw, py.start + 20),
+        (px.start + 20, (py.start + py.end) / 2),
+    ]
+    // Padded by the half-width of the thick curves.
+    .map(|(x, y)| (x - 12, y - 12, x + tw + 12, y + th + 12));
+    let b = placer
+        .take(corners, frame)
+        .or_else(|| placer.take_least_crossing(corners, frame))
+        .unwrap_or(corners[0]);
+    root.draw(&Text::new(
         energy,
-        (lw as i32 - 400, lh as i32 - 120),
-        ("sans-serif", 20).into_font(),
+        (b.0 + 12, b.1 + 12),
+        ("sans-serif", NOTE)
+            .into_font()
+            .color(&BLACK)
+            .pos(Pos::new(HPos::Left, VPos::Top)),
     ))?;
 
     let contact: Vec<&crate::cycle::PathPoint> = c
@@ -625,25 +659,24 @@ where
         .filter(|p| p.branch == crate::cycle::Branch::Contact)
         .collect();
     let amax = contact.iter().map(|p| p.a).fold(0.0, f64::max) * 1.05;
-    let mut ch = ChartBuilder::on(&right)
-        .caption("contact radius against load", ("sans-serif", 22))
-        .margin(20)
-        .x_label_area_size(70)
-        .y_label_area_size(70)
+    let mut ch = builder(&right, "contact radius against load")
         .build_cartesian_2d(ymin * 1.15 - 0.05..ymax * 1.05 + 0.05, 0.0..amax)?;
     ch.configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
-        .x_desc("load  P / (π w R)")
-        .y_desc("contact radius A")
-        .axis_desc_style(("sans-serif", 20))
-        .label_style(("sans-serif", 16))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("load  \\bar{P}")
+        .y_desc("contact radius  A")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
     ch.draw_series(LineSeries::new(
         contact.iter().map(|p| (p.load, p.a)),
         faint,
     ))?;
-    for (ph, col, r) in [(Phase::Retract, ORANGE_, 4), (Phase::Approach, BLUE_, 2)] {
+    for (ph, col, r) in [(Phase::Retract, ORANGE_, 8), (Phase::Approach, BLUE_, 4)] {
         let pts: Vec<(f64, f64)> = steps(ph)
             .iter()
             .filter(|s| s.point.branch == crate::cycle::Branch::Contact)
@@ -666,15 +699,15 @@ where
     root.fill(&WHITE)?;
     let si = p.units == "SI";
     let md = &p.models[0];
-    let (top, bottom) = root.split_vertically(H / 2);
+    let (top, bottom) = root.split_vertically(root.dim_in_pixel().1 / 2);
     let r_max = md.r.last().copied().unwrap_or(1.0);
     let (ru, pu, gu) = if si {
         ("r (m)", "pressure p (Pa)", "gap h (m)")
     } else {
         (
-            "r / (π w R²/K)^(1/3)",
-            "pressure p / (π w K²/R)^(1/3)",
-            "gap h / (π² w² R/K²)^(1/3)",
+            "r/(πwR²/K)^{1/3}",
+            "pressure  p/(πwK²/R)^{1/3}",
+            "gap  h/(π²w²R/K²)^{1/3}",
         )
     };
     let colour = |m: &str| match m {
@@ -708,22 +741,18 @@ where
             crate::solver::domain::short(md.load)
         )
     };
-    let mut chart = ChartBuilder::on(&top)
-        .caption(title, ("sans-serif", 30))
-        .margin(20)
-        .x_label_area_size(60)
-        .y_label_area_size(110)
-        .build_cartesian_2d(0.0..r_max, p_lo..p_hi)?;
+    let mut chart = builder(&top, &title).build_cartesian_2d(0.0..r_max, p_lo..p_hi)?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
         .x_desc(ru)
         .y_desc(pu)
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
-        .axis_desc_style(("sans-serif", 22))
-        .label_style(("sans-serif", 18))
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .draw()?;
     for m in p.models.iter().filter(|m| m.status == "ok") {
         let (col, w) = colour(m.model);
@@ -742,9 +771,7 @@ where
         for s in segs.into_iter().filter(|s| s.len() > 1) {
             let series = chart.draw_series(LineSeries::new(s, st))?;
             if first {
-                series
-                    .label(label(m.model))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 30, y)], st));
+                series.label(label(m.model)).legend(sample(st));
                 first = false;
             }
         }
@@ -752,12 +779,12 @@ where
     if let Some(c) = md.c {
         chart.draw_series(DashedLineSeries::new(
             vec![(c, p_lo), (c, p_hi)],
-            8,
-            6,
-            ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(1),
+            16,
+            12,
+            ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(2),
         ))?;
     }
-    super::legend(&mut chart, SeriesLabelPosition::LowerRight, 20)?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
 
     let g_hi = p
         .models
@@ -765,21 +792,18 @@ where
         .flat_map(|m| m.gap.iter().copied())
         .fold(p.dugdale_range * 1.5, f64::max)
         * 1.05;
-    let mut chart = ChartBuilder::on(&bottom)
-        .margin(20)
-        .x_label_area_size(70)
-        .y_label_area_size(110)
-        .build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
+    let mut chart = builder(&bottom, "").build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
         .x_desc(ru)
         .y_desc(gu)
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
-        .axis_desc_style(("sans-serif", 22))
-        .label_style(("sans-serif", 18))
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
         .draw()?;
     for m in p.models.iter().filter(|m| m.status == "ok") {
         let (col, w) = colour(m.model);
@@ -789,29 +813,29 @@ where
             st,
         ))?;
     }
-    let dashed = ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(1);
+    let dashed = ShapeStyle::from(&BLACK.mix(0.5)).stroke_width(2);
     chart.draw_series(DashedLineSeries::new(
         vec![(0.0, p.dugdale_range), (r_max, p.dugdale_range)],
-        8,
-        6,
+        16,
+        12,
         dashed,
     ))?;
     chart.draw_series(std::iter::once(Text::new(
-        "Dugdale range h0: the surface forces act where the gap is below it",
+        "Dugdale range h_{0}",
         (0.02 * r_max, p.dugdale_range + 0.06 * g_hi),
-        ("sans-serif", 18).into_font(),
+        ("sans-serif", NOTE).into_font(),
     )))?;
     if let Some(c) = md.c {
         chart.draw_series(DashedLineSeries::new(
             vec![(c, 0.0), (c, g_hi)],
-            8,
-            6,
+            16,
+            12,
             dashed,
         ))?;
         chart.draw_series(std::iter::once(Text::new(
             "c (MD)",
             (c, 0.92 * g_hi),
-            ("sans-serif", 18).into_font(),
+            ("sans-serif", NOTE).into_font(),
         )))?;
     }
     Ok(())
