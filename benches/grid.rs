@@ -3,10 +3,11 @@
 //! ratios, since the machine may be shared. GPU timings include preparing the per-lambda data
 //! and reading every result back.
 
+use rayon::prelude::*;
 use std::time::Instant;
 use tabor::engine::{Engine, Precision};
 use tabor::gpu::Gpu;
-use tabor::solver::{solve_grid, Control};
+use tabor::solver::{solve_grid, Control, LambdaContext, State};
 
 fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
@@ -24,6 +25,21 @@ fn main() {
     let loads = logspace(-3.0, 3.0, n);
     let _ = solve_grid(&lambdas[..10], &loads[..10], Control::Load); // warm-up
     let threads = rayon::current_num_threads();
+    // Before: the bracketed secant search from the coarse table (contexts without a start).
+    let search = |lambdas: &[f64], loads: &[f64]| -> Vec<State> {
+        let ctx: Vec<Option<LambdaContext>> = lambdas
+            .par_iter()
+            .map(|&l| LambdaContext::new(l).ok())
+            .collect();
+        loads
+            .par_iter()
+            .flat_map_iter(|&p| ctx.iter().map(move |c| c.as_ref().unwrap().solve_load(p)))
+            .collect()
+    };
+    let t = Instant::now();
+    let before = search(&lambdas, &loads);
+    let search_all = t.elapsed().as_secs_f64();
+    // After: what solve_grid does, the dense start of each lambda over the loads asked for.
     let t = Instant::now();
     let states = solve_grid(&lambdas, &loads, Control::Load);
     let cpu_all = t.elapsed().as_secs_f64();
@@ -34,14 +50,49 @@ fn main() {
     let t = Instant::now();
     let _ = pool.install(|| solve_grid(&lambdas, &loads, Control::Load));
     let cpu_one = t.elapsed().as_secs_f64();
-    let iters: u64 = states.iter().map(|s| s.iterations as u64).sum();
-    println!("grid {n}x{n}: lambda 1e-3..1e3 x load 1e-3..1e3, load control");
-    println!("  cpu f64, {threads} threads   : {}", rate(n * n, cpu_all));
+    let t = Instant::now();
+    let _ = pool.install(|| search(&lambdas, &loads));
+    let search_one = t.elapsed().as_secs_f64();
+    // Curve evaluations: the search's iterations plus the final state; the start's Newton
+    // evaluations plus its table nodes.
+    let evals_before: u64 = before.iter().map(|s| s.iterations as u64 + 1).sum();
+    let evals_after: u64 = states.iter().map(|s| s.iterations as u64).sum();
+    let nodes: usize = lambdas
+        .par_iter()
+        .map(|&l| {
+            let mut c = LambdaContext::new(l).unwrap();
+            c.add_start(loads[0], loads[n - 1], n);
+            c.start.map(|s| s.nodes()).unwrap_or(0)
+        })
+        .sum();
+    let one = states.iter().filter(|s| s.iterations == 1).count();
+    let worst = before
+        .iter()
+        .zip(&states)
+        .map(|(a, b)| (a.a / b.a - 1.0).abs())
+        .fold(0.0, f64::max);
+    let per = |e: u64| e as f64 / (n * n) as f64;
+    println!("grid {n}x{n}: lambda 1e-3..1e3 x load 1e-3..1e3, load control, contexts included");
     println!(
-        "  cpu f64, 1 thread    : {}  (mean iterations {:.2})",
-        rate(n * n, cpu_one),
-        iters as f64 / (n * n) as f64
+        "  cpu f64 search, {threads} threads  : {}  ({:.2} curve evaluations per state)",
+        rate(n * n, search_all),
+        per(evals_before)
     );
+    println!("  cpu f64 search, 1 thread   : {}", rate(n * n, search_one));
+    println!(
+        "  cpu f64 start, {threads} threads   : {}  = {:.2}x the search ({:.2} evaluations per state + {:.2} for the tables; {:.1}% in one evaluation)",
+        rate(n * n, cpu_all),
+        search_all / cpu_all,
+        per(evals_after),
+        nodes as f64 / (n * n) as f64,
+        100.0 * one as f64 / (n * n) as f64
+    );
+    println!(
+        "  cpu f64 start, 1 thread    : {}  = {:.2}x the search",
+        rate(n * n, cpu_one),
+        search_one / cpu_one
+    );
+    println!("  largest difference of A between the two: {worst:.1e}");
 
     let gpu = match Gpu::new(std::env::var("TABOR_ADAPTER").ok().as_deref()) {
         Ok(g) => g,

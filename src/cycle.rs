@@ -388,7 +388,7 @@ mod tests {
         let ctx = LambdaContext::new(lambda).unwrap();
         let stiff = cycle(lambda, Drive::Spring(1e6), 2.0).unwrap();
         assert!(
-            (retract_jump(&stiff).from.load - ctx.disp_pulloff.load).abs() < 5e-3,
+            (retract_jump(&stiff).from.load - ctx.disp_pulloff().load).abs() < 5e-3,
             "{}",
             retract_jump(&stiff).from.load
         );
@@ -431,7 +431,7 @@ mod tests {
         let j = c.jumps.iter().find(|j| j.phase == Phase::Retract).unwrap();
         let ctx = LambdaContext::new(1.0).unwrap();
         assert!(
-            (j.from.load - ctx.disp_pulloff.load).abs() < 5e-3,
+            (j.from.load - ctx.disp_pulloff().load).abs() < 5e-3,
             "{}",
             j.from.load
         );

@@ -207,6 +207,28 @@ impl Solve for CpuSolver {
         lambdas: &[f64],
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
+        // Gaps are loads above each lambda's pull-off: the start covers them per context.
+        let started: Vec<Option<LambdaContext>> = if gaps.len() >= solver::context::START_MIN_STATES
+        {
+            let (lo, hi) = gaps
+                .iter()
+                .filter(|g| g.is_finite())
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
+                    (a.min(g), b.max(g))
+                });
+            ctx.par_iter()
+                .map(|c| {
+                    c.clone().map(|mut c| {
+                        let pc = c.load_pulloff.load;
+                        c.add_start(pc + lo, pc + hi, gaps.len());
+                        c
+                    })
+                })
+                .collect()
+        } else {
+            ctx.to_vec()
+        };
+        let ctx: &[Option<LambdaContext>] = &started;
         let nx = lambdas.len();
         Ok((0..nx * gaps.len())
             .into_par_iter()
@@ -413,7 +435,7 @@ pub fn kernel_certifies(ctx: &LambdaContext, value: f64, control: Control) -> bo
     match control {
         Control::Load => true,
         Control::Displacement => {
-            let end = ctx.disp_pulloff.approach;
+            let end = ctx.disp_pulloff().approach;
             let gap = value - end;
             // Below the end there is no contact: the kernel says so exactly (the gap is exact).
             !(gap >= 0.0 && gap < DISP_F32_END_GAP * end.abs().max(1.0))

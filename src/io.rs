@@ -92,7 +92,7 @@ impl<R: Read> Read for LineLimit<R> {
 /// bounded whatever the size of the input; `value_column` is `load` or `approach`. Other columns
 /// are ignored.
 pub struct PointReader {
-    rdr: csv::Reader<LineLimit<Box<dyn Read>>>,
+    rdr: csv::Reader<LineLimit<Box<dyn Read + Send>>>,
     source_name: String,
     names: (&'static str, &'static str),
     columns: (usize, usize),
@@ -110,7 +110,7 @@ impl PointReader {
         path: &str,
         names: (&'static str, &'static str),
     ) -> Result<PointReader, InputError> {
-        let (source_name, r): (String, Box<dyn Read>) = if path == "-" {
+        let (source_name, r): (String, Box<dyn Read + Send>) = if path == "-" {
             ("stdin".into(), Box::new(std::io::stdin()))
         } else {
             let f = std::fs::File::open(path).map_err(|err| InputError::Read {
@@ -123,7 +123,7 @@ impl PointReader {
     }
 
     pub fn new(
-        r: Box<dyn Read>,
+        r: Box<dyn Read + Send>,
         source_name: &str,
         names: (&'static str, &'static str),
     ) -> Result<PointReader, InputError> {
@@ -250,7 +250,7 @@ pub fn parse_points(
     if text.trim().is_empty() {
         return Err(InputError::Empty(source_name.to_string(), value_column));
     }
-    let bytes: Box<dyn Read> = Box::new(std::io::Cursor::new(text.as_bytes().to_vec()));
+    let bytes: Box<dyn Read + Send> = Box::new(std::io::Cursor::new(text.as_bytes().to_vec()));
     PointReader::new(bytes, source_name, ("lambda", value_column))?.next_chunk(usize::MAX)
 }
 
@@ -281,6 +281,23 @@ pub fn fmt17(x: f64) -> String {
         }
     } else {
         format!("{x:.16e}")
+    }
+}
+
+/// Appends `x` as [`fmt17`] writes it, without allocating (files of millions of rows are
+/// formatted on all cores, where per-field allocations would contend for the allocator).
+pub fn fmt17_into(buf: &mut Vec<u8>, x: f64) {
+    fmt_into(buf, x, 17);
+}
+
+/// Appends `x` with `digits` significant digits in e-notation ("inf", "-inf"; nothing for NaN).
+pub fn fmt_into(buf: &mut Vec<u8>, x: f64, digits: usize) {
+    use std::io::Write;
+    if x.is_nan() {
+    } else if x.is_infinite() {
+        buf.extend_from_slice(if x > 0.0 { b"inf" } else { b"-inf" });
+    } else {
+        let _ = write!(buf, "{x:.prec$e}", prec = digits.clamp(1, 17) - 1);
     }
 }
 

@@ -36,7 +36,7 @@
 //! ```
 //! let c = tabor::solver::LambdaContext::new(10.0).unwrap();
 //! assert!((c.load_pulloff.load + 1.501624860426358).abs() < 1e-12);
-//! assert!(c.disp_pulloff.load > c.load_pulloff.load); // rigid grips hold on less
+//! assert!(c.disp_pulloff().load > c.load_pulloff.load); // rigid grips hold on less
 //! let curve = tabor::solver::curve::curve(1.0, 4.0, 5).unwrap();
 //! assert_eq!(curve.points.last().unwrap().a, 0.0); // it ends at the A = 0 end
 //! ```

@@ -44,7 +44,7 @@ fn displacement_kernel_holds_its_contract_where_it_certifies() {
     for &l in &logspace(-4.0, 4.0, 81) {
         let c = LambdaContext::new(l).unwrap();
         let g = prepare(l);
-        let end = c.disp_pulloff.approach;
+        let end = c.disp_pulloff().approach;
         for &r in &logspace(-10.0, 2.0, 241) {
             let d = end + r * end.abs().max(1.0);
             let reference = c.solve_approach(d);

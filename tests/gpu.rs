@@ -236,7 +236,7 @@ fn displacement_control_holds_its_contract_up_to_the_end() {
     let mut points = Vec::new();
     for &l in &logspace(-3.0, 3.0, 41) {
         let c = LambdaContext::new(l).unwrap();
-        let end = c.disp_pulloff.approach;
+        let end = c.disp_pulloff().approach;
         for &r in &logspace(-10.0, 2.0, 49) {
             points.push((l, end + r * end.abs().max(1.0)));
         }

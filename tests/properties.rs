@@ -119,7 +119,7 @@ proptest! {
         match LambdaContext::new(l) {
             Ok(c) => {
                 prop_assert!(in_domain(l));
-                let (p, d) = (c.load_pulloff, c.disp_pulloff);
+                let (p, d) = (c.load_pulloff, c.disp_pulloff());
                 prop_assert!(p.load >= -2.0 - 1e-12 && p.load <= -1.5 + 1e-12, "{p:?}");
                 prop_assert!(p.a.is_finite() && p.a > 0.0 && p.approach.is_finite());
                 // Rigid grips hold on to smaller loads than dead load.

@@ -7,12 +7,28 @@ use tabor::solver::{LambdaContext, Status};
 
 #[test]
 fn load_to_state_matches_reference_points() {
+    reference_points(false);
+}
+
+/// The same states through the dense start (one curve evaluation and a Newton correction,
+/// as grids and maps solve them), each with a start built over its own load.
+#[test]
+fn the_dense_start_matches_reference_points() {
+    reference_points(true);
+}
+
+fn reference_points(start: bool) {
     let mut worst = (0.0f64, String::new());
+    let mut one = 0;
     for row in table("points.csv") {
         let lambda = num(&row, "lambda");
         let load = num(&row, "Pbar");
-        let ctx = LambdaContext::new(lambda).unwrap();
+        let mut ctx = LambdaContext::new(lambda).unwrap();
+        if start {
+            ctx.add_start(load, load, 1 << 20);
+        }
         let s = ctx.solve_load(load);
+        one += (s.iterations == 1) as usize;
         assert_eq!(s.status, Status::Ok, "id {}", row["id"]);
         let tol = bound(load, num(&row, "Pbar_pulloff_load"));
         let ea = rel(s.a, num(&row, "A"));
@@ -30,7 +46,13 @@ fn load_to_state_matches_reference_points() {
             worst = (e / tol, row["id"].clone());
         }
     }
-    eprintln!("worst error / bound = {:.3} (id {})", worst.0, worst.1);
+    eprintln!(
+        "worst error / bound = {:.3} (id {}); {one} states in one curve evaluation",
+        worst.0, worst.1
+    );
+    if start {
+        assert!(one > 150, "the start was used for only {one} states");
+    }
 }
 
 #[test]
@@ -45,7 +67,7 @@ fn pulloff_matches_reference_under_both_controls() {
             el <= PULLOFF_TOL && ea <= PULLOFF_TOL,
             "load control, lambda {lambda}: P {el:e} A {ea:e}"
         );
-        let dp = ctx.disp_pulloff;
+        let dp = ctx.disp_pulloff();
         let el = rel(dp.load, num(&row, "Pbar_disp"));
         let at_a0 = num(&row, "disp_at_A0") == 1.0;
         assert_eq!(dp.at_zero_radius(), at_a0, "lambda {lambda}");

@@ -199,11 +199,11 @@ fn pulloff<'py>(py: Python<'py>, lam: PyReadonlyArray1<'py, f64>) -> PyResult<Bo
     d.set_item("load_control_load", col(&|c| c.load_pulloff.load))?;
     d.set_item("load_control_A", col(&|c| c.load_pulloff.a))?;
     d.set_item("load_control_approach", col(&|c| c.load_pulloff.approach))?;
-    d.set_item("displacement_control_load", col(&|c| c.disp_pulloff.load))?;
-    d.set_item("displacement_control_A", col(&|c| c.disp_pulloff.a))?;
+    d.set_item("displacement_control_load", col(&|c| c.disp_pulloff().load))?;
+    d.set_item("displacement_control_A", col(&|c| c.disp_pulloff().a))?;
     d.set_item(
         "displacement_control_approach",
-        col(&|c| c.disp_pulloff.approach),
+        col(&|c| c.disp_pulloff().approach),
     )?;
     d.set_item("zero_radius_end_load", col(&|c| c.end.load))?;
     d.set_item("zero_radius_end_approach", col(&|c| c.end.approach))?;

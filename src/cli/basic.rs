@@ -333,31 +333,49 @@ impl StreamTable {
             .with_context(|| format!("cannot write {shown}"))
     }
 
-    /// One chunk of rows: each item as a JSON object or as CSV fields.
-    fn rows<T, const N: usize>(
+    /// One chunk of rows: each item as a JSON object or as CSV fields, formatted on all cores
+    /// (in slices, joined in order: the same bytes as one writer would give).
+    fn rows<T: Sync>(
         &mut self,
         items: &[T],
-        json: impl Fn(&T) -> serde_json::Value,
-        csv: impl Fn(&T) -> [String; N],
+        json: impl Fn(&T) -> serde_json::Value + Sync,
+        csv: impl Fn(&T, &mut Vec<u8>) + Sync,
     ) -> anyhow::Result<()> {
-        let bytes = if self.json {
-            let mut buf = String::new();
-            for (k, item) in items.iter().enumerate() {
-                if self.rows + k > 0 {
-                    buf.push_str(",\n");
-                }
-                buf += &indent(&serde_json::to_string_pretty(&json(item))?, 4);
-            }
-            buf.into_bytes()
+        use rayon::prelude::*;
+        const SLICE: usize = 2048;
+        let first = self.rows == 0;
+        let parts: Vec<Vec<u8>> = if self.json {
+            items
+                .par_chunks(SLICE)
+                .enumerate()
+                .map(|(j, c)| -> anyhow::Result<Vec<u8>> {
+                    let mut buf = String::new();
+                    for (k, item) in c.iter().enumerate() {
+                        if !(first && j == 0 && k == 0) {
+                            buf.push_str(",\n");
+                        }
+                        buf += &indent(&serde_json::to_string_pretty(&json(item))?, 4);
+                    }
+                    Ok(buf.into_bytes())
+                })
+                .collect::<anyhow::Result<_>>()?
         } else {
-            let mut w = crate::io::csv_writer();
-            for item in items {
-                w.write_record(csv(item))?;
-            }
-            crate::io::csv_finish(w)?
+            items
+                .par_chunks(SLICE)
+                .map(|c| {
+                    let mut buf = Vec::with_capacity(c.len() * 96);
+                    for item in c {
+                        csv(item, &mut buf);
+                    }
+                    buf
+                })
+                .collect()
         };
         self.rows += items.len();
-        self.put(&bytes)
+        for p in parts {
+            self.put(&p)?;
+        }
+        Ok(())
     }
 
     /// Closes the JSON with `metadata` (built from the row count), and puts the output in place.
@@ -393,7 +411,12 @@ fn solve_radius_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
             break;
         }
         let states = crate::solver::solve_radius_points(&chunk);
-        table.rows(&states, radius_json, radius_fields)?;
+        table.rows(&states, radius_json, |s, buf| {
+            let mut w = crate::io::csv_writer();
+            if w.write_record(radius_fields(s)).is_ok() {
+                buf.extend(crate::io::csv_finish(w).unwrap_or_default());
+            }
+        })?;
     }
     table.finish(|rows| {
         Ok(json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": "radius", "points": rows}))
@@ -419,30 +442,43 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
     let mut progress = crate::progress::Progress::new("solving", len, "bytes");
     let mut check = crate::engine::CheckReport::empty(GPU_TOLERANCE);
     let mut solve_s = 0.0;
-    loop {
-        let chunk = reader.next_chunk(CHUNK_ROWS)?;
-        if chunk.is_empty() {
-            break;
-        }
-        let t = std::time::Instant::now();
-        let states = engine.solve_points(&chunk, control)?;
-        solve_s += t.elapsed().as_secs_f64();
-        if is_gpu {
-            check.merge(cross_check(
-                &chunk,
+    // The next chunk is parsed on its own thread while this one is solved and written; the
+    // channel holds two chunks, so memory stays bounded whatever the input size.
+    std::thread::scope(|scope| -> anyhow::Result<()> {
+        let (tx, rx) = std::sync::mpsc::sync_channel(2);
+        scope.spawn(move || loop {
+            let next = reader.next_chunk(CHUNK_ROWS);
+            let done = !matches!(&next, Ok(c) if !c.is_empty());
+            if tx.send(next.map(|c| (c, reader.bytes_read()))).is_err() || done {
+                break;
+            }
+        });
+        for next in rx {
+            let (chunk, bytes) = next?;
+            if chunk.is_empty() {
+                break;
+            }
+            let t = std::time::Instant::now();
+            let states = engine.solve_points(&chunk, control)?;
+            solve_s += t.elapsed().as_secs_f64();
+            if is_gpu {
+                check.merge(cross_check(
+                    &chunk,
+                    &states,
+                    control,
+                    a.gpu.check.0,
+                    GPU_TOLERANCE,
+                ));
+            }
+            table.rows(
                 &states,
-                control,
-                a.gpu.check.0,
-                GPU_TOLERANCE,
-            ));
+                |s| state_json_digits(s, digits, control),
+                |s, buf| state_row(s, digits, control, buf),
+            )?;
+            progress.set(bytes);
         }
-        table.rows(
-            &states,
-            |s| state_json_digits(s, digits, control),
-            |s| state_fields(s, digits, control),
-        )?;
-        progress.set(reader.bytes_read());
-    }
+        Ok(())
+    })?;
     progress.finish();
     if is_gpu {
         eprintln!("{check}");
@@ -482,6 +518,28 @@ fn indent(text: &str, n: usize) -> String {
 }
 
 const CSV_HEADER: [&str; 6] = ["lambda", "load", "A", "approach", "m_minus_1", "status"];
+
+/// A CSV row of a state, as a CSV writer would write [`state_fields`] (numbers and status
+/// names never need quoting), appended without allocating.
+fn state_row(s: &State, digits: usize, control: Control, buf: &mut Vec<u8>) {
+    use crate::io::fmt_into;
+    let (load, approach) = match control {
+        Control::Load => (17, digits),
+        Control::Displacement => (digits, 17),
+    };
+    fmt_into(buf, s.lambda, 17);
+    buf.push(b',');
+    fmt_into(buf, s.load, load);
+    buf.push(b',');
+    fmt_into(buf, s.a, digits);
+    buf.push(b',');
+    fmt_into(buf, s.approach, approach);
+    buf.push(b',');
+    fmt_into(buf, s.m_minus_1, digits);
+    buf.push(b',');
+    buf.extend_from_slice(s.status.name().as_bytes());
+    buf.push(b'\n');
+}
 
 /// The CSV fields of a state: what was given with 17 digits, what was computed with `digits`.
 fn state_fields(s: &State, digits: usize, control: Control) -> [String; 6] {
@@ -549,7 +607,7 @@ fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
     let _ = writeln!(t, "  contact radius A  {}", shown(s.a));
     let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", shown(s.m_minus_1));
     let lp = ctx.load_pulloff;
-    let dp = ctx.disp_pulloff;
+    let dp = ctx.disp_pulloff();
     let _ = writeln!(
         t,
         "  pull-off, load control          Pbar_c = {}  at A = {}",
@@ -603,9 +661,9 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
             c.load_pulloff.load,
             c.load_pulloff.a,
             c.load_pulloff.approach,
-            c.disp_pulloff.load,
-            c.disp_pulloff.a,
-            c.disp_pulloff.approach,
+            c.disp_pulloff().load,
+            c.disp_pulloff().a,
+            c.disp_pulloff().approach,
             c.end.load,
             c.end.approach,
         ]
@@ -645,9 +703,9 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
                     c.lambda,
                     c.load_pulloff.load,
                     c.load_pulloff.a,
-                    c.disp_pulloff.load,
-                    c.disp_pulloff.a,
-                    if c.disp_pulloff.at_zero_radius() {
+                    c.disp_pulloff().load,
+                    c.disp_pulloff().a,
+                    if c.disp_pulloff().at_zero_radius() {
                         "  (lost at A = 0: lambda <= lambda_D)"
                     } else {
                         ""

@@ -148,7 +148,7 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
             (s.m_minus_1 * (s.m_minus_1 + 2.0)).sqrt().ln() - xc
         },
     );
-    let jo = ctx.disp_pulloff;
+    let jo = ctx.disp_pulloff();
     let disp = if jo.at_zero_radius() {
         // The branch runs to A = 0 at x = inf; ln(D - D_end) is nearly linear in x at both ends.
         let mut t = [0f32; TABLE_NODES];
@@ -205,7 +205,7 @@ pub fn prepare64(ctx: Option<&LambdaContext>, lambda: f64) -> Lambda64 {
         };
     };
     let small = crate::physics::tolerances::carries_load_plus_2(ctx.lambda);
-    let jo = ctx.disp_pulloff;
+    let jo = ctx.disp_pulloff();
     Lambda64 {
         lambda: ctx.lambda,
         load_end: if small {

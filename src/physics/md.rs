@@ -29,6 +29,8 @@ pub struct CurvePoint<T> {
     pub dload_dmu: T,
     /// dDbar/dmu along the curve; negative on the displacement-controlled stable branch.
     pub dapproach_dmu: T,
+    /// dA/dmu along the curve.
+    pub da_dmu: T,
 }
 
 /// The curve point at `mu > 0` for Maugis parameter `lambda > 0`.
@@ -75,6 +77,7 @@ pub fn curve_point<T: Real>(lambda: T, mu: T) -> CurvePoint<T> {
         approach,
         dload_dmu,
         dapproach_dmu,
+        da_dmu: da,
     }
 }
 

@@ -100,7 +100,7 @@ where
             lambdas
                 .iter()
                 .zip(ctx)
-                .map(|(&l, c)| (l, c.disp_pulloff.load)),
+                .map(|(&l, c)| (l, c.disp_pulloff().load)),
             thick(ORANGE_),
         ))?
         .label("MD, rigid grips")

@@ -138,7 +138,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         tabor_parameter: c.tabor(),
         tolerance: tol,
         pulloff_force_load_control_N: ctx.load_pulloff.load * fs,
-        pulloff_force_displacement_control_N: ctx.disp_pulloff.load * fs,
+        pulloff_force_displacement_control_N: ctx.disp_pulloff().load * fs,
         pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
         zero_load_contact_radius_m: ctx.solve_load(0.0).a * rs,
         recommended_model: rec.name(),
@@ -310,7 +310,7 @@ fn pulloff_under_control(
     Ok(match &s.control {
         None | Some(SceneControl::Load) => (ctx.load_pulloff.load * fs, "load".to_string()),
         Some(SceneControl::Displacement) => {
-            (ctx.disp_pulloff.load * fs, "displacement".to_string())
+            (ctx.disp_pulloff().load * fs, "displacement".to_string())
         }
         Some(SceneControl::CantileverNM(k)) => {
             if !(*k > 0.0 && k.is_finite()) {
@@ -331,7 +331,7 @@ fn pulloff_under_control(
                 .jumps
                 .iter()
                 .find(|j| j.phase == crate::cycle::Phase::Retract)
-                .map_or(ctx.disp_pulloff.load, |j| j.from.load);
+                .map_or(ctx.disp_pulloff().load, |j| j.from.load);
             (
                 out * fs,
                 format!("cantilever k = {k} N/m (normalised {kbar:.4e})"),

@@ -94,7 +94,8 @@ pub struct LambdaContext {
     /// Load-controlled pull-off: the minimum of Pbar along the curve.
     pub load_pulloff: PullOff,
     /// Displacement-controlled jump-out: the minimum of Dbar (at A = 0 for lambda <= lambda_D).
-    pub disp_pulloff: PullOff,
+    /// Computed on first use (a minimum search that load-controlled solves never need).
+    disp: std::sync::OnceLock<(PullOff, f64)>,
     /// The A -> 0 end of the curve.
     pub end: ZeroRadiusEnd,
     /// Pbar + 2 at the load pull-off, evaluated without cancellation.
@@ -102,9 +103,16 @@ pub struct LambdaContext {
     /// The stable load branch tabulated at x = xc - 0.01 * 2^k: (ln(Pbar - Pbar_c), x) per node,
     /// for a first guess and a bracket (one binary search, then a few Newton steps).
     pub load_table: [(f64, f64); TABLE_NODES],
-    /// d2Dbar/dx2 at an interior displacement jump-out.
-    pub disp_curvature: f64,
+    /// The dense start of the load-controlled branch, where built ([`LambdaContext::add_start`]).
+    pub start: Option<std::sync::Arc<super::start::LoadStart>>,
 }
+
+/// A lambda with at least this many load-controlled states may get a dense start (where its
+/// nodes are fewer than half the states: each state then saves about four evaluations).
+pub const START_MIN_STATES: usize = 16;
+/// The one-evaluation solve is kept where its Newton correction of x is at most this: the
+/// second-order term it leaves out is then below 1e-14 relative.
+const ONE_STEP_DX: f64 = 1e-7;
 
 #[inline]
 pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
@@ -133,24 +141,36 @@ fn dapproach_dx_dd(lambda: f64, x: f64) -> f64 {
 fn minimum_of(slope: impl Fn(f64) -> f64, x_est: f64) -> Option<f64> {
     let (mut lo, mut hi) = (x_est - 2.0, x_est + 2.0);
     let mut n = 0;
-    while slope(lo) >= 0.0 {
+    let mut s_lo = slope(lo);
+    while s_lo >= 0.0 {
         hi = lo;
         lo -= 2.0;
+        s_lo = slope(lo);
         n += 1;
         if n > 40 {
             return None;
         }
     }
     n = 0;
-    while slope(hi) <= 0.0 {
-        lo = hi;
+    let mut s_hi = slope(hi);
+    while s_hi <= 0.0 {
+        (lo, s_lo) = (hi, s_hi);
         hi += 2.0;
+        s_hi = slope(hi);
         n += 1;
         if n > 20 {
             return None;
         }
     }
-    Some(bisect_sign(slope, lo, hi))
+    // The bracketed secant (bisection where a step misbehaves): about ten slopes where plain
+    // bisection takes sixty, which made the context the cost of scattered states.
+    let x0 = if x_est > lo && x_est < hi {
+        x_est
+    } else {
+        0.5 * (lo + hi)
+    };
+    let r = secant_bracketed(|x| -slope(x), (lo, -s_lo), (hi, -s_hi), x0, 1e-15, 200);
+    Some(r.x)
 }
 
 /// The minimum of a curve quantity: bisection on the f64 slope, then secant steps on the
@@ -242,39 +262,135 @@ impl LambdaContext {
         });
         let end = zero_radius_end(lambda);
 
-        let zero_radius = PullOff {
-            x: f64::INFINITY,
-            load: end.load,
-            a: 0.0,
-            approach: end.approach,
-            m_minus_1: f64::INFINITY,
-        };
-        let (disp_pulloff, disp_curvature) = if lambda <= LAMBDA_D {
-            (zero_radius, f64::NAN)
-        } else {
-            let disp_slope = |x: f64| {
-                let p = point(lambda, x);
-                p.dapproach_dmu * p.mu
-            };
-            let disp_slope_dd = |x: f64| dapproach_dx_dd(lambda, x);
-            // JKR jump-out under rigid grips: A = 6^(-1/3), mu ~ 1.65/lambda.
-            let x_est = (1.65 / lambda).ln().min(xc + 2.0);
-            // Just above lambda_D the minimum sits at tiny A, where the f64 slope cancels.
-            let near_d = lambda < 1.2;
-            match minimum_polished(disp_slope, disp_slope_dd, x_est, lambda < 4.0, near_d) {
-                Some(xd) => (pulloff_at(lambda, xd), second_derivative(disp_slope, xd)),
-                None => (zero_radius, f64::NAN),
-            }
-        };
         Ok(Self {
             lambda,
             load_pulloff,
-            disp_pulloff,
+            disp: std::sync::OnceLock::new(),
             end,
             load_plus_2_c,
             load_table,
-            disp_curvature,
+            start: None,
         })
+    }
+
+    /// Displacement-controlled jump-out: the minimum of Dbar (at A = 0 for lambda <= lambda_D).
+    pub fn disp_pulloff(&self) -> PullOff {
+        self.disp().0
+    }
+
+    /// d2Dbar/dx2 at an interior displacement jump-out (NaN at zero radius).
+    pub fn disp_curvature(&self) -> f64 {
+        self.disp().1
+    }
+
+    fn disp(&self) -> (PullOff, f64) {
+        *self.disp.get_or_init(|| {
+            let (lambda, end) = (self.lambda, self.end);
+            let xc = self.load_pulloff.x;
+            let zero_radius = PullOff {
+                x: f64::INFINITY,
+                load: end.load,
+                a: 0.0,
+                approach: end.approach,
+                m_minus_1: f64::INFINITY,
+            };
+            let (disp_pulloff, disp_curvature) = if lambda <= LAMBDA_D {
+                (zero_radius, f64::NAN)
+            } else {
+                let disp_slope = |x: f64| {
+                    let p = point(lambda, x);
+                    p.dapproach_dmu * p.mu
+                };
+                let disp_slope_dd = |x: f64| dapproach_dx_dd(lambda, x);
+                // JKR jump-out under rigid grips: A = 6^(-1/3), mu ~ 1.65/lambda.
+                let x_est = (1.65 / lambda).ln().min(xc + 2.0);
+                // Just above lambda_D the minimum sits at tiny A, where the f64 slope cancels.
+                let near_d = lambda < 1.2;
+                match minimum_polished(disp_slope, disp_slope_dd, x_est, lambda < 4.0, near_d) {
+                    Some(xd) => (pulloff_at(lambda, xd), second_derivative(disp_slope, xd)),
+                    None => (zero_radius, f64::NAN),
+                }
+            };
+            (disp_pulloff, disp_curvature)
+        })
+    }
+
+    /// Builds the dense start of the load-controlled branch (see [`super::start`]) for loads
+    /// from `load_lo` to `load_hi`, where it costs fewer curve evaluations than half of the
+    /// `states` to solve: afterwards such a state usually costs one curve evaluation.
+    pub fn add_start(&mut self, load_lo: f64, load_hi: f64, states: usize) {
+        let pc = self.load_pulloff.load;
+        let (gap_lo, gap_hi) = ((load_lo - pc).max(0.0), load_hi - pc);
+        if self.start.is_some() || !(gap_hi > 0.0 && gap_hi.is_finite()) {
+            return;
+        }
+        let (lambda, p2c, xc) = (self.lambda, self.load_plus_2_c, self.load_pulloff.x);
+        let small = carries_load_plus_2(lambda);
+        let gap = move |p: &CurvePoint<f64>| {
+            if small {
+                p.load_plus_2 - p2c
+            } else {
+                p.load - pc
+            }
+        };
+        // Start a little below the smallest load, from the coarse table's guess.
+        let (_, _, x_lo) = self.load_guess(gap_lo.max(f64::MIN_POSITIVE).ln());
+        let y_lo = (xc - x_lo).ln() - 0.5;
+        self.start = super::start::LoadStart::new(lambda, xc, gap, y_lo, gap_hi.ln(), states / 2)
+            .map(Into::into);
+    }
+
+    /// The state from the dense start's x0: Newton steps on F = ln(1 + r/gap) (one curve
+    /// evaluation each, at most three) until the correction of x is at most `ONE_STEP_DX`,
+    /// then that last correction carried to A, Dbar and m - 1 by their slopes. None (the caller
+    /// searches) where the start does not cover the load, or the evaluation does not certify it.
+    fn solve_load_one_step(&self, gap: f64, load: f64) -> Option<State> {
+        let start = self.start.as_ref()?;
+        let mut x = start.x(gap.ln(), self.load_pulloff.x)?;
+        let small = carries_load_plus_2(self.lambda);
+        for evals in 1..=3 {
+            let p = point(self.lambda, x);
+            let r = if small {
+                (p.load_plus_2 - self.load_plus_2_c) - gap
+            } else {
+                (p.load - self.load_pulloff.load) - gap
+            };
+            // F' = P'(x) / (gap + r). ln(1 + z) by its series where z is small (as it is after
+            // the start): a libm call saved per state, the step's relative error z^4/4.
+            let z = r / gap;
+            let f = if z.abs() < 1e-3 {
+                z * (1.0 - z * (0.5 - z / 3.0))
+            } else {
+                z.ln_1p()
+            };
+            let dx = -f * (gap + r) / (p.dload_dmu * p.mu);
+            if !dx.is_finite() || dx.abs() > 1e-2 {
+                return None;
+            }
+            if dx.abs() > ONE_STEP_DX {
+                x += dx;
+                continue;
+            }
+            let noise = 1e-13 * load.abs().max(2.0);
+            if r.abs() > 1e-6 * gap + noise {
+                return None;
+            }
+            let m = 1.0 + p.m_minus_1;
+            let s = State {
+                lambda: self.lambda,
+                load,
+                approach: p.approach + p.dapproach_dmu * p.mu * dx,
+                a: p.a + p.da_dmu * p.mu * dx,
+                m_minus_1: p.m_minus_1 + p.mu * p.mu / m * dx,
+                status: Status::Ok,
+                iterations: evals,
+            };
+            let ok = [s.approach, s.a, s.m_minus_1].iter().all(|v| v.is_finite())
+                && s.a > 0.0
+                && s.m_minus_1 > 0.0;
+            return ok.then_some(s);
+        }
+        None
     }
 
     /// The state at x from one curve evaluation: the controlled quantity as given, the other
@@ -357,6 +473,9 @@ impl LambdaContext {
         if gap <= 0.0 {
             return self.state(pc.x, load, 0.0, Control::Load, 0, Stop::Converged);
         }
+        if let Some(s) = self.solve_load_one_step(gap, load) {
+            return s;
+        }
         let residual = |x: f64| {
             let p = point(lambda, x);
             let r = if small {
@@ -410,7 +529,7 @@ impl LambdaContext {
         if super::domain::check_approach(approach).is_err() {
             return State::failed(lambda, f64::NAN, approach, Status::InvalidInput);
         }
-        let jo = self.disp_pulloff;
+        let jo = self.disp_pulloff();
         if approach < jo.approach {
             return State::failed(lambda, f64::NAN, approach, Status::NoContact);
         }
@@ -431,7 +550,7 @@ impl LambdaContext {
             let xc = self.load_pulloff.x;
             (xc - BRACKET, xc + BRACKET, xc)
         } else {
-            let x0 = jo.x - (2.0 * gap / self.disp_curvature).sqrt();
+            let x0 = jo.x - (2.0 * gap / self.disp_curvature()).sqrt();
             (
                 jo.x - BRACKET,
                 jo.x,
@@ -466,7 +585,7 @@ impl LambdaContext {
     }
 
     fn zero_gap_disp_state(&self, approach: f64) -> State {
-        let jo = self.disp_pulloff;
+        let jo = self.disp_pulloff();
         State {
             lambda: self.lambda,
             load: jo.load,

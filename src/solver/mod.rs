@@ -5,6 +5,7 @@ pub mod context;
 pub mod curve;
 pub mod naive;
 pub mod root;
+pub mod start;
 
 pub use crate::physics::domain;
 pub use context::{LambdaContext, PullOff, RadiusState};
@@ -138,7 +139,23 @@ pub fn contexts_for(lambdas: impl Iterator<Item = f64>) -> HashMap<u64, Option<L
 
 /// Solves a list of (lambda, value) points on all cores, one context per distinct lambda.
 pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
-    let ctx = contexts_for(points.iter().map(|p| p.0));
+    let mut ctx = contexts_for(points.iter().map(|p| p.0));
+    if control == Control::Load {
+        // A dense start where a lambda has enough states to pay for it, over their loads.
+        let mut range: HashMap<u64, (usize, f64, f64)> = HashMap::new();
+        for &(l, v) in points {
+            let e = range.entry(l.to_bits()).or_insert((0, v, v));
+            *e = (e.0 + 1, e.1.min(v), e.2.max(v));
+        }
+        ctx.par_iter_mut().for_each(|(k, c)| {
+            let (n, lo, hi) = range[k];
+            if n >= context::START_MIN_STATES {
+                if let Some(c) = c.as_mut() {
+                    c.add_start(lo, hi, n);
+                }
+            }
+        });
+    }
     points
         .par_iter()
         .map(|&(lambda, value)| match &ctx[&lambda.to_bits()] {
@@ -173,6 +190,8 @@ pub fn solve_grid_with(
     values: &[f64],
     control: Control,
 ) -> Vec<State> {
+    let started = with_starts(ctx, values, control);
+    let ctx: &[Option<LambdaContext>] = &started;
     let nx = lambdas.len();
     let mut out = vec![State::failed(0.0, 0.0, 0.0, Status::InvalidInput); nx * values.len()];
     out.par_chunks_mut(nx)
@@ -186,4 +205,31 @@ pub fn solve_grid_with(
             }
         });
     out
+}
+
+/// The contexts with a dense start added for `values` (loads) where it pays (see
+/// [`LambdaContext::add_start`]); as they are otherwise.
+pub fn with_starts<'a>(
+    ctx: &'a [Option<LambdaContext>],
+    values: &[f64],
+    control: Control,
+) -> std::borrow::Cow<'a, [Option<LambdaContext>]> {
+    let missing = ctx.iter().flatten().any(|c| c.start.is_none());
+    if control != Control::Load || values.len() < context::START_MIN_STATES || !missing {
+        return std::borrow::Cow::Borrowed(ctx);
+    }
+    let finite = values.iter().copied().filter(|v| v.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    std::borrow::Cow::Owned(
+        ctx.par_iter()
+            .map(|c| {
+                c.clone().map(|mut c| {
+                    c.add_start(lo, hi, values.len());
+                    c
+                })
+            })
+            .collect(),
+    )
 }

@@ -43,6 +43,7 @@ pub fn curve_point_naive(lambda: f32, mu: f32) -> crate::physics::md::CurvePoint
         approach,
         dload_dmu: f32::NAN,
         dapproach_dmu: f32::NAN,
+        da_dmu: f32::NAN,
     }
 }
 
@@ -102,6 +103,7 @@ fn lerp_point(p: &CurvePoint<f32>, q: &CurvePoint<f32>, c: f32) -> CurvePoint<f3
         approach: l(p.approach, q.approach),
         dload_dmu: f32::NAN,
         dapproach_dmu: f32::NAN,
+        da_dmu: f32::NAN,
     }
 }
 
