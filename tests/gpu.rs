@@ -279,9 +279,17 @@ fn auto_backend_reports_its_choice() {
     if gpu().is_none() {
         return;
     }
+    let software = gpu().unwrap().adapter.software;
     let (engine, line) = Engine::select(Backend::Auto, None).unwrap();
-    assert_eq!(engine.name(), "gpu");
-    assert!(line.contains("GPU"), "{line}");
+    // On a software adapter (lavapipe in CI) the exact CPU solver is faster, and auto says so;
+    // on a hardware GPU auto takes the GPU.
+    if software {
+        assert_eq!(engine.name(), "cpu");
+        assert!(line.contains("software one on the same cores"), "{line}");
+    } else {
+        assert_eq!(engine.name(), "gpu");
+        assert!(line.contains("GPU"), "{line}");
+    }
 }
 
 /// The GPU set to f64 (f32 kernel, then f64 Newton steps), where the adapter has SHADER_F64.

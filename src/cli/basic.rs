@@ -39,7 +39,8 @@ pub struct SolveArgs {
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
-    /// Where a CSV of points is solved; `auto` takes a GPU if there is one.
+    /// Where a CSV of points is solved; `auto` takes a hardware GPU if there is one (a software
+    /// adapter is slower than the exact CPU solver on the same cores).
     #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = BackendArg::Cpu)]
     pub backend: BackendArg,
     #[command(flatten)]

@@ -47,7 +47,8 @@ pub enum Command {
 /// Where the work runs (`--backend`); the library's [`crate::engine::Backend`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum BackendArg {
-    /// A hardware GPU, else a software adapter, else the CPU.
+    /// A hardware GPU, else the CPU (exact, and faster than a software adapter on the same
+    /// cores; `gpu` uses one).
     Auto,
     /// The WGSL kernels (f32) on a GPU adapter; an error if there is none.
     Gpu,
