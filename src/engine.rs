@@ -15,7 +15,7 @@ use EngineError as GpuError;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Backend {
-    /// A hardware GPU, else a software adapter, else the CPU.
+    /// A hardware GPU, else the CPU (a software adapter only when named with `--adapter`).
     Auto,
     /// The WGSL kernels (f32) on a GPU adapter; an error if there is none.
     Gpu,
