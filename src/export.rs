@@ -32,6 +32,9 @@ pub fn write_map_json(
     full: bool,
     timings: bool,
 ) -> anyhow::Result<()> {
+    if full {
+        need_exact(d, "the per-point arrays of the JSON")?;
+    }
     let mut doc = map_json(d, engine, check);
     if timings {
         doc["metadata"]["timings_s"] = serde_json::to_value(&d.timings)?;
@@ -53,11 +56,11 @@ pub fn write_map_json(
     let nx = d.spec.nx;
     let fields: [(&str, &dyn Fn(usize) -> serde_json::Value); 6] = [
         ("region", &|i| json!(d.regions[i].name())),
-        ("load", &|i| json_num(d.states[i].load)),
-        ("A", &|i| json_num(d.states[i].a)),
-        ("approach", &|i| json_num(d.states[i].approach)),
-        ("m_minus_1", &|i| json_num(d.states[i].m_minus_1)),
-        ("status", &|i| json!(d.states[i].status.name())),
+        ("load", &|i| json_num(d.load(i))),
+        ("A", &|i| json_num(d.state(i).a)),
+        ("approach", &|i| json_num(d.state(i).approach)),
+        ("m_minus_1", &|i| json_num(d.state(i).m_minus_1)),
+        ("status", &|i| json!(d.state(i).status.name())),
     ];
     let mut line = String::new();
     for (k, (name, f)) in fields.iter().enumerate() {
@@ -139,6 +142,7 @@ fn npy_write<T: npyz::AutoSerialize + Copy>(
 /// state could not be computed; region codes as uint8 with their names in
 /// PREFIX_region_names.json.
 pub fn write_npy(d: &MapData, outs: &mut [Output]) -> anyhow::Result<()> {
+    need_exact(d, "the NPY files")?;
     let (nx, ny) = (d.spec.nx as u64, d.spec.ny as u64);
     let ok = |s: &crate::solver::State, x: f64| if s.status == Status::Ok { x } else { f64::NAN };
     let [lam, axis, load, a, approach, m1, region, names] = outs else {
@@ -149,14 +153,11 @@ pub fn write_npy(d: &MapData, outs: &mut [Output]) -> anyhow::Result<()> {
     };
     npy_write(lam, &[nx], d.lambdas.iter().copied())?;
     npy_write(axis, &[ny], d.rows.iter().copied())?;
-    npy_write(load, &[ny, nx], d.states.iter().map(|s| s.load))?;
-    npy_write(a, &[ny, nx], d.states.iter().map(|s| ok(s, s.a)))?;
-    npy_write(
-        approach,
-        &[ny, nx],
-        d.states.iter().map(|s| ok(s, s.approach)),
-    )?;
-    npy_write(m1, &[ny, nx], d.states.iter().map(|s| ok(s, s.m_minus_1)))?;
+    let all = || (0..d.len()).map(|i| d.state(i));
+    npy_write(load, &[ny, nx], (0..d.len()).map(|i| d.load(i)))?;
+    npy_write(a, &[ny, nx], all().map(|s| ok(&s, s.a)))?;
+    npy_write(approach, &[ny, nx], all().map(|s| ok(&s, s.approach)))?;
+    npy_write(m1, &[ny, nx], all().map(|s| ok(&s, s.m_minus_1)))?;
     npy_write(region, &[ny, nx], d.regions.iter().map(|&r| r as u8))?;
     let map: serde_json::Map<_, _> = Region::ALL
         .iter()
@@ -166,5 +167,13 @@ pub fn write_npy(d: &MapData, outs: &mut [Output]) -> anyhow::Result<()> {
     names
         .write_all((serde_json::to_string_pretty(&map)? + "\n").as_bytes())
         .with_context(|| format!("cannot write {shown}"))?;
+    Ok(())
+}
+
+/// The f64 exports must come from the f64 values, never from the compact records.
+fn need_exact(d: &MapData, what: &str) -> anyhow::Result<()> {
+    if d.exact.is_none() {
+        anyhow::bail!("{what} need the map's f64 values: compute it with ComputeOptions {{ keep_exact: true, .. }}");
+    }
     Ok(())
 }

@@ -54,7 +54,7 @@
 //! let m = compute(&spec, &Engine::Cpu).unwrap();
 //! // Small lambda at the largest load: Hertz; row-major, row 0 the smallest load.
 //! assert_eq!(m.region_at(0, 15), Region::Hertz);
-//! assert_eq!(m.states.len(), 32 * 16);
+//! assert_eq!(m.len(), 32 * 16);
 //! ```
 //!
 //! A real contact in SI units, and the work of adhesion from a pull-off force:

@@ -56,8 +56,8 @@ fn tensile_map_has_no_contact_only_below_pulloff() {
     s.load_min = -2.0;
     s.load_max = 2.0;
     let d = compute(&s, &Engine::Cpu).unwrap();
-    for (i, st) in d.states.iter().enumerate() {
-        let below = st.load < d.pulloff[i % 64];
+    for i in 0..d.len() {
+        let below = d.state(i).load < d.pulloff[i % 64];
         assert_eq!(d.regions[i] == Region::NoContact, below, "point {i}");
     }
 }
@@ -149,4 +149,54 @@ fn gpu_and_cpu_maps_agree() {
         assert!(frac >= 0.999, "{frac}");
     }
     drop(gpu);
+}
+
+/// The map keeps compact records (13 bytes a point) and f64 values only where asked: both give
+/// the same regions and thresholds, the f64 values are the states solved one by one, and the
+/// records are those values in single precision.
+#[test]
+fn compact_records_and_kept_values_agree_with_direct_solves() {
+    use tabor::map::{compute_with, ComputeOptions};
+    use tabor::solver::{LambdaContext, Status};
+    for axis in [LoadAxis::Log, LoadAxis::AbovePulloff, LoadAxis::Linear] {
+        let mut s = spec(40, 30, axis);
+        if axis == LoadAxis::Linear {
+            (s.load_min, s.load_max) = (-2.0, 4.0);
+        }
+        let opts = |keep_exact| ComputeOptions {
+            keep_exact,
+            check: 0,
+        };
+        let full = compute_with(&s, &Engine::Cpu, opts(true)).unwrap();
+        let lean = compute_with(&s, &Engine::Cpu, opts(false)).unwrap();
+        assert!(lean.exact.is_none() && full.exact.is_some());
+        assert_eq!(full.regions, lean.regions);
+        assert_eq!(full.thresholds(), lean.thresholds());
+        for i in (0..full.len()).step_by(7) {
+            let (ix, iy) = (i % 40, i / 40);
+            let ctx = LambdaContext::new(full.lambdas[ix]).unwrap();
+            let direct = match axis {
+                LoadAxis::AbovePulloff => {
+                    ctx.solve_load_gap(full.rows[iy], ctx.load_pulloff.load + full.rows[iy])
+                }
+                _ => ctx.solve_load(full.rows[iy]),
+            };
+            let (f, l) = (full.state(i), lean.state(i));
+            assert_eq!(
+                (f.status, l.status),
+                (direct.status, direct.status),
+                "{axis:?} point {i}"
+            );
+            assert_eq!(f.load, direct.load, "{axis:?} point {i}");
+            if direct.status == Status::Ok {
+                assert!((f.a / direct.a - 1.0).abs() < 1e-13, "{axis:?} point {i}");
+                assert_eq!(l.a, direct.a as f32 as f64);
+                assert_eq!(l.m_minus_1, direct.m_minus_1 as f32 as f64);
+            }
+        }
+        // Exports refuse a map without its f64 values rather than write single precision.
+        let mut sink = Vec::new();
+        let e = tabor::export::write_map_json(&mut sink, &lean, &Engine::Cpu, None, true, false);
+        assert!(e.unwrap_err().to_string().contains("f64 values"));
+    }
 }

@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::panic::AssertUnwindSafe;
 use tabor::engine::{Backend, Engine, Precision};
-use tabor::solver::{Control, LambdaContext, Status};
+use tabor::solver::{Control, LambdaContext, State, Status};
 
 /// Runs `f` without the GIL; errors become ValueError, panics RuntimeError.
 fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
@@ -388,17 +388,12 @@ impl AdhesionMap {
             spec.validate()?;
             let (mut engine, _) = Engine::select(backend, adapter.as_deref())?;
             engine.set_precision(precision)?;
-            let data = tabor::map::compute(&spec, &engine)?;
-            let check = matches!(engine, Engine::Gpu(_)).then(|| {
-                let pts: Vec<(f64, f64)> = data.states.iter().map(|s| (s.lambda, s.load)).collect();
-                tabor::engine::cross_check(
-                    &pts,
-                    &data.states,
-                    Control::Load,
-                    check,
-                    tabor::engine::GPU_TOLERANCE,
-                )
-            });
+            let opts = tabor::map::ComputeOptions {
+                keep_exact: true,
+                check,
+            };
+            let data = tabor::map::compute_with(&spec, &engine, opts)?;
+            let check = data.check.clone();
             Ok(AdhesionMap {
                 data,
                 engine,
@@ -425,7 +420,7 @@ impl AdhesionMap {
     /// Flat per-point arrays (row-major, ny rows of nx): A, load, approach, m_minus_1, region and
     /// status codes.
     fn arrays<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let s = &self.data.states;
+        let s: Vec<State> = (0..self.data.len()).map(|i| self.data.state(i)).collect();
         let ok = |x: f64, st: Status| if st == Status::Ok { x } else { f64::NAN };
         let d = PyDict::new(py);
         d.set_item("A", arr(py, s.iter().map(|s| ok(s.a, s.status)).collect()))?;

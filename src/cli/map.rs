@@ -2,11 +2,10 @@
 
 use super::basic::GpuArgs;
 use super::{BackendArg, LoadAxisArg, QuantityArg};
-use crate::engine::{cross_check, Engine};
+use crate::engine::Engine;
 use crate::export::{write_map_json, write_npy, NPY_FILES};
 use crate::io::Output;
-use crate::map::{compute, LoadAxis, MapSpec};
-use crate::solver::Control;
+use crate::map::{LoadAxis, MapSpec};
 use anyhow::Context;
 use clap::Args;
 use std::io::Write as _;
@@ -141,22 +140,17 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let (mut engine, line) = Engine::select(a.backend.into(), a.gpu.adapter.as_deref())?;
     engine.set_precision(a.gpu.precision.into())?;
     eprintln!("{line}");
-    let mut data = compute(&spec, &engine)?;
-    // GPU maps are cross-checked on a sample of points against the f64 solver.
-    let check = if let Engine::Gpu(_) = engine {
-        let pts: Vec<(f64, f64)> = data.states.iter().map(|s| (s.lambda, s.load)).collect();
-        let r = cross_check(
-            &pts,
-            &data.states,
-            Control::Load,
-            a.gpu.check.0,
-            super::basic::GPU_TOLERANCE,
-        );
-        eprintln!("{r}");
-        Some(r)
-    } else {
-        None
+    // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
+    // on a sample of points against the f64 solver as they are solved.
+    let opts = crate::map::ComputeOptions {
+        keep_exact: a.json_full || a.npy.is_some(),
+        check: a.gpu.check.0,
     };
+    let mut data = crate::map::compute_with(&spec, &engine, opts)?;
+    let check = data.check.clone();
+    if let Some(r) = &check {
+        eprintln!("{r}");
+    }
     let t = Instant::now();
     let want = crate::render::Formats {
         png: figure.png.is_some(),

@@ -113,23 +113,37 @@ pub fn classify(s: &State, tol: f64) -> Region {
         Status::Ok => {}
         _ => return Region::Failed,
     }
+    match adequate(s, tol).trailing_zeros() {
+        0 => Region::Hertz,
+        1 => Region::Rigid,
+        2 => Region::Dmt,
+        3 => Region::Jkr,
+        _ => Region::Md,
+    }
+}
+
+/// The models adequate at a solved state, one bit each (0 Hertz, 1 rigid, 2 DMT, 3 JKR); none
+/// where the state is not `ok`.
+pub fn adequate(s: &State, tol: f64) -> u8 {
+    if s.status != Status::Ok {
+        return 0;
+    }
     // The same tests as `criteria`, on cubes: |A_m / A - 1| <= tol exactly when A_m^3 lies in
     // [(1 - tol)^3 A^3, (1 + tol)^3 A^3], and the closed forms give A_m^3 without a cube root.
     let a3 = s.a * s.a * s.a;
     let (lo, hi) = ((1.0 - tol).powi(3) * a3, (1.0 + tol).powi(3) * a3);
     let within = |m3: f64| m3 >= lo && m3 <= hi;
     let p = s.load;
-    if p >= 0.0 && within(p) {
-        Region::Hertz
-    } else if std::f64::consts::FRAC_PI_2 * s.lambda * (s.a * s.a).max(s.approach.abs()) <= tol {
-        Region::Rigid
-    } else if within(p + 2.0) {
-        Region::Dmt
-    } else if p >= -1.5 && within(p + 3.0 + (9.0 + 6.0 * p).max(0.0).sqrt()) {
-        Region::Jkr
-    } else {
-        Region::Md
-    }
+    let tests = [
+        p >= 0.0 && within(p),
+        std::f64::consts::FRAC_PI_2 * s.lambda * (s.a * s.a).max(s.approach.abs()) <= tol,
+        within(p + 2.0),
+        p >= -1.5 && within(p + 3.0 + (9.0 + 6.0 * p).max(0.0).sqrt()),
+    ];
+    tests
+        .iter()
+        .enumerate()
+        .fold(0, |bits, (m, &t)| bits | ((t as u8) << m))
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -153,11 +167,49 @@ pub struct MapData {
     pub rows: Vec<f64>,
     /// Load-controlled pull-off of each column.
     pub pulloff: Vec<f64>,
-    /// Row-major, row 0 the lowest load.
-    pub states: Vec<State>,
+    /// Compact per-point records (row-major, row 0 the lowest load), enough to draw the map:
+    /// 13 bytes a point, where whole states took 48.
+    pub points: Points,
     pub regions: Vec<Region>,
+    /// A, approach and m - 1 in f64 per point, kept only where asked
+    /// ([`ComputeOptions::keep_exact`]: the NPY and full JSON exports, the Python arrays).
+    pub exact: Option<Vec<[f64; 3]>>,
+    /// Per column and model (Hertz, rigid, DMT, JKR): the lowest row of the top run of rows
+    /// where the model is adequate on its own criterion, found from the f64 states.
+    pub adequate_from: Vec<[Option<u32>; 4]>,
+    /// The GPU's states against the f64 solver on a sample (GPU maps only).
+    pub check: Option<crate::engine::CheckReport>,
     pub large_deformation: Vec<LargeDeformationLine>,
     pub timings: Timings,
+}
+
+/// Per-point records for classification and drawing: single precision is ample for colours
+/// and contour lines (the regions themselves are classified from the f64 states).
+#[derive(Default)]
+pub struct Points {
+    pub a: Vec<f32>,
+    pub approach: Vec<f32>,
+    pub m_minus_1: Vec<f32>,
+    /// [`Status`] codes.
+    pub status: Vec<u8>,
+}
+
+/// What [`compute_with`] keeps besides the compact records.
+#[derive(Clone, Copy, Debug)]
+pub struct ComputeOptions {
+    /// Keep A, approach and m - 1 in f64 (24 bytes a point).
+    pub keep_exact: bool,
+    /// GPU maps: re-solve this many evenly spread points with the f64 solver.
+    pub check: usize,
+}
+
+impl Default for ComputeOptions {
+    fn default() -> Self {
+        ComputeOptions {
+            keep_exact: true,
+            check: 1000,
+        }
+    }
 }
 
 pub fn axis(min: f64, max: f64, n: usize, log: bool) -> Vec<f64> {
@@ -185,7 +237,7 @@ pub enum MapError {
     Engine(#[from] crate::engine::EngineError),
 }
 
-/// Most points a map holds (its states stay in memory for classification and rendering).
+/// Most points a map holds (its compact records stay in memory for drawing).
 pub const MAX_MAP_POINTS: usize = 4096 * 4096;
 /// Smallest load (or gap above the pull-off) of a log load axis.
 pub const LOG_LOAD_MIN: f64 = 1e-15;
@@ -217,7 +269,7 @@ impl MapSpec {
         }
         if self.nx * self.ny > MAX_MAP_POINTS {
             return bad(format!(
-                "--nx {} x --ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 1.5 GB); use fewer points, or split the range into several maps",
+                "--nx {} x --ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with --npy or --json-full); use fewer points, or split the range into several maps",
                 self.nx,
                 self.ny,
                 self.nx * self.ny
@@ -264,15 +316,28 @@ impl MapSpec {
     }
 }
 
-/// Solves and classifies a map on the given engine.
+/// Solves and classifies a map on the given engine, keeping the f64 values and checking a GPU
+/// map on 1000 points (see [`compute_with`]).
 pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
+    compute_with(spec, engine, ComputeOptions::default())
+}
+
+/// Solves and classifies a map in bands of rows: each band's states are classified (regions,
+/// model thresholds, the GPU cross-check sample) and packed into compact records, so memory is
+/// the records plus one band, whatever the grid.
+pub fn compute_with(
+    spec: &MapSpec,
+    engine: &Engine,
+    opts: ComputeOptions,
+) -> Result<MapData, MapError> {
     spec.validate()?;
     let t0 = std::time::Instant::now();
-    let lambdas = axis(spec.lambda_min, spec.lambda_max, spec.nx, true);
+    let (nx, ny) = (spec.nx, spec.ny);
+    let lambdas = axis(spec.lambda_min, spec.lambda_max, nx, true);
     let rows = axis(
         spec.load_min,
         spec.load_max,
-        spec.ny,
+        ny,
         spec.load_axis != LoadAxis::Linear,
     );
     let ctx = crate::engine::contexts(&lambdas);
@@ -280,32 +345,85 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
         LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, rows),
         _ => engine.solve_grid_with(&ctx, &lambdas, rows, crate::solver::Control::Load),
     };
-    let states = if matches!(engine, Engine::Cpu) {
-        // On the CPU, blocks of rows with a progress bar (shown on a terminal after 2 s).
-        let block = (1 << 18) / spec.nx + 1;
-        let mut progress =
-            crate::progress::Progress::new("solving", (spec.nx * spec.ny) as u64, "points");
-        let mut states = Vec::with_capacity(spec.nx * spec.ny);
-        for r in rows.chunks(block) {
-            states.extend(solve(r)?);
-            progress.inc((r.len() * spec.nx) as u64);
-        }
-        progress.finish();
-        states
-    } else {
-        solve(&rows)?
+    let n = nx * ny;
+    let mut points = Points {
+        a: Vec::with_capacity(n),
+        approach: Vec::with_capacity(n),
+        m_minus_1: Vec::with_capacity(n),
+        status: Vec::with_capacity(n),
     };
-    let solve_s = t0.elapsed().as_secs_f64();
+    let mut regions = Vec::with_capacity(n);
+    let mut exact = opts.keep_exact.then(|| Vec::with_capacity(n));
+    let mut adequate_from = vec![[None; 4]; nx];
+    let is_gpu = !matches!(engine, Engine::Cpu);
+    let checks = if is_gpu { opts.check.min(n) } else { 0 };
+    let (mut sample_points, mut sample_states) = (Vec::new(), Vec::new());
+    let mut next_check = 0;
+    // Bands of about 2^18 points on the CPU (a progress bar), 2^20 on a GPU (fewer dispatches).
+    let band = (if is_gpu { 1 << 20 } else { 1 << 18 }) / nx + 1;
+    let mut progress = crate::progress::Progress::new("solving", n as u64, "points");
+    let (mut solve_s, mut classify_s) = (t0.elapsed().as_secs_f64(), 0.0);
+    for (b, r) in rows.chunks(band).enumerate() {
+        let t = std::time::Instant::now();
+        let states = solve(r)?;
+        solve_s += t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let first = b * band * nx;
+        // Per point, on all cores: its region and which models are adequate (one bit each).
+        let tol = spec.tolerance;
+        let marks: Vec<(Region, u8)> = states
+            .par_iter()
+            .map(|s| (classify(s, tol), adequate(s, tol)))
+            .collect();
+        regions.extend(marks.iter().map(|m| m.0));
+        points.a.extend(states.iter().map(|s| s.a as f32));
+        points
+            .approach
+            .extend(states.iter().map(|s| s.approach as f32));
+        points
+            .m_minus_1
+            .extend(states.iter().map(|s| s.m_minus_1 as f32));
+        points.status.extend(states.iter().map(|s| s.status as u8));
+        if let Some(e) = exact.as_mut() {
+            e.extend(states.iter().map(|s| [s.a, s.approach, s.m_minus_1]));
+        }
+        while next_check < checks && next_check * n / checks < first + states.len() {
+            let s = states[next_check * n / checks - first];
+            sample_points.push((s.lambda, s.load));
+            sample_states.push(s);
+            next_check += 1;
+        }
+        // The top run of adequate rows per column and model, row by row from the bottom.
+        for (k, row) in marks.chunks(nx).enumerate() {
+            let iy = (b * band + k) as u32;
+            for (ix, &(_, bits)) in row.iter().enumerate() {
+                for (m, from) in adequate_from[ix].iter_mut().enumerate() {
+                    *from = if bits & (1 << m) != 0 {
+                        from.or(Some(iy))
+                    } else {
+                        None
+                    };
+                }
+            }
+        }
+        classify_s += t.elapsed().as_secs_f64();
+        progress.inc(states.len() as u64);
+    }
+    progress.finish();
+    let check = is_gpu.then(|| {
+        crate::engine::cross_check(
+            &sample_points,
+            &sample_states,
+            crate::solver::Control::Load,
+            sample_points.len(),
+            crate::engine::GPU_TOLERANCE,
+        )
+    });
     let t1 = std::time::Instant::now();
     let pulloff: Vec<f64> = ctx
         .iter()
         .map(|c| c.as_ref().map_or(f64::NAN, |c| c.load_pulloff.load))
         .collect();
-    let regions: Vec<Region> = states
-        .par_iter()
-        .map(|s| classify(s, spec.tolerance))
-        .collect();
-    let t_regions = t1.elapsed().as_secs_f64();
     let large_deformation = spec
         .strength_ratios
         .iter()
@@ -314,20 +432,17 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
             points: large_deformation_line(spec, &lambdas, &ctx, q),
         })
         .collect();
-    let classify_s = t1.elapsed().as_secs_f64();
-    if std::env::var("TABOR_PROFILE").is_ok() {
-        eprintln!(
-            "regions {t_regions:.3} s, lines {:.3} s",
-            classify_s - t_regions
-        );
-    }
+    classify_s += t1.elapsed().as_secs_f64();
     Ok(MapData {
         spec: spec.clone(),
         lambdas,
         rows,
         pulloff,
-        states,
+        points,
         regions,
+        exact,
+        adequate_from,
+        check,
         large_deformation,
         timings: Timings {
             solve_s,
@@ -373,27 +488,69 @@ impl MapData {
         self.regions[iy * self.spec.nx + ix]
     }
 
+    /// Number of points.
+    pub fn len(&self) -> usize {
+        self.regions.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.regions.is_empty()
+    }
+
+    /// Pbar at point `i`: the row's load, or the column's pull-off plus the row's gap.
+    pub fn load(&self, i: usize) -> f64 {
+        let (ix, iy) = (i % self.spec.nx, i / self.spec.nx);
+        match self.spec.load_axis {
+            LoadAxis::AbovePulloff => self.pulloff[ix] + self.rows[iy],
+            _ => self.rows[iy],
+        }
+    }
+
+    /// The state at point `i`: f64 where the map kept them, else from the compact records
+    /// (single precision).
+    pub fn state(&self, i: usize) -> State {
+        match &self.exact {
+            Some(e) => State {
+                a: e[i][0],
+                approach: e[i][1],
+                m_minus_1: e[i][2],
+                ..self.drawn(i)
+            },
+            None => self.drawn(i),
+        }
+    }
+
+    /// The state at point `i` from the compact records, as figures draw it (the same figure
+    /// whether or not the f64 values were kept).
+    pub fn drawn(&self, i: usize) -> State {
+        let (a, approach, m_minus_1) = (
+            self.points.a[i] as f64,
+            self.points.approach[i] as f64,
+            self.points.m_minus_1[i] as f64,
+        );
+        State {
+            lambda: self.lambdas[i % self.spec.nx],
+            load: self.load(i),
+            approach,
+            a,
+            m_minus_1,
+            status: Status::from_code(self.points.status[i] as u32),
+            iterations: 0,
+        }
+    }
+
     /// For each lambda, the lowest load of the top run of rows where each model is adequate on
     /// its own criterion (`None` where it is not adequate even at the largest load).
     pub fn thresholds(&self) -> Vec<serde_json::Value> {
-        let (nx, ny, tol) = (self.spec.nx, self.spec.ny, self.spec.tolerance);
+        let nx = self.spec.nx;
         (0..nx)
             .map(|ix| {
                 let mut entry = serde_json::json!({ "lambda": self.lambdas[ix], "pulloff_load": self.pulloff[ix] });
-                for (name, k) in [("hertz", 0), ("rigid", 1), ("dmt", 2), ("jkr", 3)] {
-                    let ok = |iy: usize| {
-                        let s = &self.states[iy * nx + ix];
-                        if s.status != Status::Ok {
-                            return false;
-                        }
-                        let c = criteria(s.lambda, s.load, s.a, s.approach);
-                        [c.err_hertz, c.rigid, c.err_dmt, c.err_jkr][k] <= tol
+                for (k, name) in ["hertz", "rigid", "dmt", "jkr"].iter().enumerate() {
+                    let v = match self.adequate_from[ix][k] {
+                        Some(iy) => serde_json::json!(self.load(iy as usize * nx + ix)),
+                        None => serde_json::Value::Null,
                     };
-                    let mut iy = ny;
-                    while iy > 0 && ok(iy - 1) {
-                        iy -= 1;
-                    }
-                    let v = if iy < ny { serde_json::json!(self.states[iy * nx + ix].load) } else { serde_json::Value::Null };
                     entry[format!("{name}_adequate_above_load")] = v;
                 }
                 entry

@@ -64,7 +64,7 @@ impl Quantity {
     }
     /// The value at a solved point (NaN where undefined), before the log transform.
     fn value(self, d: &MapData, i: usize) -> f64 {
-        let s = &d.states[i];
+        let s = &d.drawn(i);
         if s.status != Status::Ok {
             return f64::NAN;
         }
@@ -160,7 +160,7 @@ fn trace(d: &MapData) -> Traced {
         .into_par_iter()
         .map(|j| {
             let i = (j / mx) * k * nx + (j % mx) * k;
-            let s = &d.states[i];
+            let s = &d.drawn(i);
             let contact = if d.regions[i] == Region::NoContact {
                 0.0
             } else {
@@ -322,7 +322,7 @@ fn quantity_range(d: &MapData, q: Quantity) -> (f64, f64) {
         return (-6.0, 0.0);
     }
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for i in 0..d.states.len() {
+    for i in 0..d.len() {
         let v = q.transform(q.value(d, i));
         if v.is_finite() {
             lo = lo.min(v);
