@@ -12,7 +12,6 @@ pub use context::{LambdaContext, PullOff, RadiusState};
 
 use rayon::prelude::*;
 use serde::Serialize;
-use std::collections::HashMap;
 
 /// What a solve is given: the load (dead load) or the approach (rigid grips).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -126,43 +125,45 @@ pub fn solve_with(ctx: &LambdaContext, value: f64, control: Control) -> State {
     }
 }
 
-/// Contexts for the distinct lambdas of a point list, built in parallel. Invalid lambdas map
-/// to `None`.
-pub fn contexts_for(lambdas: impl Iterator<Item = f64>) -> HashMap<u64, Option<LambdaContext>> {
-    let mut keys: Vec<u64> = lambdas.map(f64::to_bits).collect();
-    keys.sort_unstable();
-    keys.dedup();
-    keys.into_par_iter()
-        .map(|k| (k, LambdaContext::new(f64::from_bits(k)).ok()))
-        .collect()
-}
-
-/// Solves a list of (lambda, value) points on all cores, one context per distinct lambda.
+/// Solves a list of (lambda, value) points on all cores, one context per distinct lambda: the
+/// points are grouped by lambda (a sort, not a map of contexts), each group builds its context
+/// (with a dense start where it has enough load-controlled states to pay for it), solves its
+/// points and drops it, so memory is the points and their states whatever the mix.
 pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
-    let mut ctx = contexts_for(points.iter().map(|p| p.0));
-    if control == Control::Load {
-        // A dense start where a lambda has enough states to pay for it, over their loads.
-        let mut range: HashMap<u64, (usize, f64, f64)> = HashMap::new();
-        for &(l, v) in points {
-            let e = range.entry(l.to_bits()).or_insert((0, v, v));
-            *e = (e.0 + 1, e.1.min(v), e.2.max(v));
-        }
-        ctx.par_iter_mut().for_each(|(k, c)| {
-            let (n, lo, hi) = range[k];
-            if n >= context::START_MIN_STATES {
-                if let Some(c) = c.as_mut() {
-                    c.add_start(lo, hi, n);
-                }
-            }
-        });
-    }
-    points
+    let mut order: Vec<u32> = (0..points.len() as u32).collect();
+    order.par_sort_unstable_by_key(|&i| points[i as usize].0.to_bits());
+    let groups: Vec<&[u32]> = order
+        .chunk_by(|&a, &b| points[a as usize].0.to_bits() == points[b as usize].0.to_bits())
+        .collect();
+    let solved: Vec<Vec<(u32, State)>> = groups
         .par_iter()
-        .map(|&(lambda, value)| match &ctx[&lambda.to_bits()] {
-            Some(c) => solve_with(c, value, control),
-            None => invalid(lambda, value, control),
+        .map(|g| {
+            let lambda = points[g[0] as usize].0;
+            let Ok(mut ctx) = LambdaContext::new(lambda) else {
+                return g
+                    .iter()
+                    .map(|&i| (i, invalid(lambda, points[i as usize].1, control)))
+                    .collect();
+            };
+            if control == Control::Load && g.len() >= context::START_MIN_STATES {
+                let (lo, hi) = g
+                    .iter()
+                    .map(|&i| points[i as usize].1)
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                        (a.min(v), b.max(v))
+                    });
+                ctx.add_start(lo, hi, g.len());
+            }
+            g.iter()
+                .map(|&i| (i, solve_with(&ctx, points[i as usize].1, control)))
+                .collect()
         })
-        .collect()
+        .collect();
+    let mut out = vec![State::failed(0.0, 0.0, 0.0, Status::InvalidInput); points.len()];
+    for (i, s) in solved.into_iter().flatten() {
+        out[i as usize] = s;
+    }
+    out
 }
 
 /// The states at the contact radii of a list of (lambda, A) points, on all cores.
