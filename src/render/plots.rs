@@ -288,7 +288,7 @@ where
         .legend(sample(ShapeStyle::from(&GREEN_).stroke_width(6)));
     // Markers first; then each label at the first nearby spot that overlaps no marker and no
     // label placed before it (boxes in pixels; the text width is estimated from the font size).
-    let mut taken: Vec<(i32, i32, i32, i32)> = Vec::new();
+    let mut placer = super::Placer::default();
     for r in results {
         let (x, y) = (err(r), r.points_per_second);
         let col = if r.name.starts_with("gpu") {
@@ -305,15 +305,17 @@ where
         };
         chart.draw_series(std::iter::once(Circle::new((x, y), 18, style)))?;
         let (px, py) = chart.backend_coord(&(x, y));
-        taken.push((px - 22, py - 22, px + 22, py + 22));
+        placer.boxes.push((px - 22, py - 22, px + 22, py + 22));
     }
+    // The Pareto front is a line labels must not cross.
+    placer.lines.push(
+        front
+            .iter()
+            .map(|&i| chart.backend_coord(&(err(&results[i]), results[i].points_per_second)))
+            .collect(),
+    );
     let plot = chart.plotting_area().get_pixel_range();
-    let overlaps = |b: (i32, i32, i32, i32), o: &(i32, i32, i32, i32)| {
-        b.0 < o.2 && o.0 < b.2 && b.1 < o.3 && o.1 < b.3
-    };
-    let inside = |b: &(i32, i32, i32, i32)| {
-        b.0 >= plot.0.start && b.2 <= plot.0.end && b.1 >= plot.1.start && b.3 <= plot.1.end
-    };
+    let frame = (plot.0.start, plot.1.start, plot.0.end, plot.1.end);
     for r in results {
         let (x, y) = (err(r), r.points_per_second);
         let label = if r.failures > 0 {
@@ -334,12 +336,12 @@ where
                 spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
             }
         }
-        let spot = spots
-            .iter()
-            .copied()
-            .find(|b| inside(b) && !taken.iter().any(|o| overlaps(*b, o)))
+        // The map's placer: the first spot over no marker, label or line, else the one that
+        // crosses fewest lines.
+        let spot = placer
+            .take(spots.iter().copied(), frame)
+            .or_else(|| placer.take_least_crossing(spots.iter().copied(), frame))
             .unwrap_or(spots[0]);
-        taken.push(spot);
         let style = ("sans-serif", NOTE)
             .into_font()
             .color(&BLACK)
