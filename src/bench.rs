@@ -81,6 +81,9 @@ pub struct VariantResult {
     pub max_rel_err_away: f64,
     /// No answer, NaN, a failed status, or an answer off by more than 50% (wrong branch).
     pub failures: usize,
+    /// f64 solvers: curve evaluations per state, their tables included.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub evals_per_state: Option<f64>,
 }
 
 fn summarize(
@@ -127,16 +130,30 @@ fn summarize(
         p99_rel_err: q(0.99),
         max_rel_err_away: away,
         failures,
+        evals_per_state: None,
     }
 }
 
 fn f64_solve(w: &Workload, p: &(usize, f64, f64, f64)) -> f64 {
-    let c = &w.contexts[p.0];
+    f64_state(&w.contexts[p.0], p).a
+}
+
+fn f64_state(c: &LambdaContext, p: &(usize, f64, f64, f64)) -> crate::solver::State {
     if p.2.is_nan() {
-        c.solve_load(p.1).a
+        c.solve_load(p.1)
     } else {
-        c.solve_load_gap(p.2, p.1).a
+        c.solve_load_gap(p.2, p.1)
     }
+}
+
+/// Curve evaluations of a search solve: its iterations and the final state's evaluation.
+fn search_evals(w: &Workload) -> f64 {
+    let n: u64 = w
+        .points
+        .par_iter()
+        .map(|p| f64_state(&w.contexts[p.0], p).iterations as u64 + 1)
+        .sum();
+    n as f64 / w.points.len() as f64
 }
 
 fn out_a(o: &Out, capped: bool) -> Option<f64> {
@@ -174,29 +191,78 @@ fn cpu_f64_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
     let t = Instant::now();
     let a: Vec<Option<f64>> = pts.par_iter().map(|p| Some(f64_solve(w, p))).collect();
     let s = t.elapsed().as_secs_f64();
-    push(summarize(
-        "cpu-f64",
-        &format!(
-            "exact solver, f64, {} threads (the reference for the grid)",
-            rayon::current_num_threads()
-        ),
-        w,
-        s,
-        &a,
-    ));
+    let evals = search_evals(w);
+    push(VariantResult {
+        evals_per_state: Some(evals),
+        ..summarize(
+            "cpu-f64",
+            &format!(
+                "exact solver, f64, bracketed search, {} threads (the reference for the grid)",
+                rayon::current_num_threads()
+            ),
+            w,
+            s,
+            &a,
+        )
+    });
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("thread pool");
     let t = Instant::now();
     let a: Vec<Option<f64>> = pool.install(|| pts.iter().map(|p| Some(f64_solve(w, p))).collect());
-    push(summarize(
-        "cpu-f64-1t",
-        "exact solver, f64, 1 thread",
-        w,
-        t.elapsed().as_secs_f64(),
-        &a,
-    ));
+    push(VariantResult {
+        evals_per_state: Some(evals),
+        ..summarize(
+            "cpu-f64-1t",
+            "exact solver, f64, bracketed search, 1 thread",
+            w,
+            t.elapsed().as_secs_f64(),
+            &a,
+        )
+    });
+    // The dense start over each lambda's loads (their range known, as solve_grid knows its
+    // values), built inside the timing.
+    let mut range = vec![(f64::INFINITY, f64::NEG_INFINITY, 0usize); w.contexts.len()];
+    for p in pts {
+        let r = &mut range[p.0];
+        *r = (r.0.min(p.1), r.1.max(p.1), r.2 + 1);
+    }
+    let t = Instant::now();
+    let started: Vec<LambdaContext> = w
+        .contexts
+        .par_iter()
+        .zip(&range)
+        .map(|(c, &(lo, hi, n))| {
+            let mut c = c.clone();
+            if n >= crate::solver::context::START_MIN_STATES {
+                c.add_start(lo, hi, n);
+            }
+            c
+        })
+        .collect();
+    let states: Vec<crate::solver::State> =
+        pts.par_iter().map(|p| f64_state(&started[p.0], p)).collect();
+    let s = t.elapsed().as_secs_f64();
+    let nodes: usize = started
+        .iter()
+        .map(|c| c.start.as_ref().map_or(0, |s| s.nodes()))
+        .sum();
+    let evals: u64 = states.iter().map(|s| s.iterations as u64).sum();
+    let a: Vec<Option<f64>> = states.iter().map(|s| Some(s.a)).collect();
+    push(VariantResult {
+        evals_per_state: Some((evals + nodes as u64) as f64 / pts.len() as f64),
+        ..summarize(
+            "cpu-f64-start",
+            &format!(
+                "exact solver, f64, dense start and one Newton correction, {} threads (tables timed)",
+                rayon::current_num_threads()
+            ),
+            w,
+            s,
+            &a,
+        )
+    });
 }
 
 /// The kernels' f32 arithmetic on the CPU (the mirror), shipped and naive, and with iteration
@@ -412,23 +478,25 @@ pub fn pareto(results: &[VariantResult]) -> Vec<usize> {
 
 pub fn table(results: &[VariantResult]) -> String {
     let mut t = format!(
-        "{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9}\n",
-        "variant", "points/s", "max err", "p99 err", "median", "max (>=1e-4)", "failures"
+        "{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9} {:>6}\n",
+        "variant", "points/s", "max err", "p99 err", "median", "max (>=1e-4)", "failures", "evals"
     );
     for r in results {
         t += &format!(
-            "{:<26} {:>12.3e} {:>10.2e} {:>10.2e} {:>10.2e} {:>12.2e} {:>9}\n",
+            "{:<26} {:>12.3e} {:>10.2e} {:>10.2e} {:>10.2e} {:>12.2e} {:>9} {:>6}\n",
             r.name,
             r.points_per_second,
             r.max_rel_err,
             r.p99_rel_err,
             r.median_rel_err,
             r.max_rel_err_away,
-            r.failures
+            r.failures,
+            r.evals_per_state.map_or(String::new(), |e| format!("{e:.2}"))
         );
     }
     t += "errors: relative error of A against the f64 solver (grid) and the 50-digit table (300 states);\n";
     t += "max (>=1e-4): over points at least 1e-4 |Pbar_c| above pull-off; failures: no answer, NaN, failed status or off by > 50%\n";
+    t += "evals: curve evaluations per state of the f64 solvers, their tables included\n";
     t
 }
 
