@@ -241,8 +241,10 @@ fn cpu_f64_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
             c
         })
         .collect();
-    let states: Vec<crate::solver::State> =
-        pts.par_iter().map(|p| f64_state(&started[p.0], p)).collect();
+    let states: Vec<crate::solver::State> = pts
+        .par_iter()
+        .map(|p| f64_state(&started[p.0], p))
+        .collect();
     let s = t.elapsed().as_secs_f64();
     let nodes: usize = started
         .iter()
@@ -491,7 +493,8 @@ pub fn table(results: &[VariantResult]) -> String {
             r.median_rel_err,
             r.max_rel_err_away,
             r.failures,
-            r.evals_per_state.map_or(String::new(), |e| format!("{e:.2}"))
+            r.evals_per_state
+                .map_or(String::new(), |e| format!("{e:.2}"))
         );
     }
     t += "errors: relative error of A against the f64 solver (grid) and the 50-digit table (300 states);\n";

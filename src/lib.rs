@@ -87,6 +87,7 @@ pub mod cycle;
 pub mod engine;
 pub mod export;
 pub mod figure_data;
+pub mod fit;
 pub mod gpu;
 pub mod io;
 pub mod kernel;

@@ -108,6 +108,7 @@ fn variant(name: &str, speed: f64, err: f64, failures: usize) -> tabor::bench::V
         p99_rel_err: err / 2.0,
         max_rel_err_away: err,
         failures,
+        evals_per_state: None,
     }
 }
 

@@ -1,6 +1,7 @@
 //! The command line: parsing builds the work, the library does it.
 
 mod basic;
+mod fit;
 mod map;
 mod profile;
 pub(crate) mod scene;
@@ -40,6 +41,9 @@ pub enum Command {
     /// Pressure and surface gap inside and around the contact (MD, Hertz, DMT, JKR), stress
     /// intensity and energy release rate at the contact edge.
     Profile(profile::ProfileArgs),
+    /// Fit exact Maugis-Dugdale (and Hertz, DMT, JKR) to measured AFM force curves: one curve,
+    /// many, or a force map.
+    Fit(Box<fit::FitArgs>),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -156,6 +160,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Infer(a) => scene::infer_cmd(a),
         Command::Cycle(a) => scene::cycle(a),
         Command::Profile(a) => profile::run(a),
+        Command::Fit(a) => fit::run(*a),
     }
 }
 

@@ -193,6 +193,7 @@ pub enum Kind {
     Scene,
     Cycle,
     Profile,
+    Fit,
 }
 
 impl Kind {
@@ -233,6 +234,13 @@ impl Kind {
                     1.25
                 } else {
                     0.8
+                }
+            }
+            Kind::Fit => {
+                if n {
+                    1.1
+                } else {
+                    0.7
                 }
             }
         }

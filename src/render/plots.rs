@@ -842,3 +842,199 @@ where
     }
     Ok(())
 }
+
+/// One measured force curve (baseline removed) with the Maugis-Dugdale, Hertz, DMT and JKR fits,
+/// and below it the residuals of each.
+pub fn fit<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    curve: &crate::fit::Curve,
+    r: &crate::fit::CurveFit,
+    opt: &crate::fit::FitOptions,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use crate::fit::{model_forces, prepare, Model};
+    root.fill(&WHITE)?;
+    let d = prepare(curve, opt).map_err(|(_, m)| m)?;
+    let md = r.md.as_ref().ok_or("no Maugis-Dugdale fit")?;
+    let (top, bottom) = root.split_vertically(root.dim_in_pixel().1 * 2 / 3);
+    let zc = md.contact_point_m;
+    // Heights relative to the fitted contact point, in nm; forces in nN.
+    let x_of = |hgt: f64| (hgt - zc) * 1e9;
+    let (xmin, xmax) = d
+        .height
+        .iter()
+        .map(|&v| x_of(v))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let (fmin, fmax) = d
+        .force
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    let pad = 0.06 * (fmax - fmin);
+    // A dense grid along each fitted segment for the model curves.
+    let n = 600;
+    let mut hs = Vec::new();
+    let mut dirs = Vec::new();
+    for dir in [
+        crate::fit::Direction::Approach,
+        crate::fit::Direction::Retract,
+    ] {
+        if !d.dir.contains(&dir) {
+            continue;
+        }
+        let (lo, hi) = d
+            .height
+            .iter()
+            .zip(&d.dir)
+            .filter(|(_, &dd)| dd == dir)
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (&v, _)| {
+                (a.min(v), b.max(v))
+            });
+        for i in 0..n {
+            let t = i as f64 / (n - 1) as f64;
+            // In time order: the approach descends, the retract climbs.
+            hs.push(if dir == crate::fit::Direction::Approach {
+                hi - t * (hi - lo)
+            } else {
+                lo + t * (hi - lo)
+            });
+            dirs.push(dir);
+        }
+    }
+    let fits: Vec<(&crate::fit::ModelFit, RGBColor, &str)> =
+        std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
+            .chain(
+                r.models
+                    .iter()
+                    .filter(|m| m.status == crate::fit::FitStatus::Ok)
+                    .map(|m| {
+                        let (c, l) = match m.model {
+                            Model::Hertz => (GRAY_, "Hertz"),
+                            Model::Dmt => (ORANGE_, "DMT"),
+                            Model::Jkr => (BLUE_, "JKR"),
+                            Model::Md => (GREEN_, "Maugis-Dugdale"),
+                        };
+                        (m, c, l)
+                    }),
+            )
+            .collect();
+    let mut chart =
+        builder(&top, "").build_cartesian_2d(xmin..xmax, (fmin - pad) * 1e9..(fmax + pad) * 1e9)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("")
+        .y_desc("force F (nN)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .draw()?;
+    let dot = ShapeStyle::from(&RGBColor(150, 150, 150)).filled();
+    chart
+        .draw_series(
+            d.height
+                .iter()
+                .zip(&d.force)
+                .map(|(&hh, &f)| Circle::new((x_of(hh), f * 1e9), 5, dot)),
+        )?
+        .label("measured")
+        .legend(move |(x, y)| Circle::new((x + 20, y), 6, dot));
+    let mut residuals: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
+    for (m, col, label) in fits.iter().rev() {
+        let p = m.params(opt.radius);
+        let Some((f, _, _, _)) =
+            model_forces(m.model, &p, opt.radius, opt.spring, &hs, &dirs, None)
+        else {
+            continue;
+        };
+        let width = if m.model == Model::Md { 6 } else { 4 };
+        let st = ShapeStyle::from(col).stroke_width(width);
+        let mut first = true;
+        for dir in [
+            crate::fit::Direction::Approach,
+            crate::fit::Direction::Retract,
+        ] {
+            let pts: Vec<(f64, f64)> = hs
+                .iter()
+                .zip(&dirs)
+                .zip(&f)
+                .filter(|((_, &dd), _)| dd == dir)
+                .map(|((&hh, _), &ff)| (x_of(hh), (ff + p.f0) * 1e9))
+                .collect();
+            if pts.is_empty() {
+                continue;
+            }
+            let s2 = if m.model == Model::Md {
+                chart.draw_series(LineSeries::new(pts, st))?
+            } else {
+                chart.draw_series(DashedLineSeries::new(pts, 14, 8, st))?
+            };
+            if first {
+                let rms = format!("{label}: rms {:.2e} N", m.rms_residual_n);
+                if m.model == Model::Md {
+                    s2.label(rms).legend(sample(st));
+                } else {
+                    s2.label(rms).legend(sample_dashed(st));
+                }
+                first = false;
+            }
+        }
+        if let Some((fd, _, _, _)) = model_forces(
+            m.model,
+            &p,
+            opt.radius,
+            opt.spring,
+            &d.height,
+            &d.dir,
+            Some(&d.side),
+        ) {
+            residuals.push((
+                d.height
+                    .iter()
+                    .zip(&fd)
+                    .zip(&d.force)
+                    .map(|((&hh, &fm), &fo)| (x_of(hh), (fo - fm - p.f0) * 1e9))
+                    .collect(),
+                *col,
+            ));
+        }
+    }
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
+    // Residuals of Maugis-Dugdale (black) over those of the closed forms.
+    let md_res = &residuals.last().ok_or("no residuals")?.0;
+    let span = md_res
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.1.abs()))
+        .max(1e-30)
+        * 1.3;
+    let span = span.max(3.0 * md.rms_residual_n * 1e9);
+    let mut rc = builder(&bottom, "").build_cartesian_2d(xmin..xmax, -span..span)?;
+    rc.configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("base height above the contact point (nm)")
+        .y_desc("residual (nN)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .draw()?;
+    for (pts, col) in &residuals {
+        let st = ShapeStyle::from(col).filled();
+        rc.draw_series(
+            pts.iter()
+                .filter(|p| p.1.abs() <= span)
+                .map(|&p| Circle::new(p, if *col == RGBColor(0, 0, 0) { 4 } else { 3 }, st)),
+        )?;
+    }
+    Ok(())
+}

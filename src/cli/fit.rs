@@ -1,0 +1,255 @@
+//! `tabor fit`: measured force curves in, exact Maugis-Dugdale parameters out.
+
+use super::Format;
+use crate::fit::{self, CurveFit, FitOptions, FitStatus, Segments};
+use crate::io::output::write_output;
+use anyhow::{bail, Context};
+use clap::{Args, ValueEnum};
+use rayon::prelude::*;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SegmentArg {
+    Retract,
+    Approach,
+    Both,
+}
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// CSV or TSV with a header (segment, height_m, force_n; optionally curve, or x and y of a
+    /// force map), or a NumPy .npz with the same array names; `-` is stdin.
+    #[arg(long, short)]
+    pub input: String,
+    /// Tip radius R (m).
+    #[arg(long)]
+    pub radius: f64,
+    /// Cantilever spring constant (N/m).
+    #[arg(long)]
+    pub spring_n_m: f64,
+    /// The sample's Poisson ratio: also report its Young's modulus E = E* (1 - nu^2) (rigid tip).
+    #[arg(long)]
+    pub poisson: Option<f64>,
+    /// Which segments to fit.
+    #[arg(long, value_enum, default_value_t = SegmentArg::Retract)]
+    pub segment: SegmentArg,
+    /// Fix lambda through the Lennard-Jones range z0 (m) instead of fitting it.
+    #[arg(long)]
+    pub z0: Option<f64>,
+    /// Remove a tilted baseline (force linear in height), not only an offset.
+    #[arg(long)]
+    pub tilt: bool,
+    /// The adequate model: the simplest whose rms force residual is within this fraction of
+    /// Maugis-Dugdale's, or whose contact radius is within it at every fitted point in contact.
+    #[arg(long, default_value_t = 0.05)]
+    pub tolerance: f64,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    #[arg(long, value_enum, default_value_t = Format::Json)]
+    pub format: Format,
+    /// One curve's data with the Maugis-Dugdale, Hertz, DMT and JKR fits and the residuals
+    /// (.png, .svg or .pdf).
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
+    /// The curve drawn by --plot [default: the first].
+    #[arg(long)]
+    pub curve: Option<String>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
+}
+
+pub fn run(a: FitArgs) -> anyhow::Result<()> {
+    if a.format == Format::Text {
+        bail!("--format text is not available for fit: use json or csv (a summary goes to stderr)");
+    }
+    if !(a.tolerance > 0.0 && a.tolerance < 1.0) {
+        bail!(
+            "--tolerance {} must be between 0 and 1 (a fraction, 0.05 is 5%)",
+            crate::solver::domain::short(a.tolerance)
+        );
+    }
+    if let Some(nu) = a.poisson {
+        if !(nu > -1.0 && nu <= 0.5) {
+            bail!("--poisson {nu} must be in (-1, 0.5]");
+        }
+    }
+    if let Some(z0) = a.z0 {
+        if !(z0 > 0.0 && z0.is_finite()) {
+            bail!(
+                "--z0 {} must be a positive length in metres (about 0.3e-9 for van der Waals)",
+                crate::solver::domain::short(z0)
+            );
+        }
+    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
+    let opt = FitOptions {
+        radius: a.radius,
+        spring: a.spring_n_m,
+        poisson: a.poisson,
+        segments: match a.segment {
+            SegmentArg::Retract => Segments::Retract,
+            SegmentArg::Approach => Segments::Approach,
+            SegmentArg::Both => Segments::Both,
+        },
+        z0: a.z0,
+        tilt: a.tilt,
+        tolerance: a.tolerance,
+        ..FitOptions::default()
+    };
+    let plotted = match &a.curve {
+        Some(id) => Some(
+            curves
+                .iter()
+                .position(|c| &c.id == id)
+                .with_context(|| format!("--curve {id}: no such curve in the input"))?,
+        ),
+        None => (!figure.is_empty()).then_some(0),
+    };
+    let progress = std::sync::Mutex::new(crate::progress::Progress::new(
+        "fitting",
+        curves.len() as u64,
+        "curves",
+    ));
+    let results: Vec<CurveFit> = curves
+        .par_iter()
+        .map(|c| {
+            let r = fit::fit_curve(c, &opt);
+            if let Ok(mut p) = progress.lock() {
+                p.inc(1);
+            }
+            r
+        })
+        .collect();
+    if let Ok(p) = progress.into_inner() {
+        p.finish();
+    }
+    let text = match a.format {
+        Format::Json => {
+            #[derive(serde::Serialize)]
+            struct Out<'a> {
+                radius_m: f64,
+                spring_n_m: f64,
+                segment: Segments,
+                tolerance: f64,
+                curves: &'a [CurveFit],
+            }
+            serde_json::to_string_pretty(&Out {
+                radius_m: a.radius,
+                spring_n_m: a.spring_n_m,
+                segment: opt.segments,
+                tolerance: a.tolerance,
+                curves: &results,
+            })? + "\n"
+        }
+        _ => csv_rows(&results)?,
+    };
+    write_output(&a.output, text.as_bytes())?;
+    let ok = results.iter().filter(|r| r.status == FitStatus::Ok).count();
+    eprintln!("fitted {ok} of {} curves", results.len());
+    for r in results.iter().filter(|r| r.status != FitStatus::Ok).take(5) {
+        eprintln!("  curve {}: {}", r.curve, r.message);
+    }
+    if results.len() == 1 && ok == 1 {
+        let r = &results[0];
+        eprintln!(
+            "  E* = {:.4e} Pa, w = {:.4e} J/m^2, lambda = {:.4}, adequate model: {}",
+            r.e_star_pa.unwrap_or(f64::NAN),
+            r.work_of_adhesion_j_m2.unwrap_or(f64::NAN),
+            r.lambda.unwrap_or(f64::NAN),
+            r.adequate_model.map_or("-", |m| m.name())
+        );
+        for w in &r.warnings {
+            eprintln!("  warning: {w}");
+        }
+    }
+    if let Some(i) = plotted {
+        let (c, r) = (&curves[i], &results[i]);
+        if r.status != FitStatus::Ok {
+            bail!("--plot: curve {} was not fitted ({})", c.id, r.message);
+        }
+        crate::render::plots::save(crate::render::Kind::Fit, &print, &figure, &|root| {
+            crate::render::plots::fit(root, c, r, &opt)
+        })
+        .context("drawing the fit")?;
+        eprintln!("wrote the figure of curve {}", c.id);
+    }
+    if ok == 0 {
+        bail!(
+            "no curve could be fitted ({}): see the status and message of each",
+            results.first().map_or("no curves", |r| r.message.as_str())
+        );
+    }
+    Ok(())
+}
+
+fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
+    let mut w = crate::io::csv_writer();
+    w.write_record([
+        "curve",
+        "x",
+        "y",
+        "status",
+        "e_star_pa",
+        "e_star_pa_stderr",
+        "work_of_adhesion_j_m2",
+        "work_of_adhesion_j_m2_stderr",
+        "lambda",
+        "lambda_stderr",
+        "tabor_parameter",
+        "z0_m",
+        "contact_point_m",
+        "force_offset_n",
+        "rms_residual_n",
+        "pulloff_force_measured_n",
+        "pulloff_force_model_n",
+        "max_load_n",
+        "rms_hertz_n",
+        "rms_dmt_n",
+        "rms_jkr_n",
+        "adequate_model",
+        "iterations",
+        "warnings",
+        "message",
+    ])?;
+    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
+    for r in results {
+        let rms = |m: fit::Model| {
+            f(r.models
+                .iter()
+                .find(|x| x.model == m)
+                .map(|x| x.rms_residual_n))
+        };
+        w.write_record([
+            r.curve.clone(),
+            r.x.map_or(String::new(), |v| v.to_string()),
+            r.y.map_or(String::new(), |v| v.to_string()),
+            serde_json::to_value(r.status)?
+                .as_str()
+                .unwrap_or("")
+                .to_string(),
+            f(r.e_star_pa),
+            f(r.e_star_pa_stderr),
+            f(r.work_of_adhesion_j_m2),
+            f(r.work_of_adhesion_j_m2_stderr),
+            f(r.lambda),
+            f(r.lambda_stderr),
+            f(r.tabor_parameter),
+            f(r.z0_m),
+            f(r.contact_point_m),
+            f(r.force_offset_n),
+            f(r.rms_residual_n),
+            f(r.pulloff_force_measured_n),
+            f(r.pulloff_force_model_n),
+            f(r.max_load_n),
+            rms(fit::Model::Hertz),
+            rms(fit::Model::Dmt),
+            rms(fit::Model::Jkr),
+            r.adequate_model.map_or("", |m| m.name()).to_string(),
+            r.iterations.to_string(),
+            r.warnings.join("; "),
+            r.message.clone(),
+        ])?;
+    }
+    Ok(String::from_utf8(crate::io::csv_finish(w)?)?)
+}

@@ -1,0 +1,289 @@
+//! Measured force curves in, as CSV/TSV with a header or as a NumPy `.npz`: columns `segment`
+//! (`approach`/`retract`, or 0/1 as afmformats writes it), `height_m` (piezo height of the
+//! cantilever base, larger is farther from the sample), `force_n` (positive when repulsive), and
+//! optionally `curve` (any id) or `x` and `y` (pixel indices of a force map) to hold many curves.
+
+use super::path::Direction;
+use std::collections::HashMap;
+use std::io::Read;
+
+/// One approach-retract curve, points in the order measured.
+#[derive(Clone, Debug, Default)]
+pub struct Curve {
+    pub id: String,
+    pub x: Option<i64>,
+    pub y: Option<i64>,
+    pub segment: Vec<Direction>,
+    pub height: Vec<f64>,
+    pub force: Vec<f64>,
+}
+
+impl Curve {
+    pub fn len(&self) -> usize {
+        self.height.len()
+    }
+    pub fn is_empty(&self) -> bool {
+        self.height.is_empty()
+    }
+}
+
+pub type CurveSet = Vec<Curve>;
+
+#[derive(Debug, thiserror::Error)]
+pub enum DataError {
+    #[error("cannot read {path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{path}: {source}")]
+    Csv {
+        path: String,
+        #[source]
+        source: csv::Error,
+    },
+    #[error("{path}: no column `{column}` (columns: {found}); a force curve needs segment, height_m and force_n")]
+    MissingColumn {
+        path: String,
+        column: &'static str,
+        found: String,
+    },
+    #[error("{path}, line {line}: {column} = `{value}` {what}")]
+    Value {
+        path: String,
+        line: u64,
+        column: &'static str,
+        value: String,
+        what: &'static str,
+    },
+    #[error("{path}: {what}")]
+    Npz { path: String, what: String },
+    #[error("{path}: no data rows")]
+    Empty { path: String },
+}
+
+fn segment_of(s: &str) -> Option<Direction> {
+    match s.trim().to_ascii_lowercase().as_str() {
+        "approach" | "0" | "extend" | "trace" => Some(Direction::Approach),
+        "retract" | "1" | "retrace" => Some(Direction::Retract),
+        _ => None,
+    }
+}
+
+/// Groups rows into curves by id, in order of first appearance.
+#[derive(Default)]
+struct Grouper {
+    curves: Vec<Curve>,
+    index: HashMap<String, usize>,
+}
+
+impl Grouper {
+    fn push(&mut self, id: String, x: Option<i64>, y: Option<i64>, seg: Direction, h: f64, f: f64) {
+        let k = match self.index.get(&id) {
+            Some(&k) => k,
+            None => {
+                self.curves.push(Curve {
+                    id: id.clone(),
+                    x,
+                    y,
+                    ..Default::default()
+                });
+                self.index.insert(id, self.curves.len() - 1);
+                self.curves.len() - 1
+            }
+        };
+        let c = &mut self.curves[k];
+        c.segment.push(seg);
+        c.height.push(h);
+        c.force.push(f);
+    }
+}
+
+fn curve_id(curve: Option<&str>, x: Option<i64>, y: Option<i64>) -> String {
+    match (curve, x, y) {
+        (Some(c), _, _) => c.to_string(),
+        (None, Some(x), Some(y)) => format!("{x},{y}"),
+        _ => "0".to_string(),
+    }
+}
+
+/// Reads the curves of a CSV/TSV (`-` is stdin) or `.npz` file.
+pub fn read_curves(path: &str) -> Result<CurveSet, DataError> {
+    if path.ends_with(".npz") {
+        return read_npz(path);
+    }
+    let io = |source| DataError::Io {
+        path: path.to_string(),
+        source,
+    };
+    let mut text = Vec::new();
+    if path == "-" {
+        std::io::stdin().read_to_end(&mut text).map_err(io)?;
+    } else {
+        std::fs::File::open(path)
+            .and_then(|mut f| f.read_to_end(&mut text))
+            .map_err(io)?;
+    }
+    parse_csv(path, &text)
+}
+
+/// Parses CSV or TSV text (the delimiter is a tab if the header line has one); `#` lines are
+/// comments.
+pub fn parse_csv(path: &str, text: &[u8]) -> Result<CurveSet, DataError> {
+    let header_line = text
+        .split(|&b| b == b'\n')
+        .find(|l| !l.is_empty() && l[0] != b'#')
+        .unwrap_or(&[]);
+    let delim = if header_line.contains(&b'\t') {
+        b'\t'
+    } else {
+        b','
+    };
+    let mut rdr = csv::ReaderBuilder::new()
+        .delimiter(delim)
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text);
+    let csv_err = |source| DataError::Csv {
+        path: path.to_string(),
+        source,
+    };
+    let headers = rdr.headers().map_err(csv_err)?.clone();
+    let col = |name: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(name));
+    let need = |name: &'static str| {
+        col(name).ok_or_else(|| DataError::MissingColumn {
+            path: path.to_string(),
+            column: name,
+            found: headers.iter().collect::<Vec<_>>().join(", "),
+        })
+    };
+    let (cs, ch, cf) = (need("segment")?, need("height_m")?, need("force_n")?);
+    let (cc, cx, cy) = (col("curve"), col("x"), col("y"));
+    let mut g = Grouper::default();
+    for rec in rdr.records() {
+        let rec = rec.map_err(csv_err)?;
+        let line = rec.position().map_or(0, |p| p.line());
+        let value = |c: usize| rec.get(c).unwrap_or("");
+        let err = |column: &'static str, c: usize, what: &'static str| DataError::Value {
+            path: path.to_string(),
+            line,
+            column,
+            value: value(c).to_string(),
+            what,
+        };
+        let seg = segment_of(value(cs))
+            .ok_or_else(|| err("segment", cs, "is not approach/retract or 0/1"))?;
+        // Non-finite numbers are kept: the curve gets a status, the others go on.
+        let num = |column, c| {
+            let v = value(c);
+            if v.is_empty() {
+                return Ok(f64::NAN);
+            }
+            v.parse::<f64>()
+                .map_err(|_| err(column, c, "is not a number"))
+        };
+        let h = num("height_m", ch)?;
+        let f = num("force_n", cf)?;
+        let int = |column, c: Option<usize>| -> Result<Option<i64>, DataError> {
+            c.map(|c| {
+                value(c)
+                    .parse::<i64>()
+                    .map_err(|_| err(column, c, "is not an integer pixel index"))
+            })
+            .transpose()
+        };
+        let (x, y) = (int("x", cx)?, int("y", cy)?);
+        g.push(curve_id(cc.map(value), x, y), x, y, seg, h, f);
+    }
+    if g.curves.is_empty() {
+        return Err(DataError::Empty {
+            path: path.to_string(),
+        });
+    }
+    Ok(g.curves)
+}
+
+fn read_npz(path: &str) -> Result<CurveSet, DataError> {
+    let npz_err = |what: String| DataError::Npz {
+        path: path.to_string(),
+        what,
+    };
+    let mut ar = npyz::npz::NpzArchive::open(path).map_err(|source| DataError::Io {
+        path: path.to_string(),
+        source,
+    })?;
+    let names: Vec<String> = ar.array_names().map(str::to_string).collect();
+    let mut get = |name: &'static str| -> Result<Option<Vec<f64>>, DataError> {
+        let Some(arr) = ar
+            .by_name(name)
+            .map_err(|e| npz_err(format!("array {name}: {e}")))?
+        else {
+            return Ok(None);
+        };
+        let dtype = arr.dtype();
+        let v: Result<Vec<f64>, std::io::Error> = match dtype.descr().as_str() {
+            "<f8" => arr.into_vec::<f64>(),
+            "<f4" => arr.into_vec::<f32>().map(|v| v.into_iter().map(f64::from).collect()),
+            "<i8" => arr.into_vec::<i64>().map(|v| v.into_iter().map(|x| x as f64).collect()),
+            "<i4" => arr.into_vec::<i32>().map(|v| v.into_iter().map(f64::from).collect()),
+            "|u1" | "|b1" => arr.into_vec::<u8>().map(|v| v.into_iter().map(f64::from).collect()),
+            d => {
+                return Err(npz_err(format!(
+                    "array {name} has dtype {d}: use float64, float32, int64, int32 or bool (segment: 0 approach, 1 retract)"
+                )))
+            }
+        };
+        v.map(Some)
+            .map_err(|e| npz_err(format!("array {name}: {e}")))
+    };
+    let need = |v: Option<Vec<f64>>, name: &'static str| {
+        v.ok_or_else(|| DataError::MissingColumn {
+            path: path.to_string(),
+            column: name,
+            found: names.join(", "),
+        })
+    };
+    let seg = need(get("segment")?, "segment")?;
+    let h = need(get("height_m")?, "height_m")?;
+    let f = need(get("force_n")?, "force_n")?;
+    let (c, x, y) = (get("curve")?, get("x")?, get("y")?);
+    let n = h.len();
+    for (name, len) in [
+        ("segment", Some(seg.len())),
+        ("force_n", Some(f.len())),
+        ("curve", c.as_ref().map(Vec::len)),
+        ("x", x.as_ref().map(Vec::len)),
+        ("y", y.as_ref().map(Vec::len)),
+    ] {
+        if let Some(len) = len {
+            if len != n {
+                return Err(npz_err(format!(
+                    "array {name} has {len} values and height_m {n}: they must be the same length"
+                )));
+            }
+        }
+    }
+    let mut g = Grouper::default();
+    for i in 0..n {
+        let s = match seg[i] {
+            0.0 => Direction::Approach,
+            1.0 => Direction::Retract,
+            v => {
+                return Err(npz_err(format!(
+                    "segment[{i}] = {v}: use 0 for approach and 1 for retract"
+                )))
+            }
+        };
+        let xi = x.as_ref().map(|v| v[i] as i64);
+        let yi = y.as_ref().map(|v| v[i] as i64);
+        let id = c.as_ref().map(|v| format!("{}", v[i]));
+        g.push(curve_id(id.as_deref(), xi, yi), xi, yi, s, h[i], f[i]);
+    }
+    if g.curves.is_empty() {
+        return Err(DataError::Empty {
+            path: path.to_string(),
+        });
+    }
+    Ok(g.curves)
+}

@@ -1,0 +1,1173 @@
+//! Measured force curves: exact Maugis-Dugdale fitted to AFM approach-retract curves, with
+//! Hertz, DMT and JKR beside it, and the simplest model the curve needs.
+//!
+//! A curve is the force on the tip against the piezo height of the cantilever's base (larger is
+//! farther from the sample). With spring constant k, the base displacement past the contact point
+//! z_c is `Delta = z_c - height` (the tip's indentation plus its deflection F/k), and the model
+//! force at each height is the state of the model's equilibrium path followed under the spring
+//! (`path`): on retract it follows the stable branch until the force gradient reaches -k and then
+//! jumps, as the measured curve does. Parameters: E*, w, lambda (or a fixed range z0), z_c and a
+//! force offset, fitted by Levenberg-Marquardt (MINPACK's, through the `levenberg-marquardt`
+//! crate) with finite-difference Jacobians that keep each point on its branch.
+
+pub mod data;
+pub mod path;
+pub mod synthetic;
+
+pub use data::{read_curves, Curve, CurveSet, DataError};
+pub use path::{Direction, Model, SpringPath};
+
+use crate::physics::params::LJ_STRESS;
+use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
+use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
+use path::{PathState, Piece, Side};
+use serde::Serialize;
+use std::cell::RefCell;
+use std::f64::consts::PI;
+
+/// Which segments are fitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Segments {
+    Retract,
+    Approach,
+    Both,
+}
+
+impl Segments {
+    fn takes(self, d: Direction) -> bool {
+        matches!(
+            (self, d),
+            (Segments::Both, _)
+                | (Segments::Retract, Direction::Retract)
+                | (Segments::Approach, Direction::Approach)
+        )
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct FitOptions {
+    /// Tip radius R (m).
+    pub radius: f64,
+    /// Cantilever spring constant k (N/m).
+    pub spring: f64,
+    /// The sample's Poisson ratio, to report its Young's modulus (a rigid tip).
+    pub poisson: Option<f64>,
+    pub segments: Segments,
+    /// Fix lambda through the Lennard-Jones range z0 (m) instead of fitting it.
+    pub z0: Option<f64>,
+    /// Remove a tilted baseline (a line in height), not only an offset.
+    pub tilt: bool,
+    /// The adequate model: force residual within this fraction of Maugis-Dugdale's, or contact
+    /// radius within it.
+    pub tolerance: f64,
+    /// The far part of the approach used for the baseline (fraction of its points).
+    pub baseline_fraction: f64,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions {
+            radius: 1e-8,
+            spring: 1.0,
+            poisson: None,
+            segments: Segments::Retract,
+            z0: None,
+            tilt: false,
+            tolerance: 0.05,
+            baseline_fraction: 0.3,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FitStatus {
+    Ok,
+    /// The curve cannot be fitted as given (NaN, too few points, no segment to fit, ...).
+    InvalidInput,
+    /// The force never rises above the baseline's noise.
+    NoContact,
+    /// The optimiser failed or ended outside the models' domain.
+    NotConverged,
+}
+
+/// One model's fit.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModelFit {
+    pub model: Model,
+    pub status: FitStatus,
+    pub e_star_pa: f64,
+    pub e_star_pa_stderr: f64,
+    /// Zero for Hertz.
+    pub work_of_adhesion_j_m2: f64,
+    pub work_of_adhesion_j_m2_stderr: f64,
+    /// Maugis-Dugdale only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda_stderr: Option<f64>,
+    pub contact_point_m: f64,
+    pub contact_point_m_stderr: f64,
+    /// The fitted force offset, on top of the baseline removed before the fit.
+    pub force_offset_n: f64,
+    pub rms_residual_n: f64,
+    pub pulloff_force_model_n: f64,
+    pub iterations: usize,
+    pub stop: String,
+    #[serde(skip)]
+    cov: Option<DMatrix<f64>>,
+}
+
+/// The result for one curve (SI units; `_stderr` from the covariance of the fit).
+#[derive(Clone, Debug, Serialize)]
+pub struct CurveFit {
+    pub curve: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub x: Option<i64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub y: Option<i64>,
+    pub status: FitStatus,
+    pub message: String,
+    pub e_star_pa: Option<f64>,
+    pub e_star_pa_stderr: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus_pa: Option<f64>,
+    pub work_of_adhesion_j_m2: Option<f64>,
+    pub work_of_adhesion_j_m2_stderr: Option<f64>,
+    pub lambda: Option<f64>,
+    pub lambda_stderr: Option<f64>,
+    pub tabor_parameter: Option<f64>,
+    pub tabor_parameter_stderr: Option<f64>,
+    pub z0_m: Option<f64>,
+    pub z0_m_stderr: Option<f64>,
+    pub contact_point_m: Option<f64>,
+    pub contact_point_m_stderr: Option<f64>,
+    /// Baseline offset plus the fitted offset (N).
+    pub force_offset_n: Option<f64>,
+    /// With `tilt`: the baseline's slope (N/m of height).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baseline_tilt_n_m: Option<f64>,
+    pub rms_residual_n: Option<f64>,
+    /// The most tensile force measured in the fitted segments, as a positive number (N).
+    pub pulloff_force_measured_n: Option<f64>,
+    /// The same on the fitted Maugis-Dugdale path.
+    pub pulloff_force_model_n: Option<f64>,
+    pub max_load_n: Option<f64>,
+    pub max_contact_radius_m: Option<f64>,
+    /// Normalised loads the fitted segments span on the adhesion map (min, max).
+    pub load_range_normalised: Option<[f64; 2]>,
+    pub iterations: usize,
+    pub stop: String,
+    pub points_fitted: usize,
+    pub points_in_contact: usize,
+    /// Hertz, DMT and JKR fitted with the same spring and jumps.
+    pub models: Vec<ModelFit>,
+    pub adequate_model: Option<Model>,
+    pub why: String,
+    /// The Tabor self-consistency verdict of `tabor infer` on the measured pull-off, with the
+    /// fitted E* and z0.
+    pub verdict: Option<String>,
+    pub warnings: Vec<String>,
+    #[serde(skip)]
+    pub md: Option<ModelFit>,
+}
+
+/// A curve made ready for fitting: baseline removed, the points of the fitted segments.
+#[derive(Clone, Debug)]
+pub struct Prepared {
+    pub height: Vec<f64>,
+    pub force: Vec<f64>,
+    pub dir: Vec<Direction>,
+    /// Each point's side of its segment's measured jump (Any where none was measured).
+    pub side: Vec<Side>,
+    pub baseline: (f64, f64),
+    pub noise: f64,
+}
+
+fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFit {
+    CurveFit {
+        curve: curve.id.clone(),
+        x: curve.x,
+        y: curve.y,
+        status,
+        message,
+        e_star_pa: None,
+        e_star_pa_stderr: None,
+        youngs_modulus_pa: None,
+        work_of_adhesion_j_m2: None,
+        work_of_adhesion_j_m2_stderr: None,
+        lambda: None,
+        lambda_stderr: None,
+        tabor_parameter: None,
+        tabor_parameter_stderr: None,
+        z0_m: None,
+        z0_m_stderr: None,
+        contact_point_m: None,
+        contact_point_m_stderr: None,
+        force_offset_n: None,
+        baseline_tilt_n_m: None,
+        rms_residual_n: None,
+        pulloff_force_measured_n: None,
+        pulloff_force_model_n: None,
+        max_load_n: None,
+        max_contact_radius_m: None,
+        load_range_normalised: None,
+        iterations: 0,
+        stop: String::new(),
+        points_fitted: 0,
+        points_in_contact: 0,
+        models: Vec::new(),
+        adequate_model: None,
+        why: String::new(),
+        verdict: None,
+        warnings: Vec::new(),
+        md: None,
+    }
+}
+
+/// Fewer points than this in the fitted segments, or in contact, and a curve is refused or warned.
+pub const MIN_POINTS: usize = 20;
+pub const MIN_CONTACT_POINTS: usize = 10;
+
+/// Checks a curve and removes its baseline.
+pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, String)> {
+    let bad = |m: String| Err((FitStatus::InvalidInput, m));
+    if !(opt.spring > 0.0 && opt.spring.is_finite()) {
+        return bad(format!(
+            "spring constant {} N/m: give the cantilever's calibrated spring constant (> 0)",
+            crate::physics::domain::short(opt.spring)
+        ));
+    }
+    if !(opt.radius > 0.0 && opt.radius.is_finite()) {
+        return bad(format!(
+            "tip radius {} m: give a positive radius in metres",
+            crate::physics::domain::short(opt.radius)
+        ));
+    }
+    for (i, (&h, &f)) in curve.height.iter().zip(&curve.force).enumerate() {
+        if !h.is_finite() || !f.is_finite() {
+            return bad(format!(
+                "point {} has height_m = {h} and force_n = {f}: remove or repair non-finite values",
+                i + 1
+            ));
+        }
+    }
+    for d in [Direction::Approach, Direction::Retract] {
+        let h: Vec<f64> = (0..curve.len())
+            .filter(|&i| curve.segment[i] == d)
+            .map(|i| curve.height[i])
+            .collect();
+        if h.len() < 3 {
+            continue;
+        }
+        // Measured heights jitter; a segment whose steps mostly go the wrong way is corrupt.
+        let sign = if d == Direction::Approach { -1.0 } else { 1.0 };
+        let wrong = h.windows(2).filter(|w| sign * (w[1] - w[0]) < 0.0).count();
+        if wrong * 4 > h.len() || sign * (h[h.len() - 1] - h[0]) <= 0.0 {
+            return bad(format!(
+                "the {} heights are not in order ({} of {} steps go the wrong way; the {} must {} the height): sort the points in time order or check the segment column",
+                if d == Direction::Approach { "approach" } else { "retract" },
+                wrong,
+                h.len() - 1,
+                if d == Direction::Approach { "approach" } else { "retract" },
+                if d == Direction::Approach { "decrease" } else { "increase" },
+            ));
+        }
+    }
+    let fitted: Vec<usize> = (0..curve.len())
+        .filter(|&i| opt.segments.takes(curve.segment[i]))
+        .collect();
+    if fitted.is_empty() {
+        let which = match opt.segments {
+            Segments::Retract => "no retract segment: fit the approach with --segment approach, or check the segment column (approach/retract or 0/1)",
+            Segments::Approach => "no approach segment: fit the retract with --segment retract, or check the segment column",
+            Segments::Both => "no points",
+        };
+        return bad(which.to_string());
+    }
+    if fitted.len() < MIN_POINTS {
+        return bad(format!(
+            "only {} points in the fitted segments: at least {MIN_POINTS} are needed",
+            fitted.len()
+        ));
+    }
+    // Baseline from the far part of the approach (of the retract where there is none).
+    let far_of = |d: Direction| -> Vec<usize> {
+        let mut idx: Vec<usize> = (0..curve.len())
+            .filter(|&i| curve.segment[i] == d)
+            .collect();
+        idx.sort_by(|&a, &b| curve.height[b].total_cmp(&curve.height[a]));
+        let n = ((idx.len() as f64 * opt.baseline_fraction).ceil() as usize).max(3);
+        idx.truncate(n);
+        idx
+    };
+    let mut far = far_of(Direction::Approach);
+    if far.len() < 5 {
+        far = far_of(Direction::Retract);
+    }
+    let (b0, b1) = line_fit(
+        &far.iter().map(|&i| curve.height[i]).collect::<Vec<_>>(),
+        &far.iter().map(|&i| curve.force[i]).collect::<Vec<_>>(),
+        opt.tilt,
+    );
+    let resid: Vec<f64> = far
+        .iter()
+        .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
+        .collect();
+    let noise = (resid.iter().map(|r| r * r).sum::<f64>() / resid.len().max(1) as f64).sqrt();
+    let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
+    let force: Vec<f64> = fitted
+        .iter()
+        .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
+        .collect();
+    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
+    if !(fmax > 5.0 * noise && fmax > 1e-3 * (fmax - fmin).abs() && fmax > 0.0) {
+        return Err((
+            FitStatus::NoContact,
+            format!(
+                "no contact: the force never rises above the baseline (largest {:.3e} N, noise {:.2e} N); check the segment and the sign of force_n (positive is repulsive)",
+                fmax, noise
+            ),
+        ));
+    }
+    let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
+    let side = measured_sides(&force, &dir, noise);
+    Ok(Prepared {
+        side,
+        dir,
+        height,
+        force,
+        baseline: (b0, b1),
+        noise,
+    })
+}
+
+/// The measured jump of each segment: on retract the largest rise of the force between
+/// consecutive points (the jump-out), on approach the largest fall (the snap-in), where it is
+/// larger than five times the noise and a third of the segment's most tensile force.
+fn measured_sides(force: &[f64], dir: &[Direction], noise: f64) -> Vec<Side> {
+    let mut side = vec![Side::Any; force.len()];
+    for d in [Direction::Approach, Direction::Retract] {
+        let idx: Vec<usize> = (0..force.len()).filter(|&i| dir[i] == d).collect();
+        if idx.len() < 3 {
+            continue;
+        }
+        let sign = if d == Direction::Retract { 1.0 } else { -1.0 };
+        let (k, step) = idx
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (k, sign * (force[w[1]] - force[w[0]])))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap();
+        let tensile = idx.iter().map(|&i| -force[i]).fold(0.0, f64::max);
+        if step > 5.0 * noise && step > tensile / 3.0 && tensile > 0.0 {
+            for (n, &i) in idx.iter().enumerate() {
+                side[i] = if n <= k {
+                    Side::BeforeJump
+                } else {
+                    Side::AfterJump
+                };
+            }
+        }
+    }
+    side
+}
+
+fn line_fit(x: &[f64], y: &[f64], tilt: bool) -> (f64, f64) {
+    let n = x.len() as f64;
+    let my = y.iter().sum::<f64>() / n;
+    if !tilt || x.len() < 3 {
+        return (my, 0.0);
+    }
+    let mx = x.iter().sum::<f64>() / n;
+    let sxx: f64 = x.iter().map(|v| (v - mx) * (v - mx)).sum();
+    let sxy: f64 = x.iter().zip(y).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let b1 = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+    (my - b1 * mx, b1)
+}
+
+/// Physical parameters of a model.
+#[derive(Clone, Copy, Debug)]
+pub struct Params {
+    pub e_star: f64,
+    pub w: f64,
+    pub lambda: f64,
+    pub zc: f64,
+    pub f0: f64,
+}
+
+/// The unit conversions of one parameter set: force and approach units and kbar.
+#[derive(Clone, Copy, Debug)]
+pub struct Units {
+    pub force: f64,
+    pub approach: f64,
+    pub radius: f64,
+    pub kbar: f64,
+}
+
+pub fn units(p: &Params, radius: f64, spring: f64) -> Units {
+    let k = 4.0 / 3.0 * p.e_star;
+    let force = PI * p.w * radius;
+    let approach = (PI * PI * p.w * p.w * radius / (k * k)).cbrt();
+    Units {
+        force,
+        approach,
+        radius: (PI * p.w * radius * radius / k).cbrt(),
+        kbar: spring * approach / force,
+    }
+}
+
+/// lambda from the Lennard-Jones range z0 (Dugdale stress matched to it).
+pub fn lambda_from_z0(e_star: f64, w: f64, radius: f64, z0: f64) -> f64 {
+    let k = 4.0 / 3.0 * e_star;
+    2.0 * (LJ_STRESS * w / z0) * (radius / (PI * w * k * k)).cbrt()
+}
+
+/// The Lennard-Jones range z0 whose matched Dugdale stress gives lambda.
+pub fn z0_from_lambda(e_star: f64, w: f64, radius: f64, lambda: f64) -> f64 {
+    let k = 4.0 / 3.0 * e_star;
+    2.0 * LJ_STRESS * w * (radius / (PI * w * k * k)).cbrt() / lambda
+}
+
+/// Model forces (N), contact radii (m), the states and the path they lie on.
+pub type Evaluated = (Vec<f64>, Vec<f64>, Vec<PathState>, SpringPath);
+
+/// The model force (N, without offset) and contact radius (m) at each height, and the state.
+pub fn model_forces(
+    model: Model,
+    p: &Params,
+    radius: f64,
+    spring: f64,
+    height: &[f64],
+    dir: &[Direction],
+    side: Option<&[Side]>,
+) -> Option<Evaluated> {
+    let u = units(p, radius, spring);
+    if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
+        return None;
+    }
+    if model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        return None;
+    }
+    let deltas: Vec<f64> = height.iter().map(|h| (p.zc - h) / u.approach).collect();
+    let top = deltas.iter().cloned().fold(1.0, f64::max);
+    let path = SpringPath::new(model, p.lambda, u.kbar, top);
+    let states: Vec<PathState> = deltas
+        .iter()
+        .zip(dir)
+        .enumerate()
+        .map(|(i, (&d, &dir))| path.at_side(d, dir, side.map_or(Side::Any, |s| s[i])))
+        .collect();
+    let f = states.iter().map(|s| s.load * u.force).collect();
+    let a = states.iter().map(|s| s.a * u.radius).collect();
+    Some((f, a, states, path))
+}
+
+/// The least-squares problem of one model on one prepared curve.
+struct Problem<'a> {
+    model: Model,
+    data: &'a Prepared,
+    radius: f64,
+    spring: f64,
+    z0: Option<f64>,
+    /// Maugis-Dugdale at a fixed lambda (the profile that picks the start).
+    fixed_lambda: Option<f64>,
+    /// Hertz has no w: its units use this one (it cancels).
+    w_ref: f64,
+    z_scale: f64,
+    f_scale: f64,
+    x: DVector<f64>,
+    /// The states at the current parameters (the Jacobian keeps each point on its piece).
+    states: RefCell<Option<Vec<PathState>>>,
+    jacobians: RefCell<usize>,
+}
+
+impl Problem<'_> {
+    fn has_w(&self) -> bool {
+        self.model != Model::Hertz
+    }
+    fn has_lambda(&self) -> bool {
+        self.model == Model::Md && self.z0.is_none() && self.fixed_lambda.is_none()
+    }
+    fn n(&self) -> usize {
+        2 + self.has_w() as usize + 1 + self.has_lambda() as usize
+    }
+
+    fn params(&self, x: &DVector<f64>) -> Params {
+        let mut i = 0;
+        let mut next = || {
+            i += 1;
+            x[i - 1]
+        };
+        let e_star = next().exp();
+        let w = if self.has_w() {
+            next().exp()
+        } else {
+            self.w_ref
+        };
+        let lambda = if self.has_lambda() {
+            next().exp()
+        } else if let Some(l) = self.fixed_lambda {
+            l
+        } else if let (Model::Md, Some(z0)) = (self.model, self.z0) {
+            lambda_from_z0(e_star, w, self.radius, z0)
+        } else {
+            1.0
+        };
+        let zc = next() * self.z_scale;
+        let f0 = next() * self.f_scale;
+        Params {
+            e_star,
+            w,
+            lambda,
+            zc,
+            f0,
+        }
+    }
+
+    fn internal(&self, p: &Params) -> DVector<f64> {
+        let mut v = vec![p.e_star.ln()];
+        if self.has_w() {
+            v.push(p.w.ln());
+        }
+        if self.has_lambda() {
+            v.push(p.lambda.ln());
+        }
+        v.push(p.zc / self.z_scale);
+        v.push(p.f0 / self.f_scale);
+        DVector::from_vec(v)
+    }
+
+    /// Residuals at parameters x; with `near`, each point stays on the piece it had.
+    fn eval(
+        &self,
+        x: &DVector<f64>,
+        near: Option<&[PathState]>,
+    ) -> Option<(DVector<f64>, Vec<PathState>)> {
+        let p = self.params(x);
+        let d = self.data;
+        let u = units(&p, self.radius, self.spring);
+        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
+            return None;
+        }
+        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+            return None;
+        }
+        let states: Vec<PathState> = match near {
+            Some(base) => {
+                // Where Newton from the base state fails (a point at a fold, or at the A = 0
+                // end of DMT), the point is located on the path itself.
+                let mut full: Option<SpringPath> = None;
+                let top = d
+                    .height
+                    .iter()
+                    .map(|h| (p.zc - h) / u.approach)
+                    .fold(1.0, f64::max);
+                let mut out = Vec::with_capacity(base.len());
+                for (i, s) in base.iter().enumerate() {
+                    let delta = (p.zc - d.height[i]) / u.approach;
+                    let newton = (!s.clamped)
+                        .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
+                        .flatten();
+                    out.push(match newton {
+                        Some(s) => s,
+                        None => full
+                            .get_or_insert_with(|| {
+                                SpringPath::new(self.model, p.lambda, u.kbar, top)
+                            })
+                            .at_side(delta, d.dir[i], d.side[i]),
+                    });
+                }
+                out
+            }
+            None => {
+                model_forces(
+                    self.model,
+                    &p,
+                    self.radius,
+                    self.spring,
+                    &d.height,
+                    &d.dir,
+                    Some(&d.side),
+                )?
+                .2
+            }
+        };
+        let r = DVector::from_iterator(
+            states.len(),
+            states
+                .iter()
+                .zip(&d.force)
+                .map(|(s, f)| (s.load * u.force + p.f0 - f) / self.f_scale),
+        );
+        r.iter().all(|v| v.is_finite()).then_some((r, states))
+    }
+}
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.x.copy_from(x);
+        *self.states.borrow_mut() = None;
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.x.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        // Outside the domain: a large residual, so the step is refused and shortened (a None
+        // would end the whole minimisation).
+        match self.eval(&self.x, None) {
+            Some((r, s)) => {
+                *self.states.borrow_mut() = Some(s);
+                Some(r)
+            }
+            None => Some(DVector::from_element(self.data.force.len(), 1e6)),
+        }
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        *self.jacobians.borrow_mut() += 1;
+        let base = match self.states.borrow().clone() {
+            Some(s) => s,
+            None => self.eval(&self.x, None)?.1,
+        };
+        let m = base.len();
+        let n = self.n();
+        let mut j = DMatrix::zeros(m, n);
+        for k in 0..n {
+            let h = 1e-6 * self.x[k].abs().max(1.0);
+            let mut xp = self.x.clone();
+            xp[k] += h;
+            let mut xm = self.x.clone();
+            xm[k] -= h;
+            let (rp, rm) = (self.eval(&xp, Some(&base)), self.eval(&xm, Some(&base)));
+            match (rp, rm) {
+                (Some((rp, _)), Some((rm, _))) => {
+                    j.set_column(k, &((rp - rm) / (2.0 * h)));
+                }
+                _ => {
+                    // One side left the domain or a branch: a one-sided difference.
+                    let r0 = self.eval(&self.x, Some(&base))?.0;
+                    let (rp, _) = self
+                        .eval(&xp, Some(&base))
+                        .or_else(|| self.eval(&xm, Some(&base)).map(|(r, s)| (2.0 * &r0 - r, s)))?;
+                    j.set_column(k, &((rp - r0) / h));
+                }
+            }
+        }
+        Some(j)
+    }
+}
+
+/// The starting point of a fit: closed-form estimates from the measured curve.
+#[derive(Clone, Copy, Debug)]
+pub struct Estimates {
+    pub e_star: f64,
+    /// The measured pull-off force (positive, N).
+    pub pulloff: f64,
+    pub zc: f64,
+}
+
+pub fn estimates(d: &Prepared, radius: f64, spring: f64) -> Estimates {
+    let n = d.force.len();
+    let (imin, fmin) = d
+        .force
+        .iter()
+        .cloned()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, 0.0));
+    let fmax = d.force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let tip = |i: usize| d.height[i] + d.force[i] / spring;
+    let pulloff = (-fmin).max(0.0);
+    // DMT: the pull-off at zero indentation; without adhesion, where the force leaves zero.
+    let zc = if pulloff > 3.0 * d.noise {
+        tip(imin)
+    } else {
+        let thr = 3.0 * d.noise + 0.02 * fmax;
+        (0..n)
+            .filter(|&i| d.force[i] > thr)
+            .map(tip)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let base = fmin.min(0.0);
+    let mut k: Vec<f64> = (0..n)
+        .filter(|&i| d.force[i] - base > 0.5 * (fmax - base))
+        .filter_map(|i| {
+            let delta = zc - tip(i);
+            (delta > 0.0).then(|| (d.force[i] - base) / (radius.sqrt() * delta.powf(1.5)))
+        })
+        .collect();
+    k.sort_by(f64::total_cmp);
+    let kk = k.get(k.len() / 2).cloned().unwrap_or(1e9);
+    Estimates {
+        e_star: 0.75 * kk,
+        pulloff,
+        zc,
+    }
+}
+
+fn stop_text(t: &TerminationReason) -> String {
+    match t {
+        TerminationReason::ResidualsZero => "residuals zero".into(),
+        TerminationReason::Orthogonal => "gradient orthogonal to the residuals (converged)".into(),
+        TerminationReason::Converged { ftol, xtol } => match (ftol, xtol) {
+            (true, true) => "converged (relative change of the residual and the parameters)".into(),
+            (true, false) => "converged (relative change of the residual)".into(),
+            _ => "converged (relative change of the parameters)".into(),
+        },
+        TerminationReason::LostPatience => "iteration limit reached".into(),
+        TerminationReason::NoImprovementPossible(w) => {
+            format!("no further improvement possible ({w})")
+        }
+        TerminationReason::Numerical(w) => format!("numerical failure ({w})"),
+        TerminationReason::User(w) => format!("model evaluation failed ({w})"),
+        other => format!("{other:?}"),
+    }
+}
+
+/// Fits one model from a start.
+fn fit_model(
+    model: Model,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+) -> ModelFit {
+    let fscale = d
+        .force
+        .iter()
+        .fold(0.0f64, |m, f| m.max(f.abs()))
+        .max(1e-30);
+    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mut prob = Problem {
+        model,
+        data: d,
+        radius: opt.radius,
+        spring: opt.spring,
+        z0: opt.z0,
+        fixed_lambda,
+        w_ref,
+        z_scale: hspan.max(1e-30),
+        f_scale: fscale,
+        x: DVector::zeros(0),
+        states: RefCell::new(None),
+        jacobians: RefCell::new(0),
+    };
+    prob.x = prob.internal(&start);
+    let lm = LevenbergMarquardt::new().with_patience(150);
+    let (prob, report) = lm.minimize(prob);
+    let x = prob.x.clone();
+    let p = prob.params(&x);
+    let iterations = *prob.jacobians.borrow();
+    let evaluated = prob.eval(&x, None);
+    let ok = report.termination.was_successful()
+        || matches!(
+            report.termination,
+            TerminationReason::NoImprovementPossible(_)
+        );
+    let (status, rms, cov) = match &evaluated {
+        Some((r, _)) if ok || matches!(report.termination, TerminationReason::LostPatience) => {
+            let m = r.len();
+            let n = prob.n();
+            let rss = r.norm_squared();
+            let rms = (rss / m as f64).sqrt() * prob.f_scale;
+            let cov = prob.jacobian().and_then(|j| {
+                let jtj = j.transpose() * &j;
+                jtj.try_inverse()
+                    .map(|inv| inv * (rss / (m.saturating_sub(n).max(1)) as f64))
+            });
+            let status = if ok {
+                FitStatus::Ok
+            } else {
+                FitStatus::NotConverged
+            };
+            (status, rms, cov)
+        }
+        _ => (FitStatus::NotConverged, f64::NAN, None),
+    };
+    let var = |i: usize| cov.as_ref().map_or(f64::NAN, |c| c[(i, i)].max(0.0).sqrt());
+    let mut i = 1;
+    let e_err = p.e_star * var(0);
+    let w_err = if prob.has_w() {
+        i += 1;
+        p.w * var(1)
+    } else {
+        0.0
+    };
+    let lambda_err = if prob.has_lambda() {
+        i += 1;
+        Some(p.lambda * var(i - 1))
+    } else if model == Model::Md && fixed_lambda.is_some() {
+        Some(0.0)
+    } else if model == Model::Md {
+        // Fixed z0: lambda follows E* and w, ln lambda = (2/3)(ln w - ln E*) + const.
+        cov.as_ref().map(|c| {
+            let v = (4.0 / 9.0) * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);
+            p.lambda * v.max(0.0).sqrt()
+        })
+    } else {
+        None
+    };
+    let zc_err = var(i) * prob.z_scale;
+    let pulloff = evaluated
+        .as_ref()
+        .and_then(|_| model_forces(model, &p, opt.radius, opt.spring, &d.height, &d.dir, None))
+        .map_or(f64::NAN, |(_, _, _, path)| {
+            let dir = if opt.segments == Segments::Approach {
+                Direction::Approach
+            } else {
+                Direction::Retract
+            };
+            -path.min_load(dir).0 * units(&p, opt.radius, opt.spring).force
+        });
+    ModelFit {
+        model,
+        status,
+        e_star_pa: p.e_star,
+        e_star_pa_stderr: e_err,
+        work_of_adhesion_j_m2: if model == Model::Hertz { 0.0 } else { p.w },
+        work_of_adhesion_j_m2_stderr: w_err,
+        lambda: (model == Model::Md).then_some(p.lambda),
+        lambda_stderr: lambda_err,
+        contact_point_m: p.zc,
+        contact_point_m_stderr: zc_err,
+        force_offset_n: p.f0,
+        rms_residual_n: rms,
+        pulloff_force_model_n: pulloff,
+        iterations,
+        stop: stop_text(&report.termination),
+        cov,
+    }
+}
+
+impl ModelFit {
+    /// The fitted parameters (Hertz: any w, it cancels; here w of 1 mJ/m^2).
+    pub fn params(&self, _radius: f64) -> Params {
+        Params {
+            e_star: self.e_star_pa,
+            w: if self.model == Model::Hertz {
+                1e-3
+            } else {
+                self.work_of_adhesion_j_m2
+            },
+            lambda: self.lambda.unwrap_or(1.0),
+            zc: self.contact_point_m,
+            f0: self.force_offset_n,
+        }
+    }
+}
+
+/// The lambdas of the profile that starts a free Maugis-Dugdale fit.
+const PROFILE_LAMBDAS: [f64; 8] = [0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0];
+
+fn key(m: &ModelFit) -> f64 {
+    if m.status == FitStatus::Ok && m.rms_residual_n.is_finite() {
+        m.rms_residual_n
+    } else {
+        f64::INFINITY
+    }
+}
+
+fn better(a: ModelFit, b: ModelFit) -> ModelFit {
+    if key(&b) < key(&a) {
+        b
+    } else {
+        a
+    }
+}
+
+/// Fits one curve: Maugis-Dugdale and the three closed forms, the adequate model, warnings.
+pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
+    let d = match prepare(curve, opt) {
+        Ok(d) => d,
+        Err((status, message)) => return fail(curve, status, message),
+    };
+    let est = estimates(&d, opt.radius, opt.spring);
+    let pull = est
+        .pulloff
+        .max(10.0 * d.noise)
+        .max(1e-6 * est.e_star * opt.radius * opt.radius);
+    let w_of = |pc_bar: f64| pull / (pc_bar * PI * opt.radius);
+    let start = |w: f64, lambda: f64| Params {
+        e_star: est.e_star,
+        w,
+        lambda,
+        zc: est.zc,
+        f0: 0.0,
+    };
+    let w_ref = w_of(1.75);
+    let hertz = fit_model(Model::Hertz, &d, opt, start(w_ref, 1.0), w_ref, None);
+    let dmt = fit_model(Model::Dmt, &d, opt, start(w_of(2.0), 1.0), w_ref, None);
+    let jkr = fit_model(Model::Jkr, &d, opt, start(w_of(1.5), 1.0), w_ref, None);
+    // Maugis-Dugdale from the closed forms' answers and from the middle.
+    let from = |m: &ModelFit, lambda: f64, pc_bar: f64, pc_md: f64| Params {
+        e_star: if m.status == FitStatus::Ok {
+            m.e_star_pa
+        } else {
+            est.e_star
+        },
+        w: if m.status == FitStatus::Ok {
+            m.work_of_adhesion_j_m2 * pc_bar / pc_md
+        } else {
+            w_of(pc_md)
+        },
+        lambda,
+        zc: if m.status == FitStatus::Ok {
+            m.contact_point_m
+        } else {
+            est.zc
+        },
+        f0: if m.status == FitStatus::Ok {
+            m.force_offset_n
+        } else {
+            0.0
+        },
+    };
+    // Maugis-Dugdale: the misfit has local minima in lambda (the jump moves with it), so a
+    // profile over lambda (each point a fit at fixed lambda, started from the closed form of
+    // that side) picks the start of the free fit; the best two are refined.
+    let debug = std::env::var_os("TABOR_FIT_DEBUG").is_some();
+    let md = match opt.z0 {
+        Some(z0) => {
+            let best = better(dmt.clone(), jkr.clone());
+            let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
+            let mut s = from(&best, 1.0, pc, pc);
+            s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
+            fit_model(Model::Md, &d, opt, s, w_ref, None)
+        }
+        None => {
+            let mut profile: Vec<ModelFit> = PROFILE_LAMBDAS
+                .iter()
+                .map(|&l| {
+                    let pc = crate::physics::closed::cos_pulloff(l).abs();
+                    let s = if l < 1.0 {
+                        from(&dmt, l, 2.0, pc)
+                    } else {
+                        from(&jkr, l, 1.5, pc)
+                    };
+                    fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
+                })
+                .collect();
+            // Ranked by misfit even where the iteration limit stopped a fit.
+            let rank = |m: &ModelFit| {
+                if m.rms_residual_n.is_finite() {
+                    m.rms_residual_n
+                } else {
+                    f64::INFINITY
+                }
+            };
+            profile.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
+            profile
+                .iter()
+                .take(2)
+                .map(|m| {
+                    let f = fit_model(Model::Md, &d, opt, m.params(opt.radius), w_ref, None);
+                    if debug {
+                        eprintln!("from lambda {:?} (rms {:.3e}) -> E {:.4e} w {:.4e} lambda {:?} rms {:.3e} it {} {}", m.lambda, m.rms_residual_n, f.e_star_pa, f.work_of_adhesion_j_m2, f.lambda, f.rms_residual_n, f.iterations, f.stop);
+                    }
+                    f
+                })
+                .reduce(better)
+                .expect("a profile")
+        }
+    };
+    summarize(curve, opt, &d, md, vec![hertz, dmt, jkr])
+}
+
+fn summarize(
+    curve: &Curve,
+    opt: &FitOptions,
+    d: &Prepared,
+    md: ModelFit,
+    models: Vec<ModelFit>,
+) -> CurveFit {
+    let mut out = fail(curve, md.status, String::new());
+    out.points_fitted = d.force.len();
+    let fmin = d.force.iter().cloned().fold(f64::INFINITY, f64::min);
+    out.pulloff_force_measured_n = Some((-fmin).max(0.0));
+    out.max_load_n = Some(d.force.iter().cloned().fold(f64::NEG_INFINITY, f64::max));
+    out.iterations = md.iterations;
+    out.stop = md.stop.clone();
+    out.baseline_tilt_n_m = opt.tilt.then_some(d.baseline.1);
+    if md.status != FitStatus::Ok {
+        out.message = format!("the Maugis-Dugdale fit did not converge: {}", md.stop);
+        out.models = models;
+        out.md = Some(md);
+        return out;
+    }
+    let p = Params {
+        e_star: md.e_star_pa,
+        w: md.work_of_adhesion_j_m2,
+        lambda: md.lambda.unwrap_or(1.0),
+        zc: md.contact_point_m,
+        f0: md.force_offset_n,
+    };
+    let u = units(&p, opt.radius, opt.spring);
+    let (_, a_md, states, _) = model_forces(
+        Model::Md,
+        &p,
+        opt.radius,
+        opt.spring,
+        &d.height,
+        &d.dir,
+        None,
+    )
+    .expect("fitted");
+    let in_contact = states.iter().filter(|s| s.piece == Piece::Contact).count();
+    let amax = a_md.iter().cloned().fold(0.0, f64::max);
+    let loads: Vec<f64> = states
+        .iter()
+        .filter(|s| s.piece == Piece::Contact)
+        .map(|s| s.load)
+        .collect();
+    out.e_star_pa = Some(p.e_star);
+    out.e_star_pa_stderr = Some(md.e_star_pa_stderr);
+    out.youngs_modulus_pa = opt.poisson.map(|nu| p.e_star * (1.0 - nu * nu));
+    out.work_of_adhesion_j_m2 = Some(p.w);
+    out.work_of_adhesion_j_m2_stderr = Some(md.work_of_adhesion_j_m2_stderr);
+    out.lambda = Some(p.lambda);
+    out.lambda_stderr = md.lambda_stderr;
+    // muT = lambda / 1.1570 exactly for the LJ-matched Dugdale stress.
+    let z0 = z0_from_lambda(p.e_star, p.w, opt.radius, p.lambda);
+    let mu_t = (opt.radius * p.w * p.w / (p.e_star * p.e_star * z0.powi(3))).cbrt();
+    out.tabor_parameter = Some(mu_t);
+    out.tabor_parameter_stderr = md.lambda_stderr.map(|e| e * mu_t / p.lambda);
+    out.z0_m = Some(opt.z0.unwrap_or(z0));
+    out.z0_m_stderr = Some(match (&md.cov, opt.z0) {
+        (Some(c), None) => {
+            // ln z0 = (2/3)(ln w - ln E*) - ln lambda + const.
+            let g = [-2.0 / 3.0, 2.0 / 3.0, -1.0];
+            let mut v = 0.0;
+            for i in 0..3 {
+                for j in 0..3 {
+                    v += g[i] * g[j] * c[(i, j)];
+                }
+            }
+            z0 * v.max(0.0).sqrt()
+        }
+        (_, Some(_)) => 0.0,
+        _ => f64::NAN,
+    });
+    out.contact_point_m = Some(p.zc);
+    out.contact_point_m_stderr = Some(md.contact_point_m_stderr);
+    out.force_offset_n = Some(d.baseline.0 + p.f0);
+    out.rms_residual_n = Some(md.rms_residual_n);
+    out.pulloff_force_model_n = Some(md.pulloff_force_model_n);
+    out.max_contact_radius_m = Some(amax);
+    out.points_in_contact = in_contact;
+    if !loads.is_empty() {
+        let lo = loads.iter().cloned().fold(f64::INFINITY, f64::min);
+        let hi = loads.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+        out.load_range_normalised = Some([lo, hi]);
+    }
+    // The adequate model: the simplest whose residual is within the tolerance of MD's, or whose
+    // contact radius is within the tolerance of MD's at every fitted point in contact.
+    let floor = 1e-9 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let mut adequate = (
+        Model::Md,
+        format!(
+            "no closed form fits within {:.0}%: Hertz, DMT and JKR leave rms residuals of {}",
+            100.0 * opt.tolerance,
+            models
+                .iter()
+                .map(|m| format!("{:.3e} N", m.rms_residual_n))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    );
+    for m in &models {
+        if m.status != FitStatus::Ok {
+            continue;
+        }
+        if m.rms_residual_n <= (1.0 + opt.tolerance) * md.rms_residual_n + floor {
+            adequate = (m.model, format!(
+                "{} fits as well as Maugis-Dugdale: rms residual {:.3e} N against {:.3e} N (within {:.0}%)",
+                m.model.label(), m.rms_residual_n, md.rms_residual_n, 100.0 * opt.tolerance
+            ));
+            break;
+        }
+        let mp = Params {
+            e_star: m.e_star_pa,
+            w: if m.model == Model::Hertz {
+                p.w
+            } else {
+                m.work_of_adhesion_j_m2
+            },
+            lambda: 1.0,
+            zc: m.contact_point_m,
+            f0: m.force_offset_n,
+        };
+        if let Some((_, a_m, _, _)) = model_forces(
+            m.model, &mp, opt.radius, opt.spring, &d.height, &d.dir, None,
+        ) {
+            let worst = a_md
+                .iter()
+                .zip(&a_m)
+                .zip(&states)
+                .filter(|(_, s)| s.piece == Piece::Contact)
+                .map(|((am, a), _)| (a / am - 1.0).abs())
+                .fold(0.0, f64::max);
+            if in_contact > 0 && worst <= opt.tolerance {
+                adequate = (m.model, format!(
+                    "{}'s contact radius is within {:.1}% of Maugis-Dugdale's at every fitted point in contact (tolerance {:.0}%)",
+                    m.model.label(), 100.0 * worst, 100.0 * opt.tolerance
+                ));
+                break;
+            }
+        }
+    }
+    out.adequate_model = Some(adequate.0);
+    out.why = adequate.1;
+    let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
+    if pull > 0.0 {
+        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap())
+            .ok()
+            .map(|i| i.verdict);
+    }
+    // Warnings.
+    let mut warn = Vec::new();
+    if amax / opt.radius > 0.1 {
+        warn.push(format!(
+            "a/R reaches {:.2} (> 0.1): the small-strain (paraboloid) theory is stretched",
+            amax / opt.radius
+        ));
+    }
+    if amax > 0.0 && amax < 1e-9 {
+        warn.push(format!(
+            "the largest contact radius is {:.2e} m, a few atoms across: continuum theory is doubtful",
+            amax
+        ));
+    }
+    if in_contact < MIN_CONTACT_POINTS {
+        warn.push(format!(
+            "only {in_contact} fitted points are in contact: E* is poorly determined"
+        ));
+    }
+    let (mp, md_pull) = (
+        out.pulloff_force_measured_n.unwrap_or(0.0),
+        md.pulloff_force_model_n,
+    );
+    if md_pull > 0.0 && (md_pull - mp) > 0.05 * md_pull + 3.0 * d.noise {
+        warn.push(format!(
+            "the sampling does not resolve the jump-out: the model's pull-off {:.3e} N exceeds the most tensile measured force {:.3e} N; sample more densely near the jump",
+            md_pull, mp
+        ));
+    }
+    let _ = u;
+    out.warnings = warn;
+    out.status = FitStatus::Ok;
+    out.message = "ok".into();
+    out.models = models;
+    out.md = Some(md);
+    out
+}

@@ -1,0 +1,735 @@
+//! The force a cantilever measures: the equilibrium path of a contact model (Maugis-Dugdale,
+//! Hertz, DMT, JKR) followed under a spring on the way in or out, evaluated exactly at any base
+//! displacement (normalised units, docs/PHYSICS.md sections 1 and 4).
+//!
+//! The path is cut into pieces, each parametrised by t with the state an explicit function of t:
+//! the free piece (no force, t = Dbar), Maugis-Dugdale's non-contact piece (t = C) and the
+//! contact piece (t = -ln mu for Maugis-Dugdale, t = A for the closed forms). Under a spring of
+//! normalised stiffness kbar the base displacement is `Delta = Dbar + Pbar/kbar`, and a state is
+//! stable while `dDelta/dt > 0`. Retracting, the state goes down the contact piece until a fold
+//! (`dDelta/dt = 0`) or the piece's end, then jumps at constant Delta to the next stable stretch
+//! below; approaching, the same upwards. Each followed stretch is a segment on which Delta rises
+//! with t, so a measured Delta maps to one state, found by a safeguarded Newton iteration on the
+//! exact curve: the nodes only bracket it.
+
+use crate::physics::md::{curve_point, non_contact_point, zero_radius_end};
+use crate::solver::context::x_at_radius;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// A contact model, from the simplest.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    Hertz,
+    Dmt,
+    Jkr,
+    Md,
+}
+
+impl Model {
+    pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Model::Hertz => "hertz",
+            Model::Dmt => "dmt",
+            Model::Jkr => "jkr",
+            Model::Md => "md",
+        }
+    }
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Model::Hertz => "Hertz",
+            Model::Dmt => "DMT",
+            Model::Jkr => "JKR",
+            Model::Md => "Maugis-Dugdale",
+        }
+    }
+}
+
+/// Which way the base moves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Direction {
+    Approach,
+    Retract,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Piece {
+    Free,
+    NonContact,
+    Contact,
+}
+
+/// A state and its slopes with respect to the piece's parameter.
+#[derive(Clone, Copy, Debug)]
+pub struct Pt {
+    pub load: f64,
+    pub approach: f64,
+    pub a: f64,
+    pub dload: f64,
+    pub dapproach: f64,
+}
+
+/// A state on the followed path.
+#[derive(Clone, Copy, Debug)]
+pub struct PathState {
+    pub piece: Piece,
+    pub t: f64,
+    pub load: f64,
+    pub a: f64,
+    pub approach: f64,
+    /// Held at the end of its stretch (a point the data puts on the other side of a jump).
+    pub clamped: bool,
+}
+
+/// Which side of the first jump a measured point is on, as the data says: the model then
+/// evaluates it on that side's branch, held at the branch's end (or continued along it) where the
+/// model's own jump lies elsewhere. The misfit is then continuous in the parameters, so the fit
+/// can move the model's jump onto the measured one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    Any,
+    BeforeJump,
+    AfterJump,
+}
+
+/// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
+/// to 1e-9; JKR: where its approach slope is still finite).
+const A_START: f64 = 1e-9;
+/// Nodes per piece: they only bracket folds and roots (folds closer than a node spacing, on a
+/// stretch shorter than that, are not resolved; such a stretch moves the force by less than it).
+const NODES: usize = 320;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    t: f64,
+    delta: f64,
+    slope: f64,
+}
+
+/// One followed stretch: Delta rises with t over [t_lo, t_hi].
+#[derive(Clone, Copy, Debug)]
+struct Segment {
+    piece: Piece,
+    t_lo: f64,
+    t_hi: f64,
+    delta_lo: f64,
+    delta_hi: f64,
+}
+
+/// The path of one model at one lambda under one spring, up to base displacement `delta_max`.
+#[derive(Clone, Debug)]
+pub struct SpringPath {
+    pub model: Model,
+    pub lambda: f64,
+    pub kbar: f64,
+    pieces: Vec<(Piece, Vec<Node>)>,
+    free_end: f64,
+    /// Retract segments from the top down, approach segments from the bottom up.
+    retract: Vec<Segment>,
+    approach: Vec<Segment>,
+}
+
+/// The state at parameter t of a piece, for a model at lambda (ignored by the closed forms).
+pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
+    match piece {
+        Piece::Free => Pt {
+            load: 0.0,
+            approach: t,
+            a: 0.0,
+            dload: 0.0,
+            dapproach: 1.0,
+        },
+        Piece::NonContact => {
+            let (load, approach) = non_contact_point(lambda, t);
+            Pt {
+                load,
+                approach,
+                a: 0.0,
+                dload: -PI * lambda * t,
+                dapproach: t - 8.0 * lambda / (3.0 * PI),
+            }
+        }
+        Piece::Contact => match model {
+            Model::Md => {
+                let mu = (-t).exp();
+                let c = curve_point(lambda, mu);
+                Pt {
+                    load: c.load,
+                    approach: c.approach,
+                    a: c.a,
+                    dload: -mu * c.dload_dmu,
+                    dapproach: -mu * c.dapproach_dmu,
+                }
+            }
+            Model::Hertz | Model::Dmt => Pt {
+                load: t * t * t - if model == Model::Dmt { 2.0 } else { 0.0 },
+                approach: t * t,
+                a: t,
+                dload: 3.0 * t * t,
+                dapproach: 2.0 * t,
+            },
+            Model::Jkr => {
+                let s6 = (6.0 * t).sqrt();
+                Pt {
+                    load: t * t * t - t * s6,
+                    approach: t * t - 2.0 / 3.0 * s6,
+                    a: t,
+                    dload: 3.0 * t * t - 1.5 * s6,
+                    dapproach: 2.0 * t - s6 / (3.0 * t),
+                }
+            }
+        },
+    }
+}
+
+impl SpringPath {
+    /// `lambda` in the solver's domain (used by Maugis-Dugdale only), `kbar > 0`, and the largest
+    /// base displacement the path must reach.
+    pub fn new(model: Model, lambda: f64, kbar: f64, delta_max: f64) -> SpringPath {
+        let md = model == Model::Md;
+        let free_end = if md { -2.0 / (PI * lambda) } else { 0.0 };
+        let delta_of = |piece, t| {
+            let p = state(model, lambda, piece, t);
+            p.approach + p.load / kbar
+        };
+        let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
+            (0..NODES)
+                .map(|i| {
+                    let t = t0 + (t1 - t0) * i as f64 / (NODES - 1) as f64;
+                    let p = state(model, lambda, piece, t);
+                    Node {
+                        t,
+                        delta: p.approach + p.load / kbar,
+                        slope: p.dapproach + p.dload / kbar,
+                    }
+                })
+                .collect()
+        };
+        // The contact piece's top: the radius whose Delta passes delta_max (doubling).
+        let t_of_radius = |a: f64| if md { -x_at_radius(lambda, a) } else { a };
+        let mut a_max = 2.0;
+        while delta_of(Piece::Contact, t_of_radius(a_max)) < delta_max.max(1.0) * 1.05
+            && a_max < 1e5
+        {
+            a_max *= 2.0;
+        }
+        let (t0, t1) = (t_of_radius(A_START), t_of_radius(a_max));
+        let mut pieces = Vec::new();
+        if md {
+            let c_end = zero_radius_end(lambda).c;
+            pieces.push((Piece::NonContact, nodes(Piece::NonContact, 0.0, c_end)));
+        }
+        pieces.push((Piece::Contact, nodes(Piece::Contact, t0, t1)));
+        let mut path = SpringPath {
+            model,
+            lambda,
+            kbar,
+            pieces,
+            free_end,
+            retract: Vec::new(),
+            approach: Vec::new(),
+        };
+        path.retract = path.follow(Direction::Retract);
+        path.approach = path.follow(Direction::Approach);
+        path
+    }
+
+    fn eval(&self, piece: Piece, t: f64) -> (Pt, f64, f64) {
+        let p = state(self.model, self.lambda, piece, t);
+        (
+            p,
+            p.approach + p.load / self.kbar,
+            p.dapproach + p.dload / self.kbar,
+        )
+    }
+
+    fn slope(&self, piece: Piece, t: f64) -> f64 {
+        self.eval(piece, t).2
+    }
+
+    fn delta(&self, piece: Piece, t: f64) -> f64 {
+        self.eval(piece, t).1
+    }
+
+    /// The fold between two nodes where the slope changes sign.
+    fn fold(&self, piece: Piece, mut lo: f64, mut hi: f64) -> f64 {
+        // slope(lo) <= 0 < slope(hi) or the reverse: bisect on the sign.
+        let s_lo = self.slope(piece, lo) > 0.0;
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if !(mid > lo && mid < hi) {
+                break;
+            }
+            if (self.slope(piece, mid) > 0.0) == s_lo {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        if s_lo {
+            lo
+        } else {
+            hi
+        }
+    }
+
+    /// Delta(t) = target on [lo, hi], where Delta rises: safeguarded Newton.
+    fn solve_in(&self, piece: Piece, target: f64, mut lo: f64, mut hi: f64) -> (Pt, f64) {
+        if piece == Piece::Free {
+            return (state(self.model, self.lambda, piece, target), target);
+        }
+        let (d_lo, d_hi) = (self.delta(piece, lo), self.delta(piece, hi));
+        let mut t = if d_hi > d_lo {
+            lo + (hi - lo) * ((target - d_lo) / (d_hi - d_lo)).clamp(0.0, 1.0)
+        } else {
+            0.5 * (lo + hi)
+        };
+        for _ in 0..100 {
+            let (p, d, s) = self.eval(piece, t);
+            let r = d - target;
+            let tol = 1e-15 * (p.approach.abs() + (p.load / self.kbar).abs()).max(1.0);
+            if r.abs() <= tol {
+                return (p, t);
+            }
+            if r < 0.0 {
+                lo = t;
+            } else {
+                hi = t;
+            }
+            let newton = t - r / s;
+            let next = if s > 0.0 && newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if next == t || !(hi > lo) {
+                return (p, t);
+            }
+            t = next;
+        }
+        (state(self.model, self.lambda, piece, t), t)
+    }
+
+    /// The segments followed in one direction.
+    fn follow(&self, dir: Direction) -> Vec<Segment> {
+        let mut segs = Vec::new();
+        match dir {
+            Direction::Retract => {
+                // From the top of the contact piece down.
+                let mut k = self.pieces.len() - 1;
+                let mut t_hi = self.pieces[k].1.last().unwrap().t;
+                let mut delta_hi = f64::INFINITY;
+                loop {
+                    let (piece, nodes) = (&self.pieces[k].0, &self.pieces[k].1);
+                    // The highest unstable node below t_hi.
+                    let unstable = nodes.iter().rposition(|n| n.t < t_hi && !(n.slope > 0.0));
+                    let t_lo = match unstable {
+                        Some(j) => {
+                            let above = nodes.get(j + 1).map_or(t_hi, |n| n.t.min(t_hi));
+                            self.fold(*piece, nodes[j].t, above)
+                        }
+                        None => nodes[0].t,
+                    };
+                    let delta_lo = self.delta(*piece, t_lo);
+                    segs.push(Segment {
+                        piece: *piece,
+                        t_lo,
+                        t_hi,
+                        delta_lo,
+                        delta_hi,
+                    });
+                    // Land below: the highest stable crossing of delta_lo under t_lo.
+                    match self.land(delta_lo, k, t_lo, Direction::Retract) {
+                        Some((kk, t)) => {
+                            k = kk;
+                            t_hi = t;
+                            delta_hi = delta_lo;
+                        }
+                        None => {
+                            segs.push(Segment {
+                                piece: Piece::Free,
+                                t_lo: f64::NEG_INFINITY,
+                                t_hi: delta_lo.min(self.free_end),
+                                delta_lo: f64::NEG_INFINITY,
+                                delta_hi: delta_lo,
+                            });
+                            return segs;
+                        }
+                    }
+                }
+            }
+            Direction::Approach => {
+                // Free up to its end, then jump up.
+                let mut delta_lo = self.free_end;
+                segs.push(Segment {
+                    piece: Piece::Free,
+                    t_lo: f64::NEG_INFINITY,
+                    t_hi: self.free_end,
+                    delta_lo: f64::NEG_INFINITY,
+                    delta_hi: self.free_end,
+                });
+                let (mut k, mut t_from) = (0usize, f64::NEG_INFINITY);
+                loop {
+                    let Some((kk, t_lo)) = self.land(delta_lo, k, t_from, Direction::Approach)
+                    else {
+                        // No stable state at this Delta above: follow the last piece (cannot
+                        // happen for these models; kept so the path always reaches the top).
+                        let (piece, nodes) = self.pieces.last().unwrap();
+                        let t_lo = nodes[0].t;
+                        segs.push(Segment {
+                            piece: *piece,
+                            t_lo,
+                            t_hi: nodes.last().unwrap().t,
+                            delta_lo: self.delta(*piece, t_lo),
+                            delta_hi: f64::INFINITY,
+                        });
+                        return segs;
+                    };
+                    let (piece, nodes) = (&self.pieces[kk].0, &self.pieces[kk].1);
+                    let unstable = nodes.iter().position(|n| n.t > t_lo && !(n.slope > 0.0));
+                    let t_hi = match unstable {
+                        Some(j) => {
+                            let below = if j > 0 {
+                                nodes[j - 1].t.max(t_lo)
+                            } else {
+                                t_lo
+                            };
+                            self.fold(*piece, below, nodes[j].t)
+                        }
+                        None => nodes.last().unwrap().t,
+                    };
+                    let top = kk == self.pieces.len() - 1 && unstable.is_none();
+                    let delta_hi = if top {
+                        f64::INFINITY
+                    } else {
+                        self.delta(*piece, t_hi)
+                    };
+                    segs.push(Segment {
+                        piece: *piece,
+                        t_lo,
+                        t_hi,
+                        delta_lo,
+                        delta_hi,
+                    });
+                    if top {
+                        return segs;
+                    }
+                    delta_lo = delta_hi;
+                    k = kk;
+                    t_from = t_hi;
+                }
+            }
+        }
+    }
+
+    /// Where a jump at `delta` from piece `k` at `t_from` lands: on a stable stretch, the
+    /// nearest crossing below (retract) or above (approach). None: the free piece (retract).
+    fn land(&self, delta: f64, k: usize, t_from: f64, dir: Direction) -> Option<(usize, f64)> {
+        let tol = 1e-9 * delta.abs().max(1.0);
+        let crosses = |piece: Piece, a: &Node, b: &Node| -> Option<f64> {
+            if !(a.slope > 0.0 && b.slope > 0.0) {
+                return None;
+            }
+            if a.delta <= delta && delta <= b.delta {
+                Some(self.solve_in(piece, delta, a.t, b.t).1)
+            } else if (a.delta - delta).abs() <= tol {
+                Some(a.t)
+            } else if (b.delta - delta).abs() <= tol {
+                Some(b.t)
+            } else {
+                None
+            }
+        };
+        match dir {
+            Direction::Retract => {
+                for kk in (0..=k).rev() {
+                    let (piece, nodes) = (self.pieces[kk].0, &self.pieces[kk].1);
+                    for w in nodes.windows(2).rev() {
+                        if w[1].t > t_from || (kk == k && w[1].t >= t_from) {
+                            continue;
+                        }
+                        if let Some(t) = crosses(piece, &w[0], &w[1]) {
+                            return Some((kk, t));
+                        }
+                    }
+                }
+                None
+            }
+            Direction::Approach => {
+                for kk in k..self.pieces.len() {
+                    let (piece, nodes) = (self.pieces[kk].0, &self.pieces[kk].1);
+                    for w in nodes.windows(2) {
+                        if kk == k && w[0].t <= t_from {
+                            continue;
+                        }
+                        if let Some(t) = crosses(piece, &w[0], &w[1]) {
+                            return Some((kk, t));
+                        }
+                    }
+                }
+                None
+            }
+        }
+    }
+
+    /// The state at base displacement `delta` on the way in or out.
+    pub fn at(&self, delta: f64, dir: Direction) -> PathState {
+        let segs = match dir {
+            Direction::Retract => &self.retract,
+            Direction::Approach => &self.approach,
+        };
+        let seg = segs
+            .iter()
+            .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
+            .or_else(|| segs.last())
+            .expect("a path has segments");
+        let (lo, hi) = if seg.piece == Piece::Free {
+            (seg.t_lo, seg.t_hi)
+        } else {
+            self.bracket(seg, delta)
+        };
+        let (p, t) = self.solve_in(seg.piece, delta, lo, hi);
+        PathState {
+            piece: seg.piece,
+            t,
+            load: p.load,
+            a: p.a,
+            approach: p.approach,
+            clamped: false,
+        }
+    }
+
+    fn segments(&self, dir: Direction) -> &[Segment] {
+        match dir {
+            Direction::Retract => &self.retract,
+            Direction::Approach => &self.approach,
+        }
+    }
+
+    /// The index of the last segment before the first jump (a change of load), if any.
+    fn first_jump(&self, dir: Direction) -> Option<usize> {
+        let segs = self.segments(dir);
+        (0..segs.len().saturating_sub(1)).find(|&j| {
+            let (a, b) = (&segs[j], &segs[j + 1]);
+            let (ta, tb) = match dir {
+                Direction::Retract => (a.t_lo, b.t_hi),
+                Direction::Approach => (a.t_hi, b.t_lo),
+            };
+            let la = self.eval(a.piece, ta).0.load;
+            let lb = self.eval(b.piece, tb).0.load;
+            (la - lb).abs() > 1e-6 * la.abs().max(lb.abs()).max(1e-3)
+        })
+    }
+
+    fn state_at(&self, seg: &Segment, t: f64, clamped: bool) -> PathState {
+        let p = state(self.model, self.lambda, seg.piece, t);
+        PathState {
+            piece: seg.piece,
+            t,
+            load: p.load,
+            a: p.a,
+            approach: p.approach,
+            clamped,
+        }
+    }
+
+    /// The state at base displacement `delta` on the side of the first jump the data says.
+    pub fn at_side(&self, delta: f64, dir: Direction, side: Side) -> PathState {
+        let Some(j) = self.first_jump(dir).filter(|_| side != Side::Any) else {
+            return self.at(delta, dir);
+        };
+        let segs = self.segments(dir);
+        let (run, first) = match side {
+            Side::BeforeJump => (&segs[..=j], false),
+            _ => (&segs[j + 1..], true),
+        };
+        if let Some(seg) = run
+            .iter()
+            .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
+        {
+            return self.at_in(seg, delta);
+        }
+        // Beyond the run: before the jump, held at the fold; after it, the landing branch
+        // continued (held at the landing where it cannot be).
+        let retract = dir == Direction::Retract;
+        if !first {
+            let seg = &run[run.len() - 1];
+            let t = if retract { seg.t_lo } else { seg.t_hi };
+            if seg.piece == Piece::Free {
+                return self.at_in(seg, delta.min(seg.t_hi));
+            }
+            return self.state_at(seg, t, true);
+        }
+        let seg = &run[0];
+        if seg.piece == Piece::Free {
+            let mut s = self.at_in(seg, delta);
+            s.load = 0.0;
+            return s;
+        }
+        let t = if retract { seg.t_hi } else { seg.t_lo };
+        near(self.model, self.lambda, self.kbar, delta, seg.piece, t)
+            .map(|mut s| {
+                s.clamped = true;
+                s
+            })
+            .unwrap_or_else(|| self.state_at(seg, t, true))
+    }
+
+    fn at_in(&self, seg: &Segment, delta: f64) -> PathState {
+        let (lo, hi) = if seg.piece == Piece::Free {
+            (seg.t_lo, seg.t_hi)
+        } else {
+            self.bracket(seg, delta)
+        };
+        let (p, t) = self.solve_in(seg.piece, delta, lo, hi);
+        PathState {
+            piece: seg.piece,
+            t,
+            load: p.load,
+            a: p.a,
+            approach: p.approach,
+            clamped: false,
+        }
+    }
+
+    /// The nodes around `delta` inside a segment.
+    fn bracket(&self, seg: &Segment, delta: f64) -> (f64, f64) {
+        let nodes = &self.pieces.iter().find(|p| p.0 == seg.piece).unwrap().1;
+        let i = nodes.partition_point(|n| n.t <= seg.t_lo);
+        let j = nodes.partition_point(|n| n.t < seg.t_hi);
+        let mut lo = seg.t_lo;
+        let mut hi = seg.t_hi;
+        // Within the segment Delta rises with t: binary search the interior nodes.
+        let interior = &nodes[i..j.max(i)];
+        let k = interior.partition_point(|n| n.delta < delta);
+        if k > 0 {
+            lo = interior[k - 1].t;
+        }
+        if k < interior.len() {
+            hi = interior[k].t;
+        }
+        (lo, hi)
+    }
+
+    /// The lowest base displacement at which either direction feels a force (the retract's
+    /// jump-out, or the start of the approach's force zone).
+    pub fn force_reach(&self) -> f64 {
+        self.retract
+            .iter()
+            .chain(&self.approach)
+            .filter(|s| s.piece != Piece::Free)
+            .map(|s| s.delta_lo)
+            .fold(self.free_end, f64::min)
+    }
+
+    /// The most tensile load on the path followed in a direction (the pull-off a cantilever
+    /// reads on retract) and the Delta where it is reached.
+    pub fn min_load(&self, dir: Direction) -> (f64, f64) {
+        let segs = match dir {
+            Direction::Retract => &self.retract,
+            Direction::Approach => &self.approach,
+        };
+        let mut best = (0.0, f64::NAN);
+        for s in segs.iter().filter(|s| s.piece != Piece::Free) {
+            let nodes = &self.pieces.iter().find(|p| p.0 == s.piece).unwrap().1;
+            let mut ts: Vec<f64> = vec![s.t_lo];
+            ts.extend(
+                nodes
+                    .iter()
+                    .map(|n| n.t)
+                    .filter(|&t| t > s.t_lo && t < s.t_hi),
+            );
+            if s.t_hi.is_finite() {
+                ts.push(s.t_hi);
+            }
+            let loads: Vec<f64> = ts.iter().map(|&t| self.eval(s.piece, t).0.load).collect();
+            let Some(i) = (0..ts.len()).min_by(|&i, &j| loads[i].total_cmp(&loads[j])) else {
+                continue;
+            };
+            // An interior minimum: refine where dP/dt changes sign.
+            let t = if i > 0 && i + 1 < ts.len() {
+                let (mut lo, mut hi) = (ts[i - 1], ts[i + 1]);
+                for _ in 0..100 {
+                    let mid = 0.5 * (lo + hi);
+                    if !(mid > lo && mid < hi) {
+                        break;
+                    }
+                    if self.eval(s.piece, mid).0.dload < 0.0 {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                0.5 * (lo + hi)
+            } else {
+                ts[i]
+            };
+            let (p, d, _) = self.eval(s.piece, t);
+            if p.load < best.0 {
+                best = (p.load, d);
+            }
+        }
+        best
+    }
+}
+
+/// The state on a given piece near parameter `t`: Newton steps from there. The Jacobian of a fit
+/// keeps each point on its branch this way, so that a finite difference never straddles a jump.
+pub fn near(
+    model: Model,
+    lambda: f64,
+    kbar: f64,
+    delta: f64,
+    piece: Piece,
+    t: f64,
+) -> Option<PathState> {
+    if piece == Piece::Free {
+        return Some(PathState {
+            piece,
+            t: delta,
+            load: 0.0,
+            a: 0.0,
+            approach: delta,
+            clamped: false,
+        });
+    }
+    let mut t = t;
+    for _ in 0..8 {
+        let p = state(model, lambda, piece, t);
+        let r = p.approach + p.load / kbar - delta;
+        if r.abs() <= 1e-14 * delta.abs().max(1.0) {
+            return Some(PathState {
+                piece,
+                t,
+                load: p.load,
+                a: p.a,
+                approach: p.approach,
+                clamped: false,
+            });
+        }
+        let s = p.dapproach + p.dload / kbar;
+        if !(s.abs() > 0.0) {
+            return None;
+        }
+        let step = r / s;
+        t -= step;
+        if step.abs() <= 1e-13 * t.abs().max(1.0) {
+            let p = state(model, lambda, piece, t);
+            return Some(PathState {
+                piece,
+                t,
+                load: p.load,
+                a: p.a,
+                approach: p.approach,
+                clamped: false,
+            });
+        }
+    }
+    None
+}
