@@ -38,3 +38,6 @@ $T cycle --lambda 1 --control spring --stiffness 5 --plot $G/cycle_spring_5.png 
 for l in 0.1 1 10; do
     $T profile --lambda $l --load 0 --plot $G/profile_$l.png -o $G/profile_$l.json
 done
+# A synthetic AFM curve (exact Maugis-Dugdale under a 2 N/m cantilever, 50 pN noise) and its fit.
+cargo run --release --quiet --example synthetic_curves -- $G/fit_curve.csv 1 500
+$T fit -i $G/fit_curve.csv --radius 20e-9 --spring-n-m 2 --plot $G/fit.png -o $G/fit.json

@@ -63,14 +63,13 @@ fn noise_free_curves_give_the_parameters_to_1e_6() {
     });
 }
 
-/// Noisy fits reach the noise floor (rms residual within 10% of the noise's standard deviation:
-/// not stuck in a worse minimum) and hold E* within three standard errors. The thresholds are
-/// what the fitter achieves today, not yet the 95% the fitting issue asks for: from one retract
-/// curve at these noise levels lambda is often weakly determined, the covariance's standard
-/// errors (a local, quadratic picture of a misfit with jumps in it) understate its spread, and
-/// some free-lambda fits stop at the iteration limit. The figures are printed.
+/// Noisy fits reach the noise floor (rms residual within 12% of the noise's standard deviation:
+/// none is stuck in a worse minimum), and the reported standard errors hold the truth: E*, w and
+/// lambda each within three of them in at least 95% of the cases. Where one curve cannot tell
+/// lambda apart within its noise, the standard error says so (it covers the profile's 3-sigma
+/// region), rather than a local curvature that would understate it.
 #[test]
-fn noisy_fits_reach_the_noise_floor_and_hold_e_star_within_three_standard_errors() {
+fn noisy_fits_reach_the_noise_floor_and_hold_the_truth_within_three_standard_errors() {
     // 120 random cases: lambda 0.05..50, four springs, two noise levels (relative to the
     // pull-off force), with and without a jump in the sampled range (stiff springs at small
     // lambda leave continuously).
@@ -124,9 +123,15 @@ fn noisy_fits_reach_the_noise_floor_and_hold_e_star_within_three_standard_errors
         .map(|o| (o.5 - 1.0).abs())
         .fold(0.0, f64::max);
     eprintln!("rms residual / noise of the converged fits: worst {worst:.3} from 1");
-    assert!(fitted as f64 >= 0.9 * n, "converged {fitted} of {n}");
+    assert_eq!(fitted, out.len(), "every curve fitted");
     assert!(worst < 0.12, "a fit above the noise floor: {worst}");
-    assert!(frac(0) >= 0.9, "E* within 3 standard errors in {}", frac(0));
+    for (k, name) in ["E*", "w", "lambda"].iter().enumerate() {
+        assert!(
+            frac(k) >= 0.95,
+            "{name} within 3 standard errors in {}",
+            frac(k)
+        );
+    }
 }
 
 #[test]

@@ -867,8 +867,102 @@ impl ModelFit {
     }
 }
 
-/// The lambdas of the profile that starts a free Maugis-Dugdale fit.
-const PROFILE_LAMBDAS: [f64; 8] = [0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0];
+/// The lambdas of the profile that starts a free Maugis-Dugdale fit: 0.01..1000, 16 points.
+fn profile_lambdas() -> impl Iterator<Item = f64> {
+    (0..16).map(|i| 10f64.powf(-2.0 + 5.0 * i as f64 / 15.0))
+}
+
+/// Misfit for ranking: the rms residual, even where the iteration limit stopped a fit.
+fn rank(m: &ModelFit) -> f64 {
+    if m.rms_residual_n.is_finite() {
+        m.rms_residual_n
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The free Maugis-Dugdale fit from the best two points of the lambda profile, with standard
+/// errors that also cover the profile's confidence region: where the misfit is flat in lambda
+/// (one retract curve often cannot tell lambda = 0.3 from 30 within its noise) the covariance's
+/// local picture understates the spread, while the profile sees it.
+fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) -> ModelFit {
+    let debug = std::env::var_os("TABOR_FIT_DEBUG").is_some();
+    let mut order: Vec<usize> = (0..profile.len()).collect();
+    order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
+    let best_profile = rank(&profile[order[0]]);
+    let mut md = order
+        .iter()
+        .take(2)
+        .map(|&i| {
+            let m = &profile[i];
+            let mut f = fit_model(Model::Md, d, opt, m.params(opt.radius), w_ref, None);
+            // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
+            if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
+                f.status = FitStatus::Ok;
+            }
+            if debug {
+                eprintln!("from lambda {:?} (rms {:.3e}) -> E {:.4e} w {:.4e} lambda {:?} rms {:.3e} it {} {}", m.lambda, m.rms_residual_n, f.e_star_pa, f.work_of_adhesion_j_m2, f.lambda, f.rms_residual_n, f.iterations, f.stop);
+            }
+            f
+        })
+        .reduce(better)
+        .expect("a profile");
+    if key(&md) > best_profile {
+        // The free fits failed or did worse: the best fixed-lambda fit stands.
+        md = profile[order[0]].clone();
+        md.stop = format!("{} (lambda from the profile)", md.stop);
+        if md.rms_residual_n.is_finite() {
+            md.status = FitStatus::Ok;
+        }
+    }
+    if md.status != FitStatus::Ok {
+        return md;
+    }
+    // The profile's 3-sigma region: Delta chi^2 = (RSS - RSS_min) / s^2 <= 9, its edges
+    // interpolated in ln lambda between profile points.
+    let m = d.force.len() as f64;
+    let rss = |f: &ModelFit| f.rms_residual_n.powi(2) * m;
+    let s2 = rss(&md) / (m - 5.0).max(1.0);
+    let lam = md.lambda.unwrap_or(1.0);
+    let chi: Vec<(f64, f64)> = profile
+        .iter()
+        .map(|f| {
+            let c = (rss(f) - rss(&md)) / s2;
+            (
+                f.lambda.unwrap_or(1.0).ln(),
+                if c.is_finite() { c } else { f64::INFINITY },
+            )
+        })
+        .collect();
+    let (mut lo, mut hi) = (lam, lam);
+    let (mut de, mut dw) = (0.0f64, 0.0f64);
+    for (i, &(x, c)) in chi.iter().enumerate() {
+        if c <= 9.0 {
+            lo = lo.min(x.exp());
+            hi = hi.max(x.exp());
+            de = de.max((profile[i].e_star_pa - md.e_star_pa).abs());
+            dw = dw.max((profile[i].work_of_adhesion_j_m2 - md.work_of_adhesion_j_m2).abs());
+        }
+        if let Some(&(x2, c2)) = chi.get(i + 1) {
+            if (c <= 9.0) != (c2 <= 9.0) && c.is_finite() && c2.is_finite() {
+                let t = ((9.0 - c) / (c2 - c)).clamp(0.0, 1.0);
+                let e = (x + t * (x2 - x)).exp();
+                lo = lo.min(e);
+                hi = hi.max(e);
+            }
+        }
+    }
+    let spread = (hi - lam).max(lam - lo) / 3.0;
+    let local = md.lambda_stderr.unwrap_or(0.0);
+    md.lambda_stderr = Some(if local.is_finite() {
+        local.max(spread)
+    } else {
+        spread
+    });
+    md.e_star_pa_stderr = md.e_star_pa_stderr.max(de / 3.0);
+    md.work_of_adhesion_j_m2_stderr = md.work_of_adhesion_j_m2_stderr.max(dw / 3.0);
+    md
+}
 
 fn key(m: &ModelFit) -> f64 {
     if m.status == FitStatus::Ok && m.rms_residual_n.is_finite() {
@@ -935,8 +1029,7 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
     };
     // Maugis-Dugdale: the misfit has local minima in lambda (the jump moves with it), so a
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
-    // that side) picks the start of the free fit; the best two are refined.
-    let debug = std::env::var_os("TABOR_FIT_DEBUG").is_some();
+    // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let md = match opt.z0 {
         Some(z0) => {
             let best = better(dmt.clone(), jkr.clone());
@@ -946,9 +1039,8 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
             fit_model(Model::Md, &d, opt, s, w_ref, None)
         }
         None => {
-            let mut profile: Vec<ModelFit> = PROFILE_LAMBDAS
-                .iter()
-                .map(|&l| {
+            let profile: Vec<ModelFit> = profile_lambdas()
+                .map(|l| {
                     let pc = crate::physics::closed::cos_pulloff(l).abs();
                     let s = if l < 1.0 {
                         from(&dmt, l, 2.0, pc)
@@ -958,27 +1050,7 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
                     fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
                 })
                 .collect();
-            // Ranked by misfit even where the iteration limit stopped a fit.
-            let rank = |m: &ModelFit| {
-                if m.rms_residual_n.is_finite() {
-                    m.rms_residual_n
-                } else {
-                    f64::INFINITY
-                }
-            };
-            profile.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
-            profile
-                .iter()
-                .take(2)
-                .map(|m| {
-                    let f = fit_model(Model::Md, &d, opt, m.params(opt.radius), w_ref, None);
-                    if debug {
-                        eprintln!("from lambda {:?} (rms {:.3e}) -> E {:.4e} w {:.4e} lambda {:?} rms {:.3e} it {} {}", m.lambda, m.rms_residual_n, f.e_star_pa, f.work_of_adhesion_j_m2, f.lambda, f.rms_residual_n, f.iterations, f.stop);
-                    }
-                    f
-                })
-                .reduce(better)
-                .expect("a profile")
+            free_fit(&d, opt, w_ref, profile)
         }
     };
     summarize(curve, opt, &d, md, vec![hertz, dmt, jkr])
@@ -1043,8 +1115,10 @@ fn summarize(
     out.tabor_parameter = Some(mu_t);
     out.tabor_parameter_stderr = md.lambda_stderr.map(|e| e * mu_t / p.lambda);
     out.z0_m = Some(opt.z0.unwrap_or(z0));
+    let lambda_spread = z0 * md.lambda_stderr.unwrap_or(f64::NAN) / p.lambda;
     out.z0_m_stderr = Some(match (&md.cov, opt.z0) {
-        (Some(c), None) => {
+        // The covariance of (ln E*, ln w, ln lambda, ...) of a free fit.
+        (Some(c), None) if c.nrows() == 5 => {
             // ln z0 = (2/3)(ln w - ln E*) - ln lambda + const.
             let g = [-2.0 / 3.0, 2.0 / 3.0, -1.0];
             let mut v = 0.0;
@@ -1053,10 +1127,12 @@ fn summarize(
                     v += g[i] * g[j] * c[(i, j)];
                 }
             }
-            z0 * v.max(0.0).sqrt()
+            // At least the lambda spread (z0 is inversely proportional to lambda).
+            (z0 * v.max(0.0).sqrt()).max(lambda_spread)
         }
         (_, Some(_)) => 0.0,
-        _ => f64::NAN,
+        // lambda from the profile: its spread.
+        _ => lambda_spread,
     });
     out.contact_point_m = Some(p.zc);
     out.contact_point_m_stderr = Some(md.contact_point_m_stderr);
@@ -1152,6 +1228,14 @@ fn summarize(
         warn.push(format!(
             "only {in_contact} fitted points are in contact: E* is poorly determined"
         ));
+    }
+    if let Some(e) = md.lambda_stderr {
+        if e > p.lambda {
+            warn.push(format!(
+                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it with --z0, fit both segments, or use a stiffer cantilever",
+                p.lambda
+            ));
+        }
     }
     let (mp, md_pull) = (
         out.pulloff_force_measured_n.unwrap_or(0.0),
