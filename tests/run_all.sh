@@ -9,6 +9,6 @@ cargo build --release --bin tabor   # the Python tests compare with the command 
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install -q --upgrade pip
-"$venv/bin/python" -m pip install -q pytest nanite
+"$venv/bin/python" -m pip install -q pytest nanite afmformats
 "$venv/bin/python" -m pip install -q ./python
 "$venv/bin/python" -m pytest -q python/tests

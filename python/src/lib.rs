@@ -307,6 +307,76 @@ fn fit_pairs<'py>(
     })
 }
 
+/// Force curves fitted (`tabor fit`): flat arrays of the points with a curve index, the
+/// options as JSON; returns the JSON list of per-curve results.
+#[pyfunction]
+fn fit_curves<'py>(
+    py: Python<'py>,
+    curve: PyReadonlyArray1<'py, i64>,
+    segment: PyReadonlyArray1<'py, i64>,
+    height: PyReadonlyArray1<'py, f64>,
+    force: PyReadonlyArray1<'py, f64>,
+    options_json: String,
+) -> PyResult<String> {
+    let (c, s, h, f) = (
+        curve.as_slice()?.to_vec(),
+        segment.as_slice()?.to_vec(),
+        height.as_slice()?.to_vec(),
+        force.as_slice()?.to_vec(),
+    );
+    run(py, move || {
+        use tabor::fit::{Curve, Direction, FitOptions, Segments};
+        let o: serde_json::Value = serde_json::from_str(&options_json)?;
+        let num = |k: &str| o.get(k).and_then(|v| v.as_f64());
+        let opt = FitOptions {
+            radius: num("radius").unwrap_or(f64::NAN),
+            spring: num("spring").unwrap_or(f64::NAN),
+            poisson: num("poisson"),
+            segments: match o
+                .get("segment")
+                .and_then(|v| v.as_str())
+                .unwrap_or("retract")
+            {
+                "retract" => Segments::Retract,
+                "approach" => Segments::Approach,
+                "both" => Segments::Both,
+                other => {
+                    anyhow::bail!("segment={other:?}: use \"retract\", \"approach\" or \"both\"")
+                }
+            },
+            z0: num("z0"),
+            tilt: o.get("tilt").and_then(|v| v.as_bool()).unwrap_or(false),
+            tolerance: num("tolerance").unwrap_or(0.05),
+            ..FitOptions::default()
+        };
+        let mut curves: Vec<Curve> = Vec::new();
+        let mut index = std::collections::HashMap::new();
+        for i in 0..h.len() {
+            let k = *index.entry(c[i]).or_insert_with(|| {
+                curves.push(Curve {
+                    id: c[i].to_string(),
+                    ..Curve::default()
+                });
+                curves.len() - 1
+            });
+            let cv = &mut curves[k];
+            cv.segment.push(match s[i] {
+                0 => Direction::Approach,
+                1 => Direction::Retract,
+                v => anyhow::bail!("segment[{i}] = {v}: use 0 for approach and 1 for retract"),
+            });
+            cv.height.push(h[i]);
+            cv.force.push(f[i]);
+        }
+        use rayon::prelude::*;
+        let results: Vec<tabor::fit::CurveFit> = curves
+            .par_iter()
+            .map(|cv| tabor::fit::fit_curve(cv, &opt))
+            .collect();
+        Ok(serde_json::to_string(&results)?)
+    })
+}
+
 /// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`).
 #[pyfunction]
 #[pyo3(signature = (lam, drive, stiffness, max_load))]
@@ -531,6 +601,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
+    m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;

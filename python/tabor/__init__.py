@@ -36,7 +36,8 @@ STATUS_NAMES = tuple(_tabor.status_names())
 
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
-    "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "cycle", "profile", "presets",
+    "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
+    "fit_afmformats", "cycle", "profile", "presets",
 ]
 
 
@@ -330,6 +331,68 @@ def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
     (``tabor infer --pairs``). Returns a dict."""
     (p, a), _ = _flat(loads_n, radii_m)
     return json.loads(_tabor.fit_pairs(p, a, float(radius_m), float(z0_m)))
+
+
+def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
+               fit_segment="retract", z0_m=None, tilt=False, tolerance=0.05):
+    """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
+    (``tabor fit``). ``height_m``: piezo height of the cantilever base (larger is farther from
+    the sample); ``force_n``: force on the tip, positive when repulsive; ``segment``: 0 approach,
+    1 retract (or the strings); ``curve``: an id per point where the arrays hold many curves.
+    Returns a list of dicts, one per curve in order of first appearance, with the keys of
+    ``tabor fit --format json`` (SI units, ``_stderr`` standard errors, ``status`` and
+    ``message``, ``adequate_model`` and ``why``, ``warnings``)."""
+    h = np.ascontiguousarray(height_m, dtype=float).ravel()
+    f = np.ascontiguousarray(force_n, dtype=float).ravel()
+    seg = np.asarray(segment).ravel()
+    if seg.dtype.kind in "US":
+        names = {"approach": 0, "retract": 1}
+        try:
+            seg = np.array([names[str(v)] for v in seg])
+        except KeyError as e:
+            raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
+    seg = np.ascontiguousarray(seg, dtype=np.int64)
+    if curve is None:
+        ids = np.zeros(len(h), dtype=np.int64)
+        labels = None
+    else:
+        labels, ids = np.unique(np.asarray(curve).ravel(), return_inverse=True)
+        ids = np.ascontiguousarray(ids, dtype=np.int64)
+    if not (len(h) == len(f) == len(seg) == len(ids)):
+        raise ValueError("height_m, force_n, segment (and curve) must have the same length")
+    options = {"radius": float(radius_m), "spring": float(spring_n_m), "segment": fit_segment,
+               "tilt": bool(tilt), "tolerance": float(tolerance)}
+    if poisson is not None:
+        options["poisson"] = float(poisson)
+    if z0_m is not None:
+        options["z0"] = float(z0_m)
+    out = json.loads(_tabor.fit_curves(ids, seg, h, f, json.dumps(options)))
+    if labels is not None:
+        for r in out:
+            r["curve"] = labels[int(r["curve"])].item()
+    return out
+
+
+def fit_curve(height_m, force_n, segment, **options):
+    """One force curve: :func:`fit_curves` for a single curve, its dict."""
+    return fit_curves(height_m, force_n, segment, **options)[0]
+
+
+def fit_afmformats(data, radius_m, **options):
+    """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum, NT-MDT,
+    ...): one ``AFMForceDistance`` or a list of them, each with its own spring constant from
+    its metadata. Uses ``height (measured)`` where present, else ``height (piezo)``. Returns a
+    list of dicts as :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
+    items = [data] if hasattr(data, "columns") else list(data)
+    out = []
+    for d in items:
+        col = "height (measured)" if "height (measured)" in d.columns else "height (piezo)"
+        r = fit_curve(d[col], d["force"], np.asarray(d["segment"], dtype=np.int64),
+                      radius_m=radius_m, spring_n_m=d.metadata["spring constant"], **options)
+        r["path"] = str(d.metadata.get("path", ""))
+        r["enum"] = int(d.metadata.get("enum", 0))
+        out.append(r)
+    return out
 
 
 def cycle(lam, drive="grips", stiffness=None, max_load=2.0):

@@ -862,13 +862,27 @@ where
     let zc = md.contact_point_m;
     // Heights relative to the fitted contact point, in nm; forces in nN.
     let x_of = |hgt: f64| (hgt - zc) * 1e9;
-    let (xmin, xmax) = d
+    // The contact and the jump fill the width: the far baseline is cut to half the width of
+    // the part where the force is off zero (beyond 5% of its range).
+    let (xmin, xall) = d
         .height
         .iter()
         .map(|&v| x_of(v))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
             (a.min(v), b.max(v))
         });
+    let frange = d
+        .force
+        .iter()
+        .fold(0.0f64, |m, f| m.max((f - md.force_offset_n).abs()));
+    let active = d
+        .height
+        .iter()
+        .zip(&d.force)
+        .filter(|(_, &f)| (f - md.force_offset_n).abs() > 0.05 * frange)
+        .map(|(&hh, _)| x_of(hh))
+        .fold(xmin, f64::max);
+    let xmax = xall.min(active + 0.6 * (active - xmin).max(1e-3));
     let (fmin, fmax) = d
         .force
         .iter()
@@ -925,12 +939,19 @@ where
             .collect();
     let mut chart =
         builder(&top, "").build_cartesian_2d(xmin..xmax, (fmin - pad) * 1e9..(fmax + pad) * 1e9)?;
+    let (hs, dirs): (Vec<f64>, Vec<crate::fit::Direction>) = hs
+        .into_iter()
+        .zip(dirs)
+        .filter(|(hh, _)| x_of(*hh) <= xmax)
+        .unzip();
     chart
         .configure_mesh()
         .max_light_lines(1)
         .light_line_style(RGBColor(245, 245, 245))
         .bold_line_style(RGBColor(215, 215, 215))
         .x_desc("")
+        .x_labels(6)
+        .y_labels(6)
         .y_desc("force F (nN)")
         .axis_desc_style(("sans-serif", AXIS))
         .label_style(("sans-serif", TICK))
@@ -943,6 +964,7 @@ where
             d.height
                 .iter()
                 .zip(&d.force)
+                .filter(|(&hh, _)| x_of(hh) <= xmax)
                 .map(|(&hh, &f)| Circle::new((x_of(hh), f * 1e9), 5, dot)),
         )?
         .label("measured")
@@ -1022,6 +1044,8 @@ where
         .light_line_style(RGBColor(245, 245, 245))
         .bold_line_style(RGBColor(215, 215, 215))
         .x_desc("base height above the contact point (nm)")
+        .x_labels(6)
+        .y_labels(4)
         .y_desc("residual (nN)")
         .axis_desc_style(("sans-serif", AXIS))
         .label_style(("sans-serif", TICK))
@@ -1032,7 +1056,7 @@ where
         let st = ShapeStyle::from(col).filled();
         rc.draw_series(
             pts.iter()
-                .filter(|p| p.1.abs() <= span)
+                .filter(|p| p.1.abs() <= span && p.0 <= xmax)
                 .map(|&p| Circle::new(p, if *col == RGBColor(0, 0, 0) { 4 } else { 3 }, st)),
         )?;
     }
