@@ -177,3 +177,56 @@ fn need_exact(d: &MapData, what: &str) -> anyhow::Result<()> {
     }
     Ok(())
 }
+
+/// A force map's NumPy files (`tabor fit --maps PREFIX`): PREFIX_NAME.npy for each of
+/// [`crate::fit::MAP_QUANTITIES`] as float64 (ny, nx), NaN where a pixel has no fitted curve, and
+/// PREFIX_adequate_model.npy as int8 (0 Hertz, 1 DMT, 2 JKR, 3 Maugis-Dugdale, -1 none).
+pub fn write_fit_npy(
+    prefix: &str,
+    results: &[crate::fit::CurveFit],
+    nx: usize,
+    ny: usize,
+    grid: &[Option<usize>],
+) -> anyhow::Result<Vec<String>> {
+    let ok = |i: &Option<usize>| {
+        i.map(|i| &results[i])
+            .filter(|r| r.status == crate::fit::FitStatus::Ok)
+    };
+    let shape = [ny as u64, nx as u64];
+    let mut outs = Vec::new();
+    let mut names = Vec::new();
+    for q in &crate::fit::MAP_QUANTITIES {
+        let name = format!("{prefix}_{}.npy", q.name);
+        let mut out = Output::create(&name)?;
+        npy_write(
+            &mut out,
+            &shape,
+            grid.iter()
+                .map(|i| ok(i).and_then(q.value).unwrap_or(f64::NAN)),
+        )?;
+        outs.push(out);
+        names.push(name);
+    }
+    let name = format!("{prefix}_adequate_model.npy");
+    let mut out = Output::create(&name)?;
+    npy_write(
+        &mut out,
+        &shape,
+        grid.iter().map(|i| {
+            ok(i)
+                .and_then(|r| r.adequate_model)
+                .map_or(-1i8, |m| match m {
+                    crate::fit::Model::Hertz => 0,
+                    crate::fit::Model::Dmt => 1,
+                    crate::fit::Model::Jkr => 2,
+                    crate::fit::Model::Md => 3,
+                })
+        }),
+    )?;
+    outs.push(out);
+    names.push(name);
+    for o in outs {
+        o.commit()?;
+    }
+    Ok(names)
+}

@@ -113,3 +113,38 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
         loads: (pc, pmax),
     })
 }
+
+/// The adhesion map under fitted force curves (`tabor fit --on-map`): lambda over the curves'
+/// values, loads on a linear axis over the normalised loads they span.
+pub fn fit_map_data(
+    results: &[crate::fit::CurveFit],
+    tolerance: f64,
+) -> Result<MapData, FigureError> {
+    let fitted: Vec<&crate::fit::CurveFit> = results
+        .iter()
+        .filter(|r| r.status == crate::fit::FitStatus::Ok && r.lambda.is_some())
+        .collect();
+    let (mut lo, mut hi) = (1e-2f64, 1e2f64);
+    let (mut pmin, mut pmax) = (-2.1f64, 2.0f64);
+    for r in &fitted {
+        let l = r.lambda.unwrap().clamp(1e-3, 1e3);
+        lo = lo.min(l / 3.0);
+        hi = hi.max(l * 3.0);
+        if let Some([a, b]) = r.load_range_normalised {
+            pmin = pmin.min(a * 1.05);
+            pmax = pmax.max(b * 1.05);
+        }
+    }
+    let spec = MapSpec {
+        lambda_min: lo.max(1e-4),
+        lambda_max: hi.min(1e4),
+        nx: 400,
+        load_axis: LoadAxis::Linear,
+        load_min: pmin.max(-2.1),
+        load_max: pmax.min(1e3),
+        ny: 400,
+        tolerance,
+        strength_ratios: vec![],
+    };
+    Ok(compute(&spec, &crate::engine::Engine::Cpu)?)
+}

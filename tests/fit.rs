@@ -302,3 +302,96 @@ fn bad_curves_get_a_status_and_the_others_are_fitted() {
         .unwrap()
         .contains("cannot read /nonexistent.csv"));
 }
+
+#[test]
+fn a_force_map_gives_npy_maps_that_match_the_table_and_figures() {
+    // A 3 x 2 map: five good curves and one without contact.
+    let mut input = String::from("x,y,segment,height_m,force_n\n");
+    for k in 0..6 {
+        let (s, _) = case(Model::Md, 0.5 + k as f64, 2.0, 1e-11, 20 + k as u64);
+        let mut c = synthetic(&s);
+        if k == 4 {
+            c.force.iter_mut().for_each(|f| *f = 0.0);
+        }
+        for i in 0..c.len() {
+            let seg = match c.segment[i] {
+                tabor::fit::Direction::Approach => 0,
+                tabor::fit::Direction::Retract => 1,
+            };
+            input += &format!(
+                "{},{},{seg},{:e},{:e}\n",
+                k % 3,
+                k / 3,
+                c.height[i],
+                c.force[i]
+            );
+        }
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let prefix = dir.path().join("fm");
+    let on_map = dir.path().join("on_map.svg");
+    let out = tabor(
+        &[
+            "fit",
+            "-i",
+            "-",
+            "--radius",
+            "20e-9",
+            "--spring-n-m",
+            "2",
+            "--maps",
+            prefix.to_str().unwrap(),
+            "--on-map",
+            on_map.to_str().unwrap(),
+        ],
+        &input,
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let curves = v["curves"].as_array().unwrap();
+    let read = |name: &str| -> Vec<f64> {
+        let bytes = std::fs::read(format!("{}_{name}.npy", prefix.display())).unwrap();
+        let npy = npyz::NpyFile::new(&bytes[..]).unwrap();
+        assert_eq!(npy.shape(), &[2, 3]);
+        npy.into_vec::<f64>().unwrap()
+    };
+    let w = read("work_of_adhesion");
+    for c in curves {
+        let (x, y) = (
+            c["x"].as_u64().unwrap() as usize,
+            c["y"].as_u64().unwrap() as usize,
+        );
+        let got = w[y * 3 + x];
+        match c["work_of_adhesion_j_m2"].as_f64() {
+            Some(want) => assert_eq!(got, want),
+            None => assert!(got.is_nan() && c["status"] == "no_contact"),
+        }
+    }
+    let bytes = std::fs::read(format!("{}_adequate_model.npy", prefix.display())).unwrap();
+    let models = npyz::NpyFile::new(&bytes[..])
+        .unwrap()
+        .into_vec::<i8>()
+        .unwrap();
+    assert_eq!(models[1 * 3 + 1], -1);
+    assert!(models.iter().filter(|&&m| m >= 0).count() == 5);
+    for q in [
+        "e_star",
+        "lambda",
+        "pulloff",
+        "rms_residual",
+        "adequate_model",
+    ] {
+        let png = std::fs::read(format!("{}_{q}.png", prefix.display())).unwrap();
+        assert_eq!(&png[1..4], b"PNG", "{q}");
+    }
+    let svg = std::fs::read_to_string(&on_map).unwrap();
+    assert!(
+        svg.contains("5 fitted force curves on the adhesion map"),
+        "{}",
+        &svg[..200]
+    );
+}

@@ -87,3 +87,17 @@ def test_real_jpk_curves_with_adhesion_are_fitted(tmp_path):
         force_range = float(np.ptp(data[0]["force"]))
         assert r["rms_residual_n"] < 0.05 * force_range
         assert r["adequate_model"] in ("hertz", "dmt", "jkr", "md")
+
+
+def test_an_npz_file_reads_as_the_csv_does(tmp_path):
+    rows = np.genfromtxt(CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    seg = np.where(rows["segment"] == "retract", 1, 0).astype(np.int64)
+    npz = tmp_path / "curve.npz"
+    np.savez(npz, segment=seg, height_m=rows["height_m"].astype(float),
+             force_n=rows["force_n"].astype(float))
+    run = lambda path: json.loads(subprocess.run(
+        [str(TABOR), "fit", "-i", str(path), "--radius", "20e-9", "--spring-n-m", "2"],
+        capture_output=True, check=True).stdout)["curves"][0]
+    a, b = run(npz), run(CURVE)
+    assert a["status"] == "ok"
+    assert a["e_star_pa"] == b["e_star_pa"] and a["lambda"] == b["lambda"]

@@ -50,6 +50,14 @@ pub struct FitArgs {
     /// (.png, .svg or .pdf).
     #[arg(long)]
     pub plot: Option<std::path::PathBuf>,
+    /// A force map (curves with x and y): PREFIX_NAME.png (with colorbar) and PREFIX_NAME.npy
+    /// for E*, w, lambda, pull-off and rms residual, and PREFIX_adequate_model.png/.npy.
+    #[arg(long)]
+    pub maps: Option<String>,
+    /// Every fitted curve on the adhesion map: its lambda and the loads it spans (.png, .svg or
+    /// .pdf).
+    #[arg(long)]
+    pub on_map: Option<std::path::PathBuf>,
     /// The curve drawn by --plot [default: the first].
     #[arg(long)]
     pub curve: Option<String>,
@@ -173,6 +181,59 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         })
         .context("drawing the fit")?;
         eprintln!("wrote the figure of curve {}", c.id);
+    }
+    if let Some(prefix) = &a.maps {
+        let (nx, ny, grid) = fit::map_grid(&results)
+            .map_err(anyhow::Error::msg)
+            .context("--maps")?;
+        let names = crate::export::write_fit_npy(prefix, &results, nx, ny, &grid)?;
+        let ok_at =
+            |i: &Option<usize>| i.map(|i| &results[i]).filter(|r| r.status == FitStatus::Ok);
+        for q in &fit::MAP_QUANTITIES {
+            let values: Vec<f64> = grid
+                .iter()
+                .map(|i| {
+                    ok_at(i)
+                        .and_then(q.value)
+                        .map_or(f64::NAN, |v| v * q.shown_as)
+                })
+                .collect();
+            let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
+                "{prefix}_{}.png",
+                q.name
+            )))
+            .map_err(anyhow::Error::msg)?;
+            crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
+                crate::render::plots::force_map(root, &values, nx, ny, q.label, q.log)
+            })
+            .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
+        }
+        let models: Vec<Option<fit::Model>> = grid
+            .iter()
+            .map(|i| ok_at(i).and_then(|r| r.adequate_model))
+            .collect();
+        let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
+            "{prefix}_adequate_model.png"
+        )))
+        .map_err(anyhow::Error::msg)?;
+        crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
+            crate::render::plots::model_map(root, &models, nx, ny)
+        })
+        .context("drawing the adequate-model map")?;
+        eprintln!(
+            "wrote the {nx} x {ny} force maps: {} and their PNGs",
+            names.join(", ")
+        );
+    }
+    if let Some(path) = &a.on_map {
+        let d = crate::figure_data::fit_map_data(&results, a.tolerance)?;
+        let out =
+            crate::render::Outputs::from_path(path).map_err(|e| anyhow::anyhow!("--on-map {e}"))?;
+        crate::render::plots::save(crate::render::Kind::Map, &print, &out, &|root| {
+            crate::render::plots::fits_on_map(root, &d, &results)
+        })
+        .context("drawing the curves on the adhesion map")?;
+        eprintln!("wrote {}", path.display());
     }
     if ok == 0 {
         bail!(

@@ -222,7 +222,11 @@ fn read_npz(path: &str) -> Result<CurveSet, DataError> {
             return Ok(None);
         };
         let dtype = arr.dtype();
-        let v: Result<Vec<f64>, std::io::Error> = match dtype.descr().as_str() {
+        let descr = match &dtype {
+            npyz::DType::Plain(ts) => ts.to_string(),
+            other => other.descr(),
+        };
+        let v: Result<Vec<f64>, std::io::Error> = match descr.as_str() {
             "<f8" => arr.into_vec::<f64>(),
             "<f4" => arr.into_vec::<f32>().map(|v| v.into_iter().map(f64::from).collect()),
             "<i8" => arr.into_vec::<i64>().map(|v| v.into_iter().map(|x| x as f64).collect()),

@@ -173,6 +173,82 @@ pub struct CurveFit {
     pub md: Option<ModelFit>,
 }
 
+/// One quantity of a force map (`tabor fit --maps`): its file name, how to read it from a
+/// curve's result, whether it is drawn on a log scale, and its label.
+pub struct MapQuantity {
+    pub name: &'static str,
+    pub value: fn(&CurveFit) -> Option<f64>,
+    pub log: bool,
+    /// The figure's label, and the factor from SI to its unit.
+    pub label: &'static str,
+    pub shown_as: f64,
+}
+
+/// The force-map quantities, each a PNG with a colorbar and an NPY array.
+pub const MAP_QUANTITIES: [MapQuantity; 5] = [
+    MapQuantity {
+        name: "e_star",
+        value: |r| r.e_star_pa,
+        log: true,
+        label: "reduced modulus E* (Pa)",
+        shown_as: 1.0,
+    },
+    MapQuantity {
+        name: "work_of_adhesion",
+        value: |r| r.work_of_adhesion_j_m2,
+        log: true,
+        label: "work of adhesion w (J/m²)",
+        shown_as: 1.0,
+    },
+    MapQuantity {
+        name: "lambda",
+        value: |r| r.lambda,
+        log: true,
+        label: "Maugis parameter λ",
+        shown_as: 1.0,
+    },
+    MapQuantity {
+        name: "pulloff",
+        value: |r| r.pulloff_force_measured_n,
+        log: false,
+        label: "pull-off force (nN)",
+        shown_as: 1e9,
+    },
+    MapQuantity {
+        name: "rms_residual",
+        value: |r| r.rms_residual_n,
+        log: true,
+        label: "rms residual (pN)",
+        shown_as: 1e12,
+    },
+];
+
+/// The pixel grid of a force map: its size and, per pixel (row-major, row 0 at y = 0), the
+/// index of its curve. Every curve needs x and y.
+pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), String> {
+    let mut cells = Vec::with_capacity(results.len());
+    for r in results {
+        match (r.x, r.y) {
+            (Some(x), Some(y)) if x >= 0 && y >= 0 && x < 100_000 && y < 100_000 => {
+                cells.push((x as usize, y as usize))
+            }
+            _ => {
+                return Err(format!(
+                    "curve {} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999",
+                    r.curve
+                ))
+            }
+        }
+    }
+    let nx = cells.iter().map(|c| c.0).max().unwrap_or(0) + 1;
+    let ny = cells.iter().map(|c| c.1).max().unwrap_or(0) + 1;
+    let mut grid = vec![None; nx * ny];
+    for (i, (x, y)) in cells.into_iter().enumerate() {
+        grid[y * nx + x] = Some(i);
+    }
+    Ok((nx, ny, grid))
+}
+
 /// A curve made ready for fitting: baseline removed, the points of the fitted segments.
 #[derive(Clone, Debug)]
 pub struct Prepared {

@@ -194,6 +194,7 @@ pub enum Kind {
     Cycle,
     Profile,
     Fit,
+    ForceMap,
 }
 
 impl Kind {
@@ -243,6 +244,7 @@ impl Kind {
                     0.7
                 }
             }
+            Kind::ForceMap => 0.85,
         }
     }
 }

@@ -1062,3 +1062,202 @@ where
     }
     Ok(())
 }
+
+/// One quantity of a force map: a pixel per curve, coloured with viridis (log10 where `log`),
+/// grey where the curve was not fitted, with its colorbar.
+pub fn force_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    values: &[f64],
+    nx: usize,
+    ny: usize,
+    title: &str,
+    log: bool,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let t = |v: f64| if log { v.log10() } else { v };
+    let shown: Vec<f64> = values
+        .iter()
+        .map(|&v| {
+            if v.is_finite() && (!log || v > 0.0) {
+                t(v)
+            } else {
+                f64::NAN
+            }
+        })
+        .collect();
+    let (mut lo, mut hi) = shown
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    if !(lo.is_finite() && hi.is_finite()) {
+        (lo, hi) = (0.0, 1.0);
+    }
+    if hi - lo < 1e-12 * lo.abs().max(1e-300) || hi == lo {
+        let d = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
+        (lo, hi) = (lo - d, hi + d);
+    }
+    let (w, _) = root.dim_in_pixel();
+    let bar_w = (TICK * 5.4) as u32;
+    let (left, bar) = root.split_horizontally(w - bar_w);
+    let mut chart = builder(&left, title).build_cartesian_2d(0.0..nx as f64, 0.0..ny as f64)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (pixel)")
+        .y_desc("y (pixel)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_labels(6)
+        .y_labels(6)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    chart.draw_series((0..nx * ny).map(|k| {
+        let (x, y) = ((k % nx) as f64, (k / nx) as f64);
+        let v = shown[k];
+        let c = if v.is_finite() {
+            super::viridis((v - lo) / (hi - lo))
+        } else {
+            RGBColor(200, 200, 200)
+        };
+        Rectangle::new([(x, y), (x + 1.0, y + 1.0)], c.filled())
+    }))?;
+    // Log scale over a decade or more: powers of ten; over less, round values at their places.
+    let ticks: Vec<(f64, String)> = if log && hi - lo >= 1.0 {
+        super::round_ticks(lo, hi)
+            .into_iter()
+            .map(|v| {
+                let e = crate::physics::domain::short((v * 10.0).round() / 10.0);
+                (v, format!("10^{{{}}}", super::minus(&e)))
+            })
+            .collect()
+    } else if log {
+        let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
+        let unit = 10f64.powf(b.log10().floor());
+        super::round_ticks(a / unit, b / unit)
+            .into_iter()
+            .filter(|&v| v > 0.0)
+            .map(|v| ((v * unit).log10(), compact(v * unit)))
+            .collect()
+    } else {
+        // round_ticks works on values of order one: scale by the power of ten of the range.
+        let unit = 10f64.powf(lo.abs().max(hi.abs()).log10().floor());
+        super::round_ticks(lo / unit, hi / unit)
+            .into_iter()
+            .map(|v| (v * unit, compact(v * unit)))
+            .collect()
+    };
+    super::colorbar(&bar, lo, hi, &ticks)
+}
+
+/// A colorbar label in at most about six characters: 0.055, 120, 4.5e-9.
+fn compact(v: f64) -> String {
+    let a = v.abs();
+    let s = if v == 0.0 {
+        "0".to_string()
+    } else if (1e-2..1e4).contains(&a) {
+        let t = format!("{v:.3}");
+        let t = t.trim_end_matches('0').trim_end_matches('.').to_string();
+        t
+    } else {
+        let t = format!("{v:.1e}");
+        t.replace(".0e", "e")
+    };
+    super::minus(&s)
+}
+
+/// The adequate model of each curve of a force map, in the adhesion map's region colours.
+pub fn model_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    models: &[Option<crate::fit::Model>],
+    nx: usize,
+    ny: usize,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use crate::fit::Model;
+    use crate::map::Region;
+    root.fill(&WHITE)?;
+    let colour = |m: Model| {
+        super::map::region_color(match m {
+            Model::Hertz => Region::Hertz,
+            Model::Dmt => Region::Dmt,
+            Model::Jkr => Region::Jkr,
+            Model::Md => Region::Md,
+        })
+    };
+    let mut chart = builder(root, "The simplest adequate model of each curve")
+        .build_cartesian_2d(0.0..nx as f64, 0.0..ny as f64)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x (pixel)")
+        .y_desc("y (pixel)")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_labels(6)
+        .y_labels(6)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    chart.draw_series((0..nx * ny).map(|k| {
+        let (x, y) = ((k % nx) as f64, (k / nx) as f64);
+        let c = models[k].map_or(RGBColor(255, 255, 255), colour);
+        Rectangle::new([(x, y), (x + 1.0, y + 1.0)], c.filled())
+    }))?;
+    for m in Model::ALL {
+        let c = colour(m);
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label(m.label())
+            .legend(move |(x, y)| Rectangle::new([(x + 4, y - 12), (x + 34, y + 12)], c.filled()));
+    }
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
+    Ok(())
+}
+
+/// Every fitted curve on the adhesion map: at its lambda, a bar over the normalised loads its
+/// fitted segment spans in contact, coloured by its adequate model.
+pub fn fits_on_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    d: &crate::map::MapData,
+    results: &[crate::fit::CurveFit],
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let n = results
+        .iter()
+        .filter(|r| r.status == crate::fit::FitStatus::Ok)
+        .count();
+    let mut ch = super::map::inset(
+        root,
+        d,
+        &format!("{n} fitted force curves on the adhesion map"),
+    )?;
+    let sp = &d.spec;
+    let st = ShapeStyle::from(&BLACK).stroke_width(5);
+    for r in results
+        .iter()
+        .filter(|r| r.status == crate::fit::FitStatus::Ok)
+    {
+        let (Some(l), Some([a, b])) = (r.lambda, r.load_range_normalised) else {
+            continue;
+        };
+        let l = l.clamp(sp.lambda_min, sp.lambda_max);
+        let (a, b) = (
+            a.clamp(sp.load_min, sp.load_max),
+            b.clamp(sp.load_min, sp.load_max),
+        );
+        ch.draw_series(LineSeries::new(vec![(l, a), (l, b)], st))?;
+        ch.draw_series(std::iter::once(Circle::new((l, b), 8, BLACK.filled())))?;
+    }
+    Ok(())
+}
