@@ -3,6 +3,7 @@
 //! fitting example in the README and of the force-map benchmark.
 //!
 //! cargo run --release --example synthetic_curves -- OUT.csv [curves] [points per segment]
+//!     [spring constant, N/m: 2] [force noise, N: 5e-11]
 use tabor::fit::synthetic::{synthetic, Synthetic};
 use tabor::fit::{Model, Params};
 
@@ -13,6 +14,10 @@ fn main() {
         .expect("usage: synthetic_curves OUT.csv [curves] [points]");
     let curves: usize = args.get(1).map_or(1, |s| s.parse().expect("curves"));
     let points: usize = args.get(2).map_or(500, |s| s.parse().expect("points"));
+    let spring: f64 = args
+        .get(3)
+        .map_or(2.0, |s| s.parse().expect("spring constant"));
+    let noise: f64 = args.get(4).map_or(5e-11, |s| s.parse().expect("noise"));
     let side = (curves as f64).sqrt().ceil() as usize;
     let mut w = csv::Writer::from_path(out).expect("writable output");
     w.write_record(["x", "y", "segment", "height_m", "force_n"])
@@ -30,10 +35,10 @@ fn main() {
                 f0: 0.0,
             },
             radius: 20e-9,
-            spring: 2.0,
+            spring,
             points,
             depth: 8.0,
-            noise: 5e-11,
+            noise,
             seed: i as u64 + 1,
         };
         let c = synthetic(&s);

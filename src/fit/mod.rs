@@ -741,7 +741,9 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             Some(s) => s,
             None => self.eval(&self.x, None)?.1,
         };
-        if self.model == Model::Md && self.z0.is_some() {
+        if (self.model == Model::Md && self.z0.is_some())
+            || std::env::var_os("TABOR_FIT_NUMERIC").is_some()
+        {
             // lambda moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
@@ -907,6 +909,24 @@ fn fit_model(
     w_ref: f64,
     fixed_lambda: Option<f64>,
 ) -> ModelFit {
+    fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE)
+}
+
+/// The iteration budget of a fit (MINPACK's: this many evaluations per parameter and one), and
+/// the shorter one of a scouting free fit.
+const PATIENCE: usize = 150;
+const SCOUT_PATIENCE: usize = 4;
+
+#[allow(clippy::too_many_arguments)]
+fn fit_model_for(
+    model: Model,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+    patience: usize,
+) -> ModelFit {
     let fscale = d
         .force
         .iter()
@@ -930,7 +950,7 @@ fn fit_model(
         jacobians: RefCell::new(0),
     };
     prob.x = prob.internal(&start);
-    let lm = LevenbergMarquardt::new().with_patience(150);
+    let lm = LevenbergMarquardt::new().with_patience(patience);
     let (prob, report) = lm.minimize(prob);
     let x = prob.x.clone();
     let p = prob.params(&x);
@@ -1038,6 +1058,11 @@ fn profile_lambdas() -> impl Iterator<Item = f64> {
     (0..16).map(|i| 10f64.powf(-2.0 + 5.0 * i as f64 / 15.0))
 }
 
+/// Free fits start from this many of the best profile points: near the truth the misfit can
+/// dip sharply between profile points (lambda sets the attractive tail and the jump), so the
+/// free fit has to start near the dip to find it.
+const FREE_STARTS: usize = 16;
+
 /// Misfit for ranking: the rms residual, even where the iteration limit stopped a fit.
 fn rank(m: &ModelFit) -> f64 {
     if m.rms_residual_n.is_finite() {
@@ -1053,14 +1078,44 @@ fn rank(m: &ModelFit) -> f64 {
 /// local picture understates the spread, while the profile sees it.
 fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) -> ModelFit {
     let debug = std::env::var_os("TABOR_FIT_DEBUG").is_some();
+    if debug {
+        for m in &profile {
+            eprintln!(
+                "profile lambda {:.4} rms {:.4e} E {:.4e} w {:.4e} it {} {}",
+                m.lambda.unwrap_or(0.0),
+                m.rms_residual_n,
+                m.e_star_pa,
+                m.work_of_adhesion_j_m2,
+                m.iterations,
+                m.stop
+            );
+        }
+    }
     let mut order: Vec<usize> = (0..profile.len()).collect();
     order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
     let best_profile = rank(&profile[order[0]]);
-    let mut md = order
+    // Scouts: short free fits from every profile point; the best two are then fitted fully.
+    let mut scouts: Vec<ModelFit> = order
         .iter()
-        .take(2)
+        .take(FREE_STARTS)
         .map(|&i| {
             let m = &profile[i];
+            fit_model_for(
+                Model::Md,
+                d,
+                opt,
+                m.params(opt.radius),
+                w_ref,
+                None,
+                SCOUT_PATIENCE,
+            )
+        })
+        .collect();
+    scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
+    let fulls: Vec<ModelFit> = scouts
+        .iter()
+        .take(2)
+        .map(|m| {
             let mut f = fit_model(Model::Md, d, opt, m.params(opt.radius), w_ref, None);
             // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
             if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
@@ -1071,8 +1126,8 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
             }
             f
         })
-        .reduce(better)
-        .expect("a profile");
+        .collect();
+    let mut md = fulls.iter().cloned().reduce(better).expect("a profile");
     if key(&md) > best_profile {
         // The free fits failed or did worse: the best fixed-lambda fit stands.
         md = profile[order[0]].clone();
@@ -1084,7 +1139,7 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
     if md.status != FitStatus::Ok {
         return md;
     }
-    // The profile's 3-sigma region: Delta chi^2 = (RSS - RSS_min) / s^2 <= 9, its edges
+    // The 3-sigma region of the profile and of the minima found: Delta chi^2 = (RSS - RSS_min) / s^2 <= 9, its edges
     // interpolated in ln lambda between profile points.
     let m = d.force.len() as f64;
     let rss = |f: &ModelFit| f.rms_residual_n.powi(2) * m;
@@ -1118,15 +1173,31 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
             }
         }
     }
+    // Other minima the free fits found within the same region are as plausible: their
+    // lambda, E* and w count too.
+    for f in scouts.iter().chain(&fulls) {
+        let c = (rss(f) - rss(&md)) / s2;
+        if c <= 9.0 {
+            let l = f.lambda.unwrap_or(lam);
+            lo = lo.min(l);
+            hi = hi.max(l);
+            de = de.max((f.e_star_pa - md.e_star_pa).abs());
+            dw = dw.max((f.work_of_adhesion_j_m2 - md.work_of_adhesion_j_m2).abs());
+        }
+    }
     let spread = (hi - lam).max(lam - lo) / 3.0;
-    let local = md.lambda_stderr.unwrap_or(0.0);
-    md.lambda_stderr = Some(if local.is_finite() {
-        local.max(spread)
-    } else {
-        spread
-    });
-    md.e_star_pa_stderr = md.e_star_pa_stderr.max(de / 3.0);
-    md.work_of_adhesion_j_m2_stderr = md.work_of_adhesion_j_m2_stderr.max(dw / 3.0);
+    // The local (covariance) error and the spread over the region add in quadrature: the
+    // region moves the answer across lambda, the noise moves it at each lambda.
+    let quad = |local: f64, spread: f64| {
+        if local.is_finite() {
+            local.hypot(spread)
+        } else {
+            spread
+        }
+    };
+    md.lambda_stderr = Some(quad(md.lambda_stderr.unwrap_or(0.0), spread));
+    md.e_star_pa_stderr = quad(md.e_star_pa_stderr, de / 3.0);
+    md.work_of_adhesion_j_m2_stderr = quad(md.work_of_adhesion_j_m2_stderr, dw / 3.0);
     md
 }
 
@@ -1328,15 +1399,19 @@ fn summarize(
         ),
     );
     for m in &models {
-        if m.status != FitStatus::Ok {
-            continue;
-        }
-        if m.rms_residual_n <= (1.0 + opt.tolerance) * md.rms_residual_n + floor {
+        // A fit stopped by the iteration limit only over-states its misfit (each step lowers
+        // it): if even that is within the tolerance, the model is adequate.
+        if m.rms_residual_n.is_finite()
+            && m.rms_residual_n <= (1.0 + opt.tolerance) * md.rms_residual_n + floor
+        {
             adequate = (m.model, format!(
                 "{} fits as well as Maugis-Dugdale: rms residual {:.3e} N against {:.3e} N (within {:.0}%)",
                 m.model.label(), m.rms_residual_n, md.rms_residual_n, 100.0 * opt.tolerance
             ));
             break;
+        }
+        if m.status != FitStatus::Ok {
+            continue;
         }
         let mp = Params {
             e_star: m.e_star_pa,
