@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The force-map benchmark of `tabor fit`: a 64 x 64 map of synthetic 1000-point curves (exact
-# Maugis-Dugdale under a 2 N/m cantilever, 50 pN noise, lambda 0.3..9.5 across the map), fitted
+# Maugis-Dugdale under a 40 N/m cantilever, 20 pN noise, lambda 0.3..9.5 across the map), fitted
 # on all cores with --maps. Prints the wall time and curves per second.
 #   bash bench/fit_map.sh [side]   (default 64)
 set -euo pipefail
@@ -9,9 +9,9 @@ side=${1:-64}
 cargo build --release --quiet --bin tabor --example synthetic_curves
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-./target/release/examples/synthetic_curves "$dir/map.csv" $((side * side)) 500
+./target/release/examples/synthetic_curves "$dir/map.csv" $((side * side)) 500 40 2e-11
 start=$(date +%s.%N)
-./target/release/tabor fit -i "$dir/map.csv" --radius 20e-9 --spring-n-m 2 --format csv \
+./target/release/tabor fit -i "$dir/map.csv" --radius 20e-9 --spring-n-m 40 --format csv \
     -o "$dir/fit.csv" --maps "$dir/fm"
 end=$(date +%s.%N)
 python3 - "$start" "$end" "$side" "$dir/fit.csv" <<'PY'

@@ -38,15 +38,17 @@ $T cycle --lambda 1 --control spring --stiffness 5 --plot $G/cycle_spring_5.png 
 for l in 0.1 1 10; do
     $T profile --lambda $l --load 0 --plot $G/profile_$l.png -o $G/profile_$l.json
 done
-# A synthetic AFM curve (exact Maugis-Dugdale under a 2 N/m cantilever, 50 pN noise) and its fit.
-cargo run --release --quiet --example synthetic_curves -- $G/fit_curve.csv 1 500
-$T fit -i $G/fit_curve.csv --radius 20e-9 --spring-n-m 2 --plot $G/fit.png -o $G/fit.json
+# A synthetic AFM curve (exact Maugis-Dugdale under a 40 N/m cantilever, 20 pN noise) and its fit.
+cargo run --release --quiet --example synthetic_curves -- $G/fit_curve.csv 1 500 40 2e-11
+$T fit -i $G/fit_curve.csv --radius 20e-9 --spring-n-m 40 --plot $G/fit.png -o $G/fit.json
 # A measured curve (JPK sample file from afmformats' sdist on PyPI; needs the test venv).
 if [ -x target/py-venv/bin/python ]; then
     target/py-venv/bin/python gallery/fit_jpk.py
 fi
 # An 8 x 8 synthetic force map: its maps and its curves on the adhesion map.
 mkdir -p $G/fitmap
-cargo run --release --quiet --example synthetic_curves -- $G/fitmap/curves.csv 64 500
-$T fit -i $G/fitmap/curves.csv --radius 20e-9 --spring-n-m 2 --format csv -o $G/fitmap/fits.csv \
+curves=$(mktemp --suffix .csv)
+cargo run --release --quiet --example synthetic_curves -- "$curves" 64 500 40 2e-11
+$T fit -i "$curves" --radius 20e-9 --spring-n-m 40 --format csv -o $G/fitmap/fits.csv \
     --maps $G/fitmap/map --on-map $G/fit_on_map.png
+rm -f "$curves"

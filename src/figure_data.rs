@@ -126,10 +126,16 @@ pub fn fit_map_data(
         .collect();
     let (mut lo, mut hi) = (1e-2f64, 1e2f64);
     let (mut pmin, mut pmax) = (-2.1f64, 2.0f64);
-    for r in &fitted {
+    // The lambda axis spans the curves whose lambda the data determine.
+    for r in fitted
+        .iter()
+        .filter(|r| r.lambda_stderr.is_some_and(|e| e <= r.lambda.unwrap()))
+    {
         let l = r.lambda.unwrap().clamp(1e-3, 1e3);
         lo = lo.min(l / 3.0);
         hi = hi.max(l * 3.0);
+    }
+    for r in &fitted {
         if let Some([a, b]) = r.load_range_normalised {
             pmin = pmin.min(a * 1.05);
             pmax = pmax.max(b * 1.05);

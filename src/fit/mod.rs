@@ -1404,8 +1404,17 @@ fn summarize(
         if m.rms_residual_n.is_finite()
             && m.rms_residual_n <= (1.0 + opt.tolerance) * md.rms_residual_n + floor
         {
+            // Its parameters are its own: say how far its w is from Maugis-Dugdale's.
+            let w_note = if m.model == Model::Hertz {
+                String::new()
+            } else {
+                format!(
+                    "; its w is {:+.1}% from Maugis-Dugdale's",
+                    100.0 * (m.work_of_adhesion_j_m2 / md.work_of_adhesion_j_m2 - 1.0)
+                )
+            };
             adequate = (m.model, format!(
-                "{} fits as well as Maugis-Dugdale: rms residual {:.3e} N against {:.3e} N (within {:.0}%)",
+                "{} fits as well as Maugis-Dugdale: rms residual {:.3e} N against {:.3e} N (within {:.0}%){w_note}",
                 m.model.label(), m.rms_residual_n, md.rms_residual_n, 100.0 * opt.tolerance
             ));
             break;

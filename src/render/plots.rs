@@ -1240,14 +1240,20 @@ where
     let mut ch = super::map::inset(
         root,
         d,
-        &format!("{n} fitted force curves on the adhesion map"),
+        &format!("{n} fitted force curves on the adhesion map (grey: λ not determined)"),
     )?;
     let sp = &d.spec;
-    let st = ShapeStyle::from(&BLACK).stroke_width(5);
-    for r in results
+    // Curves whose lambda the data do not determine (standard error above lambda) in grey,
+    // under the others.
+    let sure = ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(3);
+    let unsure = ShapeStyle::from(&RGBColor(150, 150, 150).mix(0.6)).stroke_width(2);
+    let determined = |r: &crate::fit::CurveFit| matches!((r.lambda, r.lambda_stderr), (Some(l), Some(e)) if e <= l);
+    let mut ok: Vec<&crate::fit::CurveFit> = results
         .iter()
         .filter(|r| r.status == crate::fit::FitStatus::Ok)
-    {
+        .collect();
+    ok.sort_by_key(|r| determined(r));
+    for r in ok {
         let (Some(l), Some([a, b])) = (r.lambda, r.load_range_normalised) else {
             continue;
         };
@@ -1256,8 +1262,9 @@ where
             a.clamp(sp.load_min, sp.load_max),
             b.clamp(sp.load_min, sp.load_max),
         );
+        let st = if determined(r) { sure } else { unsure };
         ch.draw_series(LineSeries::new(vec![(l, a), (l, b)], st))?;
-        ch.draw_series(std::iter::once(Circle::new((l, b), 8, BLACK.filled())))?;
+        ch.draw_series(std::iter::once(Circle::new((l, b), 6, st.color.filled())))?;
     }
     Ok(())
 }
