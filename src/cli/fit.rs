@@ -194,17 +194,36 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
                 .iter()
                 .map(|i| {
                     ok_at(i)
+                        .filter(|r| {
+                            !q.needs_lambda
+                                || matches!((r.lambda, r.lambda_stderr), (Some(l), Some(e)) if e <= l)
+                        })
                         .and_then(q.value)
-                        .map_or(f64::NAN, |v| v * q.shown_as)
+                        .unwrap_or(f64::NAN)
                 })
                 .collect();
+            let largest = values
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            let (scale, si) = if q.prefixed {
+                crate::render::si_prefix(largest)
+            } else {
+                (1.0, "")
+            };
+            let values: Vec<f64> = values.iter().map(|v| v / scale).collect();
+            let title = if q.unit.is_empty() {
+                q.label.to_string()
+            } else {
+                format!("{} ({si}{})", q.label, q.unit)
+            };
             let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
                 "{prefix}_{}.png",
                 q.name
             )))
             .map_err(anyhow::Error::msg)?;
             crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
-                crate::render::plots::force_map(root, &values, nx, ny, q.label, q.log)
+                crate::render::plots::force_map(root, &values, nx, ny, &title, q.log)
             })
             .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
         }

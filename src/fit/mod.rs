@@ -174,14 +174,18 @@ pub struct CurveFit {
 }
 
 /// One quantity of a force map (`tabor fit --maps`): its file name, how to read it from a
-/// curve's result, whether it is drawn on a log scale, and its label.
+/// curve's result, whether it is drawn on a log scale, and its label and SI unit (drawn with
+/// the prefix that suits the values where `prefixed`).
 pub struct MapQuantity {
     pub name: &'static str,
     pub value: fn(&CurveFit) -> Option<f64>,
     pub log: bool,
-    /// The figure's label, and the factor from SI to its unit.
     pub label: &'static str,
-    pub shown_as: f64,
+    pub unit: &'static str,
+    pub prefixed: bool,
+    /// Drawn only where lambda is determined (its standard error below it): elsewhere the
+    /// value is one end of a flat misfit, and would take the colour scale.
+    pub needs_lambda: bool,
 }
 
 /// The force-map quantities, each a PNG with a colorbar and an NPY array.
@@ -190,36 +194,46 @@ pub const MAP_QUANTITIES: [MapQuantity; 5] = [
         name: "e_star",
         value: |r| r.e_star_pa,
         log: true,
-        label: "reduced modulus E* (Pa)",
-        shown_as: 1.0,
+        label: "reduced modulus E*",
+        unit: "Pa",
+        prefixed: true,
+        needs_lambda: false,
     },
     MapQuantity {
         name: "work_of_adhesion",
         value: |r| r.work_of_adhesion_j_m2,
         log: true,
-        label: "work of adhesion w (J/m²)",
-        shown_as: 1.0,
+        label: "work of adhesion w",
+        unit: "J/m²",
+        prefixed: false,
+        needs_lambda: false,
     },
     MapQuantity {
         name: "lambda",
         value: |r| r.lambda,
         log: true,
-        label: "Maugis parameter λ",
-        shown_as: 1.0,
+        label: "λ (grey: not determined)",
+        unit: "",
+        prefixed: false,
+        needs_lambda: true,
     },
     MapQuantity {
         name: "pulloff",
         value: |r| r.pulloff_force_measured_n,
         log: false,
-        label: "pull-off force (nN)",
-        shown_as: 1e9,
+        label: "pull-off force",
+        unit: "N",
+        prefixed: true,
+        needs_lambda: false,
     },
     MapQuantity {
         name: "rms_residual",
         value: |r| r.rms_residual_n,
         log: true,
-        label: "rms residual (pN)",
-        shown_as: 1e12,
+        label: "rms residual",
+        unit: "N",
+        prefixed: true,
+        needs_lambda: false,
     },
 ];
 

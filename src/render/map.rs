@@ -711,7 +711,7 @@ where
         super::round_ticks(lo, hi)
             .into_iter()
             .map(|v| {
-                let e = crate::physics::domain::short((v * 10.0).round() / 10.0);
+                let e = crate::physics::domain::short((v * 10.0).round() / 10.0 + 0.0);
                 (v, format!("10^{{{}}}", super::minus(&e)))
             })
             .collect()

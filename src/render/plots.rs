@@ -1115,7 +1115,14 @@ where
         .x_labels(6)
         .y_labels(6)
         .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0}"))
+        // The top label would run into the title.
+        .y_label_formatter(&|v| {
+            if *v >= ny as f64 {
+                String::new()
+            } else {
+                format!("{v:.0}")
+            }
+        })
         .draw()?;
     chart.draw_series((0..nx * ny).map(|k| {
         let (x, y) = ((k % nx) as f64, (k / nx) as f64);
@@ -1132,7 +1139,8 @@ where
         super::round_ticks(lo, hi)
             .into_iter()
             .map(|v| {
-                let e = crate::physics::domain::short((v * 10.0).round() / 10.0);
+                // + 0.0: no "10^-0" from a negative zero.
+                let e = crate::physics::domain::short((v * 10.0).round() / 10.0 + 0.0);
                 (v, format!("10^{{{}}}", super::minus(&e)))
             })
             .collect()
@@ -1155,7 +1163,7 @@ where
     super::colorbar(&bar, lo, hi, &ticks)
 }
 
-/// A colorbar label in at most about six characters: 0.055, 120, 4.5e-9.
+/// A colorbar label, short: 0.055, 120, 4.5e-9, 1.995e9.
 fn compact(v: f64) -> String {
     let a = v.abs();
     let s = if v == 0.0 {
@@ -1165,8 +1173,11 @@ fn compact(v: f64) -> String {
         let t = t.trim_end_matches('0').trim_end_matches('.').to_string();
         t
     } else {
-        let t = format!("{v:.1e}");
-        t.replace(".0e", "e")
+        // Enough digits to tell neighbouring round ticks apart (1.995e9, 2e9), no more.
+        let t = format!("{v:.4e}");
+        let (m, e) = t.split_once('e').unwrap_or((&t, "0"));
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        format!("{m}e{e}")
     };
     super::minus(&s)
 }
@@ -1204,7 +1215,14 @@ where
         .x_labels(6)
         .y_labels(6)
         .x_label_formatter(&|v| format!("{v:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0}"))
+        // The top label would run into the title.
+        .y_label_formatter(&|v| {
+            if *v >= ny as f64 {
+                String::new()
+            } else {
+                format!("{v:.0}")
+            }
+        })
         .draw()?;
     chart.draw_series((0..nx * ny).map(|k| {
         let (x, y) = ((k % nx) as f64, (k / nx) as f64);
