@@ -69,6 +69,44 @@ fn noise_free_curves_give_the_parameters_to_1e_6() {
 /// lambda apart within its noise, the standard error says so (it covers the profile's 3-sigma
 /// region), rather than a local curvature that would understate it.
 #[test]
+fn approach_both_segments_and_a_tilted_baseline_are_fitted_too() {
+    use tabor::fit::Segments;
+    let cases = [
+        (Segments::Approach, 1.0, 2.0, false),
+        (Segments::Both, 0.3, 40.0, false),
+        (Segments::Retract, 3.0, 10.0, true),
+    ];
+    cases
+        .par_iter()
+        .for_each(|&(segments, lambda, spring, tilt)| {
+            let (s, mut opt) = case(Model::Md, lambda, spring, 0.0, 2);
+            let mut c = synthetic(&s);
+            if tilt {
+                // A baseline offset and slope (virtual deflection), removed by --tilt.
+                for (f, h) in c.force.iter_mut().zip(&c.height) {
+                    *f += 3e-10 + 0.02 * (h - 40e-9);
+                }
+            }
+            opt.segments = segments;
+            opt.tilt = tilt;
+            let r = fit_curve(&c, &opt);
+            assert_eq!(r.status, FitStatus::Ok, "{segments:?}: {}", r.message);
+            let (e, w, l) = (
+                r.e_star_pa.unwrap(),
+                r.work_of_adhesion_j_m2.unwrap(),
+                r.lambda.unwrap(),
+            );
+            assert!(
+                rel(e, 1.5e9) < 1e-5 && rel(w, 0.05) < 1e-5 && rel(l, lambda) < 1e-5,
+                "{segments:?} lambda {lambda} k {spring} tilt {tilt}: E* {e}, w {w}, lambda {l}"
+            );
+            if tilt {
+                assert!((r.baseline_tilt_n_m.unwrap() - 0.02).abs() < 1e-9);
+            }
+        });
+}
+
+#[test]
 fn noisy_fits_reach_the_noise_floor_and_hold_the_truth_within_three_standard_errors() {
     // 120 random cases: lambda 0.05..50, four springs, two noise levels (relative to the
     // pull-off force), with and without a jump in the sampled range (stiff springs at small
