@@ -433,3 +433,28 @@ fn a_force_map_gives_npy_maps_that_match_the_table_and_figures() {
         &svg[..200]
     );
 }
+
+#[test]
+fn tsv_with_comment_lines_reads_as_csv_does() {
+    let (s, _) = case(Model::Md, 1.0, 2.0, 1e-11, 31);
+    let c = synthetic(&s);
+    let csv = csv_of(&[("a", c)]);
+    let tsv = format!(
+        "# exported by a test\n# spring constant: 2 N/m\n{}",
+        csv.replace(',', "\t")
+    );
+    let args = [
+        "fit",
+        "-i",
+        "-",
+        "--radius",
+        "20e-9",
+        "--spring-n-m",
+        "2",
+        "--format",
+        "csv",
+    ];
+    let (a, b) = (tabor(&args, &csv), tabor(&args, &tsv));
+    assert!(a.status.success() && b.status.success());
+    assert_eq!(a.stdout, b.stdout);
+}

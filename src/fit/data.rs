@@ -5,7 +5,7 @@
 
 use super::path::Direction;
 use std::collections::HashMap;
-use std::io::Read;
+use std::io::Read as _;
 
 /// One approach-retract curve, points in the order measured.
 #[derive(Clone, Debug, Default)]
@@ -117,29 +117,50 @@ pub fn read_curves(path: &str) -> Result<CurveSet, DataError> {
         path: path.to_string(),
         source,
     };
-    let mut text = Vec::new();
-    if path == "-" {
-        std::io::stdin().read_to_end(&mut text).map_err(io)?;
+    // Streamed: only the curves are held, not the file's text.
+    let reader: Box<dyn std::io::BufRead> = if path == "-" {
+        Box::new(std::io::BufReader::with_capacity(1 << 16, std::io::stdin()))
     } else {
-        std::fs::File::open(path)
-            .and_then(|mut f| f.read_to_end(&mut text))
-            .map_err(io)?;
-    }
-    parse_csv(path, &text)
+        Box::new(std::io::BufReader::with_capacity(
+            1 << 16,
+            std::fs::File::open(path).map_err(io)?,
+        ))
+    };
+    parse_csv_reader(path, reader)
 }
 
-/// Parses CSV or TSV text (the delimiter is a tab if the header line has one); `#` lines are
-/// comments.
+/// Parses CSV or TSV text held in memory.
 pub fn parse_csv(path: &str, text: &[u8]) -> Result<CurveSet, DataError> {
-    let header_line = text
-        .split(|&b| b == b'\n')
-        .find(|l| !l.is_empty() && l[0] != b'#')
-        .unwrap_or(&[]);
-    let delim = if header_line.contains(&b'\t') {
-        b'\t'
-    } else {
-        b','
-    };
+    parse_csv_reader(path, text)
+}
+
+/// Parses CSV or TSV from a reader (the delimiter is a tab if the header line has one); `#`
+/// lines are comments.
+fn parse_csv_reader(path: &str, mut input: impl std::io::BufRead) -> Result<CurveSet, DataError> {
+    // The lines up to the header (comments first, as afmformats writes them), to see the
+    // delimiter; then the rest streamed behind them.
+    let mut head = Vec::new();
+    let mut delim = b',';
+    loop {
+        let start = head.len();
+        let n = input
+            .read_until(b'\n', &mut head)
+            .map_err(|source| DataError::Io {
+                path: path.to_string(),
+                source,
+            })?;
+        let line = &head[start..];
+        if n == 0 {
+            break;
+        }
+        if !line.is_empty() && line[0] != b'#' && line.iter().any(|b| !b.is_ascii_whitespace()) {
+            if line.contains(&b'\t') {
+                delim = b'\t';
+            }
+            break;
+        }
+    }
+    let text = std::io::Cursor::new(head).chain(input);
     let mut rdr = csv::ReaderBuilder::new()
         .delimiter(delim)
         .comment(Some(b'#'))
