@@ -127,10 +127,7 @@ pub fn fit_map_data(
     let (mut lo, mut hi) = (1e-2f64, 1e2f64);
     let (mut pmin, mut pmax) = (-2.1f64, 2.0f64);
     // The lambda axis spans the curves whose lambda the data determine.
-    for r in fitted
-        .iter()
-        .filter(|r| r.lambda_stderr.is_some_and(|e| e <= r.lambda.unwrap()))
-    {
+    for r in fitted.iter().filter(|r| r.lambda_determined()) {
         let l = r.lambda.unwrap().clamp(1e-3, 1e3);
         lo = lo.min(l / 3.0);
         hi = hi.max(l * 3.0);

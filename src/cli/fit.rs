@@ -194,10 +194,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
                 .iter()
                 .map(|i| {
                     ok_at(i)
-                        .filter(|r| {
-                            !q.needs_lambda
-                                || matches!((r.lambda, r.lambda_stderr), (Some(l), Some(e)) if e <= l)
-                        })
+                        .filter(|r| !q.needs_lambda || r.lambda_determined())
                         .and_then(q.value)
                         .unwrap_or(f64::NAN)
                 })

@@ -263,6 +263,13 @@ pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>
     Ok((nx, ny, grid))
 }
 
+impl CurveFit {
+    /// Whether the data determine lambda: its standard error is below it.
+    pub fn lambda_determined(&self) -> bool {
+        matches!((self.lambda, self.lambda_stderr), (Some(l), Some(e)) if e <= l)
+    }
+}
+
 /// A curve made ready for fitting: baseline removed, the points of the fitted segments.
 #[derive(Clone, Debug)]
 pub struct Prepared {
@@ -755,9 +762,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             Some(s) => s,
             None => self.eval(&self.x, None)?.1,
         };
-        if (self.model == Model::Md && self.z0.is_some())
-            || std::env::var_os("TABOR_FIT_NUMERIC").is_some()
-        {
+        if self.model == Model::Md && self.z0.is_some() {
             // lambda moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
@@ -1019,17 +1024,24 @@ fn fit_model_for(
         None
     };
     let zc_err = var(i) * prob.z_scale;
-    let pulloff = evaluated
-        .as_ref()
-        .and_then(|_| model_forces(model, &p, opt.radius, opt.spring, &d.height, &d.dir, None))
-        .map_or(f64::NAN, |(_, _, _, path)| {
-            let dir = if opt.segments == Segments::Approach {
-                Direction::Approach
-            } else {
-                Direction::Retract
-            };
-            -path.min_load(dir).0 * units(&p, opt.radius, opt.spring).force
-        });
+    // The path alone (the states at the points are not needed): its most tensile load.
+    let pulloff = evaluated.as_ref().map_or(f64::NAN, |_| {
+        let u = units(&p, opt.radius, opt.spring);
+        let top = d
+            .height
+            .iter()
+            .map(|h| (p.zc - h) / u.approach)
+            .fold(1.0, f64::max);
+        let dir = if opt.segments == Segments::Approach {
+            Direction::Approach
+        } else {
+            Direction::Retract
+        };
+        -SpringPath::new(model, p.lambda, u.kbar, top)
+            .min_load(dir)
+            .0
+            * u.force
+    });
     ModelFit {
         model,
         status,
@@ -1052,7 +1064,7 @@ fn fit_model_for(
 
 impl ModelFit {
     /// The fitted parameters (Hertz: any w, it cancels; here w of 1 mJ/m^2).
-    pub fn params(&self, _radius: f64) -> Params {
+    pub fn params(&self) -> Params {
         Params {
             e_star: self.e_star_pa,
             w: if self.model == Model::Hertz {
@@ -1091,20 +1103,6 @@ fn rank(m: &ModelFit) -> f64 {
 /// (one retract curve often cannot tell lambda = 0.3 from 30 within its noise) the covariance's
 /// local picture understates the spread, while the profile sees it.
 fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) -> ModelFit {
-    let debug = std::env::var_os("TABOR_FIT_DEBUG").is_some();
-    if debug {
-        for m in &profile {
-            eprintln!(
-                "profile lambda {:.4} rms {:.4e} E {:.4e} w {:.4e} it {} {}",
-                m.lambda.unwrap_or(0.0),
-                m.rms_residual_n,
-                m.e_star_pa,
-                m.work_of_adhesion_j_m2,
-                m.iterations,
-                m.stop
-            );
-        }
-    }
     let mut order: Vec<usize> = (0..profile.len()).collect();
     order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
     let best_profile = rank(&profile[order[0]]);
@@ -1114,15 +1112,7 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
         .take(FREE_STARTS)
         .map(|&i| {
             let m = &profile[i];
-            fit_model_for(
-                Model::Md,
-                d,
-                opt,
-                m.params(opt.radius),
-                w_ref,
-                None,
-                SCOUT_PATIENCE,
-            )
+            fit_model_for(Model::Md, d, opt, m.params(), w_ref, None, SCOUT_PATIENCE)
         })
         .collect();
     scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
@@ -1130,13 +1120,10 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
         .iter()
         .take(2)
         .map(|m| {
-            let mut f = fit_model(Model::Md, d, opt, m.params(opt.radius), w_ref, None);
+            let mut f = fit_model(Model::Md, d, opt, m.params(), w_ref, None);
             // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
             if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
                 f.status = FitStatus::Ok;
-            }
-            if debug {
-                eprintln!("from lambda {:?} (rms {:.3e}) -> E {:.4e} w {:.4e} lambda {:?} rms {:.3e} it {} {}", m.lambda, m.rms_residual_n, f.e_star_pa, f.work_of_adhesion_j_m2, f.lambda, f.rms_residual_n, f.iterations, f.stop);
             }
             f
         })
@@ -1335,7 +1322,6 @@ fn summarize(
         zc: md.contact_point_m,
         f0: md.force_offset_n,
     };
-    let u = units(&p, opt.radius, opt.spring);
     let (_, a_md, states, _) = model_forces(
         Model::Md,
         &p,
@@ -1511,7 +1497,6 @@ fn summarize(
             md_pull, mp
         ));
     }
-    let _ = u;
     out.warnings = warn;
     out.status = FitStatus::Ok;
     out.message = "ok".into();

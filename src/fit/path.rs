@@ -87,6 +87,19 @@ pub struct PathState {
     pub clamped: bool,
 }
 
+impl PathState {
+    fn on(piece: Piece, t: f64, p: &Pt, clamped: bool) -> PathState {
+        PathState {
+            piece,
+            t,
+            load: p.load,
+            a: p.a,
+            approach: p.approach,
+            clamped,
+        }
+    }
+}
+
 /// Which side of the first jump a measured point is on, as the data says: the model then
 /// evaluates it on that side's branch, held at the branch's end (or continued along it) where the
 /// model's own jump lies elsewhere. The misfit is then continuous in the parameters, so the fit
@@ -491,29 +504,7 @@ impl SpringPath {
 
     /// The state at base displacement `delta` on the way in or out.
     pub fn at(&self, delta: f64, dir: Direction) -> PathState {
-        let segs = match dir {
-            Direction::Retract => &self.retract,
-            Direction::Approach => &self.approach,
-        };
-        let seg = segs
-            .iter()
-            .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
-            .or_else(|| segs.last())
-            .expect("a path has segments");
-        let (lo, hi) = if seg.piece == Piece::Free {
-            (seg.t_lo, seg.t_hi)
-        } else {
-            self.bracket(seg, delta)
-        };
-        let (p, t) = self.solve_in(seg.piece, delta, lo, hi);
-        PathState {
-            piece: seg.piece,
-            t,
-            load: p.load,
-            a: p.a,
-            approach: p.approach,
-            clamped: false,
-        }
+        self.at_side_from(delta, dir, Side::Any, None)
     }
 
     fn segments(&self, dir: Direction) -> &[Segment] {
@@ -543,15 +534,12 @@ impl SpringPath {
     }
 
     fn state_at(&self, seg: &Segment, t: f64, clamped: bool) -> PathState {
-        let p = state(self.model, self.lambda, seg.piece, t);
-        PathState {
-            piece: seg.piece,
+        PathState::on(
+            seg.piece,
             t,
-            load: p.load,
-            a: p.a,
-            approach: p.approach,
+            &state(self.model, self.lambda, seg.piece, t),
             clamped,
-        }
+        )
     }
 
     /// The state at base displacement `delta` on the side of the first jump the data says.
@@ -571,9 +559,7 @@ impl SpringPath {
     ) -> PathState {
         let Some(j) = self.first_jump(dir).filter(|_| side != Side::Any) else {
             let segs = self.segments(dir);
-            let seg = segs
-                .iter()
-                .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
+            let seg = containing(segs, delta)
                 .or_else(|| segs.last())
                 .expect("a path has segments");
             return self.at_in_from(seg, delta, hint);
@@ -583,10 +569,7 @@ impl SpringPath {
             Side::BeforeJump => (&segs[..=j], false),
             _ => (&segs[j + 1..], true),
         };
-        if let Some(seg) = run
-            .iter()
-            .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
-        {
+        if let Some(seg) = containing(run, delta) {
             return self.at_in_from(seg, delta, hint);
         }
         // Beyond the run: before the jump, held at the fold; after it, the landing branch
@@ -636,14 +619,7 @@ impl SpringPath {
             self.bracket(seg, delta)
         };
         let (p, t) = self.solve_in(seg.piece, delta, lo, hi);
-        PathState {
-            piece: seg.piece,
-            t,
-            load: p.load,
-            a: p.a,
-            approach: p.approach,
-            clamped: false,
-        }
+        PathState::on(seg.piece, t, &p, false)
     }
 
     /// The nodes around `delta` inside a segment.
@@ -679,10 +655,7 @@ impl SpringPath {
     /// The most tensile load on the path followed in a direction (the pull-off a cantilever
     /// reads on retract) and the Delta where it is reached.
     pub fn min_load(&self, dir: Direction) -> (f64, f64) {
-        let segs = match dir {
-            Direction::Retract => &self.retract,
-            Direction::Approach => &self.approach,
-        };
+        let segs = self.segments(dir);
         let mut best = (0.0, f64::NAN);
         for s in segs.iter().filter(|s| s.piece != Piece::Free) {
             let nodes = &self.pieces.iter().find(|p| p.0 == s.piece).unwrap().1;
@@ -727,6 +700,12 @@ impl SpringPath {
     }
 }
 
+/// The segment whose Delta range holds `delta`.
+fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
+    segs.iter()
+        .find(|s| s.delta_lo <= delta && delta <= s.delta_hi)
+}
+
 /// The state on a given piece near parameter `t`: Newton steps from there. The Jacobian of a fit
 /// keeps each point on its branch this way, so that a finite difference never straddles a jump.
 pub fn near(
@@ -752,14 +731,7 @@ pub fn near(
         let p = state(model, lambda, piece, t);
         let r = p.approach + p.load / kbar - delta;
         if r.abs() <= 1e-14 * delta.abs().max(1.0) {
-            return Some(PathState {
-                piece,
-                t,
-                load: p.load,
-                a: p.a,
-                approach: p.approach,
-                clamped: false,
-            });
+            return Some(PathState::on(piece, t, &p, false));
         }
         let s = p.dapproach + p.dload / kbar;
         if !(s.abs() > 0.0) {
@@ -768,15 +740,12 @@ pub fn near(
         let step = r / s;
         t -= step;
         if step.abs() <= 1e-13 * t.abs().max(1.0) {
-            let p = state(model, lambda, piece, t);
-            return Some(PathState {
+            return Some(PathState::on(
                 piece,
                 t,
-                load: p.load,
-                a: p.a,
-                approach: p.approach,
-                clamped: false,
-            });
+                &state(model, lambda, piece, t),
+                false,
+            ));
         }
     }
     None

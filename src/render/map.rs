@@ -710,10 +710,7 @@ where
     let ticks: Vec<(f64, String)> = if q.log() {
         super::round_ticks(lo, hi)
             .into_iter()
-            .map(|v| {
-                let e = crate::physics::domain::short((v * 10.0).round() / 10.0 + 0.0);
-                (v, format!("10^{{{}}}", super::minus(&e)))
-            })
+            .map(|v| (v, super::power_label(v)))
             .collect()
     } else {
         // The signed-log scale: round values (0, +-0.1, +-1, +-10, ...) at their places.

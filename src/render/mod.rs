@@ -44,6 +44,13 @@ pub fn minus(s: &str) -> String {
     s.replace('-', "\u{2212}")
 }
 
+/// A colorbar tick on a log10 scale: 10^e in markup, e to one decimal, with a true minus sign
+/// (+ 0.0: no "10^-0" from a negative zero).
+pub fn power_label(log10_value: f64) -> String {
+    let e = crate::physics::domain::short((log10_value * 10.0).round() / 10.0 + 0.0);
+    format!("10^{{{}}}", minus(&e))
+}
+
 /// Tick labels for linear axes: the value without binary noise (-3.4, not -3.4000000000000004),
 /// as a power of ten where it is very large or small, with a true minus sign.
 pub fn linear_label(v: f64) -> String {

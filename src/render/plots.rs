@@ -971,7 +971,7 @@ where
         .legend(move |(x, y)| Circle::new((x + 20, y), 6, dot));
     let mut residuals: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
     for (m, col, label) in fits.iter().rev() {
-        let p = m.params(opt.radius);
+        let p = m.params();
         let Some((f, _, _, _)) =
             model_forces(m.model, &p, opt.radius, opt.spring, &hs, &dirs, None)
         else {
@@ -1104,7 +1104,59 @@ where
     let (w, _) = root.dim_in_pixel();
     let bar_w = (TICK * 5.4) as u32;
     let (left, bar) = root.split_horizontally(w - bar_w);
-    let mut chart = builder(&left, title).build_cartesian_2d(0.0..nx as f64, 0.0..ny as f64)?;
+    pixel_grid(&left, title, nx, ny, |k| {
+        let v = shown[k];
+        if v.is_finite() {
+            super::viridis((v - lo) / (hi - lo))
+        } else {
+            RGBColor(200, 200, 200)
+        }
+    })?;
+    // Log scale over a decade or more: powers of ten; over less, round values at their places.
+    let ticks: Vec<(f64, String)> = if log && hi - lo >= 1.0 {
+        super::round_ticks(lo, hi)
+            .into_iter()
+            .map(|v| (v, super::power_label(v)))
+            .collect()
+    } else if log {
+        let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
+        let unit = 10f64.powf(b.log10().floor());
+        super::round_ticks(a / unit, b / unit)
+            .into_iter()
+            .filter(|&v| v > 0.0)
+            .map(|v| ((v * unit).log10(), compact(v * unit)))
+            .collect()
+    } else {
+        // round_ticks works on values of order one: scale by the power of ten of the range.
+        let unit = 10f64.powf(lo.abs().max(hi.abs()).log10().floor());
+        super::round_ticks(lo / unit, hi / unit)
+            .into_iter()
+            .map(|v| (v * unit, compact(v * unit)))
+            .collect()
+    };
+    super::colorbar(&bar, lo, hi, &ticks)
+}
+
+/// A force map's chart: one cell a pixel (row-major, row 0 at the bottom), coloured by
+/// `colour(k)`, with pixel-index axes.
+fn pixel_grid<'a, DB: DrawingBackend + 'a>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    nx: usize,
+    ny: usize,
+    colour: impl Fn(usize) -> RGBColor,
+) -> Result<
+    ChartContext<
+        'a,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    Err,
+>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = builder(area, title).build_cartesian_2d(0.0..nx as f64, 0.0..ny as f64)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -1126,41 +1178,9 @@ where
         .draw()?;
     chart.draw_series((0..nx * ny).map(|k| {
         let (x, y) = ((k % nx) as f64, (k / nx) as f64);
-        let v = shown[k];
-        let c = if v.is_finite() {
-            super::viridis((v - lo) / (hi - lo))
-        } else {
-            RGBColor(200, 200, 200)
-        };
-        Rectangle::new([(x, y), (x + 1.0, y + 1.0)], c.filled())
+        Rectangle::new([(x, y), (x + 1.0, y + 1.0)], colour(k).filled())
     }))?;
-    // Log scale over a decade or more: powers of ten; over less, round values at their places.
-    let ticks: Vec<(f64, String)> = if log && hi - lo >= 1.0 {
-        super::round_ticks(lo, hi)
-            .into_iter()
-            .map(|v| {
-                // + 0.0: no "10^-0" from a negative zero.
-                let e = crate::physics::domain::short((v * 10.0).round() / 10.0 + 0.0);
-                (v, format!("10^{{{}}}", super::minus(&e)))
-            })
-            .collect()
-    } else if log {
-        let (a, b) = (10f64.powf(lo), 10f64.powf(hi));
-        let unit = 10f64.powf(b.log10().floor());
-        super::round_ticks(a / unit, b / unit)
-            .into_iter()
-            .filter(|&v| v > 0.0)
-            .map(|v| ((v * unit).log10(), compact(v * unit)))
-            .collect()
-    } else {
-        // round_ticks works on values of order one: scale by the power of ten of the range.
-        let unit = 10f64.powf(lo.abs().max(hi.abs()).log10().floor());
-        super::round_ticks(lo / unit, hi / unit)
-            .into_iter()
-            .map(|v| (v * unit, compact(v * unit)))
-            .collect()
-    };
-    super::colorbar(&bar, lo, hi, &ticks)
+    Ok(chart)
 }
 
 /// A colorbar label, short: 0.055, 120, 4.5e-9, 1.995e9.
@@ -1203,32 +1223,13 @@ where
             Model::Md => Region::Md,
         })
     };
-    let mut chart = builder(root, "The simplest adequate model of each curve")
-        .build_cartesian_2d(0.0..nx as f64, 0.0..ny as f64)?;
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("x (pixel)")
-        .y_desc("y (pixel)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_labels(6)
-        .y_labels(6)
-        .x_label_formatter(&|v| format!("{v:.0}"))
-        // The top label would run into the title.
-        .y_label_formatter(&|v| {
-            if *v >= ny as f64 {
-                String::new()
-            } else {
-                format!("{v:.0}")
-            }
-        })
-        .draw()?;
-    chart.draw_series((0..nx * ny).map(|k| {
-        let (x, y) = ((k % nx) as f64, (k / nx) as f64);
-        let c = models[k].map_or(RGBColor(255, 255, 255), colour);
-        Rectangle::new([(x, y), (x + 1.0, y + 1.0)], c.filled())
-    }))?;
+    let mut chart = pixel_grid(
+        root,
+        "The simplest adequate model of each curve",
+        nx,
+        ny,
+        |k| models[k].map_or(RGBColor(255, 255, 255), colour),
+    )?;
     for m in Model::ALL {
         let c = colour(m);
         chart
@@ -1265,12 +1266,12 @@ where
     // under the others.
     let sure = ShapeStyle::from(&BLACK.mix(0.7)).stroke_width(3);
     let unsure = ShapeStyle::from(&RGBColor(150, 150, 150).mix(0.6)).stroke_width(2);
-    let determined = |r: &crate::fit::CurveFit| matches!((r.lambda, r.lambda_stderr), (Some(l), Some(e)) if e <= l);
+
     let mut ok: Vec<&crate::fit::CurveFit> = results
         .iter()
         .filter(|r| r.status == crate::fit::FitStatus::Ok)
         .collect();
-    ok.sort_by_key(|r| determined(r));
+    ok.sort_by_key(|r| r.lambda_determined());
     for r in ok {
         let (Some(l), Some([a, b])) = (r.lambda, r.load_range_normalised) else {
             continue;
@@ -1280,7 +1281,7 @@ where
             a.clamp(sp.load_min, sp.load_max),
             b.clamp(sp.load_min, sp.load_max),
         );
-        let st = if determined(r) { sure } else { unsure };
+        let st = if r.lambda_determined() { sure } else { unsure };
         ch.draw_series(LineSeries::new(vec![(l, a), (l, b)], st))?;
         ch.draw_series(std::iter::once(Circle::new((l, b), 6, st.color.filled())))?;
     }
