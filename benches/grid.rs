@@ -1,7 +1,7 @@
 //! Throughput of the solvers on a lambda x load grid. Run: `cargo bench --bench grid`.
 //! Not a test: it measures, it asserts nothing. Variants are timed in one run and compared as
-//! ratios, since the machine may be shared. GPU timings include preparing the per-lambda data
-//! and reading every result back.
+//! ratios, since the machine may be shared; each figure is the median of seven runs. GPU
+//! timings include preparing the per-lambda data and reading every result back.
 
 use rayon::prelude::*;
 use std::time::Instant;
@@ -13,6 +13,21 @@ fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
     (0..n)
         .map(|i| 10f64.powf(a + (b - a) * i as f64 / (n - 1) as f64))
         .collect()
+}
+
+/// Median wall time of `REPS` runs (the first also pays for page faults; the machine may be
+/// shared), and the last run's result.
+fn timed<T>(mut f: impl FnMut() -> T) -> (f64, T) {
+    const REPS: usize = 7;
+    let mut secs = Vec::with_capacity(REPS);
+    let mut out = None;
+    for _ in 0..REPS {
+        let t = Instant::now();
+        out = Some(f());
+        secs.push(t.elapsed().as_secs_f64());
+    }
+    secs.sort_by(f64::total_cmp);
+    (secs[REPS / 2], out.unwrap())
 }
 
 fn rate(points: usize, secs: f64) -> String {
@@ -36,23 +51,15 @@ fn main() {
             .flat_map_iter(|&p| ctx.iter().map(move |c| c.as_ref().unwrap().solve_load(p)))
             .collect()
     };
-    let t = Instant::now();
-    let before = search(&lambdas, &loads);
-    let search_all = t.elapsed().as_secs_f64();
+    let (search_all, before) = timed(|| search(&lambdas, &loads));
     // After: what solve_grid does, the dense start of each lambda over the loads asked for.
-    let t = Instant::now();
-    let states = solve_grid(&lambdas, &loads, Control::Load);
-    let cpu_all = t.elapsed().as_secs_f64();
+    let (cpu_all, states) = timed(|| solve_grid(&lambdas, &loads, Control::Load));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
-    let t = Instant::now();
-    let _ = pool.install(|| solve_grid(&lambdas, &loads, Control::Load));
-    let cpu_one = t.elapsed().as_secs_f64();
-    let t = Instant::now();
-    let _ = pool.install(|| search(&lambdas, &loads));
-    let search_one = t.elapsed().as_secs_f64();
+    let (cpu_one, _) = timed(|| pool.install(|| solve_grid(&lambdas, &loads, Control::Load)));
+    let (search_one, _) = timed(|| pool.install(|| search(&lambdas, &loads)));
     // Curve evaluations: the search's iterations plus the final state; the start's Newton
     // evaluations plus its table nodes.
     let evals_before: u64 = before.iter().map(|s| s.iterations as u64 + 1).sum();
@@ -106,9 +113,7 @@ fn main() {
     let _ = engine
         .solve_grid(&lambdas[..64], &loads[..64], Control::Load)
         .unwrap(); // warm-up
-    let t = Instant::now();
-    let _ = engine.solve_grid(&lambdas, &loads, Control::Load).unwrap();
-    let g1 = t.elapsed().as_secs_f64();
+    let (g1, _) = timed(|| engine.solve_grid(&lambdas, &loads, Control::Load).unwrap());
     println!(
         "  gpu f32 on {name}: {}  = {:.2}x the cpu (all threads)",
         rate(n * n, g1),
@@ -120,9 +125,7 @@ fn main() {
         let _ = engine
             .solve_grid(&lambdas[..64], &loads[..64], Control::Load)
             .unwrap(); // warm-up (the f64 pipeline)
-        let t = Instant::now();
-        let _ = engine.solve_grid(&lambdas, &loads, Control::Load).unwrap();
-        let g64 = t.elapsed().as_secs_f64();
+        let (g64, _) = timed(|| engine.solve_grid(&lambdas, &loads, Control::Load).unwrap());
         println!(
             "  gpu f32 + f64 Newton  : {}  = {:.2}x the cpu f64 (all threads)",
             rate(n * n, g64),

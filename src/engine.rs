@@ -219,36 +219,7 @@ impl Solve for CpuSolver {
         lambdas: &[f64],
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
-        // Gaps are loads above each lambda's pull-off: the start covers them per context.
-        let started: Vec<Option<LambdaContext>> = if gaps.len() >= solver::context::START_MIN_STATES
-        {
-            let (lo, hi) = gaps
-                .iter()
-                .filter(|g| g.is_finite())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
-                    (a.min(g), b.max(g))
-                });
-            ctx.par_iter()
-                .map(|c| {
-                    c.clone().map(|mut c| {
-                        let pc = c.load_pulloff.load;
-                        c.add_start(pc + lo, pc + hi, gaps.len());
-                        c
-                    })
-                })
-                .collect()
-        } else {
-            ctx.to_vec()
-        };
-        let ctx: &[Option<LambdaContext>] = &started;
-        let nx = lambdas.len();
-        Ok((0..nx * gaps.len())
-            .into_par_iter()
-            .map(|i| match &ctx[i % nx] {
-                Some(c) => c.solve_load_gap(gaps[i / nx], c.load_pulloff.load + gaps[i / nx]),
-                None => State::failed(lambdas[i % nx], f64::NAN, f64::NAN, Status::InvalidInput),
-            })
-            .collect())
+        Ok(solver::solve_grid_gaps_with(ctx, lambdas, gaps))
     }
     fn solve_grid_with(
         &self,

@@ -346,10 +346,10 @@ impl LambdaContext {
     /// searches) where the start does not cover the load, or the evaluation does not certify it.
     fn solve_load_one_step(&self, gap: f64, load: f64) -> Option<State> {
         let start = self.start.as_ref()?;
-        let mut x = start.x(gap.ln(), self.load_pulloff.x)?;
+        let mut mu = start.mu(gap.ln())?;
         let small = carries_load_plus_2(self.lambda);
         for evals in 1..=3 {
-            let p = point(self.lambda, x);
+            let p = curve_point(self.lambda, mu);
             let r = if small {
                 (p.load_plus_2 - self.load_plus_2_c) - gap
             } else {
@@ -368,7 +368,7 @@ impl LambdaContext {
                 return None;
             }
             if dx.abs() > ONE_STEP_DX {
-                x += dx;
+                mu *= dx.exp();
                 continue;
             }
             let noise = 1e-13 * load.abs().max(2.0);
