@@ -21,6 +21,11 @@ pub trait Real:
     /// `(atan(mu), mu - atan(mu))` for `mu >= 0`, both to full relative precision: the
     /// difference is what f1 needs at small mu, where subtracting the two loses every digit.
     fn atan_parts(self) -> (Self, Self);
+    /// 1 / (2k + 1), the atan series' coefficients, correctly rounded (a table for
+    /// double-double: dividing there cost a fifth of the time of scattered solves).
+    fn inv_odd(k: usize) -> Self {
+        Self::of(1.0) / Self::of((2 * k + 1) as f64)
+    }
 }
 
 /// `t - atan(t)` by its Maclaurin series, `terms` terms; accurate for `t <= 0.1`.
@@ -28,7 +33,7 @@ fn series_mu_minus_atan<T: Real>(t: T, terms: usize) -> T {
     let z = t * t;
     let mut acc = T::of(0.0);
     for k in (1..=terms).rev() {
-        acc = T::of(1.0) / T::of((2 * k + 1) as f64) - z * acc;
+        acc = T::inv_odd(k) - z * acc;
     }
     t * z * acc
 }
@@ -156,7 +161,78 @@ const HALF_PI_DD: Dd = Dd {
     lo: 6.123233995736766e-17,
 };
 
+/// 1 / (2k + 1) for k = 1..=16 in double-double (exact rationals rounded to 106 bits).
+const INV_ODD_DD: [Dd; 16] = [
+    Dd {
+        hi: 0.3333333333333333,
+        lo: 1.850371707708594e-17,
+    },
+    Dd {
+        hi: 0.2,
+        lo: -1.1102230246251566e-17,
+    },
+    Dd {
+        hi: 0.14285714285714285,
+        lo: 7.93016446160826e-18,
+    },
+    Dd {
+        hi: 0.1111111111111111,
+        lo: 6.1679056923619804e-18,
+    },
+    Dd {
+        hi: 0.09090909090909091,
+        lo: -2.523234146875356e-18,
+    },
+    Dd {
+        hi: 0.07692307692307693,
+        lo: -4.270088556250602e-18,
+    },
+    Dd {
+        hi: 0.06666666666666667,
+        lo: 9.251858538542971e-19,
+    },
+    Dd {
+        hi: 0.058823529411764705,
+        lo: 8.163404592832033e-19,
+    },
+    Dd {
+        hi: 0.05263157894736842,
+        lo: 2.921639538487254e-18,
+    },
+    Dd {
+        hi: 0.047619047619047616,
+        lo: 2.64338815386942e-18,
+    },
+    Dd {
+        hi: 0.043478260869565216,
+        lo: 1.206764157201257e-18,
+    },
+    Dd {
+        hi: 0.04,
+        lo: -8.326672684688674e-19,
+    },
+    Dd {
+        hi: 0.037037037037037035,
+        lo: 2.05596856412066e-18,
+    },
+    Dd {
+        hi: 0.034482758620689655,
+        lo: 4.785444071660157e-19,
+    },
+    Dd {
+        hi: 0.03225806451612903,
+        lo: 8.953411488912552e-19,
+    },
+    Dd {
+        hi: 0.030303030303030304,
+        lo: -8.410780489584519e-19,
+    },
+];
+
 impl Real for Dd {
+    fn inv_odd(k: usize) -> Self {
+        INV_ODD_DD[k - 1]
+    }
     fn of(x: f64) -> Self {
         Dd { hi: x, lo: 0.0 }
     }
@@ -211,6 +287,14 @@ impl Real for f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn double_double_series_coefficients_are_the_reciprocals() {
+        for k in 1..=16 {
+            let d = INV_ODD_DD[k - 1] * Dd::of((2 * k + 1) as f64) - Dd::of(1.0);
+            assert!(d.to_f64().abs() < 2e-32, "k = {k}: {:e}", d.to_f64());
+        }
+    }
 
     #[test]
     fn double_double_arithmetic_has_32_digits() {
