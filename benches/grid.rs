@@ -40,30 +40,39 @@ fn main() {
     let loads = logspace(-3.0, 3.0, n);
     let _ = solve_grid(&lambdas[..10], &loads[..10], Control::Load); // warm-up
     let threads = rayon::current_num_threads();
-    // Before: the bracketed secant search from the coarse table (contexts without a start).
-    let search = |lambdas: &[f64], loads: &[f64]| -> Vec<State> {
-        let ctx: Vec<Option<LambdaContext>> = lambdas
+    // Without a dense start, contexts built inside the timing: the bracketed secant search
+    // from the coarse table, and Newton from the same table (what a single state now takes).
+    let unstarted = |lambdas: &[f64], loads: &[f64], newton: bool| -> Vec<State> {
+        let ctx: Vec<LambdaContext> = lambdas
             .par_iter()
-            .map(|&l| LambdaContext::new(l).ok())
+            .map(|&l| LambdaContext::new(l).unwrap())
             .collect();
         loads
             .par_iter()
-            .flat_map_iter(|&p| ctx.iter().map(move |c| c.as_ref().unwrap().solve_load(p)))
+            .flat_map_iter(|&p| {
+                ctx.iter().map(move |c| {
+                    let gap = p - c.load_pulloff.load;
+                    if newton {
+                        c.solve_load_gap(gap, p)
+                    } else {
+                        c.solve_load_search(gap, p)
+                    }
+                })
+            })
             .collect()
     };
-    let (search_all, before) = timed(|| search(&lambdas, &loads));
-    // After: what solve_grid does, the dense start of each lambda over the loads asked for.
+    let (search_all, search) = timed(|| unstarted(&lambdas, &loads, false));
+    let (coarse_all, coarse) = timed(|| unstarted(&lambdas, &loads, true));
+    // What solve_grid does: the dense start of each lambda over the loads asked for.
     let (cpu_all, states) = timed(|| solve_grid(&lambdas, &loads, Control::Load));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
     let (cpu_one, _) = timed(|| pool.install(|| solve_grid(&lambdas, &loads, Control::Load)));
-    let (search_one, _) = timed(|| pool.install(|| search(&lambdas, &loads)));
-    // Curve evaluations: the search's iterations plus the final state; the start's Newton
-    // evaluations plus its table nodes.
-    let evals_before: u64 = before.iter().map(|s| s.iterations as u64 + 1).sum();
-    let evals_after: u64 = states.iter().map(|s| s.iterations as u64).sum();
+    let (search_one, _) = timed(|| pool.install(|| unstarted(&lambdas, &loads, false)));
+    let evals =
+        |s: &[State]| s.iter().map(|s| s.iterations as u64).sum::<u64>() as f64 / (n * n) as f64;
     let nodes: usize = lambdas
         .par_iter()
         .map(|&l| {
@@ -73,33 +82,80 @@ fn main() {
         })
         .sum();
     let one = states.iter().filter(|s| s.iterations == 1).count();
-    let worst = before
-        .iter()
-        .zip(&states)
-        .map(|(a, b)| (a.a / b.a - 1.0).abs())
-        .fold(0.0, f64::max);
-    let per = |e: u64| e as f64 / (n * n) as f64;
+    let worst = |other: &[State]| {
+        other
+            .iter()
+            .zip(&search)
+            .map(|(a, b)| (a.a / b.a - 1.0).abs())
+            .fold(0.0, f64::max)
+    };
     println!("grid {n}x{n}: lambda 1e-3..1e3 x load 1e-3..1e3, load control, contexts included");
     println!(
         "  cpu f64 search, {threads} threads  : {}  ({:.2} curve evaluations per state)",
         rate(n * n, search_all),
-        per(evals_before)
+        evals(&search)
     );
-    println!("  cpu f64 search, 1 thread   : {}", rate(n * n, search_one));
     println!(
-        "  cpu f64 start, {threads} threads   : {}  = {:.2}x the search ({:.2} evaluations per state + {:.2} for the tables; {:.1}% in one evaluation)",
+        "  cpu f64 Newton, {threads} threads  : {}  = {:.2}x the search ({:.2} evaluations per state; A within {:.1e} of the search)",
+        rate(n * n, coarse_all),
+        search_all / coarse_all,
+        evals(&coarse),
+        worst(&coarse)
+    );
+    println!(
+        "  cpu f64 start, {threads} threads   : {}  = {:.2}x the search ({:.2} evaluations per state + {:.2} for the tables; {:.1}% in one evaluation; A within {:.1e} of the search)",
         rate(n * n, cpu_all),
         search_all / cpu_all,
-        per(evals_after),
+        evals(&states),
         nodes as f64 / (n * n) as f64,
-        100.0 * one as f64 / (n * n) as f64
+        100.0 * one as f64 / (n * n) as f64,
+        worst(&states)
     );
+    println!("  cpu f64 search, 1 thread   : {}", rate(n * n, search_one));
     println!(
         "  cpu f64 start, 1 thread    : {}  = {:.2}x the search",
         rate(n * n, cpu_one),
         search_one / cpu_one
     );
-    println!("  largest difference of A between the two: {worst:.1e}");
+
+    // Scattered states: every point its own lambda (a file of measurements), so every state
+    // builds its own context (the pull-off search) and solves from the coarse table.
+    let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+    let mut uniform = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let m = 1_000_000;
+    let points: Vec<(f64, f64)> = (0..m)
+        .map(|_| {
+            (
+                10f64.powf(-3.0 + 6.0 * uniform()),
+                10f64.powf(-3.0 + 6.0 * uniform()),
+            )
+        })
+        .collect();
+    let (scattered, states) = timed(|| tabor::solver::solve_points(&points, Control::Load));
+    let (contexts, _) = timed(|| {
+        points
+            .par_iter()
+            .map(|p| LambdaContext::new(p.0).map_or(0.0, |c| c.load_pulloff.x))
+            .sum::<f64>()
+    });
+    let ok = states
+        .iter()
+        .filter(|s| s.status == tabor::solver::Status::Ok)
+        .count();
+    println!(
+        "scattered: {m} points, lambda and load log-uniform in 1e-3..1e3, each its own lambda ({ok} ok)"
+    );
+    println!(
+        "  cpu f64, {threads} threads       : {}  (of which contexts alone {:.3} s: {:.2} us each on one thread)",
+        rate(m, scattered),
+        contexts,
+        contexts * threads as f64 / m as f64 * 1e6
+    );
 
     let gpu = match Gpu::new(std::env::var("TABOR_ADAPTER").ok().as_deref()) {
         Ok(g) => g,

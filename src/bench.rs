@@ -146,12 +146,12 @@ fn f64_state(c: &LambdaContext, p: &(usize, f64, f64, f64)) -> crate::solver::St
     }
 }
 
-/// Curve evaluations of a search solve: its iterations and the final state's evaluation.
+/// Curve evaluations per state of the solve without a dense start.
 fn search_evals(w: &Workload) -> f64 {
     let n: u64 = w
         .points
         .par_iter()
-        .map(|p| f64_state(&w.contexts[p.0], p).iterations as u64 + 1)
+        .map(|p| f64_state(&w.contexts[p.0], p).iterations as u64)
         .sum();
     n as f64 / w.points.len() as f64
 }
@@ -197,7 +197,7 @@ fn cpu_f64_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
         ..summarize(
             "cpu-f64",
             &format!(
-                "exact solver, f64, bracketed search, {} threads (the reference for the grid)",
+                "exact solver, f64, coarse table and Newton (bracketed secant where it fails), {} threads (the reference for the grid)",
                 rayon::current_num_threads()
             ),
             w,
@@ -215,7 +215,7 @@ fn cpu_f64_variants(w: &Workload, push: &mut dyn FnMut(VariantResult)) {
         evals_per_state: Some(evals),
         ..summarize(
             "cpu-f64-1t",
-            "exact solver, f64, bracketed search, 1 thread",
+            "exact solver, f64, coarse table and Newton, 1 thread",
             w,
             t.elapsed().as_secs_f64(),
             &a,

@@ -174,7 +174,7 @@ fn the_one_evaluation_solve_matches_the_search() {
         for &gap in &gaps {
             let load = pc + gap;
             let (a, b) = (
-                plain.solve_load_gap(gap, load),
+                plain.solve_load_search(gap, load),
                 fast.solve_load_gap(gap, load),
             );
             assert_eq!(a.status, b.status, "lambda {l}, gap {gap}");

@@ -417,23 +417,31 @@ impl LambdaContext {
             .map(Into::into);
     }
 
-    /// The state from the dense start's x0: Newton steps on F = ln(1 + r/gap) (one curve
-    /// evaluation each, at most three) until the correction of x is at most `ONE_STEP_DX`,
-    /// then that last correction carried to A, Dbar and m - 1 by their slopes. None (the caller
-    /// searches) where the start does not cover the load, or the evaluation does not certify it.
-    fn solve_load_one_step(&self, gap: f64, load: f64) -> Option<State> {
-        let start = self.start.as_ref()?;
-        let mut mu = start.mu(gap.ln())?;
+    /// The state at `Pbar - Pbar_c = gap` by Newton steps on F = ln(1 + r/gap) from `x0`
+    /// (one curve evaluation each, at most `max_evals`) until the correction of x is at most
+    /// `ONE_STEP_DX` (less near the pull-off), then that last correction carried to A, Dbar and
+    /// m - 1 by their slopes (its second-order error in x is below 1e-14). Every iterate stays strictly inside `(lo, hi)`. None
+    /// (the caller searches) where a step leaves the bracket, the steps do not settle, or the
+    /// evaluation does not certify the state.
+    fn solve_load_newton(
+        &self,
+        x0: f64,
+        (lo, hi): (f64, f64),
+        max_evals: u32,
+        gap: f64,
+        load: f64,
+    ) -> Option<State> {
         let small = carries_load_plus_2(self.lambda);
-        for evals in 1..=3 {
+        let (mut x, mut mu) = (x0, x0.exp());
+        for evals in 1..=max_evals {
             let p = curve_point(self.lambda, mu);
             let r = if small {
                 (p.load_plus_2 - self.load_plus_2_c) - gap
             } else {
                 (p.load - self.load_pulloff.load) - gap
             };
-            // F' = P'(x) / (gap + r). ln(1 + z) by its series where z is small (as it is after
-            // the start): a libm call saved per state, the step's relative error z^4/4.
+            // F' = P'(x) / (gap + r). ln(1 + z) by its series where z is small (as it is near
+            // the root): a libm call saved per state, the step's relative error z^4/4.
             let z = r / gap;
             let f = if z.abs() < 1e-3 {
                 z * (1.0 - z * (0.5 - z / 3.0))
@@ -441,10 +449,13 @@ impl LambdaContext {
                 z.ln_1p()
             };
             let dx = -f * (gap + r) / (p.dload_dmu * p.mu);
-            if !dx.is_finite() || dx.abs() > 1e-2 {
+            if !(dx.is_finite() && x + dx > lo && x + dx < hi) {
                 return None;
             }
-            if dx.abs() > ONE_STEP_DX {
+            // Near the pull-off F bends like 2 ln(xc - x): the carried step's error in x is
+            // about dx^2 / (xc - x), held to ONE_STEP_DX^2 = 1e-14 there too.
+            if dx * dx > ONE_STEP_DX * ONE_STEP_DX * (self.load_pulloff.x - x).min(1.0) {
+                x += dx;
                 mu *= dx.exp();
                 continue;
             }
@@ -541,6 +552,30 @@ impl LambdaContext {
 
     /// The state at `Pbar - Pbar_c = gap` (exact, however small); `load` is what is reported.
     pub fn solve_load_gap(&self, gap: f64, load: f64) -> State {
+        if !(gap.is_finite() && gap > 0.0) {
+            return self.solve_load_search(gap, load);
+        }
+        let t = gap.ln();
+        // The dense start's x is within about 1e-8: one evaluation, rarely more.
+        if let Some(x0) = self.start.as_ref().and_then(|s| s.x(t)) {
+            let bracket = (x0 - 1e-2, (x0 + 1e-2).min(self.load_pulloff.x));
+            if let Some(s) = self.solve_load_newton(x0, bracket, 4, gap, load) {
+                return s;
+            }
+        }
+        // Else the coarse table's bracket and guess: Newton (about three evaluations, where
+        // the secant takes six and one more for the state), the secant where it fails.
+        let (lo, hi, x0) = self.load_guess(t);
+        if let Some(s) = self.solve_load_newton(x0, (lo.0, hi.0), 8, gap, load) {
+            return s;
+        }
+        self.solve_load_search(gap, load)
+    }
+
+    /// As [`LambdaContext::solve_load_gap`] by the bracketed secant search alone, from the
+    /// coarse table, the state certified by one more evaluation: what the Newton solves fall
+    /// back on, and their independent check in the tests.
+    pub fn solve_load_search(&self, gap: f64, load: f64) -> State {
         let lambda = self.lambda;
         let pc = self.load_pulloff;
         let small = carries_load_plus_2(lambda);
@@ -549,9 +584,6 @@ impl LambdaContext {
         }
         if gap <= 0.0 {
             return self.state(pc.x, load, 0.0, Control::Load, 0, Stop::Converged);
-        }
-        if let Some(s) = self.solve_load_one_step(gap, load) {
-            return s;
         }
         let residual = |x: f64| {
             let p = point(lambda, x);
@@ -569,10 +601,16 @@ impl LambdaContext {
                 f
             }
         };
-        let t = gap.ln();
-        let (lo, hi, x0) = self.load_guess(t);
+        let (lo, hi, x0) = self.load_guess(gap.ln());
         let root = secant_bracketed(residual, lo, hi, x0, X_TOL, MAX_ITER);
-        self.state(root.x, load, gap, Control::Load, root.iterations, root.stop)
+        self.state(
+            root.x,
+            load,
+            gap,
+            Control::Load,
+            root.iterations + 1,
+            root.stop,
+        )
     }
 
     /// x of table node k.

@@ -77,6 +77,7 @@ pub struct State {
     /// m - 1 (c/a - 1), full relative precision.
     pub m_minus_1: f64,
     pub status: Status,
+    /// Curve evaluations spent on this state (its context's and tables' not counted).
     pub iterations: u32,
 }
 

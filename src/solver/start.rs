@@ -91,9 +91,9 @@ impl LoadStart {
         }
     }
 
-    /// mu = e^x for ln(Pbar - Pbar_c) = t, or None outside the table.
+    /// x for ln(Pbar - Pbar_c) = t, or None outside the table.
     #[inline]
-    pub fn mu(&self, t: f64) -> Option<f64> {
+    pub fn x(&self, t: f64) -> Option<f64> {
         let nodes = &self.nodes;
         let n = nodes.len();
         if !(t >= nodes[0][0] && t <= nodes[n - 1][0]) {
@@ -113,7 +113,7 @@ impl LoadStart {
             s * (1.0 - s) * (1.0 - s),
         );
         let (h01, h11) = (s * s * (3.0 - 2.0 * s), s * s * (s - 1.0));
-        Some((h00 * x0 + h10 * w * s0 + h01 * x1 + h11 * w * s1).exp())
+        Some(h00 * x0 + h10 * w * s0 + h01 * x1 + h11 * w * s1)
     }
 
     /// Curve evaluations spent on the table.
