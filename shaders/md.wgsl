@@ -22,7 +22,7 @@ struct Lambda {
     disp_at_zero: u32,
     invalid: u32,
     end_load: f32,
-    pad0: u32,
+    start_at: u32,
     pad1: u32,
     pad2: u32,
     load: Branch,
@@ -249,6 +249,37 @@ fn cheb_eval(i: u32, u: f32) -> f32 {
     return u * b1 - b2 + br_cheb(i, 0);
 }
 
+// The dense start of lambda `ci`'s load branch, from its block in `input` at word `sa` (see
+// src/kernel/start.rs, whose start_x is this, operation for operation): x = ln(mu / mu_ref) by a
+// cubic Hermite in t = ln(gap), and dF/dx = dt/dx; slope 0 where t is outside the table.
+fn start_x(sa: u32, t: f32) -> vec2<f32> {
+    let n = input[sa];
+    let nb = input[sa + 1u];
+    let t0 = bitcast<f32>(input[sa + 2u]);
+    let per_t = bitcast<f32>(input[sa + 3u]);
+    let nodes = sa + 4u + nb;
+    if !(t >= t0 && t <= bitcast<f32>(input[nodes + 3u * (n - 1u)])) {
+        return vec2<f32>(0.0, 0.0);
+    }
+    let b = min(u32((t - t0) * per_t), nb - 1u);
+    var k = input[sa + 4u + b];
+    while k + 2u < n && bitcast<f32>(input[nodes + 3u * (k + 1u)]) <= t {
+        k += 1u;
+    }
+    let i = nodes + 3u * k;
+    let ta = bitcast<f32>(input[i]);
+    let xa = bitcast<f32>(input[i + 1u]);
+    let sa_ = bitcast<f32>(input[i + 2u]);
+    let tb = bitcast<f32>(input[i + 3u]);
+    let xb = bitcast<f32>(input[i + 4u]);
+    let sb = bitcast<f32>(input[i + 5u]);
+    let w = tb - ta;
+    let s = (t - ta) / w;
+    let u = 1.0 - s;
+    let x = (1.0 + 2.0 * s) * u * u * xa + s * u * u * w * sa_ + s * s * (3.0 - 2.0 * s) * xb + s * s * (s - 1.0) * w * sb;
+    return vec2<f32>(x, 1.0 / (sa_ + s * (sb - sa_)));
+}
+
 fn failed(status: u32) -> Out {
     // NaN is not portable in WGSL constants: the host reads the status and ignores the numbers.
     return Out(0.0, 0.0, 0.0, status);
@@ -330,12 +361,22 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
                 x = d0 * exp_f(select(w * LN2, 0.5 * (t - br_t(ci, 0u)), k == 0u));
             }
         }
-        if !(x > lo_x && x < hi_x) {
-            x = 0.5 * (lo_x + hi_x);
-        }
         // The first step's slope dF/dx = dt/dx: the table's chord around the guess.
         let kc = clamp(k, 1u, n - 1u);
         slope0 = (br_t(ci, kc) - br_t(ci, kc - 1u)) / (br_dx(ci, kc) - br_dx(ci, kc - 1u));
+        // The dense start, where the grid has one (load control only): x to about f32
+        // precision and its own slope, so that the first evaluation is usually the answer.
+        let sa = lambdas[ci].start_at;
+        if CONTROL == 0u && !NAIVE && sa != 0u {
+            let st = start_x(sa, t);
+            if st.y != 0.0 {
+                x = st.x;
+                slope0 = st.y;
+            }
+        }
+        if !(x > lo_x && x < hi_x) {
+            x = 0.5 * (lo_x + hi_x);
+        }
     }
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.

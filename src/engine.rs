@@ -6,6 +6,7 @@ use crate::gpu::Gpu;
 pub use crate::gpu::GpuError as EngineError;
 use crate::kernel::layout::{KernelFlags, Lambda64, Out, Out64};
 use crate::kernel::prepare::{prepare64, split};
+use crate::kernel::start::Starts;
 use crate::solver::{self, Control, LambdaContext, State, Status};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -288,8 +289,13 @@ impl Solve for Gpu {
     ) -> Result<Vec<State>, GpuError> {
         let nx = lambdas.len();
         let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-        let out = self.grid(
-            &prepare_contexts(ctx, lambdas),
+        // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
+        let started = solver::with_gap_starts(ctx, gaps);
+        let prepared = prepare_contexts(&started, lambdas);
+        let starts = Starts::new(&started, &prepared);
+        let out = self.grid_started(
+            &prepared,
+            &starts,
             &rows,
             Control::Load,
             true,
@@ -308,8 +314,12 @@ impl Solve for Gpu {
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
         let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-        let out = self.grid(
-            &prepare_contexts(ctx, lambdas),
+        let started = solver::with_starts(ctx, values, control);
+        let prepared = prepare_contexts(&started, lambdas);
+        let starts = Starts::new(&started, &prepared);
+        let out = self.grid_started(
+            &prepared,
+            &starts,
             &rows,
             control,
             false,

@@ -151,6 +151,73 @@ fn grid_512_agrees_with_cpu_on_every_status() {
     assert!(worst <= F32_TOL);
 }
 
+/// The grid kernel with the dense starts against its CPU mirror: the same statuses, nearly
+/// always the same iteration count, A within a few ulps, and far fewer iterations than without.
+#[test]
+fn started_grid_matches_its_mirror() {
+    use tabor::kernel::cpu::md::solve_f32_started;
+    use tabor::kernel::prepare::prepare_ctx;
+    use tabor::kernel::start::Starts;
+    let Some(g) = gpu() else { return };
+    let lambdas = logspace(-3.0, 3.0, 64);
+    let mut loads = logspace(-3.0, 3.0, 400);
+    loads[0] = -1.5; // below some pull-offs
+    let ctx: Vec<Option<LambdaContext>> = lambdas
+        .iter()
+        .map(|&l| LambdaContext::new(l).ok())
+        .collect();
+    let started = tabor::solver::with_starts(&ctx, &loads, Control::Load);
+    let prepared: Vec<_> = started.iter().flatten().map(prepare_ctx).collect();
+    let starts = Starts::new(&started, &prepared);
+    // Where the rows reach down to the pull-off the start would cost too many nodes.
+    let with = starts.at.iter().filter(|a| a.is_some()).count();
+    assert!(with * 2 >= lambdas.len(), "{with} starts");
+    let rows: Vec<(f32, f32)> = loads.iter().map(|&v| split(v)).collect();
+    let f = KernelFlags::SHIPPED;
+    let out = g
+        .grid_started(&prepared, &starts, &rows, Control::Load, false, f)
+        .unwrap();
+    let plain = g.grid(&prepared, &rows, Control::Load, false, f).unwrap();
+    let (mut same_iter, mut worst_ulps, mut iters, mut iters_plain) = (0, 0u64, 0u32, 0u32);
+    for (i, (o, p)) in out.iter().zip(&plain).enumerate() {
+        let (ix, (h, l)) = (i % lambdas.len(), rows[i / lambdas.len()]);
+        let m = solve_f32_started(
+            &prepared[ix],
+            starts.block(ix),
+            h,
+            l,
+            Control::Load,
+            false,
+            f,
+        );
+        assert_eq!(
+            o.status(),
+            m.status(),
+            "lambda {}, load {}",
+            lambdas[ix],
+            loads[i / 64]
+        );
+        assert_eq!(o.status(), p.status());
+        same_iter += (o.iterations() == m.iterations()) as usize;
+        if o.status() == Status::Ok {
+            worst_ulps =
+                worst_ulps.max((o.a.to_bits() as i64 - m.a.to_bits() as i64).unsigned_abs());
+        }
+        iters += o.iterations();
+        iters_plain += p.iterations();
+    }
+    let n = out.len() as f64;
+    eprintln!(
+        "started grid: {same_iter} of {} with the mirror's iteration count, A within {worst_ulps} ulp; {:.2} iterations a state, {:.2} without the start",
+        out.len(),
+        iters as f64 / n,
+        iters_plain as f64 / n
+    );
+    assert!(worst_ulps <= MIRROR_ULPS, "{worst_ulps} ulp");
+    assert!(same_iter as f64 >= 0.95 * n, "{same_iter}");
+    assert!((iters as f64) < 0.5 * iters_plain as f64);
+}
+
 #[test]
 fn extreme_lambdas_and_loads() {
     let Some(g) = gpu() else { return };

@@ -4,6 +4,7 @@
 use crate::kernel::layout::{
     control_code, GpuLambda, KernelFlags, Lambda64, Out, Out64, Params, Point64,
 };
+use crate::kernel::start::Starts;
 use crate::solver::Control;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
@@ -367,10 +368,28 @@ impl Gpu {
         rows_are_gaps: bool,
         flags: KernelFlags,
     ) -> Result<Vec<Out>, GpuError> {
-        let words: Vec<u32> = rows
+        let none = Starts::default();
+        self.grid_started(lambdas, &none, rows, control, rows_are_gaps, flags)
+    }
+
+    /// As [`Gpu::grid`], with the lambdas' dense starts (load control): their blocks follow the
+    /// rows in the kernel's input.
+    pub fn grid_started(
+        &self,
+        lambdas: &[GpuLambda],
+        starts: &Starts,
+        rows: &[(f32, f32)],
+        control: Control,
+        rows_are_gaps: bool,
+        flags: KernelFlags,
+    ) -> Result<Vec<Out>, GpuError> {
+        let mut words: Vec<u32> = rows
             .iter()
             .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
             .collect();
+        let lambdas = starts.placed(lambdas, words.len());
+        words.extend_from_slice(&starts.words);
+        let lambdas = &lambdas[..];
         let total = lambdas.len() * rows.len();
         let v = Variant {
             entry: Entry::Grid,

@@ -39,7 +39,10 @@ pub struct GpuLambda {
     pub invalid: u32,
     /// Pbar at the A -> 0 end of the curve (where a zero-radius displacement branch ends).
     pub end_load: f32,
-    pub _pad: [u32; 3],
+    /// Word offset of this lambda's dense start in the grid kernel's input (0: none); see
+    /// `kernel::start`.
+    pub start_at: u32,
+    pub _pad: [u32; 2],
     pub load: Branch,
     pub disp: Branch,
 }

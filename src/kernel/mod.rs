@@ -6,6 +6,7 @@
 pub mod cpu;
 pub mod layout;
 pub mod prepare;
+pub mod start;
 
 /// The WGSL source of the f32 kernels: the host's prelude of shared constants, the shared
 /// functions, then the entry points.

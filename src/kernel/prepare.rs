@@ -189,7 +189,8 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
         disp_at_zero: jo.at_zero_radius() as u32,
         invalid: 0,
         end_load: ctx.end.load as f32,
-        _pad: [0; 3],
+        start_at: 0,
+        _pad: [0; 2],
         load,
         disp,
     }

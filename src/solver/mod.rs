@@ -206,30 +206,36 @@ pub fn solve_grid_gaps_with(
     lambdas: &[f64],
     gaps: &[f64],
 ) -> Vec<State> {
-    let started: std::borrow::Cow<[Option<LambdaContext>]> =
-        if gaps.len() >= context::START_MIN_STATES {
-            let finite = gaps.iter().filter(|g| g.is_finite());
-            let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
-                (a.min(g), b.max(g))
-            });
-            std::borrow::Cow::Owned(
-                ctx.par_iter()
-                    .map(|c| {
-                        c.clone().map(|mut c| {
-                            let pc = c.load_pulloff.load;
-                            c.add_start(pc + lo, pc + hi, gaps.len());
-                            c
-                        })
-                    })
-                    .collect(),
-            )
-        } else {
-            std::borrow::Cow::Borrowed(ctx)
-        };
+    let started = with_gap_starts(ctx, gaps);
     tiled(lambdas.len(), gaps, |i, g| match &started[i] {
         Some(c) => c.solve_load_gap(g, c.load_pulloff.load + g),
         None => State::failed(lambdas[i], f64::NAN, f64::NAN, Status::InvalidInput),
     })
+}
+
+/// As [`with_starts`] for rows of gaps above each lambda's pull-off.
+pub fn with_gap_starts<'a>(
+    ctx: &'a [Option<LambdaContext>],
+    gaps: &[f64],
+) -> std::borrow::Cow<'a, [Option<LambdaContext>]> {
+    if gaps.len() < context::START_MIN_STATES {
+        return std::borrow::Cow::Borrowed(ctx);
+    }
+    let finite = gaps.iter().filter(|g| g.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
+        (a.min(g), b.max(g))
+    });
+    std::borrow::Cow::Owned(
+        ctx.par_iter()
+            .map(|c| {
+                c.clone().map(|mut c| {
+                    let pc = c.load_pulloff.load;
+                    c.add_start(pc + lo, pc + hi, gaps.len());
+                    c
+                })
+            })
+            .collect(),
+    )
 }
 
 /// The row-major grid of `nx` columns by `rows`, cell (i, v) given by `solve`, on all cores, in

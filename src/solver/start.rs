@@ -116,6 +116,12 @@ impl LoadStart {
         Some(h00 * x0 + h10 * w * s0 + h01 * x1 + h11 * w * s1)
     }
 
+    /// The nodes (t, x, dx/dt), the guide (a node index per bucket) and the buckets per unit
+    /// of t: what the kernels' copy of the table is made of (`kernel::start`).
+    pub fn parts(&self) -> (&[[f64; 3]], &[u32], f64) {
+        (&self.nodes, &self.guide, self.per_t)
+    }
+
     /// Curve evaluations spent on the table.
     pub fn nodes(&self) -> usize {
         self.nodes.len()

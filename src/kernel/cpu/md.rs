@@ -120,6 +120,20 @@ pub fn solve_f32(
     is_gap: bool,
     flags: KernelFlags,
 ) -> Out {
+    solve_f32_started(g, None, hi, lo, control, is_gap, flags)
+}
+
+/// As [`solve_f32`], with the lambda's dense start (its block, `kernel::start`) where it has
+/// one: the grid kernel's solve.
+pub fn solve_f32_started(
+    g: &GpuLambda,
+    start: Option<&[u32]>,
+    hi: f32,
+    lo: f32,
+    control: Control,
+    is_gap: bool,
+    flags: KernelFlags,
+) -> Out {
     let (naive, max_iter) = (flags.naive, flags.max_iter);
     let fail = |st: Status| Out {
         a: f32::NAN,
@@ -203,12 +217,21 @@ pub fn solve_f32(
                 d0 * exp_f32(e)
             };
         }
-        if !(x > lo_x && x < hi_x) {
-            x = 0.5 * (lo_x + hi_x);
-        }
         // The first step's slope dF/dx = dt/dx: the table's chord around the guess.
         let kc = k.clamp(1, n - 1);
         slope0 = (b.t[kc] - b.t[kc - 1]) / (b.dx[kc] - b.dx[kc - 1]);
+        // The dense start, where the grid has one (load control only): x to about f32
+        // precision and its own slope, so that the first evaluation is usually the answer.
+        if let Some((xs, ss)) = start
+            .filter(|_| control == Control::Load && !naive)
+            .and_then(|blk| crate::kernel::start::start_x(blk, t))
+        {
+            x = xs;
+            slope0 = ss;
+        }
+        if !(x > lo_x && x < hi_x) {
+            x = 0.5 * (lo_x + hi_x);
+        }
         x
     };
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
