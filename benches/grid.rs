@@ -143,7 +143,7 @@ fn main() {
             .map(|p| LambdaContext::new(p.0).map_or(0.0, |c| c.load_pulloff.x))
             .sum::<f64>()
     });
-    let ok = states
+    let ok = solved
         .iter()
         .filter(|s| s.status == tabor::solver::Status::Ok)
         .count();
