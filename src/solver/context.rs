@@ -250,14 +250,14 @@ mod pulloff_fit {
     }
 
     /// Per decade, the Chebyshev coefficients of x_c - asymptotic, from full searches at the
-    /// Chebyshev points (224 of them, once per process: about 2 ms on two cores).
+    /// Chebyshev points (224 of them, once per process). On this thread: a parallel build
+    /// inside `get_or_init` deadlocks when a worker that waits for it steals a task that
+    /// needs the fit too.
     fn table() -> &'static [[f64; N]; PIECES] {
         static FIT: OnceLock<[[f64; N]; PIECES]> = OnceLock::new();
         FIT.get_or_init(|| {
-            use rayon::prelude::*;
             let node = |j: usize| (std::f64::consts::PI * (j as f64 + 0.5) / N as f64).cos();
             let values: Vec<f64> = (0..PIECES * N)
-                .into_par_iter()
                 .map(|i| {
                     let lambda = 10f64.powf(U_LO + (i / N) as f64 + 0.5 * (1.0 + node(i % N)));
                     let x_est = asymptotic(lambda);
