@@ -788,7 +788,7 @@ mod tests {
         let (mut worst, mut evals) = (0f64, 0usize);
         let n = 2000;
         for i in 0..n {
-            let lambda = 10f64.powf(-3.0 + (3.0 - 0.30103) * (i as f64 + 0.5) / n as f64);
+            let lambda = 1e-3 * 500f64.powf((i as f64 + 0.5) / n as f64);
             let fast = |x: f64| {
                 let p = point(lambda, x);
                 p.dload_dmu * p.mu
