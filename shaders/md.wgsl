@@ -158,13 +158,15 @@ fn ln_f(y: f32) -> f32 {
     return f32(e) * LN2_HI + (f32(e) * LN2_LO + series);
 }
 
-// ln(1 + q), accurate for small q (the residual near convergence): ln(u) q / (u - 1) with
-// u = 1 + q cancels the rounding of u (Goldberg); above u = 2 it is not needed (and q = inf
-// would make it NaN). For u <= 0 it is -INF.
+// ln(1 + q), accurate for small q; -INF for q <= -1 (as physics::f32math::log1p_f32).
 fn log1p_f(q: f32) -> f32 {
-    let u = 1.0 + q;
-    let c = select(q / (u - 1.0), 1.0, u > 2.0);
-    return select(ln_f(u) * c, q, u == 1.0);
+    // Small q (the residual near convergence): 2 atanh(s), s = q / (2 + q), by its series
+    // (truncation below 1e-11 for |q| < 0.1). Goldberg's q / ((1 + q) - 1) correction is not
+    // used: a compiler may simplify (1 + q) - 1 to q (Mesa's NIR does), which undoes it.
+    let s = q / (2.0 + q);
+    let z = s * s;
+    let series = 2.0 * s * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0))));
+    return select(ln_f(1.0 + q), series, abs(q) < 0.1);
 }
 
 // A curve point: A, Pbar, Pbar + 2, Dbar, m - 1 (src/physics/md.rs, curve_point).
@@ -214,7 +216,7 @@ fn curve_point(lambda: f32, mu: f32) -> Point {
     var p: Point;
     p.a = a;
     p.load = a * a * (a - lambda * g);
-    p.load_plus_2 = a * a * a + (8.0 / 3.0) * lambda * lambda * f2 * a - 2.0 * lambda * a * a * at;
+    p.load_plus_2 = a * (a * a + (8.0 / 3.0) * lambda * lambda * f2) - 2.0 * lambda * a * a * at;
     p.approach = a * (a - (4.0 / 3.0) * lambda * mu);
     p.m_minus_1 = m_minus_1;
     return p;

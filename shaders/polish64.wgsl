@@ -113,7 +113,7 @@ fn curve_point64(lambda: f64, mu: f64) -> Point {
     var p: Point;
     p.a = a;
     p.load = a * a * (a - lambda * g);
-    p.load_plus_2 = a * a * a + (8.0 / 3.0) * lambda * lambda * f2 * a - 2.0 * lambda * a * a * at;
+    p.load_plus_2 = a * (a * a + (8.0 / 3.0) * lambda * lambda * f2) - 2.0 * lambda * a * a * at;
     p.approach = a * (a - four_thirds * lambda * mu);
     p.m_minus_1 = m_minus_1;
     let m2 = 1.0 + mu2;
@@ -121,7 +121,7 @@ fn curve_point64(lambda: f64, mu: f64) -> Point {
     let df2 = at - mu * mu2 / ((1.0 + m) * m2);
     let dalpha = 0.5 * lambda * df1;
     let dbeta = four_thirds * lambda * lambda * df2;
-    let da = -(dalpha * a * a + dbeta * a) / (2.0 * alpha * a + beta);
+    let da = -(a * (dalpha * a + dbeta)) / (2.0 * alpha * a + beta);
     let dg = 2.0 + 2.0 * mu * at;
     p.dload = da * (3.0 * a * a - 2.0 * lambda * a * g) - lambda * a * a * dg;
     p.dapproach = da * (2.0 * a - four_thirds * lambda * mu) - four_thirds * lambda * a;

@@ -77,16 +77,18 @@ pub fn ln_f32(y: f32) -> f32 {
     e as f32 * LN2_HI + (e as f32 * LN2_LO + series)
 }
 
-/// ln(1 + q), accurate for small q (the residual near convergence): ln(u) q / (u - 1) with
-/// u = 1 + q cancels the rounding of u (Goldberg); -inf for u <= 0.
+/// ln(1 + q), accurate for small q (the residual near convergence): 2 atanh(s) with
+/// s = q / (2 + q) by its series for |q| < 0.1 (truncation below 1e-11), else ln(1 + q).
+/// Not Goldberg's ln(u) q / (u - 1) with u = 1 + q: a driver may simplify (1 + q) - 1 to q
+/// (Mesa's NIR does), which silently undoes the correction and parts the GPU from this mirror.
 pub fn log1p_f32(q: f32) -> f32 {
-    let u = 1.0 + q;
-    // Above u = 2 the correction is not needed (and q = inf would make it NaN).
-    let c = if u > 2.0 { 1.0 } else { q / (u - 1.0) };
-    if u == 1.0 {
-        q
+    let s = q / (2.0 + q);
+    let z = s * s;
+    let series = 2.0 * s * (1.0 + z * (1.0 / 3.0 + z * (1.0 / 5.0 + z * (1.0 / 7.0))));
+    if q.abs() < 0.1 {
+        series
     } else {
-        ln_f32(u) * c
+        ln_f32(1.0 + q)
     }
 }
 

@@ -54,9 +54,11 @@ pub fn curve_point<T: Real>(lambda: T, mu: T) -> CurvePoint<T> {
     let a = two / (beta + (beta * beta + T::of(4.0) * alpha).sqrt());
     let g = mu + (one + mu2) * at;
     let load = a * a * (a - lambda * g);
-    // lambda A^2 g = 2 - (8/3) lambda^2 f2 A + 2 lambda A^2 atan(mu), by equation (1).
+    // lambda A^2 g = 2 - (8/3) lambda^2 f2 A + 2 lambda A^2 atan(mu), by equation (1). The
+    // common factor A is taken out by hand: shader compilers may factor `a b + a c` themselves
+    // (Mesa's NIR does), and the kernels' CPU mirror must round as the GPU does.
     let load_plus_2 =
-        a * a * a + T::of(8.0) / T::of(3.0) * lambda * lambda * f2 * a - two * lambda * a * a * at;
+        a * (a * a + T::of(8.0) / T::of(3.0) * lambda * lambda * f2) - two * lambda * a * a * at;
     let approach = a * (a - four_thirds * lambda * mu);
 
     let m2 = one + mu2;

@@ -57,12 +57,12 @@ fn curve_point64(lambda: f64, mu: f64) -> Point {
     let df2 = at - mu * mu2 / ((1.0 + m) * m2);
     let dalpha = 0.5 * lambda * df1;
     let dbeta = four_thirds * lambda * lambda * df2;
-    let da = -(dalpha * a * a + dbeta * a) / (2.0 * alpha * a + beta);
+    let da = -(a * (dalpha * a + dbeta)) / (2.0 * alpha * a + beta);
     let dg = 2.0 + 2.0 * mu * at;
     Point {
         a,
         load: a * a * (a - lambda * g),
-        load_plus_2: a * a * a + (8.0 / 3.0) * lambda * lambda * f2 * a - 2.0 * lambda * a * a * at,
+        load_plus_2: a * (a * a + (8.0 / 3.0) * lambda * lambda * f2) - 2.0 * lambda * a * a * at,
         approach: a * (a - four_thirds * lambda * mu),
         m_minus_1,
         dload: da * (3.0 * a * a - 2.0 * lambda * a * g) - lambda * a * a * dg,
