@@ -91,7 +91,13 @@ fn solve_points<'py>(
         engine.set_precision(precision)?;
         let mut states = Vec::with_capacity(points.len());
         let mut check_report = tabor::engine::CheckReport::empty(tabor::engine::GPU_TOLERANCE);
-        for chunk in points.chunks(1 << 18) {
+        // The GPU takes bounded chunks; the CPU takes everything at once, so that each lambda
+        // builds one context (and one dense start) however many chunks its points would span.
+        let chunk = match engine {
+            Engine::Gpu(_) => 1 << 18,
+            _ => points.len().max(1),
+        };
+        for chunk in points.chunks(chunk) {
             let s = engine.solve_points(chunk, control)?;
             if let Engine::Gpu(_) = engine {
                 check_report.merge(tabor::engine::cross_check(

@@ -2,4 +2,4 @@
 //! The byte layouts, the per-lambda preparation and the shader sources live in `kernel`.
 
 pub mod device;
-pub use device::{list_adapters, AdapterSummary, Gpu, GpuError};
+pub use device::{choose_summary, list_adapters, AdapterSummary, Gpu, GpuError};
