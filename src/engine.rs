@@ -47,23 +47,23 @@ impl Engine {
                 rayon::current_num_threads()
             )
         };
+        let on_gpu = |g: Gpu, how: &str| {
+            let line = format!(
+                "backend: GPU f32 kernels on {} ({}, {}{how})",
+                g.adapter.name,
+                g.adapter.backend,
+                kind(&g)
+            );
+            (Engine::Gpu(Box::new(g)), line)
+        };
         match backend {
             Backend::Cpu => Ok((
                 Engine::Cpu,
                 format!("backend: {} (--backend cpu)", cpu_line()),
             )),
-            Backend::Gpu => {
-                let g = Gpu::new(adapter)?;
-                let line = format!(
-                    "backend: GPU f32 kernels on {} ({}, {})",
-                    g.adapter.name,
-                    g.adapter.backend,
-                    kind(&g)
-                );
-                Ok((Engine::Gpu(Box::new(g)), line))
-            }
-            // The adapter is looked at before a device is made: choosing the CPU costs no
-            // shader compilation (a tenth of a second on lavapipe).
+            Backend::Gpu => Ok(on_gpu(Gpu::new(adapter)?, "")),
+            // The adapter is looked at before a device is made: choosing the CPU makes no
+            // device and compiles no shader.
             Backend::Auto => {
                 let fallback = |e: GpuError| {
                     let line = format!("backend: {} (--backend auto: {e})", cpu_line());
@@ -86,15 +86,7 @@ impl Engine {
                         ),
                     )),
                     Ok(_) => match Gpu::new(adapter) {
-                        Ok(g) => {
-                            let line = format!(
-                                "backend: GPU f32 kernels on {} ({}, {}; chosen by --backend auto)",
-                                g.adapter.name,
-                                g.adapter.backend,
-                                kind(&g)
-                            );
-                            Ok((Engine::Gpu(Box::new(g)), line))
-                        }
+                        Ok(g) => Ok(on_gpu(g, "; chosen by --backend auto")),
                         Err(e @ GpuError::NoMatch { .. }) => Err(e),
                         Err(e) => fallback(e),
                     },

@@ -131,8 +131,8 @@ fn choose_adapter(wanted: Option<&str>) -> Result<wgpu::Adapter, GpuError> {
     Ok(adapters.remove(0))
 }
 
-/// What [`Gpu::new`] would run on, without making a device or compiling a shader (a tenth of
-/// a second on lavapipe): for choosing a backend.
+/// What [`Gpu::new`] would run on, without making a device or compiling a shader: for
+/// choosing a backend.
 pub fn choose_summary(wanted: Option<&str>) -> Result<AdapterSummary, GpuError> {
     choose_adapter(wanted).map(|a| AdapterSummary::of(&a.get_info()))
 }
