@@ -101,7 +101,7 @@ pub struct LambdaContext {
     /// Pbar + 2 at the load pull-off, evaluated without cancellation.
     pub load_plus_2_c: f64,
     /// The stable load branch tabulated at x_k = xc - TABLE_DX0 2^k: ln(Pbar - Pbar_c) per node,
-    /// for a first guess and a bracket (one binary search, then a few secant steps). Each node
+    /// for a first guess and a bracket (a bisection over the nodes, then Newton steps). Each node
     /// is evaluated on first use: a single state needs about four of them, and with every
     /// state its own lambda the fourteen made up half of a context's cost.
     load_table: [std::sync::OnceLock<f64>; TABLE_NODES],
@@ -112,8 +112,8 @@ pub struct LambdaContext {
 /// A lambda with at least this many load-controlled states may get a dense start (where its
 /// nodes are fewer than half the states: each state then saves about four evaluations).
 pub const START_MIN_STATES: usize = 16;
-/// The one-evaluation solve is kept where its Newton correction of x is at most this: the
-/// second-order term it leaves out is then below 1e-14 relative.
+/// A Newton solve stops where its correction of x is at most this (less near the pull-off) and
+/// carries that correction by the slopes: the second-order term it leaves out is below 1e-14.
 const ONE_STEP_DX: f64 = 1e-7;
 
 #[inline]
