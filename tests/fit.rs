@@ -5,7 +5,7 @@ use rand::{Rng, SeedableRng};
 use rayon::prelude::*;
 use std::process::Command;
 use tabor::fit::synthetic::{synthetic, Synthetic};
-use tabor::fit::{fit_curve, FitOptions, FitStatus, Model, Params};
+use tabor::fit::{fit_curve, CurveFit, FitOptions, FitStatus, Model, Params};
 
 fn case(model: Model, lambda: f64, spring: f64, noise: f64, seed: u64) -> (Synthetic, FitOptions) {
     let s = Synthetic {
@@ -36,6 +36,20 @@ fn rel(x: f64, t: f64) -> f64 {
     (x / t - 1.0).abs()
 }
 
+/// A fit of a `case` curve recovered E*, w and lambda to `tol` (relative).
+fn assert_recovers(r: &CurveFit, lambda: f64, tol: f64, what: &str) {
+    assert_eq!(r.status, FitStatus::Ok, "{what}: {}", r.message);
+    let (e, w, l) = (
+        r.e_star_pa.unwrap(),
+        r.work_of_adhesion_j_m2.unwrap(),
+        r.lambda.unwrap(),
+    );
+    assert!(
+        rel(e, 1.5e9) < tol && rel(w, 0.05) < tol && rel(l, lambda) < tol,
+        "{what}: E* {e}, w {w}, lambda {l}"
+    );
+}
+
 #[test]
 fn noise_free_curves_give_the_parameters_to_1e_6() {
     let cases = [
@@ -49,25 +63,13 @@ fn noise_free_curves_give_the_parameters_to_1e_6() {
     cases.par_iter().for_each(|&(lambda, spring)| {
         let (s, opt) = case(Model::Md, lambda, spring, 0.0, 1);
         let r = fit_curve(&synthetic(&s), &opt);
-        assert_eq!(r.status, FitStatus::Ok, "{lambda} {spring}: {}", r.message);
-        let (e, w, l) = (
-            r.e_star_pa.unwrap(),
-            r.work_of_adhesion_j_m2.unwrap(),
-            r.lambda.unwrap(),
-        );
-        assert!(
-            rel(e, 1.5e9) < 1e-6 && rel(w, 0.05) < 1e-6 && rel(l, lambda) < 1e-6,
-            "lambda {lambda}, k {spring}: E* {e}, w {w}, lambda {l}"
-        );
+        assert_recovers(&r, lambda, 1e-6, &format!("lambda {lambda}, k {spring}"));
         assert!((r.contact_point_m.unwrap() - 40e-9).abs() < 1e-15);
     });
 }
 
-/// Noisy fits reach the noise floor (rms residual within 12% of the noise's standard deviation:
-/// none is stuck in a worse minimum), and the reported standard errors hold the truth: E*, w and
-/// lambda each within three of them in at least 95% of the cases. Where one curve cannot tell
-/// lambda apart within its noise, the standard error says so (it covers the profile's 3-sigma
-/// region), rather than a local curvature that would understate it.
+/// The approach segment, both segments, and a retract curve on a tilted baseline (removed by
+/// `--tilt`) give the noise-free parameters too.
 #[test]
 fn approach_both_segments_and_a_tilted_baseline_are_fitted_too() {
     use tabor::fit::Segments;
@@ -90,22 +92,19 @@ fn approach_both_segments_and_a_tilted_baseline_are_fitted_too() {
             opt.segments = segments;
             opt.tilt = tilt;
             let r = fit_curve(&c, &opt);
-            assert_eq!(r.status, FitStatus::Ok, "{segments:?}: {}", r.message);
-            let (e, w, l) = (
-                r.e_star_pa.unwrap(),
-                r.work_of_adhesion_j_m2.unwrap(),
-                r.lambda.unwrap(),
-            );
-            assert!(
-                rel(e, 1.5e9) < 1e-5 && rel(w, 0.05) < 1e-5 && rel(l, lambda) < 1e-5,
-                "{segments:?} lambda {lambda} k {spring} tilt {tilt}: E* {e}, w {w}, lambda {l}"
-            );
+            let what = format!("{segments:?} lambda {lambda} k {spring} tilt {tilt}");
+            assert_recovers(&r, lambda, 1e-5, &what);
             if tilt {
                 assert!((r.baseline_tilt_n_m.unwrap() - 0.02).abs() < 1e-9);
             }
         });
 }
 
+/// Noisy fits reach the noise floor (rms residual within 12% of the noise's standard deviation:
+/// none is stuck in a worse minimum), and the reported standard errors hold the truth: E*, w and
+/// lambda each within three of them in at least 95% of the cases. Where one curve cannot tell
+/// lambda apart within its noise, the standard error says so (it covers the profile's 3-sigma
+/// region), rather than a local curvature that would understate it.
 #[test]
 fn noisy_fits_reach_the_noise_floor_and_hold_the_truth_within_three_standard_errors() {
     // 120 random cases: lambda 0.05..50, four springs, two noise levels (relative to the

@@ -250,6 +250,19 @@ fn secant_from_guess(slope: impl Fn(f64) -> f64, x_est: f64, half: f64) -> Optio
     None
 }
 
+/// x = ln(mu) of the load pull-off, the minimum of Pbar along the curve, searched from `guess`
+/// (and how far the first bracket reaches). The slope of Pbar at its minimum is a difference of
+/// terms larger by ~lambda^-3 (PHYSICS.md section 5): below lambda = 0.5 it is polished in
+/// double-double, below 1e-3 searched in double-double alone.
+fn load_pulloff_x(lambda: f64, guess: (f64, f64)) -> Option<f64> {
+    let slope = |x: f64| {
+        let p = point(lambda, x);
+        p.dload_dmu * p.mu
+    };
+    let slope_dd = |x: f64| dload_dx_dd(lambda, x);
+    minimum_polished(slope, slope_dd, guess, lambda < 0.5, lambda < 1e-3)
+}
+
 fn second_derivative(slope: impl Fn(f64) -> f64, x: f64) -> f64 {
     let h = 1e-3;
     (slope(x + h) - slope(x - h)) / (2.0 * h)
@@ -281,7 +294,7 @@ mod pulloff_fit {
     const HALF: f64 = 1e-6;
 
     /// The JKR (mu ~ 1.14/lambda) and DMT (mu ~ 0.54 lambda^-1.5) asymptotes.
-    fn asymptotic(lambda: f64) -> f64 {
+    pub(super) fn asymptotic(lambda: f64) -> f64 {
         (1.1447 / lambda + 0.54 * lambda.powf(-1.5)).ln()
     }
 
@@ -297,14 +310,7 @@ mod pulloff_fit {
                 .map(|i| {
                     let lambda = 10f64.powf(U_LO + (i / N) as f64 + 0.5 * (1.0 + node(i % N)));
                     let x_est = asymptotic(lambda);
-                    let slope = |x: f64| {
-                        let p = super::point(lambda, x);
-                        p.dload_dmu * p.mu
-                    };
-                    let slope_dd = |x: f64| super::dload_dx_dd(lambda, x);
-                    let (polish, precise_only) = (lambda < 0.5, lambda < 1e-3);
-                    super::minimum_polished(slope, slope_dd, (x_est, 2.0), polish, precise_only)
-                        .map_or(0.0, |x| x - x_est)
+                    super::load_pulloff_x(lambda, (x_est, 2.0)).map_or(0.0, |x| x - x_est)
                 })
                 .collect();
             std::array::from_fn(|p| {
@@ -348,21 +354,8 @@ mod pulloff_fit {
 impl LambdaContext {
     pub fn new(lambda: f64) -> Result<Self, SolveError> {
         let lambda = super::domain::check_lambda(lambda)?;
-        // The slope of Pbar at its minimum is a difference of terms larger by ~lambda^-3
-        // (PHYSICS.md section 5): below lambda = 0.5 it is evaluated in double-double.
-        let load_slope = |x: f64| {
-            let p = point(lambda, x);
-            p.dload_dmu * p.mu
-        };
-        let load_slope_dd = |x: f64| dload_dx_dd(lambda, x);
-        let xc = minimum_polished(
-            load_slope,
-            load_slope_dd,
-            pulloff_fit::guess(lambda),
-            lambda < 0.5,
-            lambda < 1e-3,
-        )
-        .ok_or(SolveError::NoPullOff(lambda))?;
+        let xc = load_pulloff_x(lambda, pulloff_fit::guess(lambda))
+            .ok_or(SolveError::NoPullOff(lambda))?;
         let p = point(lambda, xc);
         let load_pulloff = PullOff {
             x: xc,
@@ -793,9 +786,7 @@ mod tests {
                 let p = point(lambda, x);
                 p.dload_dmu * p.mu
             };
-            let precise = |x: f64| dload_dx_dd(lambda, x);
-            let asymptotic = (1.1447 / lambda + 0.54 * lambda.powf(-1.5)).ln();
-            let full = minimum_polished(fast, precise, (asymptotic, 2.0), true, false).unwrap();
+            let full = load_pulloff_x(lambda, (pulloff_fit::asymptotic(lambda), 2.0)).unwrap();
             let count = std::cell::Cell::new(0);
             let counted = |x: f64| {
                 count.set(count.get() + 1);

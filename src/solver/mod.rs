@@ -221,16 +221,34 @@ pub fn with_gap_starts<'a>(
     if gaps.len() < context::START_MIN_STATES {
         return std::borrow::Cow::Borrowed(ctx);
     }
-    let finite = gaps.iter().filter(|g| g.is_finite());
-    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &g| {
-        (a.min(g), b.max(g))
-    });
+    let (lo, hi) = finite_range(gaps);
+    started(ctx, gaps.len(), |c| {
+        let pc = c.load_pulloff.load;
+        (pc + lo, pc + hi)
+    })
+}
+
+/// The smallest and largest finite value.
+fn finite_range(values: &[f64]) -> (f64, f64) {
+    let finite = values.iter().copied().filter(|v| v.is_finite());
+    finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    })
+}
+
+/// Copies of the contexts, each with a dense start over the loads `range(c)` for `states`
+/// states (see [`LambdaContext::add_start`]).
+fn started(
+    ctx: &[Option<LambdaContext>],
+    states: usize,
+    range: impl Fn(&LambdaContext) -> (f64, f64) + Sync,
+) -> std::borrow::Cow<'_, [Option<LambdaContext>]> {
     std::borrow::Cow::Owned(
         ctx.par_iter()
             .map(|c| {
                 c.clone().map(|mut c| {
-                    let pc = c.load_pulloff.load;
-                    c.add_start(pc + lo, pc + hi, gaps.len());
+                    let (lo, hi) = range(&c);
+                    c.add_start(lo, hi, states);
                     c
                 })
             })
@@ -271,18 +289,6 @@ pub fn with_starts<'a>(
     if control != Control::Load || values.len() < context::START_MIN_STATES || !missing {
         return std::borrow::Cow::Borrowed(ctx);
     }
-    let finite = values.iter().copied().filter(|v| v.is_finite());
-    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-        (a.min(v), b.max(v))
-    });
-    std::borrow::Cow::Owned(
-        ctx.par_iter()
-            .map(|c| {
-                c.clone().map(|mut c| {
-                    c.add_start(lo, hi, values.len());
-                    c
-                })
-            })
-            .collect(),
-    )
+    let (lo, hi) = finite_range(values);
+    started(ctx, values.len(), |_| (lo, hi))
 }
