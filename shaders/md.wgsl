@@ -1,10 +1,10 @@
 // Maugis-Dugdale states in f32: the shared functions of every tabor kernel.
-// Read side by side with src/solver/mirror.rs (the CPU mirror) and src/physics/md.rs.
+// Read side by side with src/kernel/cpu/md.rs (the CPU mirror) and src/physics/md.rs.
 // No built-in transcendental is trusted (lavapipe's inverse trigonometry is off by 1.6e-4 and
 // the Vulkan exp bound is 3 + 2|x| ulp): atan, exp and ln below are written out, with the error
-// bounds measured in tests/gpu.rs and src/solver/mirror.rs.
+// bounds measured in tests/gpu.rs and src/kernel/cpu/md.rs.
 
-// Twin of gpu::layout::Branch (40 x 4 bytes).
+// Twin of kernel::layout::Branch (40 x 4 bytes).
 struct Branch {
     mu_ref: f32,
     end_hi: f32,
@@ -15,7 +15,7 @@ struct Branch {
     dx: array<f32, TABLE_NODES>,
 }
 
-// Twin of gpu::layout::GpuLambda (88 x 4 bytes).
+// Twin of kernel::layout::GpuLambda (88 x 4 bytes).
 struct Lambda {
     lambda: f32,
     small: u32,
@@ -29,7 +29,7 @@ struct Lambda {
     disp: Branch,
 }
 
-// Twin of gpu::layout::Params.
+// Twin of kernel::layout::Params.
 struct Params {
     nx: u32,
     offset: u32,
@@ -44,7 +44,7 @@ override CONTROL: u32 = 0u; // 0 load control, 1 displacement control
 override ROWS_ARE_GAPS: bool = false; // grid rows hold the distance above the branch end
 override NAIVE: bool = false; // the textbook formulas, for benchmarks
 
-// Twin of gpu::layout::Out. code = status | iterations << 8.
+// Twin of kernel::layout::Out. code = status | iterations << 8.
 struct Out {
     a: f32,
     other: f32,
@@ -178,7 +178,7 @@ struct Point {
     m_minus_1: f32,
 }
 
-// The NAIVE variant: the textbook formulas, which cancel as m -> 1 (src/solver/mirror.rs,
+// The NAIVE variant: the textbook formulas, which cancel as m -> 1 (src/kernel/cpu/md.rs,
 // curve_point_naive).
 fn curve_point_naive(lambda: f32, mu: f32) -> Point {
     let at = atan_parts(mu).x;
@@ -291,7 +291,7 @@ fn lerp_point(p: Point, q: Point, c: f32) -> Point {
     return Point(p.a + c * (p.a - q.a), p.load + c * (p.load - q.load), p.load_plus_2 + c * (p.load_plus_2 - q.load_plus_2), p.approach + c * (p.approach - q.approach), p.m_minus_1 + c * (p.m_minus_1 - q.m_minus_1));
 }
 
-// One point, as src/solver/mirror.rs solve_f32: the load (approach) is the pair hi + lo, or the
+// One point, as src/kernel/cpu/md.rs solve_f32: the load (approach) is the pair hi + lo, or the
 // distance above the branch end if ROWS_ARE_GAPS. max_iter_in: 0, or a cap for benchmarks.
 fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
     if lambdas[ci].invalid == 1u || !(abs(hi) < INF) {

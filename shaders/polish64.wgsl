@@ -4,7 +4,7 @@
 // with its derivatives). WGSL has no f64 transcendentals (SPIR-V's GLSL.std.450 exp, log and
 // atan are 32-bit only); atan below uses sqrt, division and a series.
 
-// Twin of gpu::layout::Lambda64 (56 bytes).
+// Twin of kernel::layout::Lambda64 (56 bytes).
 struct Lambda64 {
     lambda: f64,
     // The branch end of the residual's quantity: Pbar_c (+ 2 for small lambda), Dbar_min.
@@ -19,7 +19,7 @@ struct Lambda64 {
     pad0: u32,
 }
 
-// Twin of gpu::layout::Point64 (24 bytes): the value (load or approach, or with ROWS_ARE_GAPS
+// Twin of kernel::layout::Point64 (24 bytes): the value (load or approach, or with ROWS_ARE_GAPS
 // its distance above the branch end), the lambda index, and the f32 kernel's status code and
 // m - 1.
 struct Point64 {
@@ -30,7 +30,7 @@ struct Point64 {
     pad0: u32,
 }
 
-// Twin of gpu::layout::Out64 (32 bytes).
+// Twin of kernel::layout::Out64 (32 bytes).
 struct Out64 {
     a: f64,
     other: f64,
@@ -39,7 +39,7 @@ struct Out64 {
     pad0: u32,
 }
 
-// Twin of gpu::layout::Params (the f32 kernels' parameters).
+// Twin of kernel::layout::Params (the f32 kernels' parameters).
 struct Params {
     nx: u32,
     offset: u32,
