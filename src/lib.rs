@@ -14,7 +14,9 @@
 //! curves) -> [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda
 //! preparation, the CPU mirror of each shader) -> [`gpu`] (device, pipelines, dispatch) ->
 //! [`engine`] (backend choice, cross-check) -> [`map`], [`scene`], [`cycle`], [`profile`] ->
-//! [`render`], [`export`], [`io`] -> the command line (feature `cli`).
+//! [`render`] (feature `render`), [`export`], [`io`] -> the command line (feature `cli`). Without
+//! default features (`cargo build --lib --no-default-features`) the crate is the solver, kernels,
+//! GPU host, maps, scenes, cycles, profiles and fits, without the renderer or the terminal.
 //!
 //! # Examples
 //!
@@ -95,6 +97,7 @@ pub mod map;
 pub mod physics;
 pub mod profile;
 pub mod progress;
+#[cfg(feature = "render")]
 pub mod render;
 pub mod scene;
 pub mod solver;

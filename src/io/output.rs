@@ -27,6 +27,7 @@ fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
 
 /// On SIGINT or SIGTERM: remove every temporary output file, then exit with 130. Call once, at
 /// the start of a program that writes outputs.
+#[cfg(feature = "cli")]
 pub fn install_signal_cleanup() {
     let _ = ctrlc::set_handler(|| {
         for p in pending().iter() {
