@@ -99,5 +99,6 @@ pub mod profile;
 pub mod progress;
 #[cfg(feature = "render")]
 pub mod render;
+pub mod rough;
 pub mod scene;
 pub mod solver;

@@ -4,6 +4,7 @@ mod basic;
 mod fit;
 mod map;
 mod profile;
+mod rough;
 pub(crate) mod scene;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -44,6 +45,9 @@ pub enum Command {
     /// Fit exact Maugis-Dugdale (and Hertz, DMT, JKR) to measured AFM force curves: one curve,
     /// many, or a force map.
     Fit(Box<fit::FitArgs>),
+    /// A rough surface (Greenwood-Williamson) of exact Maugis-Dugdale summits through an
+    /// approach and a retract: load per summit, contact fractions, pull-off, energy lost.
+    Rough(rough::RoughArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -161,6 +165,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Cycle(a) => scene::cycle(a),
         Command::Profile(a) => profile::run(a),
         Command::Fit(a) => fit::run(*a),
+        Command::Rough(a) => rough::run(a),
     }
 }
 

@@ -6,6 +6,7 @@
 pub mod atlas;
 pub mod map;
 pub mod plots;
+pub mod rough;
 
 use std::path::Path;
 use std::sync::Once;

@@ -21,7 +21,7 @@ pub fn save(kind: Kind, print: &Print, out: &Outputs, g: DrawSvg) -> anyhow::Res
 }
 
 /// A chart builder with the common layout: title, margin, and room for ticks and axis names.
-fn builder<'a, 'b, DB: DrawingBackend>(
+pub(crate) fn builder<'a, 'b, DB: DrawingBackend>(
     area: &'a DrawingArea<DB, Shift>,
     title: &str,
 ) -> ChartBuilder<'a, 'b, DB> {
@@ -39,7 +39,7 @@ fn builder<'a, 'b, DB: DrawingBackend>(
 }
 
 /// Splits a two-panel figure: side by side when wide, stacked when narrow (one column).
-fn two_panels<DB: DrawingBackend>(
+pub(crate) fn two_panels<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
 ) -> (DrawingArea<DB, Shift>, DrawingArea<DB, Shift>) {
     let (w, h) = root.dim_in_pixel();
@@ -50,10 +50,10 @@ fn two_panels<DB: DrawingBackend>(
     }
 }
 
-const BLUE_: RGBColor = RGBColor(0, 114, 178);
-const ORANGE_: RGBColor = RGBColor(213, 94, 0);
-const GREEN_: RGBColor = RGBColor(0, 158, 115);
-const GRAY_: RGBColor = RGBColor(120, 120, 120);
+pub(crate) const BLUE_: RGBColor = RGBColor(0, 114, 178);
+pub(crate) const ORANGE_: RGBColor = RGBColor(213, 94, 0);
+pub(crate) const GREEN_: RGBColor = RGBColor(0, 158, 115);
+pub(crate) const GRAY_: RGBColor = RGBColor(120, 120, 120);
 
 /// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
 /// JKR limits and the Carpick-Ogletree-Salmeron fit.

@@ -1,0 +1,521 @@
+//! Rough surfaces (docs/PHYSICS.md section 9): Greenwood-Williamson summits of Gaussian height,
+//! each an exact Maugis-Dugdale sphere under the separation of a rigid flat, with its own
+//! history (free, the non-contact Dugdale branch, contact) through an approach and a retract.
+//!
+//! Units are one summit's (Johnson and Greenwood): loads per summit in `pi w R`, separations and
+//! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
+
+use crate::physics::domain::{short, DomainError};
+use crate::physics::md::{zero_radius_end, LAMBDA_D};
+use crate::solver::{LambdaContext, SolveError, Status};
+use serde::Serialize;
+use std::cell::Cell;
+use std::f64::consts::PI;
+
+/// The Gaussian's mass beyond this many sigma (4e-33) is dropped.
+const Z_CUT: f64 = 12.0;
+/// The default largest separation: beyond `Z_FREE` sigma above the Dugdale range the summits
+/// that still feel the flat carry a fraction 1e-17 of them.
+const Z_FREE: f64 = 8.5;
+/// Relative error each quadrature piece must reach (its estimate).
+const QUAD_TOL: f64 = 1e-13;
+/// Most points of a separation sweep.
+pub const POINTS_MAX: usize = 100_000;
+
+/// Which branch a summit is on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SummitBranch {
+    Free,
+    NonContact,
+    Contact,
+}
+
+/// One summit's branches and the approaches where it jumps between them (section 9).
+#[derive(Debug)]
+pub struct Summit {
+    pub lambda: f64,
+    ctx: LambdaContext,
+    /// The Dugdale range, 2 / (pi lambda).
+    pub h0: f64,
+    /// The non-contact branch's lowest approach is at C = C* = 8 lambda / (3 pi).
+    c_star: f64,
+    /// The A -> 0 end of the contact branch: C there, and its approach.
+    c_end: f64,
+    delta_a0: f64,
+    /// Entry into contact on the approach.
+    pub delta_in: f64,
+    /// The contact branch's lowest approach (rigid-grip jump-out).
+    pub delta_out: f64,
+    /// The stable non-contact branch's lowest approach (None above lambda_D: no stable branch).
+    pub delta_nc: Option<f64>,
+}
+
+impl Summit {
+    pub fn new(lambda: f64) -> Result<Summit, SolveError> {
+        let ctx = LambdaContext::new(lambda)?;
+        let end = zero_radius_end(lambda);
+        let h0 = 2.0 / (PI * lambda);
+        let c_star = 8.0 * lambda / (3.0 * PI);
+        let delta_out = ctx.disp_pulloff().approach;
+        let stable_nc = lambda < LAMBDA_D && c_star < end.c;
+        Ok(Summit {
+            lambda,
+            h0,
+            c_star,
+            c_end: end.c,
+            delta_a0: end.approach,
+            delta_in: if stable_nc {
+                end.approach.max(-h0)
+            } else {
+                -h0
+            },
+            delta_out,
+            delta_nc: stable_nc.then(|| -h0 - 0.5 * c_star * c_star),
+            ctx,
+        })
+    }
+
+    /// The load on the stable contact branch at approach `delta >= delta_out`, and A there.
+    pub fn contact(&self, delta: f64) -> Option<(f64, f64)> {
+        let s = self.ctx.solve_approach(delta.max(self.delta_out));
+        (s.status == Status::Ok).then_some((s.load, s.a))
+    }
+
+    /// The load on the stable non-contact branch at approach `delta >= delta_nc`.
+    pub fn non_contact(&self, delta: f64) -> f64 {
+        let root = (self.c_star * self.c_star + 2.0 * (delta + self.h0)).max(0.0);
+        let c = (self.c_star + root.sqrt()).min(self.c_end);
+        -(PI * self.lambda / 2.0) * c * c
+    }
+
+    /// The branch on the approach at approach `delta` (coming from far away).
+    pub fn approach_branch(&self, delta: f64) -> SummitBranch {
+        if delta >= self.delta_in {
+            SummitBranch::Contact
+        } else if delta >= -self.h0 {
+            SummitBranch::NonContact
+        } else {
+            SummitBranch::Free
+        }
+    }
+
+    /// The branch on the retract at approach `delta`, after the largest approach `delta_max`.
+    pub fn retract_branch(&self, delta: f64, delta_max: f64) -> SummitBranch {
+        if delta_max >= self.delta_in && delta >= self.delta_out {
+            return SummitBranch::Contact;
+        }
+        match self.delta_nc {
+            Some(lo) if delta_max >= -self.h0 && delta >= lo => SummitBranch::NonContact,
+            _ => SummitBranch::Free,
+        }
+    }
+
+    /// The load on `branch` at approach `delta` (None where the solver failed).
+    pub fn load(&self, branch: SummitBranch, delta: f64) -> Option<f64> {
+        match branch {
+            SummitBranch::Free => Some(0.0),
+            SummitBranch::NonContact => Some(self.non_contact(delta)),
+            SummitBranch::Contact => self.contact(delta).map(|c| c.0),
+        }
+    }
+
+    /// The approaches where a summit's load jumps or has a fold.
+    fn marks(&self) -> Vec<f64> {
+        let mut m = vec![-self.h0, self.delta_in, self.delta_out, self.delta_a0];
+        m.extend(self.delta_nc);
+        m
+    }
+}
+
+/// Standard normal upper tail, to full relative precision far out.
+fn upper_tail(x: f64) -> f64 {
+    0.5 * libm::erfc(x / std::f64::consts::SQRT_2)
+}
+
+/// A rough surface: one lambda for every summit, summit heights N(0, sigma^2).
+pub struct Rough {
+    pub summit: Summit,
+    pub sigma: f64,
+}
+
+/// Which half of a cycle a load is asked for: the approach, or the retract after `d_min`.
+#[derive(Clone, Copy, Debug)]
+pub enum Leg {
+    Approach,
+    Retract { d_min: f64 },
+}
+
+/// The mean state of the summits at one separation.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct Mean {
+    pub separation: f64,
+    /// Load per summit.
+    pub load: f64,
+    /// Fraction of summits in contact.
+    pub contact_fraction: f64,
+    /// Fraction of summits on the non-contact (cohesive zone only) branch.
+    pub noncontact_fraction: f64,
+    /// The quadrature's error estimate of the load.
+    #[serde(skip)]
+    pub quadrature_error: f64,
+}
+
+/// The error of a rough-surface computation.
+#[derive(Debug, thiserror::Error)]
+pub enum RoughError {
+    #[error(transparent)]
+    Domain(#[from] DomainError),
+    #[error(transparent)]
+    Solve(#[from] SolveError),
+    #[error("the summit solver failed at separation {} (lambda = {}): no number is reported", short(*.0), short(*.1))]
+    Failed(f64, f64),
+}
+
+fn domain(name: &'static str, value: f64, range: &'static str, hint: &'static str) -> DomainError {
+    DomainError {
+        name,
+        value,
+        range,
+        hint,
+    }
+}
+
+impl Rough {
+    /// A rough surface of summit parameter `lambda` and height spread `sigma` (> 0, at most 1e4
+    /// approach units).
+    pub fn new(lambda: f64, sigma: f64) -> Result<Rough, RoughError> {
+        if !(sigma > 0.0 && sigma <= 1e4) {
+            return Err(domain(
+                "sigma (the summit heights' standard deviation)",
+                sigma,
+                "(0, 1e4] approach units",
+                "give a positive, finite roughness",
+            )
+            .into());
+        }
+        Ok(Rough {
+            summit: Summit::new(lambda)?,
+            sigma,
+        })
+    }
+
+    /// The branch of the summit of height `z` at separation `d`.
+    fn branch(&self, leg: Leg, z: f64, d: f64) -> SummitBranch {
+        match leg {
+            Leg::Approach => self.summit.approach_branch(z - d),
+            Leg::Retract { d_min } => self.summit.retract_branch(z - d, z - d_min),
+        }
+    }
+
+    /// The heights (in sigma) where the summits' load at separation `d` jumps or folds, within
+    /// the Gaussian's kept range, sorted.
+    fn pieces(&self, leg: Leg, d: f64) -> Vec<f64> {
+        let s = self.sigma;
+        let mut z: Vec<f64> = self.summit.marks().iter().map(|m| (d + m) / s).collect();
+        if let Leg::Retract { d_min } = leg {
+            z.push((d_min + self.summit.delta_in) / s);
+            z.push((d_min - self.summit.h0) / s);
+        }
+        z.push(-Z_CUT);
+        z.push(Z_CUT);
+        z.retain(|x| x.is_finite() && x.abs() <= Z_CUT);
+        z.sort_by(f64::total_cmp);
+        z.dedup();
+        z
+    }
+
+    /// The mean load and branch fractions at separation `d`.
+    pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
+        let s = self.sigma;
+        let cuts = self.pieces(leg, d);
+        let failed = Cell::new(false);
+        let (mut load, mut contact, mut noncontact, mut error) = (0.0, 0.0, 0.0, 0.0);
+        for w in cuts.windows(2) {
+            let (t0, t1) = (w[0], w[1]);
+            let branch = self.branch(leg, 0.5 * (t0 + t1) * s, d);
+            let mass = upper_tail(t0) - upper_tail(t1);
+            match branch {
+                SummitBranch::Free => continue,
+                SummitBranch::Contact => contact += mass,
+                SummitBranch::NonContact => noncontact += mass,
+            }
+            // The load integrand in t = z / sigma: the density times the summit's load.
+            let f = |t: f64| {
+                let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
+                match self.summit.load(branch, t * s - d) {
+                    Some(p) => g * p,
+                    None => {
+                        failed.set(true);
+                        0.0
+                    }
+                }
+            };
+            let (v, e) = integrate(&f, t0, t1);
+            load += v;
+            error += e;
+        }
+        if failed.get() {
+            return Err(RoughError::Failed(d, self.summit.lambda));
+        }
+        Ok(Mean {
+            separation: d,
+            load,
+            contact_fraction: contact,
+            noncontact_fraction: noncontact,
+            quadrature_error: error,
+        })
+    }
+}
+
+/// Integral of `f` over `[a, b]` by double-exponential quadrature, halving the interval (at most
+/// six times) where the error estimate is above [`QUAD_TOL`] of the integrand's scale; returns the
+/// integral and the sum of the error estimates of its parts.
+fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+    fn go(f: &dyn Fn(f64) -> f64, a: f64, b: f64, scale: f64, depth: u32) -> (f64, f64) {
+        let o = quadrature::double_exponential::integrate(f, a, b, QUAD_TOL * scale);
+        if o.error_estimate <= QUAD_TOL * scale || depth == 0 {
+            return (o.integral, o.error_estimate);
+        }
+        let m = 0.5 * (a + b);
+        let (l, r) = (go(f, a, m, scale, depth - 1), go(f, m, b, scale, depth - 1));
+        (l.0 + r.0, l.1 + r.1)
+    }
+    if !(b > a) {
+        return (0.0, 0.0);
+    }
+    // The integrand's size at a few interior points sets the absolute tolerance.
+    let scale = (1..8)
+        .map(|k| f(a + (b - a) * k as f64 / 8.0).abs() * (b - a))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    go(f, a, b, scale, 6)
+}
+
+/// An approach from `d_max` down to `d_min` and the retract back (`tabor rough`).
+#[derive(Clone, Debug, Serialize)]
+pub struct RoughCycle {
+    pub lambda: f64,
+    pub sigma: f64,
+    pub approach: Vec<Mean>,
+    pub retract: Vec<Mean>,
+    /// The most tensile retract load per summit, to full precision, and its separation.
+    pub pulloff_load: f64,
+    pub pulloff_separation: f64,
+    /// Energy lost per summit per cycle, integral of (P_approach - P_retract) over the
+    /// separation (pi w R times the approach unit).
+    pub hysteresis: f64,
+    /// The single summit's pull-off under rigid grips (Pbar_c).
+    pub smooth_pulloff: f64,
+    /// Fuller and Tabor's adhesion parameter E* sigma^(3/2) / (R^(1/2) w) = (3 pi / 4)
+    /// sigma^(3/2).
+    pub fuller_tabor_parameter: f64,
+}
+
+impl Rough {
+    /// The separation beyond which no summit within the kept range feels the flat, on the
+    /// approach or on the retract (which holds on beyond the Dugdale range: down to the
+    /// jump-out, or to the end of the non-contact branch).
+    pub fn free_separation(&self) -> f64 {
+        let sm = &self.summit;
+        let reach = [sm.h0, -sm.delta_out, -sm.delta_nc.unwrap_or(0.0)]
+            .into_iter()
+            .fold(0.0, f64::max);
+        Z_FREE * self.sigma + reach
+    }
+
+    /// The cycle from `d_max` (default [`Rough::free_separation`]) down to `d_min` and back,
+    /// `points` separations each way.
+    pub fn cycle(
+        &self,
+        d_min: f64,
+        d_max: Option<f64>,
+        points: usize,
+    ) -> Result<RoughCycle, RoughError> {
+        let d_max = d_max.unwrap_or_else(|| self.free_separation());
+        if !d_min.is_finite() || d_min.abs() > 1e6 {
+            return Err(domain(
+                "the smallest separation",
+                d_min,
+                "-1e6..1e6 approach units",
+                "give a finite separation",
+            )
+            .into());
+        }
+        if !(d_max.is_finite() && d_max > d_min && d_max <= 1e6) {
+            return Err(domain(
+                "the largest separation",
+                d_max,
+                "above the smallest separation, at most 1e6 approach units",
+                "give a largest separation above the smallest",
+            )
+            .into());
+        }
+        if !(2..=POINTS_MAX).contains(&points) {
+            return Err(domain(
+                "the number of separations",
+                points as f64,
+                "2..100000",
+                "give at least 2 points",
+            )
+            .into());
+        }
+        let seps: Vec<f64> = (0..points)
+            .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
+            .collect();
+        use rayon::prelude::*;
+        let approach: Vec<Mean> = seps
+            .par_iter()
+            .map(|&d| self.mean(Leg::Approach, d))
+            .collect::<Result<_, _>>()?;
+        let leg = Leg::Retract { d_min };
+        let retract: Vec<Mean> = seps
+            .par_iter()
+            .rev()
+            .map(|&d| self.mean(leg, d))
+            .collect::<Result<_, _>>()?;
+        let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
+        let hysteresis = self.hysteresis(d_min, d_max)?;
+        Ok(RoughCycle {
+            lambda: self.summit.lambda,
+            sigma: self.sigma,
+            approach,
+            retract,
+            pulloff_load,
+            pulloff_separation,
+            hysteresis,
+            smooth_pulloff: self.summit.ctx.load_pulloff.load,
+            fuller_tabor_parameter: 0.75 * PI * self.sigma.powf(1.5),
+        })
+    }
+
+    /// The minimum of the retract load: golden-section search between the neighbours of the
+    /// smallest sample.
+    fn pulloff(&self, retract: &[Mean], d_min: f64) -> Result<(f64, f64), RoughError> {
+        let i = (0..retract.len())
+            .min_by(|&a, &b| retract[a].load.total_cmp(&retract[b].load))
+            .unwrap_or(0);
+        let lo = retract[i.saturating_sub(1)].separation;
+        let hi = retract[(i + 1).min(retract.len() - 1)].separation;
+        let leg = Leg::Retract { d_min };
+        let load = |d: f64| self.mean(leg, d).map(|m| m.load);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut a, mut b) = (lo, hi);
+        let (mut c, mut e) = (b - g * (b - a), a + g * (b - a));
+        let (mut fc, mut fe) = (load(c)?, load(e)?);
+        for _ in 0..200 {
+            if (b - a) <= 1e-15 * (1.0 + a.abs().max(b.abs())) {
+                break;
+            }
+            if fc < fe {
+                (b, e, fe) = (e, c, fc);
+                c = b - g * (b - a);
+                fc = load(c)?;
+            } else {
+                (a, c, fc) = (c, e, fe);
+                e = a + g * (b - a);
+                fe = load(e)?;
+            }
+        }
+        let best = [(c, fc), (e, fe), (retract[i].separation, retract[i].load)]
+            .into_iter()
+            .min_by(|x, y| x.1.total_cmp(&y.1))
+            .unwrap_or((c, fc));
+        Ok(best)
+    }
+
+    /// Integral of P_approach - P_retract over [d_min, d_max]. Swapping the order of integration,
+    /// it is the Gaussian mean of each summit's own loop area over its window of approaches
+    /// `[z - d_max, z - d_min]` (docs/PHYSICS.md section 9): a constant for every summit that
+    /// touched (or, below lambda_D, reached only the non-contact branch) and was free again at
+    /// d_max, and a single-summit integral clipped at `z - d_max` for the others.
+    fn hysteresis(&self, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
+        let sm = &self.summit;
+        let s = self.sigma;
+        let failed = Cell::new(false);
+        let load = |b: SummitBranch, delta: f64| {
+            sm.load(b, delta).unwrap_or_else(|| {
+                failed.set(true);
+                0.0
+            })
+        };
+        // A touched summit's loop: approach minus retract, nonzero only below delta_in.
+        let lo_touch = sm.delta_nc.unwrap_or(sm.delta_out).min(sm.delta_out);
+        let touched = |from: f64| -> f64 {
+            let f = |delta: f64| {
+                load(sm.approach_branch(delta), delta)
+                    - load(sm.retract_branch(delta, f64::INFINITY), delta)
+            };
+            let mut cuts: Vec<f64> = sm.marks();
+            cuts.push(from.max(lo_touch));
+            cuts.retain(|c| *c >= from.max(lo_touch) && *c <= sm.delta_in);
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup();
+            cuts.windows(2).map(|w| integrate(&f, w[0], w[1]).0).sum()
+        };
+        // A summit that reached only the non-contact branch: -(its load) over [delta_nc, -h0].
+        let reached = |from: f64| -> f64 {
+            match sm.delta_nc {
+                Some(lo) => integrate(&|delta| -sm.non_contact(delta), from.max(lo), -sm.h0).0,
+                None => 0.0,
+            }
+        };
+        let mass = |t0: f64, t1: f64| upper_tail(t0) - upper_tail(t1);
+        let clip = |t: f64| t.clamp(-Z_CUT, Z_CUT);
+        let mut total = 0.0;
+        // (heights from, to, the loop's lower end, its loop area)
+        let regions: [(f64, f64, f64, &dyn Fn(f64) -> f64); 2] = [
+            (d_min + sm.delta_in, f64::INFINITY, lo_touch, &touched),
+            (
+                d_min - sm.h0,
+                d_min + sm.delta_in,
+                sm.delta_nc.unwrap_or(0.0),
+                &reached,
+            ),
+        ];
+        for (z0, z1, lo, area) in regions {
+            if !(z1 > z0) {
+                continue;
+            }
+            // Below z = d_max + lo the whole loop lies in the window: a constant area.
+            let split = d_max + lo;
+            let (t0, t1, ts) = (clip(z0 / s), clip(z1 / s), clip(split / s));
+            if ts > t0 {
+                total += area(f64::NEG_INFINITY) * mass(t0, ts.min(t1));
+            }
+            if t1 > ts.max(t0) {
+                let f = |t: f64| (-0.5 * t * t).exp() / (2.0 * PI).sqrt() * area(t * s - d_max);
+                total += integrate(&f, ts.max(t0), t1).0;
+            }
+        }
+        if failed.get() {
+            return Err(RoughError::Failed(d_min, sm.lambda));
+        }
+        Ok(total)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn branches_follow_section_9() {
+        // Above lambda_D: no stable non-contact branch; in at -h0, out at the jump-out.
+        let s = Summit::new(2.0).unwrap();
+        assert!(s.delta_nc.is_none());
+        assert_eq!(s.delta_in, -s.h0);
+        assert!(s.delta_out < -s.h0);
+        // Below it: the non-contact branch, joined to the contact branch at A = 0.
+        let s = Summit::new(0.1).unwrap();
+        let lo = s.delta_nc.unwrap();
+        assert!(lo < -s.h0 && s.delta_in > -s.h0);
+        assert_eq!(s.delta_out, s.delta_a0);
+        // The non-contact load at the A = 0 end equals the contact branch's there.
+        let (p, a) = s.contact(s.delta_a0 + 1e-9).unwrap();
+        assert!(a < 1e-3 && (s.non_contact(s.delta_a0) / p - 1.0).abs() < 1e-5);
+        // Gaussian tails.
+        assert!((upper_tail(0.0) - 0.5).abs() < 1e-16);
+        assert!((upper_tail(10.0) / 7.619853024160527e-24 - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,312 @@
+//! Rough surfaces (docs/PHYSICS.md section 9) against limits computed here independently: the
+//! single summit (sigma -> 0), Fuller and Tabor's JKR summits (lambda -> infinity) by a
+//! quadrature in the contact radius, and a brute-force quadrature in the summit height.
+
+use tabor::rough::{Leg, Rough};
+use tabor::solver::{LambdaContext, Status};
+
+/// The single summit's load at approach `delta` on the retract from contact, from the solver's
+/// contact branch and the non-contact branch of PHYSICS.md section 4, written here again.
+fn single_retract(ctx: &LambdaContext, lambda: f64, delta: f64) -> f64 {
+    let out = ctx.disp_pulloff().approach;
+    if delta >= out {
+        let s = ctx.solve_approach(delta);
+        assert_eq!(s.status, Status::Ok);
+        return s.load;
+    }
+    let pi = std::f64::consts::PI;
+    let (cs, h0) = (8.0 * lambda / (3.0 * pi), 2.0 / (pi * lambda));
+    if lambda < 0.937947457210712 && delta >= -h0 - cs * cs / 2.0 {
+        let c = cs + (cs * cs + 2.0 * (delta + h0)).sqrt();
+        return -(pi * lambda / 2.0) * c * c;
+    }
+    0.0
+}
+
+#[test]
+fn vanishing_roughness_is_the_single_summit() {
+    for lambda in [0.1, 0.5, 2.0, 10.0] {
+        let ctx = LambdaContext::new(lambda).unwrap();
+        let r = Rough::new(lambda, 1e-9).unwrap();
+        let c = r.cycle(-1.0, Some(3.0), 200).unwrap();
+        let pc = ctx.load_pulloff.load;
+        assert!(
+            (c.pulloff_load - pc).abs() < 1e-9,
+            "lambda {lambda}: pull-off {} against Pbar_c {pc}",
+            c.pulloff_load
+        );
+        assert_eq!(c.smooth_pulloff, pc);
+        // Away from the jumps (within a few sigma of one the Gaussian mixes two branches).
+        for m in c.retract.iter().step_by(7) {
+            let delta = -m.separation;
+            let near_jump = [
+                ctx.disp_pulloff().approach,
+                r.summit.delta_nc.unwrap_or(0.0),
+            ]
+            .iter()
+            .any(|j| (delta - j).abs() < 1e-6);
+            if near_jump {
+                continue;
+            }
+            let want = single_retract(&ctx, lambda, delta);
+            assert!(
+                (m.load - want).abs() < 1e-9 * (1.0 + want.abs()),
+                "lambda {lambda}, d {}: {} against {want}",
+                m.separation,
+                m.load
+            );
+        }
+    }
+}
+
+/// JKR in the summit's units: P(A), delta(A) and d delta / dA.
+fn jkr(a: f64) -> (f64, f64, f64) {
+    let s6 = 6f64.sqrt();
+    (
+        a * a * a - (6.0 * a * a * a).sqrt(),
+        a * a - (2.0 / 3.0) * (6.0 * a).sqrt(),
+        2.0 * a - s6 / (3.0 * a.sqrt()),
+    )
+}
+
+/// Fuller and Tabor's mean retract load per summit at separation `d` after `d_min`: summits that
+/// touched (z >= d_min) stay in contact down to JKR's rigid-grip jump-out, A = 6^(-1/3). The
+/// integral over z is taken in A (z = d + delta(A)), where the integrand is smooth, by composite
+/// 5-point Gauss-Legendre.
+fn fuller_tabor(sigma: f64, d_min: f64, d: f64) -> f64 {
+    let a_out = 6f64.powf(-1.0 / 3.0);
+    let a_at = |delta: f64| {
+        // delta(A) rises on A >= a_out: bisection.
+        let (mut lo, mut hi) = (a_out, 1e3);
+        for _ in 0..200 {
+            let m = 0.5 * (lo + hi);
+            if jkr(m).1 < delta {
+                lo = m
+            } else {
+                hi = m
+            }
+        }
+        0.5 * (lo + hi)
+    };
+    let a_lo = if d_min <= d + jkr(a_out).1 {
+        a_out
+    } else {
+        a_at(d_min - d)
+    };
+    let a_hi = a_at(12.0 * sigma - d);
+    if a_hi <= a_lo {
+        return 0.0;
+    }
+    let gl = [
+        (0.0, 128.0 / 225.0),
+        (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+        (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+        (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+        (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    ];
+    let n = 4000;
+    let h = (a_hi - a_lo) / n as f64;
+    let mut sum = 0.0;
+    for k in 0..n {
+        let mid = a_lo + (k as f64 + 0.5) * h;
+        for (x, w) in gl {
+            let a = mid + 0.5 * h * x;
+            let (p, delta, slope) = jkr(a);
+            let z = (d + delta) / sigma;
+            let phi = (-0.5 * z * z).exp() / ((2.0 * std::f64::consts::PI).sqrt() * sigma);
+            sum += 0.5 * h * w * phi * p * slope;
+        }
+    }
+    sum
+}
+
+#[test]
+fn large_lambda_is_fuller_and_tabor() {
+    for (lambda, sigma) in [(1e6, 0.5), (1e7, 1.0)] {
+        let r = Rough::new(lambda, sigma).unwrap();
+        let d_min = -0.5;
+        let c = r.cycle(d_min, Some(4.0 * sigma + 1.0), 120).unwrap();
+        let mut worst: f64 = 0.0;
+        for m in &c.retract {
+            let want = fuller_tabor(sigma, d_min, m.separation);
+            worst = worst.max((m.load - want).abs());
+        }
+        assert!(worst < 1e-6, "lambda {lambda}: retract off by {worst:e}");
+        // The pull-off: Fuller and Tabor's minimum by golden section here.
+        let (mut a, mut b) = (c.pulloff_separation - 0.1, c.pulloff_separation + 0.1);
+        for _ in 0..100 {
+            let (x, y) = (b - 0.618 * (b - a), a + 0.618 * (b - a));
+            if fuller_tabor(sigma, d_min, x) < fuller_tabor(sigma, d_min, y) {
+                b = y
+            } else {
+                a = x
+            }
+        }
+        let ft = fuller_tabor(sigma, d_min, 0.5 * (a + b));
+        assert!(
+            (c.pulloff_load - ft).abs() < 1e-6,
+            "lambda {lambda}: pull-off {} against Fuller-Tabor {ft}",
+            c.pulloff_load
+        );
+        println!(
+            "lambda {lambda:e}, sigma {sigma}: pull-off {:.9} (Fuller-Tabor {ft:.9}), retract within {worst:.1e}",
+            c.pulloff_load
+        );
+    }
+}
+
+/// The mean load by brute force: composite Simpson over the summit height with 400,000 panels,
+/// against the piecewise double-exponential quadrature.
+#[test]
+fn quadrature_agrees_with_brute_force() {
+    for (lambda, sigma, d) in [(0.3, 0.7, 0.2), (1.0, 1.0, -0.4), (5.0, 0.4, 0.3)] {
+        let r = Rough::new(lambda, sigma).unwrap();
+        let d_min = -0.8;
+        for leg in [Leg::Approach, Leg::Retract { d_min }] {
+            let got = r.mean(leg, d).unwrap().load;
+            let n = 400_000;
+            let (lo, hi) = (-12.0 * sigma, 12.0 * sigma);
+            let h = (hi - lo) / n as f64;
+            let ctx = LambdaContext::new(lambda).unwrap();
+            let f = |z: f64| {
+                let phi = (-0.5 * (z / sigma).powi(2)).exp()
+                    / ((2.0 * std::f64::consts::PI).sqrt() * sigma);
+                let delta = z - d;
+                let b = match leg {
+                    Leg::Approach => r.summit.approach_branch(delta),
+                    Leg::Retract { d_min } => r.summit.retract_branch(delta, z - d_min),
+                };
+                let p = match b {
+                    tabor::rough::SummitBranch::Free => 0.0,
+                    tabor::rough::SummitBranch::Contact => ctx.solve_approach(delta).load,
+                    tabor::rough::SummitBranch::NonContact => r.summit.non_contact(delta),
+                };
+                phi * p
+            };
+            let (mut s, mut fmax) = (f(lo) + f(hi), 0f64);
+            for k in 1..n {
+                let v = f(lo + k as f64 * h);
+                fmax = fmax.max(v.abs());
+                s += v * if k % 2 == 1 { 4.0 } else { 2.0 };
+            }
+            let brute = s * h / 3.0;
+            // Simpson across a jump of the integrand is off by at most (4/3) h times the jump;
+            // a summit's load jumps at most six times.
+            let bound = 6.0 * (4.0 / 3.0) * h * 2.0 * fmax;
+            assert!(
+                (got - brute).abs() < bound,
+                "lambda {lambda}, {leg:?}: {got} against {brute} (bound {bound:e})"
+            );
+            println!(
+                "lambda {lambda}, {leg:?}: {got} against brute force {brute}, bound {bound:.1e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn bad_roughness_is_refused() {
+    for s in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+        let e = Rough::new(1.0, s).err().unwrap().to_string();
+        assert!(e.contains("sigma"), "{e}");
+    }
+    let r = Rough::new(1.0, 1.0).unwrap();
+    assert!(r.cycle(1.0, Some(0.5), 10).is_err());
+    assert!(r.cycle(f64::NAN, None, 10).is_err());
+    assert!(r.cycle(0.0, None, 1).is_err());
+}
+
+#[test]
+fn vanishing_roughness_loses_the_single_summit_loop() {
+    // The single summit's loop area from `tabor cycle`'s path (sampled, so within 2e-3).
+    for lambda in [0.5, 1.0, 3.0] {
+        let single = tabor::cycle::cycle(lambda, tabor::cycle::Drive::RigidGrips, 4.0)
+            .unwrap()
+            .hysteresis
+            .unwrap();
+        let c = Rough::new(lambda, 1e-6)
+            .unwrap()
+            .cycle(-1.5, None, 50)
+            .unwrap();
+        assert!(
+            (c.hysteresis - single).abs() < 2e-3 * (1.0 + single),
+            "lambda {lambda}: {} against {single}",
+            c.hysteresis
+        );
+    }
+}
+
+fn tabor(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn the_command_writes_the_keys_and_refuses_bad_input() {
+    let o = tabor(&[
+        "rough",
+        "--lambda",
+        "1",
+        "--sigma",
+        "0.5",
+        "--min-separation",
+        "-0.5",
+        "--points",
+        "40",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in [
+        "pulloff_load",
+        "pulloff_separation",
+        "hysteresis",
+        "smooth_pulloff",
+        "fuller_tabor_parameter",
+    ] {
+        assert!(j[k].as_f64().unwrap().is_finite(), "{k}");
+    }
+    for leg in ["approach", "retract"] {
+        for k in [
+            "separation",
+            "load",
+            "contact_fraction",
+            "noncontact_fraction",
+        ] {
+            assert_eq!(j[leg][k].as_array().unwrap().len(), 40, "{leg}.{k}");
+        }
+    }
+    // The retract runs from the smallest separation up; the approach down to it.
+    assert_eq!(j["retract"]["separation"][0].as_f64(), Some(-0.5));
+    assert_eq!(j["approach"]["separation"][39].as_f64(), Some(-0.5));
+    let smooth = j["smooth_pulloff"].as_f64().unwrap();
+    assert!((smooth + 1.600734911254092).abs() < 1e-12);
+    assert!(
+        j["pulloff_load"].as_f64().unwrap() > smooth,
+        "roughness lowers the pull-off"
+    );
+    for (args, needle) in [
+        (vec!["--sigma", "0"], "sigma"),
+        (vec!["--sigma", "nan"], "sigma"),
+        (
+            vec!["--sigma", "1", "--max-separation", "-2"],
+            "largest separation",
+        ),
+        (
+            vec!["--sigma", "1", "--points", "1"],
+            "number of separations",
+        ),
+    ] {
+        let mut a = vec!["rough", "--lambda", "1", "--min-separation", "-1"];
+        a.extend(args);
+        let o = tabor(&a);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{a:?}: {err}");
+        assert!(
+            err.contains(needle) && !err.contains("panicked"),
+            "{a:?}: {err}"
+        );
+        assert!(o.stdout.is_empty());
+    }
+}
