@@ -225,6 +225,32 @@ impl Rough {
         z
     }
 
+    /// The mean state of an explicit ensemble of summits of heights `z` (approach units), all of
+    /// this surface's lambda, at separation `d`: each summit on its own branch.
+    pub fn ensemble_mean(&self, leg: Leg, z: &[f64], d: f64) -> Result<Mean, RoughError> {
+        let (mut load, mut contact, mut noncontact) = (0.0, 0.0, 0.0);
+        for &zi in z {
+            let b = self.branch(leg, zi, d);
+            load += self
+                .summit
+                .load(b, zi - d)
+                .ok_or(RoughError::Failed(d, self.summit.lambda))?;
+            match b {
+                SummitBranch::Contact => contact += 1.0,
+                SummitBranch::NonContact => noncontact += 1.0,
+                SummitBranch::Free => {}
+            }
+        }
+        let n = z.len().max(1) as f64;
+        Ok(Mean {
+            separation: d,
+            load: load / n,
+            contact_fraction: contact / n,
+            noncontact_fraction: noncontact / n,
+            quadrature_error: 0.0,
+        })
+    }
+
     /// The mean load and branch fractions at separation `d`.
     pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
         let s = self.sigma;

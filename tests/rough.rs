@@ -310,3 +310,85 @@ fn the_command_writes_the_keys_and_refuses_bad_input() {
         assert!(o.stdout.is_empty());
     }
 }
+
+#[test]
+fn explicit_ensembles_converge_as_one_over_root_n() {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, Normal};
+    let (lambda, sigma, d_min) = (0.7, 0.8, -0.6);
+    let r = Rough::new(lambda, sigma).unwrap();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
+    let normal = Normal::new(0.0, sigma).unwrap();
+    for leg in [Leg::Approach, Leg::Retract { d_min }] {
+        for d in [-0.3, 0.4, 1.2] {
+            let exact = r.mean(leg, d).unwrap();
+            let mut errors = Vec::new();
+            for n in [1_000, 10_000, 100_000] {
+                let z: Vec<f64> = (0..n).map(|_| normal.sample(&mut rng)).collect();
+                let e = r.ensemble_mean(leg, &z, d).unwrap();
+                // The spread of one summit's load, from the sample.
+                let loads: Vec<f64> = z
+                    .iter()
+                    .map(|&zi| r.ensemble_mean(leg, &[zi], d).unwrap().load)
+                    .collect();
+                let m = loads.iter().sum::<f64>() / n as f64;
+                let sd = (loads.iter().map(|l| (l - m).powi(2)).sum::<f64>() / n as f64).sqrt();
+                let err = (e.load - exact.load).abs();
+                assert!(
+                    err < 4.5 * sd / (n as f64).sqrt(),
+                    "{leg:?}, d {d}, N {n}: {} against {} (sd {sd})",
+                    e.load,
+                    exact.load
+                );
+                let fc = (e.contact_fraction - exact.contact_fraction).abs();
+                assert!(fc < 4.5 * 0.5 / (n as f64).sqrt(), "contact fraction {fc}");
+                errors.push(err);
+            }
+            println!("{leg:?}, d {d}: |ensemble - statistical| for N = 1e3, 1e4, 1e5: {:.2e} {:.2e} {:.2e}", errors[0], errors[1], errors[2]);
+        }
+    }
+}
+
+/// lambda -> 0: each summit a DMT sphere with the rigid Dugdale law outside contact (Maugis
+/// 1996): load delta^(3/2) - 2 in contact (delta >= 0), -2 - pi lambda delta for -h0 <= delta < 0,
+/// reversible. The MD summit differs from it by terms of order lambda^(1/2) (PHYSICS.md section 3).
+#[test]
+fn small_lambda_is_dmt_summits() {
+    let (lambda, sigma) = (1e-3, 0.5);
+    let r = Rough::new(lambda, sigma).unwrap();
+    let h0 = 2.0 / (std::f64::consts::PI * lambda);
+    let dmt = |delta: f64| {
+        if delta >= 0.0 {
+            delta.powf(1.5) - 2.0
+        } else if delta >= -h0 {
+            -2.0 - std::f64::consts::PI * lambda * delta
+        } else {
+            0.0
+        }
+    };
+    for d in [-0.5, 0.0, 0.5, 1.0, 2.0] {
+        // Composite Simpson over heights with a node at the kink delta = 0 (z = d).
+        let n = 20_000;
+        let (lo, hi) = (-12.0 * sigma, 12.0 * sigma);
+        let f = |z: f64| {
+            (-0.5 * (z / sigma).powi(2)).exp() / ((2.0 * std::f64::consts::PI).sqrt() * sigma)
+                * dmt(z - d)
+        };
+        let simpson = |a: f64, b: f64| {
+            let h = (b - a) / n as f64;
+            let mut s = f(a) + f(b);
+            for k in 1..n {
+                s += f(a + k as f64 * h) * if k % 2 == 1 { 4.0 } else { 2.0 };
+            }
+            s * h / 3.0
+        };
+        let want = simpson(lo, d.clamp(lo, hi)) + simpson(d.clamp(lo, hi), hi);
+        for leg in [Leg::Approach, Leg::Retract { d_min: -0.5 }] {
+            let got = r.mean(leg, d).unwrap().load;
+            assert!(
+                (got - want).abs() < 3.0 * lambda.sqrt(),
+                "d {d}, {leg:?}: {got} against DMT {want}"
+            );
+        }
+    }
+}
