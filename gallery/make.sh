@@ -52,3 +52,8 @@ cargo run --release --quiet --example synthetic_curves -- "$curves" 64 500 40 2e
 $T fit -i "$curves" --radius 20e-9 --spring-n-m 40 --format csv -o $G/fitmap/fits.csv \
     --maps $G/fitmap/map --on-map $G/fit_on_map.png
 rm -f "$curves"
+# Rough surfaces: an approach-retract cycle of Maugis-Dugdale summits below and above lambda_D,
+# and the pull-off against roughness (Fuller and Tabor's figure).
+$T rough --lambda 0.2 --sigma 0.3 --min-separation -1 --plot $G/rough_cycle_0.2.png -o $G/rough_cycle_0.2.json
+$T rough --lambda 2 --sigma 0.5 --min-separation -1 --plot $G/rough_cycle_2.png -o $G/rough_cycle_2.json
+$T rough-pulloff --plot $G/rough_pulloff.png -o $G/rough_pulloff.json

@@ -415,6 +415,23 @@ impl Rough {
         })
     }
 
+    /// The pull-off per summit after pressing to `d_min`: the retract sampled at `samples`
+    /// separations up to where every summit is free again, then refined. Returns the separation
+    /// and the load.
+    pub fn pulloff_after(&self, d_min: f64, samples: usize) -> Result<(f64, f64), RoughError> {
+        let d_max = self.free_separation().max(d_min + 1e-9);
+        let leg = Leg::Retract { d_min };
+        let retract: Vec<Mean> = (0..samples.max(3))
+            .map(|i| {
+                self.mean(
+                    leg,
+                    d_min + (d_max - d_min) * i as f64 / (samples.max(3) - 1) as f64,
+                )
+            })
+            .collect::<Result<_, _>>()?;
+        self.pulloff(&retract, d_min)
+    }
+
     /// The minimum of the retract load: golden-section search between the neighbours of the
     /// smallest sample.
     fn pulloff(&self, retract: &[Mean], d_min: f64) -> Result<(f64, f64), RoughError> {
@@ -519,6 +536,48 @@ impl Rough {
         }
         Ok(total)
     }
+}
+
+/// Pull-off against roughness for one lambda (Fuller and Tabor's figure).
+#[derive(Clone, Debug, Serialize)]
+pub struct PulloffCurve {
+    pub lambda: f64,
+    /// The single summit's pull-off (Pbar_c).
+    pub smooth_pulloff: f64,
+    pub sigma: Vec<f64>,
+    pub fuller_tabor_parameter: Vec<f64>,
+    /// Pull-off per summit, and relative to the smooth summit's.
+    pub pulloff: Vec<f64>,
+    pub relative_pulloff: Vec<f64>,
+}
+
+/// The pull-off per summit after pressing to `press` sigma from the mean summit plane (the
+/// smallest separation is `press * sigma`), for each lambda over the roughnesses `sigmas`, on
+/// all cores.
+pub fn pulloff_against_roughness(
+    lambdas: &[f64],
+    sigmas: &[f64],
+    press: f64,
+) -> Result<Vec<PulloffCurve>, RoughError> {
+    use rayon::prelude::*;
+    lambdas
+        .iter()
+        .map(|&lambda| {
+            let smooth = Summit::new(lambda)?.ctx.load_pulloff.load;
+            let pulloff: Vec<f64> = sigmas
+                .par_iter()
+                .map(|&s| Ok(Rough::new(lambda, s)?.pulloff_after(press * s, 48)?.1))
+                .collect::<Result<_, RoughError>>()?;
+            Ok(PulloffCurve {
+                lambda,
+                smooth_pulloff: smooth,
+                sigma: sigmas.to_vec(),
+                fuller_tabor_parameter: sigmas.iter().map(|s| 0.75 * PI * s.powf(1.5)).collect(),
+                relative_pulloff: pulloff.iter().map(|p| p / smooth).collect(),
+                pulloff,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]

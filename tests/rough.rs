@@ -392,3 +392,32 @@ fn small_lambda_is_dmt_summits() {
         }
     }
 }
+
+#[test]
+fn pulloff_falls_with_roughness() {
+    let sigmas = [1e-3, 0.1, 0.5, 2.0, 8.0];
+    let curves =
+        tabor::rough::pulloff_against_roughness(&[0.1, 1.0, 100.0], &sigmas, -3.0).unwrap();
+    for c in &curves {
+        let ctx = LambdaContext::new(c.lambda).unwrap();
+        assert_eq!(c.smooth_pulloff, ctx.load_pulloff.load);
+        // Nearly smooth: all but the 0.13% of summits below -3 sigma pull as one summit.
+        assert!((c.relative_pulloff[0] - 0.99865).abs() < 2e-3, "{c:?}");
+        for w in c.relative_pulloff.windows(2) {
+            assert!(w[1] < w[0] && w[1] >= 0.0, "{c:?}");
+        }
+    }
+    // Longer-range adhesion (smaller lambda) survives more roughness.
+    assert!(curves[0].relative_pulloff[3] > curves[1].relative_pulloff[3]);
+    let o = tabor(&[
+        "rough-pulloff",
+        "--lambda",
+        "1",
+        "--points",
+        "4",
+        "--format",
+        "csv",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(String::from_utf8_lossy(&o.stdout).lines().count(), 5);
+}

@@ -48,6 +48,9 @@ pub enum Command {
     /// A rough surface (Greenwood-Williamson) of exact Maugis-Dugdale summits through an
     /// approach and a retract: load per summit, contact fractions, pull-off, energy lost.
     Rough(rough::RoughArgs),
+    /// Pull-off of a rough surface against its roughness for several lambda (Fuller and Tabor's
+    /// figure), after pressing to a given separation.
+    RoughPulloff(rough::RoughPulloffArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -166,6 +169,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Profile(a) => profile::run(a),
         Command::Fit(a) => fit::run(*a),
         Command::Rough(a) => rough::run(a),
+        Command::RoughPulloff(a) => rough::pulloff(a),
     }
 }
 

@@ -147,3 +147,104 @@ fn csv(c: &RoughCycle) -> anyhow::Result<String> {
     }
     Ok(String::from_utf8(crate::io::csv_finish(w)?)?)
 }
+
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct RoughPulloffArgs {
+    /// Maugis parameters of the summits, comma-separated (one line each).
+    #[arg(long, value_delimiter = ',', default_value = "0.01,0.1,1,1000")]
+    pub lambda: Vec<f64>,
+    /// The smallest roughness sigma (approach units).
+    #[arg(long, default_value_t = 0.01)]
+    pub sigma_min: f64,
+    /// The largest roughness sigma.
+    #[arg(long, default_value_t = 10.0)]
+    pub sigma_max: f64,
+    /// Roughnesses, log-spaced.
+    #[arg(long, default_value_t = 24)]
+    pub points: usize,
+    /// How far the flat was pressed before the retract, in sigma below the mean summit plane
+    /// (3: 99.9% of the summits touched; the pull-off of a lightly pressed surface is lower).
+    #[arg(long, default_value_t = 3.0)]
+    pub press_sigmas: f64,
+    /// json or csv.
+    #[arg(long, value_enum, default_value_t = Format::Json)]
+    pub format: Format,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    /// Pull-off relative to the smooth summit's against Fuller and Tabor's adhesion parameter.
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: crate::cli::FigureArgs,
+}
+
+pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
+    if a.format == Format::Text {
+        anyhow::bail!("--format text is not available here: use json or csv");
+    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    if !(a.sigma_min > 0.0 && a.sigma_max > a.sigma_min && a.sigma_max <= 1e4) {
+        anyhow::bail!(
+            "the roughness range {}..{} is not valid: give 0 < --sigma-min < --sigma-max <= 1e4",
+            short(a.sigma_min),
+            short(a.sigma_max)
+        );
+    }
+    if !(2..=1000).contains(&a.points) || a.lambda.is_empty() || a.lambda.len() > 20 {
+        anyhow::bail!(
+            "give 2..1000 roughnesses (--points, got {}) and 1..20 lambda values (got {})",
+            a.points,
+            a.lambda.len()
+        );
+    }
+    let sigmas = crate::map::axis(a.sigma_min, a.sigma_max, a.points, true);
+    if !(a.press_sigmas.is_finite() && a.press_sigmas.abs() <= 12.0) {
+        anyhow::bail!(
+            "--press-sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -12..12",
+            short(a.press_sigmas)
+        );
+    }
+    let curves = crate::rough::pulloff_against_roughness(&a.lambda, &sigmas, -a.press_sigmas)?;
+    let text = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record([
+                "lambda",
+                "sigma",
+                "fuller_tabor_parameter",
+                "pulloff",
+                "relative_pulloff",
+            ])?;
+            for c in &curves {
+                for i in 0..c.sigma.len() {
+                    w.write_record([
+                        fmt17(c.lambda),
+                        fmt17(c.sigma[i]),
+                        fmt17(c.fuller_tabor_parameter[i]),
+                        fmt17(c.pulloff[i]),
+                        fmt17(c.relative_pulloff[i]),
+                    ])?;
+                }
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        _ => {
+            serde_json::to_string_pretty(&serde_json::json!({
+                "min_separation_in_sigma": -a.press_sigmas,
+                "curves": curves,
+                "model": MODEL,
+            }))? + "\n"
+        }
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if !figure.is_empty() {
+        let d = -a.press_sigmas;
+        crate::render::plots::save(crate::render::Kind::Pulloff, &print, &figure, &|r| {
+            crate::render::rough::pulloff_curves(r, &curves, d)
+        })
+        .context("drawing the pull-off against roughness")?;
+    }
+    Ok(())
+}

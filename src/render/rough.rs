@@ -109,3 +109,55 @@ where
     legend(&mut frac, SeriesLabelPosition::MiddleRight, NOTE)?;
     Ok(())
 }
+
+/// Fuller and Tabor's figure: the pull-off per summit relative to the smooth summit's against
+/// the adhesion parameter (log axis), one line per lambda.
+pub fn pulloff_curves<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    curves: &[crate::rough::PulloffCurve],
+    press: f64,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let (xmin, xmax) = range(
+        curves
+            .iter()
+            .flat_map(|c| c.fuller_tabor_parameter.iter().copied()),
+    );
+    let title = format!(
+        "Rough pull-off, pressed to d = {}σ",
+        super::minus(&crate::physics::domain::short(press))
+    );
+    let mut chart =
+        builder(root, &title).build_cartesian_2d((xmin..xmax).log_scale(), 0.0..1.05)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("adhesion parameter  θ = E*σ^{3/2}/(R^{1/2}w)")
+        .y_desc("pull-off / smooth summit's")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::log_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .draw()?;
+    let colours = [BLUE_, ORANGE_, super::plots::GREEN_, GRAY_, BLACK];
+    for (k, c) in curves.iter().enumerate() {
+        let style = ShapeStyle::from(&colours[k % colours.len()]).stroke_width(6);
+        let pts: Vec<(f64, f64)> = c
+            .fuller_tabor_parameter
+            .iter()
+            .zip(&c.relative_pulloff)
+            .map(|(x, y)| (*x, *y))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, style))?
+            .label(format!("λ = {}", crate::physics::domain::short(c.lambda)))
+            .legend(sample(style));
+    }
+    legend(&mut chart, SeriesLabelPosition::LowerLeft, NOTE)?;
+    Ok(())
+}
