@@ -421,3 +421,53 @@ fn pulloff_falls_with_roughness() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert_eq!(String::from_utf8_lossy(&o.stdout).lines().count(), 5);
 }
+
+#[test]
+fn si_scenes_scale_the_summit_units_and_warn() {
+    use tabor::rough::scene::{preset, RoughScene};
+    let sc = preset("pdms-rough-glass").unwrap();
+    let r = sc.solve(60).unwrap();
+    // The same cycle in the summit's units, scaled by pi w R per summit and the summit count.
+    let c = sc.summit().unwrap();
+    let cyc = Rough::new(c.lambda(), sc.sigma_m / c.approach_scale())
+        .unwrap()
+        .cycle(-3.0 * r.sigma_normalised, None, 60)
+        .unwrap();
+    let n = sc.summit_density_m2 * sc.nominal_area_m2;
+    let want =
+        cyc.pulloff_load * std::f64::consts::PI * sc.work_of_adhesion_j_m2 * sc.summit_radius_m * n;
+    assert!(
+        (r.pulloff_force_n / want - 1.0).abs() < 1e-12,
+        "{} against {want}",
+        r.pulloff_force_n
+    );
+    assert!((r.pulloff_stress_pa * sc.nominal_area_m2 / r.pulloff_force_n - 1.0).abs() < 1e-12);
+    // Real contact area: every summit in contact at the deepest point has a >= its Hertz value.
+    let deepest = r.retract.real_contact_area_m2[0];
+    assert!(deepest > 0.0 && deepest < sc.nominal_area_m2);
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    // Few summits, and sigma comparable to R, are named.
+    let few = RoughScene {
+        nominal_area_m2: 1e-8,
+        sigma_m: 2e-6,
+        ..sc.clone()
+    };
+    let w = few.solve(20).unwrap().warnings.join("; ");
+    assert!(
+        w.contains("summits in the nominal area") && w.contains("summit radius"),
+        "{w}"
+    );
+    let bad = RoughScene {
+        summit_density_m2: -1.0,
+        ..sc
+    };
+    assert!(bad
+        .solve(20)
+        .err()
+        .unwrap()
+        .to_string()
+        .contains("summit_density_m2"));
+    let o = tabor(&["rough", "--preset", "nonsense"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("mems-polysilicon"));
+}

@@ -12,15 +12,22 @@ use serde::Serialize;
 #[command(allow_negative_numbers = true)]
 pub struct RoughArgs {
     /// Maugis parameter of every summit.
-    #[arg(long)]
-    pub lambda: f64,
+    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    pub lambda: Option<f64>,
     /// Standard deviation of the summit heights, in the summit's approach unit
     /// (pi^2 w^2 R / K^2)^(1/3).
-    #[arg(long)]
-    pub sigma: f64,
+    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    pub sigma: Option<f64>,
     /// The smallest separation of the flat from the mean summit plane (approach units).
-    #[arg(long)]
-    pub min_separation: f64,
+    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    pub min_separation: Option<f64>,
+    /// A rough scene in SI units (JSON: the materials, summit_radius_m, summit_density_m2,
+    /// sigma_m, nominal_area_m2, optional min_separation_m): forces in N, pressures in Pa.
+    #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation", "preset"])]
+    pub scene: Option<std::path::PathBuf>,
+    /// A built-in rough scene: mems-polysilicon, pdms-rough-glass.
+    #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation"])]
+    pub preset: Option<String>,
     /// Where the approach starts and the retract ends [default: where no summit feels the flat].
     #[arg(long)]
     pub max_separation: Option<f64>,
@@ -82,9 +89,15 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::DOUBLE_COLUMN_MM)?;
-    let rough = Rough::new(a.lambda, a.sigma)?;
+    if let Some(sc) = scene_of(&a)? {
+        return run_scene(&a, &sc, &figure, &print);
+    }
+    let (Some(lambda), Some(sigma), Some(d_min)) = (a.lambda, a.sigma, a.min_separation) else {
+        anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
+    };
+    let rough = Rough::new(lambda, sigma)?;
     let c = rough
-        .cycle(a.min_separation, a.max_separation, a.points)
+        .cycle(d_min, a.max_separation, a.points)
         .context("the separations (--min-separation, --max-separation, --points)")?;
     let text = match a.format {
         Format::Csv => csv(&c)?,
@@ -245,6 +258,103 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
             crate::render::rough::pulloff_curves(r, &curves, d)
         })
         .context("drawing the pull-off against roughness")?;
+    }
+    Ok(())
+}
+
+fn scene_of(a: &RoughArgs) -> anyhow::Result<Option<crate::rough::scene::RoughScene>> {
+    use crate::rough::scene::{preset, PRESETS};
+    if let Some(p) = &a.preset {
+        return preset(p).map(Some).with_context(|| {
+            format!(
+                "--preset {p}: no such rough scene; give one of {}",
+                PRESETS.join(", ")
+            )
+        });
+    }
+    let Some(path) = &a.scene else {
+        return Ok(None);
+    };
+    let shown = path.display();
+    let meta = std::fs::metadata(path).with_context(|| format!("cannot read --scene {shown}"))?;
+    if meta.len() > 1 << 20 {
+        anyhow::bail!(
+            "--scene {shown} is {} bytes: a scene is a small JSON file (at most 1 MiB)",
+            meta.len()
+        );
+    }
+    let text = std::fs::read(path).with_context(|| format!("cannot read --scene {shown}"))?;
+    let sc = serde_json::from_slice(&text)
+        .with_context(|| format!("--scene {shown} is not a rough scene"))?;
+    Ok(Some(sc))
+}
+
+fn run_scene(
+    a: &RoughArgs,
+    sc: &crate::rough::scene::RoughScene,
+    figure: &crate::render::Outputs,
+    print: &crate::render::Print,
+) -> anyhow::Result<()> {
+    let r = sc.solve(a.points)?;
+    let text = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record([
+                "phase",
+                "separation_m",
+                "force_n",
+                "nominal_pressure_pa",
+                "real_contact_area_m2",
+                "contact_fraction",
+                "noncontact_fraction",
+            ])?;
+            for (phase, l) in [("approach", &r.approach), ("retract", &r.retract)] {
+                for i in 0..l.separation_m.len() {
+                    w.write_record([
+                        phase.to_string(),
+                        fmt17(l.separation_m[i]),
+                        fmt17(l.force_n[i]),
+                        fmt17(l.nominal_pressure_pa[i]),
+                        fmt17(l.real_contact_area_m2[i]),
+                        fmt17(l.contact_fraction[i]),
+                        fmt17(l.noncontact_fraction[i]),
+                    ])?;
+                }
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        _ => serde_json::to_string_pretty(&r)? + "\n",
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if !figure.is_empty() {
+        let c = &r.normalised;
+        crate::render::plots::save(crate::render::Kind::Cycle, print, figure, &|d| {
+            crate::render::rough::cycle(d, c)
+        })
+        .context("drawing the rough cycle")?;
+    }
+    eprintln!(
+        "{}: {} summits, lambda = {} (Tabor parameter {}), sigma = {} approach units (Fuller-Tabor parameter {})",
+        r.name.as_deref().unwrap_or("rough scene"),
+        short(r.summits),
+        short(r.lambda),
+        short(r.tabor_parameter),
+        short(r.sigma_normalised),
+        short(r.fuller_tabor_parameter)
+    );
+    eprintln!(
+        "  pull-off force {} N (stress {} Pa) at separation {} m; all summits pulling as smooth ones: {} N; energy lost {} J per cycle",
+        short(r.pulloff_force_n),
+        short(r.pulloff_stress_pa),
+        short(r.pulloff_separation_m),
+        short(r.smooth_pulloff_force_n),
+        short(r.hysteresis_j)
+    );
+    for w in &r.warnings {
+        eprintln!("  warning: {w}");
+    }
+    if let Some(s) = &r.source {
+        eprintln!("  values: {s}");
     }
     Ok(())
 }

@@ -5,6 +5,8 @@
 //! Units are one summit's (Johnson and Greenwood): loads per summit in `pi w R`, separations and
 //! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
 
+pub mod scene;
+
 use crate::physics::domain::{short, DomainError};
 use crate::physics::md::{zero_radius_end, LAMBDA_D};
 use crate::solver::{LambdaContext, SolveError, Status};
@@ -168,6 +170,8 @@ pub enum RoughError {
     Domain(#[from] DomainError),
     #[error(transparent)]
     Solve(#[from] SolveError),
+    #[error("{0}")]
+    Scene(String),
     #[error("the summit solver failed at separation {} (lambda = {}): no number is reported", short(*.0), short(*.1))]
     Failed(f64, f64),
 }
@@ -249,6 +253,35 @@ impl Rough {
             noncontact_fraction: noncontact / n,
             quadrature_error: 0.0,
         })
+    }
+
+    /// The mean of A^2 over all summits (those not in contact count 0) at separation `d`: the
+    /// real contact area per summit is pi times it in units of the summit's radius unit squared.
+    pub fn mean_area(&self, leg: Leg, d: f64) -> Result<f64, RoughError> {
+        let s = self.sigma;
+        let failed = Cell::new(false);
+        let mut total = 0.0;
+        for w in self.pieces(leg, d).windows(2) {
+            let (t0, t1) = (w[0], w[1]);
+            if self.branch(leg, 0.5 * (t0 + t1) * s, d) != SummitBranch::Contact {
+                continue;
+            }
+            let f = |t: f64| {
+                let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
+                match self.summit.contact(t * s - d) {
+                    Some((_, a)) => g * a * a,
+                    None => {
+                        failed.set(true);
+                        0.0
+                    }
+                }
+            };
+            total += integrate(&f, t0, t1).0;
+        }
+        if failed.get() {
+            return Err(RoughError::Failed(d, self.summit.lambda));
+        }
+        Ok(total)
     }
 
     /// The mean load and branch fractions at separation `d`.

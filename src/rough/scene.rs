@@ -1,0 +1,242 @@
+//! A rough contact in SI units: the materials of a scene, the summits' radius, density and
+//! height spread, and the nominal area (docs/PHYSICS.md section 9).
+
+use super::{Leg, Mean, Rough, RoughError};
+use crate::physics::domain::{short, DomainError};
+use crate::physics::params::{reduced_modulus, Body, Contact, ForceRange};
+use serde::{Deserialize, Serialize};
+
+/// The rough scene file (JSON); SI units named in every key.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RoughScene {
+    pub name: Option<String>,
+    /// The two bodies' materials (their radii are not used: the summits' is), or `e_star_pa`.
+    pub body1: Option<Body>,
+    pub body2: Option<Body>,
+    pub e_star_pa: Option<f64>,
+    pub work_of_adhesion_j_m2: f64,
+    pub z0_m: Option<f64>,
+    pub s0_pa: Option<f64>,
+    pub h0_m: Option<f64>,
+    /// Radius of every summit (m).
+    pub summit_radius_m: f64,
+    /// Summits per unit nominal area (1/m^2).
+    pub summit_density_m2: f64,
+    /// Standard deviation of the summit heights (m).
+    pub sigma_m: f64,
+    /// The nominal (apparent) contact area (m^2).
+    pub nominal_area_m2: f64,
+    /// The smallest separation of the flat from the mean summit plane (m) [default: -3 sigma].
+    pub min_separation_m: Option<f64>,
+    /// Source of the values, for the record.
+    pub source: Option<String>,
+}
+
+/// Built-in rough scenes: representative handbook values, printed with every result.
+pub fn preset(name: &str) -> Option<RoughScene> {
+    let poly = Body {
+        youngs_modulus_pa: 160e9,
+        poisson_ratio: 0.22,
+        radius_m: None,
+    };
+    match name {
+        "mems-polysilicon" => Some(RoughScene {
+            name: Some("MEMS polysilicon beam (100 x 20 um) on its polysilicon substrate".into()),
+            body1: Some(poly),
+            body2: Some(poly),
+            e_star_pa: None,
+            work_of_adhesion_j_m2: 0.1,
+            z0_m: Some(0.3e-9),
+            s0_pa: None,
+            h0_m: None,
+            summit_radius_m: 0.5e-6,
+            summit_density_m2: 2e12,
+            sigma_m: 0.6e-9,
+            nominal_area_m2: 100e-6 * 20e-6,
+            min_separation_m: None,
+            source: Some("polysilicon E = 160 GPa, nu = 0.22; w = 0.1 J/m^2 (hydrophilic, dry); summits of radius 0.5 um, 2 per um^2, rms height 0.6 nm: representative of CMP-polished polysilicon, not a measured sample".into()),
+        }),
+        "pdms-rough-glass" => Some(RoughScene {
+            name: Some("PDMS block (1 cm^2) on frosted glass".into()),
+            body1: None,
+            body2: None,
+            e_star_pa: Some(2.4e6),
+            work_of_adhesion_j_m2: 0.044,
+            z0_m: Some(0.3e-9),
+            s0_pa: None,
+            h0_m: None,
+            summit_radius_m: 10e-6,
+            summit_density_m2: 1e9,
+            sigma_m: 0.2e-6,
+            nominal_area_m2: 1e-4,
+            min_separation_m: None,
+            source: Some("PDMS on glass E* = 2.4 MPa, w = 44 mJ/m^2 (as the pdms-glass scene); summits of radius 10 um, 1000 per mm^2, rms height 0.2 um: representative, not a measured sample".into()),
+        }),
+        _ => None,
+    }
+}
+
+pub const PRESETS: [&str; 2] = ["mems-polysilicon", "pdms-rough-glass"];
+
+/// One half of the cycle in SI units, one entry per separation.
+#[derive(Clone, Debug, Serialize)]
+pub struct SiLeg {
+    pub separation_m: Vec<f64>,
+    pub force_n: Vec<f64>,
+    pub nominal_pressure_pa: Vec<f64>,
+    pub real_contact_area_m2: Vec<f64>,
+    pub contact_fraction: Vec<f64>,
+    pub noncontact_fraction: Vec<f64>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct RoughSceneResult {
+    pub name: Option<String>,
+    pub source: Option<String>,
+    pub e_star_pa: f64,
+    pub work_of_adhesion_j_m2: f64,
+    /// Each summit's Maugis parameter and Tabor parameter.
+    pub lambda: f64,
+    pub tabor_parameter: f64,
+    /// sigma in the summit's approach unit, and Fuller and Tabor's adhesion parameter.
+    pub sigma_normalised: f64,
+    pub fuller_tabor_parameter: f64,
+    pub summits: f64,
+    pub approach: SiLeg,
+    pub retract: SiLeg,
+    pub pulloff_force_n: f64,
+    pub pulloff_stress_pa: f64,
+    pub pulloff_separation_m: f64,
+    /// Every summit pulling as a smooth one (sigma -> 0): N times the summit's Pbar_c pi w R.
+    pub smooth_pulloff_force_n: f64,
+    pub hysteresis_j: f64,
+    pub warnings: Vec<String>,
+    pub model: &'static str,
+    /// The same cycle in the summit's units (for the figure).
+    #[serde(skip)]
+    pub normalised: super::RoughCycle,
+}
+
+pub const MODEL: &str = "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd (a real contact area beyond about 10% of the nominal), when sigma is comparable to the summit radius, or for few summits";
+
+fn positive(name: &'static str, v: f64) -> Result<f64, RoughError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(DomainError {
+            name,
+            value: v,
+            range: "(0, inf)",
+            hint: "give a positive, finite value in SI units",
+        }
+        .into())
+    }
+}
+
+impl RoughScene {
+    /// One summit as a contact: the materials with the summit's radius.
+    pub fn summit(&self) -> Result<Contact, RoughError> {
+        let e_star = match (&self.body1, &self.body2, self.e_star_pa) {
+            (Some(b1), Some(b2), None) => reduced_modulus(b1, b2).map_err(scene_err)?,
+            (None, None, Some(e)) => e,
+            _ => return Err(scene_err("give e_star_pa, or body1 and body2 (not both)")),
+        };
+        let range = match (self.z0_m, self.s0_pa, self.h0_m) {
+            (Some(z), None, None) => ForceRange::LennardJones(z),
+            (None, Some(s0), None) => ForceRange::DugdaleStress(s0),
+            (None, None, Some(h)) => ForceRange::DugdaleRange(h),
+            _ => {
+                return Err(scene_err(
+                    "give one force range: z0_m (Lennard-Jones), s0_pa or h0_m (Dugdale)",
+                ))
+            }
+        };
+        let r = positive("summit_radius_m", self.summit_radius_m)?;
+        Contact::new(r, e_star, self.work_of_adhesion_j_m2, range).map_err(scene_err)
+    }
+
+    /// The cycle in SI units, `points` separations each way.
+    pub fn solve(&self, points: usize) -> Result<RoughSceneResult, RoughError> {
+        let c = self.summit()?;
+        let density = positive("summit_density_m2", self.summit_density_m2)?;
+        let area = positive("nominal_area_m2", self.nominal_area_m2)?;
+        let sigma_m = positive("sigma_m", self.sigma_m)?;
+        let unit = c.approach_scale();
+        let rough = Rough::new(c.lambda(), sigma_m / unit)?;
+        let d_min = match self.min_separation_m {
+            Some(d) if d.is_finite() => d / unit,
+            Some(d) => return Err(positive("min_separation_m", d).unwrap_err()),
+            None => -3.0 * rough.sigma,
+        };
+        let cyc = rough.cycle(d_min, None, points)?;
+        let n = density * area;
+        let (f, a2) = (c.force_scale(), c.radius_scale().powi(2));
+        let leg = |v: &[Mean], l: Leg| -> Result<SiLeg, RoughError> {
+            let areas = v
+                .iter()
+                .map(|m| Ok(n * std::f64::consts::PI * a2 * rough.mean_area(l, m.separation)?))
+                .collect::<Result<Vec<f64>, RoughError>>()?;
+            Ok(SiLeg {
+                separation_m: v.iter().map(|m| m.separation * unit).collect(),
+                force_n: v.iter().map(|m| m.load * f * n).collect(),
+                nominal_pressure_pa: v.iter().map(|m| m.load * f * n / area).collect(),
+                real_contact_area_m2: areas,
+                contact_fraction: v.iter().map(|m| m.contact_fraction).collect(),
+                noncontact_fraction: v.iter().map(|m| m.noncontact_fraction).collect(),
+            })
+        };
+        let approach = leg(&cyc.approach, Leg::Approach)?;
+        let retract = leg(&cyc.retract, Leg::Retract { d_min })?;
+        let mut warnings = Vec::new();
+        if sigma_m > 0.1 * self.summit_radius_m {
+            warnings.push(format!(
+                "sigma is {} of the summit radius: the paraboloid summit is stretched",
+                short(sigma_m / self.summit_radius_m)
+            ));
+        }
+        if n < 100.0 {
+            warnings.push(format!(
+                "only {} summits in the nominal area: the Gaussian statistics are stretched (use an explicit ensemble)",
+                short(n)
+            ));
+        }
+        let densest = retract
+            .real_contact_area_m2
+            .iter()
+            .chain(&approach.real_contact_area_m2)
+            .fold(0.0f64, |m, a| m.max(*a))
+            / area;
+        if densest > 0.1 {
+            warnings.push(format!(
+                "the real contact area reaches {} of the nominal: the summits crowd and their elastic interaction, which the model ignores, matters",
+                short(densest)
+            ));
+        }
+        Ok(RoughSceneResult {
+            name: self.name.clone(),
+            source: self.source.clone(),
+            e_star_pa: c.e_star,
+            work_of_adhesion_j_m2: c.work,
+            lambda: c.lambda(),
+            tabor_parameter: c.tabor(),
+            sigma_normalised: rough.sigma,
+            fuller_tabor_parameter: cyc.fuller_tabor_parameter,
+            summits: n,
+            approach,
+            retract,
+            pulloff_force_n: cyc.pulloff_load * f * n,
+            pulloff_stress_pa: cyc.pulloff_load * f * n / area,
+            pulloff_separation_m: cyc.pulloff_separation * unit,
+            smooth_pulloff_force_n: cyc.smooth_pulloff * f * n,
+            hysteresis_j: cyc.hysteresis * f * unit * n,
+            warnings,
+            model: MODEL,
+            normalised: cyc,
+        })
+    }
+}
+
+fn scene_err(e: impl std::fmt::Display) -> RoughError {
+    RoughError::Scene(e.to_string())
+}
