@@ -355,6 +355,8 @@ fn fit_curves<'py>(
             tolerance: num("tolerance").unwrap_or(0.05),
             ..FitOptions::default()
         };
+        // The library's check, as the command line makes it.
+        opt.validate().map_err(anyhow::Error::msg)?;
         let mut curves: Vec<Curve> = Vec::new();
         let mut index = std::collections::HashMap::new();
         for i in 0..h.len() {

@@ -351,6 +351,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
             seg = np.array([names[str(v)] for v in seg])
         except KeyError as e:
             raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
+    # 0 or 1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
+    bad = ~np.isin(seg, (0, 1))
+    if bad.any():
+        raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
+                         "use 0 (or \"approach\") and 1 (or \"retract\")")
     seg = np.ascontiguousarray(seg, dtype=np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
