@@ -356,7 +356,11 @@ fn fit_curves<'py>(
             ..FitOptions::default()
         };
         // The library's check, as the command line makes it.
-        opt.validate().map_err(anyhow::Error::msg)?;
+        if let Err(e) = opt.validate() {
+            // Named as fit_curves' keyword.
+            let kw = if e.option == "z0" { "z0_m" } else { e.option };
+            anyhow::bail!("{kw}: {}", e.message);
+        }
         let mut curves: Vec<Curve> = Vec::new();
         let mut index = std::collections::HashMap::new();
         for i in 0..h.len() {

@@ -84,7 +84,9 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         ..FitOptions::default()
     };
     // One check of the options, the library's, as Python's fit_curves makes it.
-    opt.validate().map_err(anyhow::Error::msg)?;
+    if let Err(e) = opt.validate() {
+        bail!("--{}: {}", e.option.replace('_', "-"), e.message);
+    }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;

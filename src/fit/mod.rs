@@ -94,41 +94,72 @@ impl FitOptions {
     /// Checks the options that hold for every curve (the tip radius and the spring constant are
     /// checked per curve, since each curve may carry its own): one message naming the quantity,
     /// its value and its limits. The command line and the Python package both call it.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), OptionError> {
+        self.check()
+            .map_err(|(option, message)| OptionError { option, message })
+    }
+
+    fn check(&self) -> Result<(), (&'static str, String)> {
         let short = crate::physics::domain::short;
         if let Some(nu) = self.poisson {
             if !(nu > -1.0 && nu <= 0.5) {
-                return Err(format!(
-                    "Poisson ratio {}: must be in (-1, 0.5] (0.5 is incompressible)",
-                    short(nu)
+                return Err((
+                    "poisson",
+                    format!(
+                        "Poisson ratio {} must be in (-1, 0.5] (0.5 is incompressible)",
+                        short(nu)
+                    ),
                 ));
             }
         }
         if let Some(z0) = self.z0 {
             if !(z0 >= Z0_RANGE.0 && z0 <= Z0_RANGE.1) {
-                return Err(format!(
-                    "Lennard-Jones range z0 {} m: must be between {} and {} m (about 0.3e-9 for van der Waals)",
+                return Err((
+                    "z0",
+                    format!(
+                    "Lennard-Jones range z0 {} m must be between {} and {} m (about 0.3e-9 for van der Waals)",
                     short(z0),
                     short(Z0_RANGE.0),
                     short(Z0_RANGE.1)
-                ));
+                )));
             }
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return Err(format!(
-                "adequate-model tolerance {}: must be a fraction between 0 and 1 (0.05 is 5%)",
-                short(self.tolerance)
+            return Err((
+                "tolerance",
+                format!(
+                    "adequate-model tolerance {} must be a fraction between 0 and 1 (0.05 is 5%)",
+                    short(self.tolerance)
+                ),
             ));
         }
         if !(self.baseline_fraction > 0.0 && self.baseline_fraction <= 1.0) {
-            return Err(format!(
-                "baseline fraction {}: must be in (0, 1] (the far part of the approach, 0.3 is 30%)",
+            return Err((
+                "baseline_fraction",
+                format!(
+                "baseline fraction {} must be in (0, 1] (the far part of the approach, 0.3 is 30%)",
                 short(self.baseline_fraction)
+            ),
             ));
         }
         Ok(())
     }
 }
+
+/// An option of the fit out of its range: which (the field of [`FitOptions`]) and why.
+#[derive(Debug, Clone)]
+pub struct OptionError {
+    pub option: &'static str,
+    pub message: String,
+}
+
+impl std::fmt::Display for OptionError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for OptionError {}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -463,7 +494,15 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .iter()
         .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
         .collect();
-    let noise = (resid.iter().map(|r| r * r).sum::<f64>() / resid.len().max(1) as f64).sqrt();
+    // The rms, scaled so that huge forces (1e200) do not overflow to an infinite noise.
+    let scale = resid.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+    let noise = if scale > 0.0 {
+        scale
+            * (resid.iter().map(|r| (r / scale).powi(2)).sum::<f64>() / resid.len().max(1) as f64)
+                .sqrt()
+    } else {
+        0.0
+    };
     let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
     let force: Vec<f64> = fitted
         .iter()
@@ -495,7 +534,9 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
 
 /// The indices of a curve's points in one segment, in time order.
 fn segment_points(curve: &Curve, d: Direction) -> Vec<usize> {
-    (0..curve.len()).filter(|&i| curve.segment[i] == d).collect()
+    (0..curve.len())
+        .filter(|&i| curve.segment[i] == d)
+        .collect()
 }
 
 fn seg_name(d: Direction) -> &'static str {
@@ -1477,8 +1518,8 @@ fn better(a: ModelFit, b: ModelFit) -> ModelFit {
 /// Whatever the data, the result is the curve's status: a panic inside (a bug) is caught here
 /// and becomes this curve's `not_converged`, so that the other curves of a batch go on.
 pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
-    if let Err(m) = opt.validate() {
-        return fail(curve, FitStatus::InvalidInput, m);
+    if let Err(e) = opt.validate() {
+        return fail(curve, FitStatus::InvalidInput, e.message);
     }
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fit_curve_inner(curve, opt)))
         .unwrap_or_else(|p| {
