@@ -76,10 +76,9 @@ fn a_spike_is_dropped_and_the_clean_parameters_come_back() {
         );
         assert_eq!(r.adequate_model, base.adequate_model, "{spikes:?}");
         assert!(
-            r.warnings.iter().any(|w| w.contains(&format!(
-                "dropped {} outlier point",
-                spikes.len()
-            )) && w.contains(&format!("point {}", at + 1))),
+            r.warnings.iter().any(|w| w
+                .contains(&format!("dropped {} outlier point", spikes.len()))
+                && w.contains(&format!("point {}", at + 1))),
             "{spikes:?}: {:?}",
             r.warnings
         );
@@ -120,6 +119,27 @@ fn units_off_by_1e9_and_options_no_afm_has_are_refused_with_the_cause() {
         &fit_curve(&c, &soft),
         FitStatus::NoContact,
         &["no fitted point is in contact", "spring constant 1e-30 N/m"],
+    );
+    // A curve measured with a 40 N/m cantilever fitted with 2 N/m: E* came out 5e59 Pa, `ok`.
+    let mut stiff = c.clone();
+    for i in 0..stiff.len() {
+        // The same forces at the heights of a 20 times stiffer cantilever (deflection F/k).
+        stiff.height[i] += stiff.force[i] / 2.0 - stiff.force[i] / 40.0;
+    }
+    let r = fit_curve(&stiff, &opt);
+    let fine = fit_curve(
+        &stiff,
+        &FitOptions {
+            spring: 40.0,
+            ..opt.clone()
+        },
+    );
+    let (e, _) = ok(&fine);
+    assert!(rel(e, 1.5e9) < 0.05, "{e}");
+    refused(
+        &r,
+        FitStatus::NotConverged,
+        &["outside physical sense", "check the spring constant"],
     );
     let big = FitOptions {
         radius: 1.0,
@@ -214,7 +234,10 @@ fn heights_that_jitter_more_than_their_step_are_fitted_with_a_note() {
     refused(
         &fit_curve(&rev, &opt),
         FitStatus::InvalidInput,
-        &["retract heights are not in order", "must increase the height"],
+        &[
+            "retract heights are not in order",
+            "must increase the height",
+        ],
     );
 }
 
@@ -314,10 +337,19 @@ fn option_values_out_of_range_are_one_check_in_the_library() {
     let input = csv_of(&[("good", &c)]);
     for (args, says) in [
         (vec!["--poisson", "5"], "--poisson: Poisson ratio 5"),
-        (vec!["--tolerance", "5"], "--tolerance: adequate-model tolerance 5"),
-        (vec!["--tolerance=-1"], "--tolerance: adequate-model tolerance -1"),
+        (
+            vec!["--tolerance", "5"],
+            "--tolerance: adequate-model tolerance 5",
+        ),
+        (
+            vec!["--tolerance=-1"],
+            "--tolerance: adequate-model tolerance -1",
+        ),
         (vec!["--z0", "1"], "--z0: Lennard-Jones range z0 1 m"),
-        (vec!["--z0", "1e-30"], "--z0: Lennard-Jones range z0 1e-30 m"),
+        (
+            vec!["--z0", "1e-30"],
+            "--z0: Lennard-Jones range z0 1e-30 m",
+        ),
     ] {
         let mut a = vec!["fit", "-i", "-", "--radius", "20e-9", "--spring-n-m", "2"];
         a.extend(args);
@@ -358,4 +390,39 @@ fn csv_of(curves: &[(&str, &Curve)]) -> String {
         }
     }
     s
+}
+
+#[test]
+fn the_generator_says_why_parameters_give_no_curve() {
+    use tabor::fit::synthetic::try_synthetic;
+    let s = Synthetic {
+        model: Model::Md,
+        params: Params {
+            e_star: 1.5e9,
+            w: 0.05,
+            lambda: 1.0,
+            zc: 40e-9,
+            f0: 0.0,
+        },
+        radius: 20e-9,
+        spring: 2.0,
+        points: 50,
+        depth: 6.0,
+        noise: 1e-11,
+        seed: 1,
+    };
+    assert_eq!(try_synthetic(&s).unwrap().len(), 100);
+    let mut nan = s.clone();
+    nan.noise = f64::NAN;
+    assert!(try_synthetic(&nan).unwrap_err().contains("force noise NaN"));
+    let mut far = s.clone();
+    far.params.lambda = 1e9;
+    assert!(try_synthetic(&far)
+        .unwrap_err()
+        .contains("lambda 1000000000"));
+    let mut soft = s.clone();
+    soft.params.e_star = -1.0;
+    assert!(try_synthetic(&soft)
+        .unwrap_err()
+        .contains("must be positive"));
 }

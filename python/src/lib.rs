@@ -333,7 +333,13 @@ fn fit_curves<'py>(
     run(py, move || {
         use tabor::fit::{Curve, Direction, FitOptions, Segments};
         let o: serde_json::Value = serde_json::from_str(&options_json)?;
-        let num = |k: &str| o.get(k).and_then(|v| v.as_f64());
+        // Non-finite numbers come as text ("nan", "inf"), JSON having none.
+        let num = |k: &str| {
+            o.get(k).and_then(|v| {
+                v.as_f64()
+                    .or_else(|| v.as_str().and_then(|s| s.parse().ok()))
+            })
+        };
         let opt = FitOptions {
             radius: num("radius").unwrap_or(f64::NAN),
             spring: num("spring").unwrap_or(f64::NAN),

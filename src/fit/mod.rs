@@ -1684,7 +1684,7 @@ fn unit_hints(d: &Prepared, opt: &FitOptions) -> String {
         ));
     }
     if h.is_empty() {
-        String::new()
+        "; check the spring constant (a wrong one moves E* by orders of magnitude), the tip radius, and that height_m is in metres and force_n in newtons".into()
     } else {
         format!("; likely cause: {}", h.join("; "))
     }
