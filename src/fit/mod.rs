@@ -85,10 +85,11 @@ impl Default for FitOptions {
 pub const Z0_RANGE: (f64, f64) = (1e-12, 1e-6);
 
 /// Fitted parameters outside these are taken for a failed fit (wrong units, a wrong spring
-/// constant or radius, or data the models cannot describe): E* (Pa), from soft gels to diamond,
-/// and w (J/m^2) above metallic adhesion. A w below the weakest van der Waals contact (1e-6) is
+/// constant or radius, or data the models cannot describe): E* (Pa), from the softest gels and
+/// cells (measured cell curves fit a few hundred Pa) to diamond, and w (J/m^2) above metallic
+/// adhesion. A w below the weakest van der Waals contact (1e-6) is
 /// no measurable adhesion (a Hertz curve), not a failure.
-pub const E_STAR_RANGE: (f64, f64) = (1e3, 1e12);
+pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
 pub const W_MAX: f64 = 10.0;
 
 impl FitOptions {
@@ -1654,6 +1655,16 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
 /// The likely causes of an absurd fit, from the scales of the data and options: units off by
 /// 1e9 (nN or nm given where N or m are read), a radius or a spring constant that no AFM has.
 fn unit_hints(d: &Prepared, opt: &FitOptions) -> String {
+    let h = hints(d, opt);
+    if h.is_empty() {
+        "; check the spring constant (a wrong one moves E* by orders of magnitude), the tip radius, and that height_m is in metres and force_n in newtons".into()
+    } else {
+        format!("; likely cause: {}", h.join("; "))
+    }
+}
+
+/// The scales of the data and options that no AFM curve has, each a sentence.
+fn hints(d: &Prepared, opt: &FitOptions) -> Vec<String> {
     let short = crate::physics::domain::short;
     let fmax = d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let hmax = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -1683,11 +1694,7 @@ fn unit_hints(d: &Prepared, opt: &FitOptions) -> String {
             short(opt.spring)
         ));
     }
-    if h.is_empty() {
-        "; check the spring constant (a wrong one moves E* by orders of magnitude), the tip radius, and that height_m is in metres and force_n in newtons".into()
-    } else {
-        format!("; likely cause: {}", h.join("; "))
-    }
+    h
 }
 
 fn summarize(
@@ -1906,6 +1913,11 @@ fn summarize(
     }
     // Warnings.
     let mut warn = d.notes.clone();
+    // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
+    // on that value.
+    for h in hints(d, opt) {
+        warn.push(format!("{h}; the fitted values assume it"));
+    }
     // Far above the noise of the baseline (and above rounding for noise-free data).
     let floor = 1e-6 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     if md.rms_residual_n > 10.0 * d.noise + floor {
