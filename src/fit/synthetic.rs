@@ -37,9 +37,8 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
     let finite = [
         p.e_star, p.w, p.lambda, p.zc, p.f0, s.radius, s.spring, s.depth,
     ];
-    if !finite.iter().all(|v| v.is_finite())
-        || !(p.e_star > 0.0 && p.w > 0.0 && s.radius > 0.0 && s.spring > 0.0 && s.depth > 0.0)
-    {
+    let positive = [p.e_star, p.w, s.radius, s.spring, s.depth];
+    if !(finite.iter().all(|v| v.is_finite()) && positive.iter().all(|&v| v > 0.0)) {
         return Err(format!(
             "E* ({} Pa), w ({} J/m^2), the radius ({} m), the spring constant ({} N/m) and the depth ({}) must be positive and finite, lambda, the contact point and the offset finite",
             p.e_star, p.w, s.radius, s.spring, s.depth
