@@ -333,7 +333,13 @@ fn fit_curves<'py>(
     run(py, move || {
         use tabor::fit::{Curve, Direction, FitOptions, Segments};
         let o: serde_json::Value = serde_json::from_str(&options_json)?;
-        let num = |k: &str| o.get(k).and_then(|v| v.as_f64());
+        // Non-finite numbers come as text ("nan", "inf"), JSON having none.
+        let num = |k: &str| {
+            o.get(k).and_then(|v| {
+                v.as_f64()
+                    .or_else(|| v.as_str().and_then(|s| s.parse().ok()))
+            })
+        };
         let opt = FitOptions {
             radius: num("radius").unwrap_or(f64::NAN),
             spring: num("spring").unwrap_or(f64::NAN),
@@ -355,6 +361,12 @@ fn fit_curves<'py>(
             tolerance: num("tolerance").unwrap_or(0.05),
             ..FitOptions::default()
         };
+        // The library's check, as the command line makes it.
+        if let Err(e) = opt.validate() {
+            // Named as fit_curves' keyword.
+            let kw = if e.option == "z0" { "z0_m" } else { e.option };
+            anyhow::bail!("{kw}: {}", e.message);
+        }
         let mut curves: Vec<Curve> = Vec::new();
         let mut index = std::collections::HashMap::new();
         for i in 0..h.len() {

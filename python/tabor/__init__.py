@@ -351,6 +351,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
             seg = np.array([names[str(v)] for v in seg])
         except KeyError as e:
             raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
+    # 0 or 1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
+    bad = ~np.isin(seg, (0, 1))
+    if bad.any():
+        raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
+                         "use 0 (or \"approach\") and 1 (or \"retract\")")
     seg = np.ascontiguousarray(seg, dtype=np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
@@ -360,12 +365,14 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         ids = np.ascontiguousarray(ids, dtype=np.int64)
     if not (len(h) == len(f) == len(seg) == len(ids)):
         raise ValueError("height_m, force_n, segment (and curve) must have the same length")
-    options = {"radius": float(radius_m), "spring": float(spring_n_m), "segment": fit_segment,
-               "tilt": bool(tilt), "tolerance": float(tolerance)}
+    # JSON has no NaN or infinity: those go as text, and the library's check names them.
+    num = lambda x: float(x) if np.isfinite(float(x)) else repr(float(x))
+    options = {"radius": num(radius_m), "spring": num(spring_n_m), "segment": fit_segment,
+               "tilt": bool(tilt), "tolerance": num(tolerance)}
     if poisson is not None:
-        options["poisson"] = float(poisson)
+        options["poisson"] = num(poisson)
     if z0_m is not None:
-        options["z0"] = float(z0_m)
+        options["z0"] = num(z0_m)
     out = json.loads(_tabor.fit_curves(ids, seg, h, f, json.dumps(options)))
     if labels is not None:
         for r in out:
