@@ -11,6 +11,8 @@ use std::panic::AssertUnwindSafe;
 use tabor::engine::{Backend, Engine, Precision};
 use tabor::solver::{Control, LambdaContext, State, Status};
 
+mod rough;
+
 /// Runs `f` without the GIL; errors become ValueError, panics RuntimeError.
 fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
     let r = py.detach(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
@@ -623,6 +625,8 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
     m.add_class::<AdhesionMap>()?;
     Ok(())
 }

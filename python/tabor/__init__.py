@@ -37,7 +37,7 @@ STATUS_NAMES = tuple(_tabor.status_names())
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
-    "fit_afmformats", "cycle", "profile", "presets",
+    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble",
 ]
 
 
@@ -443,3 +443,25 @@ def profile(lam, load=None, approach=None, radius=None, points=400):
                                  dtype=float)
         m["gap"] = np.array(m["gap"], dtype=float)
     return p
+
+
+def rough(lam, sigma, min_separation, max_separation=None, points=400):
+    """A rough surface of Maugis-Dugdale summits (Greenwood-Williamson, Gaussian heights of
+    standard deviation ``sigma``) through an approach from ``max_separation`` (default: where no
+    summit feels the flat) to ``min_separation`` and back, as ``tabor rough`` computes it.
+    Loads per summit in pi w R, separations and sigma in the summit's approach unit. Returns a
+    dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
+    ``noncontact_fraction``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
+    ``smooth_pulloff``, ``fuller_tabor_parameter``."""
+    return _tabor.rough(float(lam), float(sigma), float(min_separation),
+                        None if max_separation is None else float(max_separation), int(points))
+
+
+def rough_ensemble(lam, heights, separations, min_separation=None):
+    """Load per summit and branch fractions of an explicit ensemble of summit ``heights``
+    (approach units, all of Maugis parameter ``lam``) at each of ``separations``: on the
+    approach, or with ``min_separation`` on the retract after pressing to it."""
+    h = np.ascontiguousarray(heights, dtype=float).ravel()
+    d = np.ascontiguousarray(separations, dtype=float).ravel()
+    return _tabor.rough_ensemble(float(lam), h.tolist(), d.tolist(),
+                                 None if min_separation is None else float(min_separation))
