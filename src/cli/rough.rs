@@ -162,28 +162,45 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// One row per separation: `phase,separation,load,contact_fraction,noncontact_fraction`.
-fn csv(c: &RoughCycle) -> anyhow::Result<String> {
+/// One row per separation and phase: `phase` then the named columns, each half of the cycle
+/// given as its columns.
+fn phases_csv(columns: &[&str], halves: [(&str, Vec<&[f64]>); 2]) -> anyhow::Result<String> {
     let mut w = crate::io::csv_writer();
-    w.write_record([
-        "phase",
-        "separation",
-        "load",
-        "contact_fraction",
-        "noncontact_fraction",
-    ])?;
-    for (phase, v) in [("approach", &c.approach), ("retract", &c.retract)] {
-        for m in v.iter() {
-            w.write_record([
-                phase.to_string(),
-                fmt17(m.separation),
-                fmt17(m.load),
-                fmt17(m.contact_fraction),
-                fmt17(m.noncontact_fraction),
-            ])?;
+    w.write_record(std::iter::once("phase").chain(columns.iter().copied()))?;
+    for (phase, cols) in &halves {
+        for i in 0..cols.first().map_or(0, |c| c.len()) {
+            w.write_record(
+                std::iter::once(phase.to_string()).chain(cols.iter().map(|c| fmt17(c[i]))),
+            )?;
         }
     }
     Ok(String::from_utf8(crate::io::csv_finish(w)?)?)
+}
+
+/// One row per separation: `phase,separation,load,contact_fraction,noncontact_fraction`.
+fn csv(c: &RoughCycle) -> anyhow::Result<String> {
+    let col = |v: &[Mean], f: fn(&Mean) -> f64| v.iter().map(f).collect::<Vec<f64>>();
+    let half = |v: &[Mean]| {
+        [
+            col(v, |m| m.separation),
+            col(v, |m| m.load),
+            col(v, |m| m.contact_fraction),
+            col(v, |m| m.noncontact_fraction),
+        ]
+    };
+    let (ap, re) = (half(&c.approach), half(&c.retract));
+    phases_csv(
+        &[
+            "separation",
+            "load",
+            "contact_fraction",
+            "noncontact_fraction",
+        ],
+        [
+            ("approach", ap.iter().map(|v| v.as_slice()).collect()),
+            ("retract", re.iter().map(|v| v.as_slice()).collect()),
+        ],
+    )
 }
 
 #[derive(Args, Debug)]
@@ -323,30 +340,30 @@ fn run_scene(
     let r = sc.solve(a.points)?;
     let text = match a.format {
         Format::Csv => {
-            let mut w = crate::io::csv_writer();
-            w.write_record([
-                "phase",
-                "separation_m",
-                "force_n",
-                "nominal_pressure_pa",
-                "real_contact_area_m2",
-                "contact_fraction",
-                "noncontact_fraction",
-            ])?;
-            for (phase, l) in [("approach", &r.approach), ("retract", &r.retract)] {
-                for i in 0..l.separation_m.len() {
-                    w.write_record([
-                        phase.to_string(),
-                        fmt17(l.separation_m[i]),
-                        fmt17(l.force_n[i]),
-                        fmt17(l.nominal_pressure_pa[i]),
-                        fmt17(l.real_contact_area_m2[i]),
-                        fmt17(l.contact_fraction[i]),
-                        fmt17(l.noncontact_fraction[i]),
-                    ])?;
-                }
+            fn half(l: &crate::rough::scene::SiLeg) -> Vec<&[f64]> {
+                vec![
+                    l.separation_m.as_slice(),
+                    &l.force_n,
+                    &l.nominal_pressure_pa,
+                    &l.real_contact_area_m2,
+                    &l.contact_fraction,
+                    &l.noncontact_fraction,
+                ]
             }
-            String::from_utf8(crate::io::csv_finish(w)?)?
+            phases_csv(
+                &[
+                    "separation_m",
+                    "force_n",
+                    "nominal_pressure_pa",
+                    "real_contact_area_m2",
+                    "contact_fraction",
+                    "noncontact_fraction",
+                ],
+                [
+                    ("approach", half(&r.approach)),
+                    ("retract", half(&r.retract)),
+                ],
+            )?
         }
         _ => serde_json::to_string_pretty(&r)? + "\n",
     };
@@ -519,28 +536,28 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
     let r = ensemble::cycle(&asp, &m, d_min, None, a.points)?;
     let text = match a.format {
         Format::Csv => {
-            let mut w = crate::io::csv_writer();
-            w.write_record([
-                "phase",
-                "separation_m",
-                "force_n",
-                "real_contact_area_m2",
-                "contact_fraction",
-                "noncontact_fraction",
-            ])?;
-            for (phase, l) in [("approach", &r.approach), ("retract", &r.retract)] {
-                for i in 0..l.separation_m.len() {
-                    w.write_record([
-                        phase.to_string(),
-                        fmt17(l.separation_m[i]),
-                        fmt17(l.force_n[i]),
-                        fmt17(l.real_contact_area_m2[i]),
-                        fmt17(l.contact_fraction[i]),
-                        fmt17(l.noncontact_fraction[i]),
-                    ])?;
-                }
+            fn half(l: &crate::rough::ensemble::EnsembleLeg) -> Vec<&[f64]> {
+                vec![
+                    l.separation_m.as_slice(),
+                    &l.force_n,
+                    &l.real_contact_area_m2,
+                    &l.contact_fraction,
+                    &l.noncontact_fraction,
+                ]
             }
-            String::from_utf8(crate::io::csv_finish(w)?)?
+            phases_csv(
+                &[
+                    "separation_m",
+                    "force_n",
+                    "real_contact_area_m2",
+                    "contact_fraction",
+                    "noncontact_fraction",
+                ],
+                [
+                    ("approach", half(&r.approach)),
+                    ("retract", half(&r.retract)),
+                ],
+            )?
         }
         _ => {
             serde_json::to_string_pretty(&serde_json::json!({
