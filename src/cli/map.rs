@@ -115,6 +115,20 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     spec.validate()?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let mut more: Vec<(String, PathBuf)> = a
+        .json
+        .clone()
+        .map(|p| ("--json".to_string(), p))
+        .into_iter()
+        .collect();
+    if let Some(prefix) = &a.npy {
+        more.extend(
+            NPY_FILES
+                .iter()
+                .map(|n| ("--npy".to_string(), PathBuf::from(format!("{prefix}_{n}")))),
+        );
+    }
+    a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work: a bad path fails at once, and none is put in
     // place unless all of them were written.
     let open = |p: &Option<PathBuf>| -> anyhow::Result<Option<Output>> {

@@ -206,6 +206,34 @@ impl FigureArgs {
         crate::render::Print::new(mm, self.dpi).map_err(anyhow::Error::msg)
     }
 
+    /// The figure's files with the options that name them (`main` given by `flag`), for
+    /// [`crate::io::output::check_distinct`].
+    pub fn named(
+        &self,
+        main: Option<&std::path::Path>,
+        flag: &str,
+    ) -> Vec<(String, std::path::PathBuf)> {
+        let mut v: Vec<(String, std::path::PathBuf)> = main
+            .map(|p| (flag.to_string(), p.to_path_buf()))
+            .into_iter()
+            .collect();
+        v.extend(self.svg.clone().map(|p| ("--svg".to_string(), p)));
+        v.extend(self.pdf.clone().map(|p| ("--pdf".to_string(), p)));
+        v
+    }
+
+    /// Refuses two of these outputs (the figure's, and `more`) that would write one file.
+    pub fn check_distinct(
+        &self,
+        main: Option<&std::path::Path>,
+        flag: &str,
+        more: impl IntoIterator<Item = (String, std::path::PathBuf)>,
+    ) -> anyhow::Result<()> {
+        let mut v = self.named(main, flag);
+        v.extend(more);
+        crate::io::output::check_distinct(v)
+    }
+
     /// The files: `main` (given by `flag`, any of .png, .svg, .pdf) with --svg and --pdf.
     pub fn outputs(
         &self,
