@@ -896,6 +896,13 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
             )
         })?;
         let machine = s.metadata["machine"].as_str().unwrap_or("unknown machine");
+        check_replot(saved, &s.results)?;
+        std::fs::create_dir_all(&a.out_dir).with_context(|| {
+            format!(
+                "--out-dir {}: cannot create the folder",
+                a.out_dir.display()
+            )
+        })?;
         return bench_chart(&a.out_dir, &s.results, machine);
     }
     let (nl, np) = if a.quick { (120, 60) } else { (600, 300) };
@@ -960,6 +967,36 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     )?;
     bench_chart(&a.out_dir, &results, &machine)?;
     eprintln!("wrote bench.json, bench.txt");
+    Ok(())
+}
+
+/// Most solves per second a saved result may claim: the chart's axis is drawn decade by decade,
+/// so an absurd speed (1e308) would draw without end.
+pub const MAX_SPEED: f64 = 1e15;
+
+/// Refuses a saved bench.json the chart cannot show: no results, or a speed that is not a
+/// positive number of solves per second up to [`MAX_SPEED`].
+fn check_replot(
+    saved: &std::path::Path,
+    results: &[crate::bench::VariantResult],
+) -> anyhow::Result<()> {
+    if results.is_empty() {
+        bail!(
+            "--replot {}: \"results\" is empty: nothing to draw; give a bench.json of a run of tabor bench",
+            saved.display()
+        );
+    }
+    for r in results {
+        let v = r.points_per_second;
+        if !(v > 0.0 && v <= MAX_SPEED) {
+            bail!(
+                "--replot {}: variant {:?} has points_per_second = {}; a speed must be above 0 and at most {MAX_SPEED:e} solves per second",
+                saved.display(),
+                r.name,
+                crate::solver::domain::short(v)
+            );
+        }
+    }
     Ok(())
 }
 

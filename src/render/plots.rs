@@ -255,13 +255,17 @@ where
         .map(|r| r.points_per_second)
         .filter(|v| v.is_finite() && *v > 0.0)
         .collect();
+    // Bounded whatever the input: a log axis over no speeds, or up to 1e308, would have no end.
+    if speeds.is_empty() {
+        return Err("no variant has a positive speed: nothing to draw".into());
+    }
     let (smin, smax) = (
         speeds.iter().cloned().fold(f64::INFINITY, f64::min),
         speeds.iter().cloned().fold(0.0, f64::max),
     );
     let mut chart = builder(root, title).build_cartesian_2d(
         (1e-13..3.0f64).log_scale(),
-        ((smin / 3.0).max(1.0)..smax * 5.0).log_scale(),
+        ((smin / 3.0).clamp(1.0, 1e18)..(smax * 5.0).clamp(10.0, 1e19)).log_scale(),
     )?;
     chart
         .configure_mesh()
