@@ -736,7 +736,7 @@ pub struct CurveArgs {
     pub points: usize,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
     pub format: Format,
 }
 

@@ -44,7 +44,7 @@ pub struct FitArgs {
     pub tolerance: f64,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     /// One curve's data with the Maugis-Dugdale, Hertz, DMT and JKR fits and the residuals
     /// (.png, .svg or .pdf).

@@ -152,8 +152,37 @@ pub enum Format {
     Json,
 }
 
+impl std::fmt::Display for Format {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Format::Text => "text",
+            Format::Csv => "csv",
+            Format::Json => "json",
+        })
+    }
+}
+
+/// A `--format` that accepts only `accepted` (which `--help` lists), for a command that does
+/// not write every [`Format`].
+pub fn formats(
+    accepted: &'static [&'static str],
+) -> impl clap::builder::TypedValueParser<Value = Format> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(accepted.to_vec())
+        .map(|s| <Format as ValueEnum>::from_str(&s, false).expect("a format name"))
+}
+
 pub fn run() -> anyhow::Result<()> {
-    let cli = Cli::parse();
+    // A command line that cannot be parsed is bad input like any other: exit code 1 (clap's
+    // own is 2); --help and --version go to stdout with 0.
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) if e.use_stderr() => {
+            let _ = e.print();
+            std::process::exit(1)
+        }
+        Err(e) => e.exit(),
+    };
     match cli.command {
         Command::Solve(a) => basic::solve(a),
         Command::Pulloff(a) => basic::pulloff(a),

@@ -32,7 +32,7 @@ pub struct ProfileArgs {
     /// Sampling points on the uniform part of the r grid (more are added near a and c).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,

@@ -28,7 +28,7 @@ pub struct RoughArgs {
     #[arg(long, default_value_t = 400)]
     pub points: usize,
     /// json or csv.
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -170,7 +170,7 @@ pub struct RoughPulloffArgs {
     #[arg(long, default_value_t = 3.0)]
     pub press_sigmas: f64,
     /// json or csv.
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,

@@ -20,7 +20,7 @@ pub struct SceneArgs {
     pub loads: Option<Vec<f64>>,
     #[arg(long)]
     pub tolerance: Option<f64>,
-    #[arg(long, value_enum, default_value_t = Format::Text)]
+    #[arg(long, value_parser = super::formats(&["text", "json"]), default_value_t = Format::Text)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -217,7 +217,7 @@ pub struct InferArgs {
     /// Lennard-Jones range z0 (m).
     #[arg(long, default_value_t = 0.3e-9)]
     pub z0: f64,
-    #[arg(long, value_enum, default_value_t = Format::Text)]
+    #[arg(long, value_parser = super::formats(&["text", "json"]), default_value_t = Format::Text)]
     pub format: Format,
 }
 
@@ -347,7 +347,7 @@ pub struct CycleArgs {
     pub max_load: f64,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
     pub format: Format,
     /// Force against displacement and contact radius against load (.png, .svg or .pdf).
     #[arg(long)]
