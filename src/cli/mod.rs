@@ -77,6 +77,53 @@ impl From<BackendArg> for crate::engine::Backend {
     }
 }
 
+/// A setting from the environment: unset and empty are the same (an empty `VAR=` is how
+/// scripts clear one).
+fn env_setting(var: &str) -> anyhow::Result<Option<String>> {
+    match std::env::var(var) {
+        Ok(v) if v.trim().is_empty() => Ok(None),
+        Ok(v) => Ok(Some(v.trim().to_string())),
+        Err(std::env::VarError::NotPresent) => Ok(None),
+        Err(std::env::VarError::NotUnicode(v)) => anyhow::bail!(
+            "the environment variable {var}={v:?} is not valid text: set it to a plain value or unset it"
+        ),
+    }
+}
+
+/// Where the work runs: `--backend`, else the environment variable TABOR_BACKEND (named in the
+/// message when its value is wrong), else `default`.
+pub fn backend_choice(flag: Option<BackendArg>, default: BackendArg) -> anyhow::Result<BackendArg> {
+    if let Some(b) = flag {
+        return Ok(b);
+    }
+    match env_setting("TABOR_BACKEND")? {
+        None => Ok(default),
+        Some(v) => BackendArg::from_str(&v, true).map_err(|_| {
+            anyhow::anyhow!(
+                "the environment variable TABOR_BACKEND={v:?} is not a backend: set it to auto, gpu or cpu, or unset it"
+            )
+        }),
+    }
+}
+
+/// The GPU adapter to use: `--adapter`, else the environment variable TABOR_ADAPTER. The CPU
+/// backend has none: an `--adapter` with it is refused (it would be silently ignored), a
+/// TABOR_ADAPTER is not used.
+pub fn adapter_choice(flag: Option<&str>, backend: BackendArg) -> anyhow::Result<Option<String>> {
+    if backend == BackendArg::Cpu {
+        if let Some(a) = flag {
+            anyhow::bail!(
+                "--adapter {a:?} with --backend cpu: the CPU solver uses no GPU adapter; give --backend gpu (or auto) to use it, or leave out --adapter"
+            );
+        }
+        return Ok(None);
+    }
+    match flag {
+        Some(a) => Ok(Some(a.to_string())),
+        None => env_setting("TABOR_ADAPTER"),
+    }
+}
+
 /// The GPU's arithmetic (`--precision`); the library's [`crate::engine::Precision`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PrecisionArg {
