@@ -90,7 +90,11 @@ pub use crate::engine::GPU_TOLERANCE;
 pub const CHUNK_ROWS: usize = 1 << 16;
 
 /// Chooses the engine for `--backend` and `--precision`, and says which in one line on stderr.
-pub fn engine_for(backend: Option<BackendArg>, default: BackendArg, gpu: &GpuArgs) -> anyhow::Result<Engine> {
+pub fn engine_for(
+    backend: Option<BackendArg>,
+    default: BackendArg,
+    gpu: &GpuArgs,
+) -> anyhow::Result<Engine> {
     let backend = super::backend_choice(backend, default)?;
     let adapter = super::adapter_choice(gpu.adapter.as_deref(), backend)?;
     let (mut engine, line) = Engine::select(backend.into(), adapter.as_deref())?;

@@ -90,7 +90,11 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     }
     let mut more = vec![("--output".to_string(), std::path::PathBuf::from(&a.output))];
     if let Some(prefix) = &a.maps {
-        for n in fit::MAP_QUANTITIES.iter().map(|q| q.name).chain(["adequate_model"]) {
+        for n in fit::MAP_QUANTITIES
+            .iter()
+            .map(|q| q.name)
+            .chain(["adequate_model"])
+        {
             for ext in ["npy", "png"] {
                 more.push(("--maps".to_string(), format!("{prefix}_{n}.{ext}").into()));
             }

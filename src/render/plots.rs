@@ -238,9 +238,11 @@ where
         chart.draw_series(std::iter::once(Circle::new(cs.pulloff, 14, col.filled())))?;
     }
     if !each {
-        let (lo, hi) = series.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
-            (a.min(c.lambda), b.max(c.lambda))
-        });
+        let (lo, hi) = series
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
+                (a.min(c.lambda), b.max(c.lambda))
+            });
         let st = ShapeStyle::from(&palette[0]).stroke_width(8);
         chart
             .draw_series(LineSeries::new(Vec::<(f64, f64)>::new(), st))?
