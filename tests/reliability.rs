@@ -194,7 +194,7 @@ fn scene_inputs_are_checked() {
     );
     refused(
         &["scene", "--preset", "afm-si", "--format", "csv"],
-        "--format csv",
+        "invalid value 'csv' for '--format",
     );
 }
 

@@ -848,8 +848,8 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     for &l in &a.lambda {
         crate::solver::domain::check_lambda(l).context("--lambda")?;
     }
-    a.figure.check_distinct(Some(&a.out), "--out", [])?;
     let out = a.figure.outputs(Some(&a.out), "--out")?;
+    a.figure.check_distinct(Some(&a.out), "--out", [])?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     use crate::render::Kind;
     let r = match a.kind {

@@ -88,6 +88,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
             );
         }
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let mut more = vec![("--output".to_string(), std::path::PathBuf::from(&a.output))];
     if let Some(prefix) = &a.maps {
         for n in fit::MAP_QUANTITIES
@@ -102,7 +103,6 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     }
     more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
     a.figure.check_distinct(a.plot.as_deref(), "--plot", more)?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     let opt = FitOptions {

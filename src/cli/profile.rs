@@ -47,12 +47,12 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for a profile: use json or csv");
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     a.figure.check_distinct(
         a.plot.as_deref(),
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(crate::cli::scene::read_scene(f)?),

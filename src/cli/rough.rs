@@ -80,12 +80,12 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         anyhow::bail!("--format text is not available for a rough cycle: use json or csv");
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     a.figure.check_distinct(
         a.plot.as_deref(),
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::DOUBLE_COLUMN_MM)?;
     let rough = Rough::new(a.lambda, a.sigma)?;
     let c = rough
@@ -188,12 +188,12 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         anyhow::bail!("--format text is not available here: use json or csv");
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     a.figure.check_distinct(
         a.plot.as_deref(),
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     if !(a.sigma_min > 0.0 && a.sigma_max > a.sigma_min && a.sigma_max <= 1e4) {
         anyhow::bail!(

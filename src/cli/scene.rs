@@ -50,12 +50,12 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     if a.format == Format::Csv {
         bail!("--format csv is not available for a scene: use text or json");
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     a.figure.check_distinct(
         a.plot.as_deref(),
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let r = solve_scene(&input)?;
     let text = match a.format {
@@ -381,12 +381,12 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for a cycle: use csv or json (a summary goes to stderr)");
     }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     a.figure.check_distinct(
         a.plot.as_deref(),
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
         bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
