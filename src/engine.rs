@@ -59,14 +59,14 @@ impl Engine {
         match backend {
             Backend::Cpu => Ok((
                 Engine::Cpu,
-                format!("backend: {} (--backend cpu)", cpu_line()),
+                format!("backend: {} (backend cpu)", cpu_line()),
             )),
             Backend::Gpu => Ok(on_gpu(Gpu::new(adapter)?, "")),
             // The adapter is looked at before a device is made: choosing the CPU makes no
             // device and compiles no shader.
             Backend::Auto => {
                 let fallback = |e: GpuError| {
-                    let line = format!("backend: {} (--backend auto: {e})", cpu_line());
+                    let line = format!("backend: {} (backend auto: {e})", cpu_line());
                     Ok((Engine::Cpu, line))
                 };
                 match crate::gpu::choose_summary(adapter) {
@@ -80,13 +80,13 @@ impl Engine {
                     Ok(s) if s.software && adapter.is_none() => Ok((
                         Engine::Cpu,
                         format!(
-                            "backend: {} (--backend auto: the only adapter, {}, is a software one on the same cores, where the exact solver is faster; --backend gpu uses it)",
+                            "backend: {} (backend auto: the only adapter, {}, is a software one on the same cores, where the exact solver is faster; the gpu backend uses it)",
                             cpu_line(),
                             s.name
                         ),
                     )),
                     Ok(_) => match Gpu::new(adapter) {
-                        Ok(g) => Ok(on_gpu(g, "; chosen by --backend auto")),
+                        Ok(g) => Ok(on_gpu(g, "; chosen by backend auto")),
                         Err(e @ GpuError::NoMatch { .. }) => Err(e),
                         Err(e) => fallback(e),
                     },

@@ -82,6 +82,23 @@
 // `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+// Messages on stderr that never panic: std's `eprintln!` panics when stderr is a closed pipe
+// (`tabor ... 2>&1 | head -1`). Like stdout, a message nobody can read is dropped. Defined
+// before the modules so that every `eprintln!`/`eprint!` in the crate is this one.
+macro_rules! eprintln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+#[allow(unused_macros)]
+macro_rules! eprint {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($t)*);
+    }};
+}
+
 pub mod bench;
 #[cfg(feature = "cli")]
 pub mod cli;

@@ -6,7 +6,9 @@ fn main() {
             std::process::exit(0);
         }
         // One line: the context, then each cause after a colon.
-        eprintln!("error: {e:#}");
+        // A closed stderr ends quietly, as a closed stdout does.
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), "error: {e:#}");
         std::process::exit(1);
     }
 }

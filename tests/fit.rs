@@ -427,7 +427,7 @@ fn a_force_map_gives_npy_maps_that_match_the_table_and_figures() {
     }
     let svg = std::fs::read_to_string(&on_map).unwrap();
     assert!(
-        svg.contains("5 fitted force curves on the adhesion map"),
+        svg.contains("5 fitted curves on the map"),
         "{}",
         &svg[..200]
     );

@@ -194,7 +194,7 @@ fn scene_inputs_are_checked() {
     );
     refused(
         &["scene", "--preset", "afm-si", "--format", "csv"],
-        "--format csv",
+        "invalid value 'csv' for '--format",
     );
 }
 
@@ -636,7 +636,7 @@ fn messages_name_the_input_the_value_and_what_to_do() {
     );
     refused(
         &["curve", "--lambda", "1", "--format", "text"],
-        "--format text",
+        "invalid value 'text' for '--format",
     );
     refused(
         &[
@@ -662,7 +662,7 @@ fn messages_name_the_input_the_value_and_what_to_do() {
             "--format",
             "csv",
         ],
-        "--format csv",
+        "invalid value 'csv' for '--format",
     );
     // atlas into a path that is a file: the message names it.
     let file = dir.path().join("taken");

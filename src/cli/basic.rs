@@ -41,8 +41,9 @@ pub struct SolveArgs {
     pub format: Option<Format>,
     /// Where a CSV of points is solved; `auto` takes a hardware GPU if there is one (a software
     /// adapter is slower than the exact CPU solver on the same cores).
-    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = BackendArg::Cpu)]
-    pub backend: BackendArg,
+    /// [default: cpu, or the environment variable TABOR_BACKEND]
+    #[arg(long, value_enum)]
+    pub backend: Option<BackendArg>,
     #[command(flatten)]
     pub gpu: GpuArgs,
     /// Put the solve time into the output (JSON metadata) or on stderr; off by default so that
@@ -53,8 +54,9 @@ pub struct SolveArgs {
 
 #[derive(Args, Debug, Clone)]
 pub struct GpuArgs {
-    /// Use the first adapter whose name contains this text (see `tabor info`).
-    #[arg(long, env = "TABOR_ADAPTER")]
+    /// Use the first adapter whose name contains this text (see `tabor info`) [default: the
+    /// environment variable TABOR_ADAPTER].
+    #[arg(long)]
     pub adapter: Option<String>,
     /// GPU results: re-solve N evenly spaced points (or `all`) on the CPU in f64 and report the
     /// errors (also written into the JSON metadata).
@@ -88,8 +90,14 @@ pub use crate::engine::GPU_TOLERANCE;
 pub const CHUNK_ROWS: usize = 1 << 16;
 
 /// Chooses the engine for `--backend` and `--precision`, and says which in one line on stderr.
-pub fn engine_for(backend: BackendArg, gpu: &GpuArgs) -> anyhow::Result<Engine> {
-    let (mut engine, line) = Engine::select(backend.into(), gpu.adapter.as_deref())?;
+pub fn engine_for(
+    backend: Option<BackendArg>,
+    default: BackendArg,
+    gpu: &GpuArgs,
+) -> anyhow::Result<Engine> {
+    let backend = super::backend_choice(backend, default)?;
+    let adapter = super::adapter_choice(gpu.adapter.as_deref(), backend)?;
+    let (mut engine, line) = Engine::select(backend.into(), adapter.as_deref())?;
     engine.set_precision(gpu.precision.into())?;
     eprintln!("{line}");
     Ok(engine)
@@ -173,7 +181,7 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
             c.name()
         );
     }
-    if a.backend != BackendArg::Cpu {
+    if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: a single state is solved by the f64 CPU solver; --backend applies to --input files");
     }
     let ctx = LambdaContext::new(lambda).context("--lambda")?;
@@ -436,7 +444,7 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
     };
     let mut reader = crate::io::PointReader::open(input, value_column(control))?;
     let mut table = StreamTable::start(Output::create(&a.output)?, format, &CSV_HEADER)?;
-    let engine = engine_for(a.backend, &a.gpu)?;
+    let engine = engine_for(a.backend, BackendArg::Cpu, &a.gpu)?;
     let digits = digits_of(&engine);
     let is_gpu = matches!(engine, Engine::Gpu(_));
     let len = std::fs::metadata(input).map_or(0, |m| m.len());
@@ -736,7 +744,7 @@ pub struct CurveArgs {
     pub points: usize,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
     pub format: Format,
 }
 
@@ -841,6 +849,7 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
         crate::solver::domain::check_lambda(l).context("--lambda")?;
     }
     let out = a.figure.outputs(Some(&a.out), "--out")?;
+    a.figure.check_distinct(Some(&a.out), "--out", [])?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     use crate::render::Kind;
     let r = match a.kind {
@@ -895,6 +904,13 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
             )
         })?;
         let machine = s.metadata["machine"].as_str().unwrap_or("unknown machine");
+        check_replot(saved, &s.results)?;
+        std::fs::create_dir_all(&a.out_dir).with_context(|| {
+            format!(
+                "--out-dir {}: cannot create the folder",
+                a.out_dir.display()
+            )
+        })?;
         return bench_chart(&a.out_dir, &s.results, machine);
     }
     let (nl, np) = if a.quick { (120, 60) } else { (600, 300) };
@@ -904,7 +920,8 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     let gpu = if a.no_gpu {
         None
     } else {
-        match crate::gpu::Gpu::new(a.gpu.adapter.as_deref()) {
+        let adapter = super::adapter_choice(a.gpu.adapter.as_deref(), BackendArg::Gpu)?;
+        match crate::gpu::Gpu::new(adapter.as_deref()) {
             Ok(g) => {
                 eprintln!(
                     "GPU variants on {} ({}, {})",
@@ -959,6 +976,36 @@ pub fn bench(a: BenchArgs) -> anyhow::Result<()> {
     )?;
     bench_chart(&a.out_dir, &results, &machine)?;
     eprintln!("wrote bench.json, bench.txt");
+    Ok(())
+}
+
+/// Most solves per second a saved result may claim: the chart's axis is drawn decade by decade,
+/// so an absurd speed (1e308) would draw without end.
+pub const MAX_SPEED: f64 = 1e15;
+
+/// Refuses a saved bench.json the chart cannot show: no results, or a speed that is not a
+/// positive number of solves per second up to [`MAX_SPEED`].
+fn check_replot(
+    saved: &std::path::Path,
+    results: &[crate::bench::VariantResult],
+) -> anyhow::Result<()> {
+    if results.is_empty() {
+        bail!(
+            "--replot {}: \"results\" is empty: nothing to draw; give a bench.json of a run of tabor bench",
+            saved.display()
+        );
+    }
+    for r in results {
+        let v = r.points_per_second;
+        if !(v > 0.0 && v <= MAX_SPEED) {
+            bail!(
+                "--replot {}: variant {:?} has points_per_second = {}; a speed must be above 0 and at most {MAX_SPEED:e} solves per second",
+                saved.display(),
+                r.name,
+                crate::solver::domain::short(v)
+            );
+        }
+    }
     Ok(())
 }
 

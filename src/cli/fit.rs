@@ -44,7 +44,7 @@ pub struct FitArgs {
     pub tolerance: f64,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     /// One curve's data with the Maugis-Dugdale, Hertz, DMT and JKR fits and the residuals
     /// (.png, .svg or .pdf).
@@ -88,6 +88,20 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         bail!("--{}: {}", e.option.replace('_', "-"), e.message);
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let mut more = vec![("--output".to_string(), std::path::PathBuf::from(&a.output))];
+    if let Some(prefix) = &a.maps {
+        for n in fit::MAP_QUANTITIES
+            .iter()
+            .map(|q| q.name)
+            .chain(["adequate_model"])
+        {
+            for ext in ["npy", "png"] {
+                more.push(("--maps".to_string(), format!("{prefix}_{n}.{ext}").into()));
+            }
+        }
+    }
+    more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
+    a.figure.check_distinct(a.plot.as_deref(), "--plot", more)?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     let plotted = match &a.curve {

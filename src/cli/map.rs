@@ -2,7 +2,6 @@
 
 use super::basic::GpuArgs;
 use super::{BackendArg, LoadAxisArg, QuantityArg};
-use crate::engine::Engine;
 use crate::export::{write_map_json, write_npy, NPY_FILES};
 use crate::io::Output;
 use crate::map::{LoadAxis, MapSpec};
@@ -61,8 +60,9 @@ pub struct MapArgs {
     /// Write PREFIX_lambda.npy, PREFIX_load.npy, PREFIX_region.npy, PREFIX_A.npy, ... .
     #[arg(long)]
     pub npy: Option<String>,
-    #[arg(long, value_enum, env = "TABOR_BACKEND", default_value_t = BackendArg::Auto)]
-    pub backend: BackendArg,
+    /// [default: auto, or the environment variable TABOR_BACKEND]
+    #[arg(long, value_enum)]
+    pub backend: Option<BackendArg>,
     #[command(flatten)]
     pub gpu: GpuArgs,
 }
@@ -115,6 +115,20 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     spec.validate()?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let mut more: Vec<(String, PathBuf)> = a
+        .json
+        .clone()
+        .map(|p| ("--json".to_string(), p))
+        .into_iter()
+        .collect();
+    if let Some(prefix) = &a.npy {
+        more.extend(
+            NPY_FILES
+                .iter()
+                .map(|n| ("--npy".to_string(), PathBuf::from(format!("{prefix}_{n}")))),
+        );
+    }
+    a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work: a bad path fails at once, and none is put in
     // place unless all of them were written.
     let open = |p: &Option<PathBuf>| -> anyhow::Result<Option<Output>> {
@@ -137,9 +151,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
             .context("--npy")?,
         None => Vec::new(),
     };
-    let (mut engine, line) = Engine::select(a.backend.into(), a.gpu.adapter.as_deref())?;
-    engine.set_precision(a.gpu.precision.into())?;
-    eprintln!("{line}");
+    let engine = super::basic::engine_for(a.backend, BackendArg::Auto, &a.gpu)?;
     // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
     // on a sample of points against the f64 solver as they are solved.
     let opts = crate::map::ComputeOptions {

@@ -77,6 +77,53 @@ impl From<BackendArg> for crate::engine::Backend {
     }
 }
 
+/// A setting from the environment: unset and empty are the same (an empty `VAR=` is how
+/// scripts clear one).
+fn env_setting(var: &str) -> anyhow::Result<Option<String>> {
+    match std::env::var(var) {
+        Ok(v) if v.trim().is_empty() => Ok(None),
+        Ok(v) => Ok(Some(v.trim().to_string())),
+        Err(std::env::VarError::NotPresent) => Ok(None),
+        Err(std::env::VarError::NotUnicode(v)) => anyhow::bail!(
+            "the environment variable {var}={v:?} is not valid text: set it to a plain value or unset it"
+        ),
+    }
+}
+
+/// Where the work runs: `--backend`, else the environment variable TABOR_BACKEND (named in the
+/// message when its value is wrong), else `default`.
+pub fn backend_choice(flag: Option<BackendArg>, default: BackendArg) -> anyhow::Result<BackendArg> {
+    if let Some(b) = flag {
+        return Ok(b);
+    }
+    match env_setting("TABOR_BACKEND")? {
+        None => Ok(default),
+        Some(v) => BackendArg::from_str(&v, true).map_err(|_| {
+            anyhow::anyhow!(
+                "the environment variable TABOR_BACKEND={v:?} is not a backend: set it to auto, gpu or cpu, or unset it"
+            )
+        }),
+    }
+}
+
+/// The GPU adapter to use: `--adapter`, else the environment variable TABOR_ADAPTER. The CPU
+/// backend has none: an `--adapter` with it is refused (it would be silently ignored), a
+/// TABOR_ADAPTER is not used.
+pub fn adapter_choice(flag: Option<&str>, backend: BackendArg) -> anyhow::Result<Option<String>> {
+    if backend == BackendArg::Cpu {
+        if let Some(a) = flag {
+            anyhow::bail!(
+                "--adapter {a:?} with --backend cpu: the CPU solver uses no GPU adapter; give --backend gpu (or auto) to use it, or leave out --adapter"
+            );
+        }
+        return Ok(None);
+    }
+    match flag {
+        Some(a) => Ok(Some(a.to_string())),
+        None => env_setting("TABOR_ADAPTER"),
+    }
+}
+
 /// The GPU's arithmetic (`--precision`); the library's [`crate::engine::Precision`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum PrecisionArg {
@@ -152,8 +199,37 @@ pub enum Format {
     Json,
 }
 
+impl std::fmt::Display for Format {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Format::Text => "text",
+            Format::Csv => "csv",
+            Format::Json => "json",
+        })
+    }
+}
+
+/// A `--format` that accepts only `accepted` (which `--help` lists), for a command that does
+/// not write every [`Format`].
+pub fn formats(
+    accepted: &'static [&'static str],
+) -> impl clap::builder::TypedValueParser<Value = Format> {
+    use clap::builder::TypedValueParser as _;
+    clap::builder::PossibleValuesParser::new(accepted.to_vec())
+        .map(|s| <Format as ValueEnum>::from_str(&s, false).expect("a format name"))
+}
+
 pub fn run() -> anyhow::Result<()> {
-    let cli = Cli::parse();
+    // A command line that cannot be parsed is bad input like any other: exit code 1 (clap's
+    // own is 2); --help and --version go to stdout with 0.
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) if e.use_stderr() => {
+            let _ = e.print();
+            std::process::exit(1)
+        }
+        Err(e) => e.exit(),
+    };
     match cli.command {
         Command::Solve(a) => basic::solve(a),
         Command::Pulloff(a) => basic::pulloff(a),
@@ -204,6 +280,34 @@ impl FigureArgs {
             (None, false) => default_mm,
         };
         crate::render::Print::new(mm, self.dpi).map_err(anyhow::Error::msg)
+    }
+
+    /// The figure's files with the options that name them (`main` given by `flag`), for
+    /// [`crate::io::output::check_distinct`].
+    pub fn named(
+        &self,
+        main: Option<&std::path::Path>,
+        flag: &str,
+    ) -> Vec<(String, std::path::PathBuf)> {
+        let mut v: Vec<(String, std::path::PathBuf)> = main
+            .map(|p| (flag.to_string(), p.to_path_buf()))
+            .into_iter()
+            .collect();
+        v.extend(self.svg.clone().map(|p| ("--svg".to_string(), p)));
+        v.extend(self.pdf.clone().map(|p| ("--pdf".to_string(), p)));
+        v
+    }
+
+    /// Refuses two of these outputs (the figure's, and `more`) that would write one file.
+    pub fn check_distinct(
+        &self,
+        main: Option<&std::path::Path>,
+        flag: &str,
+        more: impl IntoIterator<Item = (String, std::path::PathBuf)>,
+    ) -> anyhow::Result<()> {
+        let mut v = self.named(main, flag);
+        v.extend(more);
+        crate::io::output::check_distinct(v)
     }
 
     /// The files: `main` (given by `flag`, any of .png, .svg, .pdf) with --svg and --pdf.

@@ -32,7 +32,7 @@ pub struct ProfileArgs {
     /// Sampling points on the uniform part of the r grid (more are added near a and c).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -48,6 +48,11 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         bail!("--format text is not available for a profile: use json or csv");
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(crate::cli::scene::read_scene(f)?),

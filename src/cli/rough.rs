@@ -53,7 +53,7 @@ pub struct RoughArgs {
     #[arg(long, default_value_t = 400)]
     pub points: usize,
     /// json or csv.
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -106,6 +106,11 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         anyhow::bail!("--format text is not available for a rough cycle: use json or csv");
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
     let print = a.figure.print(crate::render::DOUBLE_COLUMN_MM)?;
     let scene = scene_of(&a)?;
     if a.asperities.is_some() || a.topography.is_some() {
@@ -223,7 +228,7 @@ pub struct RoughPulloffArgs {
     #[arg(long, default_value_t = 3.0)]
     pub press_sigmas: f64,
     /// json or csv.
-    #[arg(long, value_enum, default_value_t = Format::Json)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Json)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -239,6 +244,11 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
         anyhow::bail!("--format text is not available here: use json or csv");
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     if !(a.sigma_min > 0.0 && a.sigma_max > a.sigma_min && a.sigma_max <= 1e4) {
         anyhow::bail!(

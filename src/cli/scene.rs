@@ -20,7 +20,7 @@ pub struct SceneArgs {
     pub loads: Option<Vec<f64>>,
     #[arg(long)]
     pub tolerance: Option<f64>,
-    #[arg(long, value_enum, default_value_t = Format::Text)]
+    #[arg(long, value_parser = super::formats(&["text", "json"]), default_value_t = Format::Text)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -51,6 +51,11 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
         bail!("--format csv is not available for a scene: use text or json");
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let r = solve_scene(&input)?;
     let text = match a.format {
@@ -215,7 +220,7 @@ pub struct InferArgs {
     /// Lennard-Jones range z0 (m).
     #[arg(long, default_value_t = 0.3e-9)]
     pub z0: f64,
-    #[arg(long, value_enum, default_value_t = Format::Text)]
+    #[arg(long, value_parser = super::formats(&["text", "json"]), default_value_t = Format::Text)]
     pub format: Format,
 }
 
@@ -345,7 +350,7 @@ pub struct CycleArgs {
     pub max_load: f64,
     #[arg(long, short, default_value = "-")]
     pub output: String,
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
     pub format: Format,
     /// Force against displacement and contact radius against load (.png, .svg or .pdf).
     #[arg(long)]
@@ -377,6 +382,11 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         bail!("--format text is not available for a cycle: use csv or json (a summary goes to stderr)");
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
         bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {

@@ -219,6 +219,74 @@ pub fn write_output(path: impl AsRef<Path>, bytes: &[u8]) -> anyhow::Result<()> 
     o.commit()
 }
 
+/// What identifies the file a path will write: stdout for `-`; otherwise the absolute path with
+/// every symlink followed (also a dangling one at the end, whose target [`Output::create`]
+/// makes) and `.` and `..` taken out, without requiring the file or its folder to exist.
+pub fn output_identity(path: &Path) -> PathBuf {
+    if path.as_os_str() == "-" {
+        return PathBuf::from("-");
+    }
+    let p = resolve(path);
+    let p = if p.is_absolute() {
+        p
+    } else {
+        std::env::current_dir().unwrap_or_default().join(p)
+    };
+    // Component by component: what exists is canonicalized (its symlinks followed, so `..`
+    // after a link goes where the OS goes); what does not is appended as written.
+    let mut cur = PathBuf::new();
+    for c in p.components() {
+        match c {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir => {
+                cur.pop();
+            }
+            std::path::Component::Normal(n) => {
+                cur.push(n);
+                if let Ok(real) = std::fs::canonicalize(&cur) {
+                    cur = real;
+                }
+            }
+            other => cur.push(other.as_os_str()),
+        }
+    }
+    // A last symlink whose target does not exist yet.
+    resolve(&cur)
+}
+
+/// Refuses two outputs of one command that would write the same file (the second would
+/// silently replace the first): `outputs` are (what names the output, its path), every file a
+/// command will write, `-` for stdout (which may appear once). Call it before any work.
+/// `/dev/null` may be named any number of times.
+pub fn check_distinct<N, P>(outputs: impl IntoIterator<Item = (N, P)>) -> anyhow::Result<()>
+where
+    N: std::fmt::Display,
+    P: AsRef<Path>,
+{
+    let mut seen: Vec<(String, PathBuf, PathBuf)> = Vec::new();
+    for (name, path) in outputs {
+        let path = path.as_ref();
+        let id = output_identity(path);
+        if id == Path::new("/dev/null") {
+            continue;
+        }
+        if let Some((first, first_path, _)) = seen.iter().find(|(_, _, i)| *i == id) {
+            let what = if id == Path::new("-") {
+                "stdout".to_string()
+            } else {
+                id.display().to_string()
+            };
+            anyhow::bail!(
+                "{first} {} and {name} {} are the same file ({what}): the second would overwrite the first; give each output its own file",
+                first_path.display(),
+                path.display()
+            );
+        }
+        seen.push((name.to_string(), path.to_path_buf(), id));
+    }
+    Ok(())
+}
+
 /// True if the error comes from writing into a closed pipe (`tabor ... | head`): the reader has
 /// what it wanted, and the command ends quietly.
 pub fn is_broken_pipe(e: &anyhow::Error) -> bool {

@@ -634,7 +634,10 @@ where
 {
     let sp = &d.spec;
     let mut chart = ChartBuilder::on(area)
-        .caption(caption, ("sans-serif", AXIS))
+        .caption(
+            caption,
+            ("sans-serif", super::fitting_size(area, caption, AXIS)),
+        )
         .margin(MARGIN)
         .margin_right(MARGIN + (TICK * 0.9) as i32)
         .x_label_area_size(X_AREA)

@@ -650,6 +650,22 @@ pub struct Entry {
 
 /// Width in units of a label (markup removed) at font `size`: plotters' estimate, which is a few
 /// percent wider than the SVG text, so boxes built on it are safe.
+/// The font size at most `size` at which `text` fits on one line across `area` (less its
+/// margins): a long title is set smaller rather than cut off at both ends.
+pub fn fitting_size<DB: plotters::prelude::DrawingBackend, CT: plotters::coord::CoordTranslate>(
+    area: &plotters::prelude::DrawingArea<DB, CT>,
+    text: &str,
+    size: f64,
+) -> f64 {
+    let avail = area.dim_in_pixel().0 as f64 - 2.0 * map::MARGIN as f64;
+    let w = text_width(area, text, size) as f64;
+    if w > avail && w > 0.0 {
+        (size * avail / w).max(size * 0.5)
+    } else {
+        size
+    }
+}
+
 pub fn text_width<DB: plotters::prelude::DrawingBackend, CT: plotters::coord::CoordTranslate>(
     area: &plotters::prelude::DrawingArea<DB, CT>,
     text: &str,

@@ -158,6 +158,15 @@ where
     Ok(())
 }
 
+/// Most curves [`curves`] names one by one in its legend.
+pub const MAX_CURVE_ENTRIES: usize = 6;
+
+/// A curve's legend label: lambda in at most six significant digits (`0.1 + 0.2` is shown
+/// as 0.3, not 0.30000000000000004).
+pub fn curve_label(lambda: f64) -> String {
+    format!("MD, λ = {}", crate::physics::domain::short(lambda))
+}
+
 /// A(P) for several lambda: the exact MD curve (stable under load control solid, unstable
 /// dashed) with Hertz, DMT and JKR.
 pub fn curves<DB: DrawingBackend>(
@@ -207,16 +216,19 @@ where
         RGBColor(86, 180, 233),
         RGBColor(230, 159, 0),
     ];
+    // One legend entry per curve while they fit beside the axes; beyond that one entry says how
+    // many and over which lambda (201 entries overflowed the figure).
+    let each = series.len() <= MAX_CURVE_ENTRIES;
     for (k, cs) in series.iter().enumerate() {
         let (l, pts) = (cs.lambda, &cs.points);
         let col = palette[k % palette.len()];
         let stable: Vec<(f64, f64)> = pts.iter().filter(|p| p.2).map(|p| (p.0, p.1)).collect();
         let unstable: Vec<(f64, f64)> = pts.iter().filter(|p| !p.2).map(|p| (p.0, p.1)).collect();
         let st = ShapeStyle::from(&col).stroke_width(8);
-        chart
-            .draw_series(LineSeries::new(stable, st))?
-            .label(format!("MD, λ = {l}"))
-            .legend(sample(st));
+        let drawn = chart.draw_series(LineSeries::new(stable, st))?;
+        if each {
+            drawn.label(curve_label(l)).legend(sample(st));
+        }
         chart.draw_series(DashedLineSeries::new(
             unstable,
             10,
@@ -224,6 +236,23 @@ where
             ShapeStyle::from(&col).stroke_width(4),
         ))?;
         chart.draw_series(std::iter::once(Circle::new(cs.pulloff, 14, col.filled())))?;
+    }
+    if !each {
+        let (lo, hi) = series
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
+                (a.min(c.lambda), b.max(c.lambda))
+            });
+        let st = ShapeStyle::from(&palette[0]).stroke_width(8);
+        chart
+            .draw_series(LineSeries::new(Vec::<(f64, f64)>::new(), st))?
+            .label(format!(
+                "MD, {} curves, λ = {}…{}",
+                series.len(),
+                crate::physics::domain::short(lo),
+                crate::physics::domain::short(hi)
+            ))
+            .legend(sample(st));
     }
     chart.draw_series(std::iter::once(Text::new(
         "dots: pull-off; thin dashes: unstable",
@@ -255,13 +284,17 @@ where
         .map(|r| r.points_per_second)
         .filter(|v| v.is_finite() && *v > 0.0)
         .collect();
+    // Bounded whatever the input: a log axis over no speeds, or up to 1e308, would have no end.
+    if speeds.is_empty() {
+        return Err("no variant has a positive speed: nothing to draw".into());
+    }
     let (smin, smax) = (
         speeds.iter().cloned().fold(f64::INFINITY, f64::min),
         speeds.iter().cloned().fold(0.0, f64::max),
     );
     let mut chart = builder(root, title).build_cartesian_2d(
         (1e-13..3.0f64).log_scale(),
-        ((smin / 3.0).max(1.0)..smax * 5.0).log_scale(),
+        ((smin / 3.0).clamp(1.0, 1e18)..(smax * 5.0).clamp(10.0, 1e19)).log_scale(),
     )?;
     chart
         .configure_mesh()
@@ -1259,7 +1292,7 @@ where
     let mut ch = super::map::inset(
         root,
         d,
-        &format!("{n} fitted force curves on the adhesion map (grey: λ not determined)"),
+        &format!("{n} fitted curves on the map (grey: λ not determined)"),
     )?;
     let sp = &d.spec;
     // Curves whose lambda the data do not determine (standard error above lambda) in grey,
