@@ -200,44 +200,74 @@ fn solve_points<'py>(
     Ok(d)
 }
 
-/// The curve points at given contact radii, with stability under both controls.
+/// The curve points at given contact radii, with stability under both controls: as
+/// [`solve_points`], chunk by chunk into the output arrays, Ctrl-C checked between chunks.
 #[pyfunction]
 fn solve_radius<'py>(
     py: Python<'py>,
     lam: PyReadonlyArray1<'py, f64>,
     a: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let points: Vec<(f64, f64)> = lam
-        .as_slice()?
-        .iter()
-        .copied()
-        .zip(a.as_slice()?.iter().copied())
-        .collect();
-    let states = run(py, move || Ok(tabor::solver::solve_radius_points(&points)))?;
+    let (lam, radius) = (lam.as_slice()?, a.as_slice()?);
+    if lam.len() != radius.len() {
+        return Err(PyValueError::new_err(
+            "lambda and the radius arrays differ in length",
+        ));
+    }
+    let n = lam.len();
+    let out_a = PyArray1::<f64>::zeros(py, n, false);
+    let out_load = PyArray1::<f64>::zeros(py, n, false);
+    let out_approach = PyArray1::<f64>::zeros(py, n, false);
+    let out_m = PyArray1::<f64>::zeros(py, n, false);
+    let out_ls = PyArray1::<bool>::zeros(py, n, false);
+    let out_ds = PyArray1::<bool>::zeros(py, n, false);
+    let out_code = PyArray1::<u8>::zeros(py, n, false);
+    // SAFETY: the arrays were just created here and no other reference to them exists yet.
+    let (sa, sl, sp, sm, sls, sds, sc) = unsafe {
+        (
+            out_a.as_slice_mut()?,
+            out_load.as_slice_mut()?,
+            out_approach.as_slice_mut()?,
+            out_m.as_slice_mut()?,
+            out_ls.as_slice_mut()?,
+            out_ds.as_slice_mut()?,
+            out_code.as_slice_mut()?,
+        )
+    };
+    let mut start = 0;
+    while start < n {
+        let end = (start + CHUNK).min(n);
+        let r = start..end;
+        let (lam, radius) = (&lam[r.clone()], &radius[r.clone()]);
+        let (a, l, p, m) = (
+            &mut sa[r.clone()],
+            &mut sl[r.clone()],
+            &mut sp[r.clone()],
+            &mut sm[r.clone()],
+        );
+        let (ls, ds, c) = (&mut sls[r.clone()], &mut sds[r.clone()], &mut sc[r]);
+        run(py, move || {
+            let points: Vec<(f64, f64)> = lam.iter().copied().zip(radius.iter().copied()).collect();
+            for (i, st) in tabor::solver::solve_radius_points(&points)
+                .iter()
+                .enumerate()
+            {
+                (a[i], l[i], p[i], m[i]) = (st.a, st.load, st.approach, st.m_minus_1);
+                (ls[i], ds[i], c[i]) = (st.load_stable, st.displacement_stable, st.status as u8);
+            }
+            Ok(())
+        })?;
+        py.check_signals()?;
+        start = end;
+    }
     let d = PyDict::new(py);
-    d.set_item("A", arr(py, states.iter().map(|s| s.a).collect()))?;
-    d.set_item("load", arr(py, states.iter().map(|s| s.load).collect()))?;
-    d.set_item(
-        "approach",
-        arr(py, states.iter().map(|s| s.approach).collect()),
-    )?;
-    d.set_item(
-        "m_minus_1",
-        arr(py, states.iter().map(|s| s.m_minus_1).collect()),
-    )?;
-    d.set_item(
-        "load_stable",
-        states.iter().map(|s| s.load_stable).collect::<Vec<_>>(),
-    )?;
-    d.set_item(
-        "displacement_stable",
-        states
-            .iter()
-            .map(|s| s.displacement_stable)
-            .collect::<Vec<_>>(),
-    )?;
-    let codes: Vec<u8> = states.iter().map(|s| s.status as u8).collect();
-    d.set_item("status_code", codes.into_pyarray(py))?;
+    d.set_item("A", out_a)?;
+    d.set_item("load", out_load)?;
+    d.set_item("approach", out_approach)?;
+    d.set_item("m_minus_1", out_m)?;
+    d.set_item("load_stable", out_ls)?;
+    d.set_item("displacement_stable", out_ds)?;
+    d.set_item("status_code", out_code)?;
     Ok(d)
 }
 

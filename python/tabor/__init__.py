@@ -162,8 +162,11 @@ def _messages(status, keys, flats, shape):
 
 
 def _status(codes, shape):
-    # Indexing the string array directly: no per-point object array on the way.
-    return np.array(STATUS_NAMES)[codes].reshape(shape)
+    # Indexing a string array as wide as the longest status present (2 characters where all are
+    # "ok"): no per-point object array on the way, and no wider than needed.
+    present = np.bincount(codes.ravel(), minlength=len(STATUS_NAMES)) > 0
+    width = max([len(n) for n, p in zip(STATUS_NAMES, present) if p], default=1)
+    return np.array(STATUS_NAMES, dtype=f"<U{width}")[codes].reshape(shape)
 
 
 def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precision="f32",
