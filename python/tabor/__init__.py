@@ -262,7 +262,7 @@ def pulloff(lam):
     ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
     Raises ValueError for a lambda outside 1e-8 .. 1e8.
     """
-    (lam_f,), shape = _flat(lam)
+    (lam_f,), shape = _flat(lam, names=["lam"])
     r = _tabor.pulloff(lam_f)
     return Result({k: np.asarray(v).reshape(shape) for k, v in r.items()}, {})
 
@@ -271,7 +271,7 @@ def _closed(model, load=None, A=None):
     if (load is None) == (A is None):
         raise ValueError("give exactly one of load= (returns A) or A= (returns the load)")
     what, x = ("radius", load) if load is not None else ("load", A)
-    (x_f,), shape = _flat(x)
+    (x_f,), shape = _flat(x, names=["load" if load is not None else "A"])
     return np.asarray(_tabor.closed_form(model, what, x_f)).reshape(shape)
 
 
