@@ -471,3 +471,151 @@ fn si_scenes_scale_the_summit_units_and_warn() {
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("mems-polysilicon"));
 }
+
+/// A .npy file of float64 values written here byte by byte (the format is four lines of spec).
+fn write_npy(path: &std::path::Path, shape: (usize, usize), fortran: bool, values: &[f64]) {
+    let dict = format!(
+        "{{'descr': '<f8', 'fortran_order': {}, 'shape': ({}, {}), }}",
+        if fortran { "True" } else { "False" },
+        shape.0,
+        shape.1
+    );
+    let mut header = dict.into_bytes();
+    while (10 + header.len() + 1) % 64 != 0 {
+        header.push(b' ');
+    }
+    header.push(b'\n');
+    let mut bytes = b"\x93NUMPY\x01\x00".to_vec();
+    bytes.extend((header.len() as u16).to_le_bytes());
+    bytes.extend(header);
+    for v in values {
+        bytes.extend(v.to_le_bytes());
+    }
+    std::fs::write(path, bytes).unwrap();
+}
+
+#[test]
+fn explicit_summits_each_follow_their_own_branch() {
+    use tabor::physics::params::{Contact, ForceRange};
+    use tabor::rough::ensemble::{cycle, summits_of_topography, Asperity, Materials};
+    let m = Materials {
+        e_star_pa: 2.4e6,
+        work_of_adhesion_j_m2: 0.044,
+        range: ForceRange::LennardJones(0.3e-9),
+    };
+    // Two summits of different radius (and so different lambda) and height.
+    let asp = [
+        Asperity {
+            height_m: 0.1e-6,
+            radius_m: 5e-6,
+        },
+        Asperity {
+            height_m: -0.05e-6,
+            radius_m: 20e-6,
+        },
+    ];
+    let d_min = -0.2e-6;
+    let c = cycle(&asp, &m, d_min, Some(0.4e-6), 40).unwrap();
+    for (k, &d) in c.retract.separation_m.iter().enumerate() {
+        // Each summit by itself: the solver's contact branch while it holds on (down to its
+        // jump-out; these are far above lambda_D), else free.
+        let want: f64 = asp
+            .iter()
+            .map(|a| {
+                let s = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
+                    .unwrap();
+                let ctx = LambdaContext::new(s.lambda()).unwrap();
+                assert!(s.lambda() > 1.0);
+                let delta = (a.height_m - d) / s.approach_scale();
+                if delta >= ctx.disp_pulloff().approach {
+                    ctx.solve_approach(delta).load * s.force_scale()
+                } else {
+                    0.0
+                }
+            })
+            .sum();
+        assert!(
+            (c.retract.force_n[k] - want).abs() <= 1e-12 * want.abs().max(1e-9),
+            "d {d}: {} against {want}",
+            c.retract.force_n[k]
+        );
+    }
+    // A height map of three paraboloid bumps of known radius on a flat: found with their
+    // heights, and radii exact (a parabola's central difference is exact).
+    let (nx, ny, px) = (60, 40, 1e-8);
+    let bumps = [
+        (10, 10, 30e-9, 1e-7),
+        (30, 20, 50e-9, 1.5e-7),
+        (50, 30, 20e-9, 8e-8),
+    ];
+    let z: Vec<f64> = (0..nx * ny)
+        .map(|i| {
+            let (x, y) = ((i % nx) as f64 * px, (i / nx) as f64 * px);
+            bumps
+                .iter()
+                .map(|&(bx, by, h, r)| {
+                    let r2 = (x - bx as f64 * px).powi(2) + (y - by as f64 * px).powi(2);
+                    h - r2 / (2.0 * r)
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let s = summits_of_topography(&z, nx, px).unwrap();
+    assert_eq!(s.len(), 3, "{s:?}");
+    for (a, b) in s.iter().zip([bumps[0], bumps[1], bumps[2]]) {
+        assert!(
+            (a.height_m - b.2).abs() < 1e-20 && (a.radius_m / b.3 - 1.0).abs() < 1e-9,
+            "{a:?}"
+        );
+    }
+    // The command: the same map in Fortran order gives the same bytes.
+    let dir = tempfile::tempdir().unwrap();
+    let (pc, pf) = (dir.path().join("c.npy"), dir.path().join("f.npy"));
+    write_npy(&pc, (ny, nx), false, &z);
+    let zf: Vec<f64> = (0..nx * ny).map(|k| z[(k % ny) * nx + k / ny]).collect();
+    write_npy(&pf, (ny, nx), true, &zf);
+    let run = |p: &std::path::Path| {
+        tabor(&[
+            "rough",
+            "--preset",
+            "pdms-rough-glass",
+            "--topography",
+            p.to_str().unwrap(),
+            "--pixel-m",
+            "1e-8",
+            "--points",
+            "20",
+        ])
+    };
+    let (oc, of) = (run(&pc), run(&pf));
+    assert!(
+        oc.status.success(),
+        "{}",
+        String::from_utf8_lossy(&oc.stderr)
+    );
+    assert_eq!(oc.stdout, of.stdout);
+    let j: serde_json::Value = serde_json::from_slice(&oc.stdout).unwrap();
+    assert_eq!(j["summits"], 3);
+    // Bad ensembles: one line each.
+    let bad = dir.path().join("bad.csv");
+    for (text, needle) in [
+        ("height_m,radius_m\n0,-1e-6\n", "radius"),
+        ("height_m,radius_m\nnan,1e-6\n", "height"),
+        ("height_m,radius_m\n", "number of summits"),
+        ("h,r\n0,1\n", "no column height_m"),
+    ] {
+        std::fs::write(&bad, text).unwrap();
+        let o = tabor(&[
+            "rough",
+            "--preset",
+            "pdms-rough-glass",
+            "--asperities",
+            bad.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{text}: {err}");
+        assert!(err.contains(needle), "{text}: {err}");
+    }
+    let o = tabor(&["rough", "--asperities", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+}

@@ -11,6 +11,8 @@ use std::panic::AssertUnwindSafe;
 use tabor::engine::{Backend, Engine, Precision};
 use tabor::solver::{Control, LambdaContext, State, Status};
 
+mod rough;
+
 /// Runs `f` without the GIL; errors become ValueError, panics RuntimeError.
 fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
     let r = py.detach(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
@@ -427,7 +429,13 @@ fn fit_curves<'py>(
     run(py, move || {
         use tabor::fit::{Curve, Direction, FitOptions, Segments};
         let o: serde_json::Value = serde_json::from_str(&options_json)?;
-        let num = |k: &str| o.get(k).and_then(|v| v.as_f64());
+        // Non-finite numbers come as text ("nan", "inf"), JSON having none.
+        let num = |k: &str| {
+            o.get(k).and_then(|v| {
+                v.as_f64()
+                    .or_else(|| v.as_str().and_then(|s| s.parse().ok()))
+            })
+        };
         let opt = FitOptions {
             radius: num("radius").unwrap_or(f64::NAN),
             spring: num("spring").unwrap_or(f64::NAN),
@@ -449,6 +457,12 @@ fn fit_curves<'py>(
             tolerance: num("tolerance").unwrap_or(0.05),
             ..FitOptions::default()
         };
+        // The library's check, as the command line makes it.
+        if let Err(e) = opt.validate() {
+            // Named as fit_curves' keyword.
+            let kw = if e.option == "z0" { "z0_m" } else { e.option };
+            anyhow::bail!("{kw}: {}", e.message);
+        }
         let mut curves: Vec<Curve> = Vec::new();
         let mut index = std::collections::HashMap::new();
         for i in 0..h.len() {
@@ -707,6 +721,8 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
     m.add_class::<AdhesionMap>()?;
     Ok(())
 }

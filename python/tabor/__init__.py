@@ -39,7 +39,7 @@ STATUS_NAMES = tuple(_tabor.status_names())
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
-    "fit_afmformats", "cycle", "profile", "presets",
+    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble",
 ]
 
 
@@ -487,6 +487,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
             seg = np.array([names[str(v)] for v in seg])
         except KeyError as e:
             raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
+    # 0 or 1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
+    bad = ~np.isin(seg, (0, 1))
+    if bad.any():
+        raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
+                         "use 0 (or \"approach\") and 1 (or \"retract\")")
     seg = np.ascontiguousarray(seg, dtype=np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
@@ -495,13 +500,16 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         labels, ids = _curve_ids(curve)
     if not (len(h) == len(f) == len(seg) == len(ids)):
         raise ValueError("height_m, force_n, segment (and curve) must have the same length")
-    options = {"radius": _finite(radius_m, "radius_m"), "spring": _finite(spring_n_m, "spring_n_m"),
-               "segment": fit_segment, "tilt": bool(tilt),
-               "tolerance": _finite(tolerance, "tolerance")}
+    # JSON has no NaN or infinity: those go as text, and the library's check names them.
+    def num(x, name):
+        v = _real(x, name)
+        return v if np.isfinite(v) else repr(v)
+    options = {"radius": num(radius_m, "radius_m"), "spring": num(spring_n_m, "spring_n_m"),
+               "segment": fit_segment, "tilt": bool(tilt), "tolerance": num(tolerance, "tolerance")}
     if poisson is not None:
-        options["poisson"] = _finite(poisson, "poisson")
+        options["poisson"] = num(poisson, "poisson")
     if z0_m is not None:
-        options["z0"] = _finite(z0_m, "z0_m")
+        options["z0"] = num(z0_m, "z0_m")
     out = json.loads(_tabor.fit_curves(ids, seg, h, f, json.dumps(options)))
     for r in out:  # the fit's advice names command-line flags: name the arguments instead
         for k in ("message", "why"):
@@ -600,3 +608,25 @@ def profile(lam, load=None, approach=None, radius=None, points=400):
                                  dtype=float)
         m["gap"] = np.array(m["gap"], dtype=float)
     return p
+
+
+def rough(lam, sigma, min_separation, max_separation=None, points=400):
+    """A rough surface of Maugis-Dugdale summits (Greenwood-Williamson, Gaussian heights of
+    standard deviation ``sigma``) through an approach from ``max_separation`` (default: where no
+    summit feels the flat) to ``min_separation`` and back, as ``tabor rough`` computes it.
+    Loads per summit in pi w R, separations and sigma in the summit's approach unit. Returns a
+    dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
+    ``noncontact_fraction``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
+    ``smooth_pulloff``, ``fuller_tabor_parameter``."""
+    return _tabor.rough(float(lam), float(sigma), float(min_separation),
+                        None if max_separation is None else float(max_separation), int(points))
+
+
+def rough_ensemble(lam, heights, separations, min_separation=None):
+    """Load per summit and branch fractions of an explicit ensemble of summit ``heights``
+    (approach units, all of Maugis parameter ``lam``) at each of ``separations``: on the
+    approach, or with ``min_separation`` on the retract after pressing to it."""
+    h = np.ascontiguousarray(heights, dtype=float).ravel()
+    d = np.ascontiguousarray(separations, dtype=float).ravel()
+    return _tabor.rough_ensemble(float(lam), h.tolist(), d.tolist(),
+                                 None if min_separation is None else float(min_separation))

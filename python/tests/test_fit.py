@@ -20,9 +20,9 @@ CURVE = ROOT / "gallery" / "fit_curve.csv"
 def test_arrays_give_what_the_command_line_gives(tmp_path):
     rows = np.genfromtxt(CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
     r = tabor.fit_curve(rows["height_m"], rows["force_n"], rows["segment"],
-                        radius_m=20e-9, spring_n_m=2.0, poisson=0.3)
+                        radius_m=20e-9, spring_n_m=40.0, poisson=0.3)
     out = subprocess.run([str(TABOR), "fit", "-i", str(CURVE), "--radius", "20e-9",
-                          "--spring-n-m", "2", "--poisson", "0.3"],
+                          "--spring-n-m", "40", "--poisson", "0.3"],
                          capture_output=True, check=True)
     cli = json.loads(out.stdout)["curves"][0]
     assert r["status"] == "ok"
@@ -41,7 +41,7 @@ def test_many_curves_and_bad_ones_in_one_call():
     bad[5] = np.nan
     out = tabor.fit_curves(np.concatenate([h, h]), np.concatenate([f, bad]),
                            np.concatenate([s, s]), curve=["a"] * len(h) + ["b"] * len(h),
-                           radius_m=20e-9, spring_n_m=2.0)
+                           radius_m=20e-9, spring_n_m=40.0)
     assert [r["curve"] for r in out] == ["a", "b"]
     assert out[0]["status"] == "ok"
     assert out[1]["status"] == "invalid_input" and "non-finite" in out[1]["message"]
@@ -96,7 +96,7 @@ def test_an_npz_file_reads_as_the_csv_does(tmp_path):
     np.savez(npz, segment=seg, height_m=rows["height_m"].astype(float),
              force_n=rows["force_n"].astype(float))
     run = lambda path: json.loads(subprocess.run(
-        [str(TABOR), "fit", "-i", str(path), "--radius", "20e-9", "--spring-n-m", "2"],
+        [str(TABOR), "fit", "-i", str(path), "--radius", "20e-9", "--spring-n-m", "40"],
         capture_output=True, check=True).stdout)["curves"][0]
     a, b = run(npz), run(CURVE)
     assert a["status"] == "ok"

@@ -69,28 +69,6 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for fit: use json or csv (a summary goes to stderr)");
     }
-    if !(a.tolerance > 0.0 && a.tolerance < 1.0) {
-        bail!(
-            "--tolerance {} must be between 0 and 1 (a fraction, 0.05 is 5%)",
-            crate::solver::domain::short(a.tolerance)
-        );
-    }
-    if let Some(nu) = a.poisson {
-        if !(nu > -1.0 && nu <= 0.5) {
-            bail!("--poisson {nu} must be in (-1, 0.5]");
-        }
-    }
-    if let Some(z0) = a.z0 {
-        if !(z0 > 0.0 && z0.is_finite()) {
-            bail!(
-                "--z0 {} must be a positive length in metres (about 0.3e-9 for van der Waals)",
-                crate::solver::domain::short(z0)
-            );
-        }
-    }
-    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     let opt = FitOptions {
         radius: a.radius,
         spring: a.spring_n_m,
@@ -105,6 +83,13 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         tolerance: a.tolerance,
         ..FitOptions::default()
     };
+    // One check of the options, the library's, as Python's fit_curves makes it.
+    if let Err(e) = opt.validate() {
+        bail!("--{}: {}", e.option.replace('_', "-"), e.message);
+    }
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     let plotted = match &a.curve {
         Some(id) => Some(
             curves

@@ -12,22 +12,40 @@ use serde::Serialize;
 #[command(allow_negative_numbers = true)]
 pub struct RoughArgs {
     /// Maugis parameter of every summit.
-    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    #[arg(long, required_unless_present_any = ["scene", "preset", "asperities", "topography"])]
     pub lambda: Option<f64>,
     /// Standard deviation of the summit heights, in the summit's approach unit
     /// (pi^2 w^2 R / K^2)^(1/3).
-    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    #[arg(long, required_unless_present_any = ["scene", "preset", "asperities", "topography"])]
     pub sigma: Option<f64>,
     /// The smallest separation of the flat from the mean summit plane (approach units).
-    #[arg(long, required_unless_present_any = ["scene", "preset"])]
+    #[arg(long, required_unless_present_any = ["scene", "preset", "asperities", "topography"])]
     pub min_separation: Option<f64>,
     /// A rough scene in SI units (JSON: the materials, summit_radius_m, summit_density_m2,
     /// sigma_m, nominal_area_m2, optional min_separation_m): forces in N, pressures in Pa.
     #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation", "preset"])]
     pub scene: Option<std::path::PathBuf>,
+    /// An explicit ensemble of summits (CSV with columns height_m, radius_m, or a .npy of shape
+    /// (N, 2)), each with its own radius and so its own lambda; the materials and the nominal
+    /// area come from --scene or --preset.
+    #[arg(long, conflicts_with = "topography")]
+    pub asperities: Option<std::path::PathBuf>,
+    /// A measured height map (.npy, 2-D, heights in m): its summits are the local maxima, with
+    /// radii from the curvature there; needs --pixel-m, and --scene or --preset for the
+    /// materials.
+    #[arg(long, requires = "pixel_m")]
+    pub topography: Option<std::path::PathBuf>,
+    /// The height map's pixel spacing (m).
+    #[arg(long)]
+    pub pixel_m: Option<f64>,
+    /// The smallest separation of an ensemble's cycle, in m above the heights' zero [default:
+    /// the mean summit height less three standard deviations].
+    #[arg(long)]
+    pub min_separation_m: Option<f64>,
     /// A built-in rough scene: mems-polysilicon, pdms-rough-glass.
     #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation"])]
     pub preset: Option<String>,
+
     /// Where the approach starts and the retract ends [default: where no summit feels the flat].
     #[arg(long)]
     pub max_separation: Option<f64>,
@@ -89,7 +107,14 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     let print = a.figure.print(crate::render::DOUBLE_COLUMN_MM)?;
-    if let Some(sc) = scene_of(&a)? {
+    let scene = scene_of(&a)?;
+    if a.asperities.is_some() || a.topography.is_some() {
+        let Some(sc) = scene else {
+            anyhow::bail!("an ensemble needs the materials: give --scene FILE or --preset NAME with --asperities or --topography");
+        };
+        return run_ensemble(&a, &sc);
+    }
+    if let Some(sc) = scene {
         return run_scene(&a, &sc, &figure, &print);
     }
     let (Some(lambda), Some(sigma), Some(d_min)) = (a.lambda, a.sigma, a.min_separation) else {
@@ -356,5 +381,189 @@ fn run_scene(
     if let Some(s) = &r.source {
         eprintln!("  values: {s}");
     }
+    Ok(())
+}
+
+/// Reads a float64 .npy: its values in C order and its shape.
+fn read_npy(path: &std::path::Path, what: &str) -> anyhow::Result<(Vec<f64>, Vec<u64>)> {
+    let shown = path.display();
+    let f = std::fs::File::open(path).with_context(|| format!("cannot read {what} {shown}"))?;
+    let npy = npyz::NpyFile::new(std::io::BufReader::new(f))
+        .with_context(|| format!("{what} {shown} is not a .npy file"))?;
+    let shape = npy.shape().to_vec();
+    let n: u64 = shape.iter().product();
+    if n > 4 * crate::rough::ensemble::SUMMITS_MAX as u64 {
+        anyhow::bail!(
+            "{what} {shown} holds {n} values: at most {} are read",
+            4 * crate::rough::ensemble::SUMMITS_MAX
+        );
+    }
+    let fortran = npy.order() == npyz::Order::Fortran;
+    let descr = match npy.dtype() {
+        npyz::DType::Plain(ts) => ts.to_string(),
+        other => other.descr(),
+    };
+    if descr != "<f8" {
+        anyhow::bail!("{what} {shown} has dtype {descr}: give float64 (numpy's default)");
+    }
+    let v: Vec<f64> = npy
+        .into_vec::<f64>()
+        .with_context(|| format!("cannot read {what} {shown}"))?;
+    // Fortran order (a transposed array): reorder to C order.
+    let v = if fortran && shape.len() == 2 {
+        let (r, c) = (shape[0] as usize, shape[1] as usize);
+        (0..r * c).map(|k| v[(k % c) * r + k / c]).collect()
+    } else {
+        v
+    };
+    Ok((v, shape))
+}
+
+fn read_asperities(
+    path: &std::path::Path,
+) -> anyhow::Result<Vec<crate::rough::ensemble::Asperity>> {
+    use crate::rough::ensemble::Asperity;
+    let shown = path.display();
+    let is_npy = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("npy"));
+    if is_npy {
+        let (v, shape) = read_npy(path, "--asperities")?;
+        if shape.len() != 2 || shape[1] != 2 {
+            anyhow::bail!("--asperities {shown} has shape {shape:?}: give (N, 2), columns height_m and radius_m");
+        }
+        return Ok(v
+            .chunks(2)
+            .map(|p| Asperity {
+                height_m: p[0],
+                radius_m: p[1],
+            })
+            .collect());
+    }
+    let mut r = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_path(path)
+        .with_context(|| format!("cannot read --asperities {shown}"))?;
+    let head = r.headers()?.clone();
+    let col = |name: &str| {
+        head.iter().position(|h| h == name).with_context(|| {
+            format!(
+                "--asperities {shown} has no column {name} (found: {}): give height_m,radius_m",
+                head.iter().collect::<Vec<_>>().join(", ")
+            )
+        })
+    };
+    let (ih, ir) = (col("height_m")?, col("radius_m")?);
+    let mut out = Vec::new();
+    for (line, rec) in r.records().enumerate() {
+        let rec = rec.with_context(|| format!("--asperities {shown}, row {}", line + 1))?;
+        let num = |i: usize| -> anyhow::Result<f64> {
+            let t = rec.get(i).unwrap_or("");
+            t.parse().with_context(|| {
+                format!(
+                    "--asperities {shown}, row {}: {t:?} is not a number",
+                    line + 1
+                )
+            })
+        };
+        out.push(Asperity {
+            height_m: num(ih)?,
+            radius_m: num(ir)?,
+        });
+        if out.len() > crate::rough::ensemble::SUMMITS_MAX {
+            anyhow::bail!(
+                "--asperities {shown} holds more than {} summits",
+                crate::rough::ensemble::SUMMITS_MAX
+            );
+        }
+    }
+    Ok(out)
+}
+
+fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::Result<()> {
+    use crate::rough::ensemble;
+    let asp = match (&a.asperities, &a.topography) {
+        (Some(p), _) => read_asperities(p)?,
+        (None, Some(p)) => {
+            let (z, shape) = read_npy(p, "--topography")?;
+            if shape.len() != 2 {
+                anyhow::bail!(
+                    "--topography {} has shape {shape:?}: give a 2-D height map",
+                    p.display()
+                );
+            }
+            let s = ensemble::summits_of_topography(
+                &z,
+                shape[1] as usize,
+                a.pixel_m.unwrap_or(f64::NAN),
+            )?;
+            if s.is_empty() {
+                anyhow::bail!("--topography {} has no summit (no pixel above its eight neighbours with a positive curvature)", p.display());
+            }
+            s
+        }
+        _ => unreachable!("run_ensemble is called with an ensemble"),
+    };
+    ensemble::check(&asp)?;
+    let c = sc.summit()?;
+    let m = ensemble::Materials {
+        e_star_pa: c.e_star,
+        work_of_adhesion_j_m2: c.work,
+        range: crate::physics::params::ForceRange::DugdaleStress(c.s0),
+    };
+    let n = asp.len() as f64;
+    let mean = asp.iter().map(|s| s.height_m).sum::<f64>() / n;
+    let sd = (asp.iter().map(|s| (s.height_m - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let d_min = a.min_separation_m.unwrap_or(mean - 3.0 * sd);
+    let r = ensemble::cycle(&asp, &m, d_min, None, a.points)?;
+    let text = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record([
+                "phase",
+                "separation_m",
+                "force_n",
+                "real_contact_area_m2",
+                "contact_fraction",
+                "noncontact_fraction",
+            ])?;
+            for (phase, l) in [("approach", &r.approach), ("retract", &r.retract)] {
+                for i in 0..l.separation_m.len() {
+                    w.write_record([
+                        phase.to_string(),
+                        fmt17(l.separation_m[i]),
+                        fmt17(l.force_n[i]),
+                        fmt17(l.real_contact_area_m2[i]),
+                        fmt17(l.contact_fraction[i]),
+                        fmt17(l.noncontact_fraction[i]),
+                    ])?;
+                }
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        _ => {
+            serde_json::to_string_pretty(&serde_json::json!({
+                "summits": r.summits,
+                "approach": r.approach,
+                "retract": r.retract,
+                "pulloff_force_n": r.pulloff_force_n,
+                "pulloff_separation_m": r.pulloff_separation_m,
+                "nominal_area_m2": sc.nominal_area_m2,
+                "pulloff_stress_pa": r.pulloff_force_n / sc.nominal_area_m2,
+                "model": "explicit summits, each an exact Maugis-Dugdale sphere with its own radius and history under the flat's displacement; the summits do not interact (no elastic coupling)",
+            }))? + "\n"
+        }
+    };
+    write_output(&a.output, text.as_bytes())?;
+    eprintln!(
+        "{} summits: pull-off force {} N at separation {} m ({} summit-states in {} s: {} per second)",
+        r.summits,
+        short(r.pulloff_force_n),
+        short(r.pulloff_separation_m),
+        r.summit_states,
+        short(r.seconds),
+        short(r.summit_states as f64 / r.seconds.max(1e-9))
+    );
     Ok(())
 }

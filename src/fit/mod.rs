@@ -80,6 +80,89 @@ impl Default for FitOptions {
     }
 }
 
+/// The Lennard-Jones range z0 a fit may fix lambda with (m): a few picometres to a micrometre
+/// (van der Waals: about 0.3 nm).
+pub const Z0_RANGE: (f64, f64) = (1e-12, 1e-6);
+
+/// Fitted parameters outside these are taken for a failed fit (wrong units, a wrong spring
+/// constant or radius, or data the models cannot describe): E* (Pa), from the softest gels and
+/// cells (measured cell curves fit a few hundred Pa) to diamond, and w (J/m^2) above metallic
+/// adhesion. A w below the weakest van der Waals contact (1e-6) is
+/// no measurable adhesion (a Hertz curve), not a failure.
+pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
+pub const W_MAX: f64 = 10.0;
+
+impl FitOptions {
+    /// Checks the options that hold for every curve (the tip radius and the spring constant are
+    /// checked per curve, since each curve may carry its own): one message naming the quantity,
+    /// its value and its limits. The command line and the Python package both call it.
+    pub fn validate(&self) -> Result<(), OptionError> {
+        self.check()
+            .map_err(|(option, message)| OptionError { option, message })
+    }
+
+    fn check(&self) -> Result<(), (&'static str, String)> {
+        let short = crate::physics::domain::short;
+        if let Some(nu) = self.poisson {
+            if !(nu > -1.0 && nu <= 0.5) {
+                return Err((
+                    "poisson",
+                    format!(
+                        "Poisson ratio {} must be in (-1, 0.5] (0.5 is incompressible)",
+                        short(nu)
+                    ),
+                ));
+            }
+        }
+        if let Some(z0) = self.z0 {
+            if !(z0 >= Z0_RANGE.0 && z0 <= Z0_RANGE.1) {
+                return Err((
+                    "z0",
+                    format!(
+                    "Lennard-Jones range z0 {} m must be between {} and {} m (about 0.3e-9 for van der Waals)",
+                    short(z0),
+                    short(Z0_RANGE.0),
+                    short(Z0_RANGE.1)
+                )));
+            }
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return Err((
+                "tolerance",
+                format!(
+                    "adequate-model tolerance {} must be a fraction between 0 and 1 (0.05 is 5%)",
+                    short(self.tolerance)
+                ),
+            ));
+        }
+        if !(self.baseline_fraction > 0.0 && self.baseline_fraction <= 1.0) {
+            return Err((
+                "baseline_fraction",
+                format!(
+                "baseline fraction {} must be in (0, 1] (the far part of the approach, 0.3 is 30%)",
+                short(self.baseline_fraction)
+            ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// An option of the fit out of its range: which (the field of [`FitOptions`]) and why.
+#[derive(Debug, Clone)]
+pub struct OptionError {
+    pub option: &'static str,
+    pub message: String,
+}
+
+impl std::fmt::Display for OptionError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for OptionError {}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FitStatus {
@@ -280,6 +363,8 @@ pub struct Prepared {
     pub side: Vec<Side>,
     pub baseline: (f64, f64),
     pub noise: f64,
+    /// What preparing the curve changed or found (outliers dropped, jittering heights): warnings.
+    pub notes: Vec<String>,
 }
 
 fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFit {
@@ -350,28 +435,27 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
             ));
         }
     }
+    let mut notes = Vec::new();
+    if let Err(m) = check_cycles(curve) {
+        return bad(m);
+    }
     for d in [Direction::Approach, Direction::Retract] {
-        let h: Vec<f64> = (0..curve.len())
-            .filter(|&i| curve.segment[i] == d)
-            .map(|i| curve.height[i])
-            .collect();
-        if h.len() < 3 {
-            continue;
-        }
-        // Measured heights jitter; a segment whose steps mostly go the wrong way is corrupt.
-        let sign = if d == Direction::Approach { -1.0 } else { 1.0 };
-        let wrong = h.windows(2).filter(|w| sign * (w[1] - w[0]) < 0.0).count();
-        if wrong * 4 > h.len() || sign * (h[h.len() - 1] - h[0]) <= 0.0 {
-            return bad(format!(
-                "the {} heights are not in order ({} of {} steps go the wrong way; the {} must {} the height): sort the points in time order or check the segment column",
-                if d == Direction::Approach { "approach" } else { "retract" },
-                wrong,
-                h.len() - 1,
-                if d == Direction::Approach { "approach" } else { "retract" },
-                if d == Direction::Approach { "decrease" } else { "increase" },
-            ));
+        match check_order(curve, d) {
+            Err(m) => return bad(m),
+            Ok(Some(note)) => notes.push(note),
+            Ok(None) => {}
         }
     }
+    // Outliers (spikes far beyond the noise) would steer the fit and the baseline: dropped.
+    let cleaned;
+    let curve = match drop_spikes(curve) {
+        Some((c, note)) => {
+            notes.push(note);
+            cleaned = c;
+            &cleaned
+        }
+        None => curve,
+    };
     let fitted: Vec<usize> = (0..curve.len())
         .filter(|&i| opt.segments.takes(curve.segment[i]))
         .collect();
@@ -412,7 +496,15 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .iter()
         .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
         .collect();
-    let noise = (resid.iter().map(|r| r * r).sum::<f64>() / resid.len().max(1) as f64).sqrt();
+    // The rms, scaled so that huge forces (1e200) do not overflow to an infinite noise.
+    let scale = resid.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+    let noise = if scale > 0.0 {
+        scale
+            * (resid.iter().map(|r| (r / scale).powi(2)).sum::<f64>() / resid.len().max(1) as f64)
+                .sqrt()
+    } else {
+        0.0
+    };
     let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
     let force: Vec<f64> = fitted
         .iter()
@@ -438,7 +530,208 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         force,
         baseline: (b0, b1),
         noise,
+        notes,
     })
+}
+
+/// The indices of a curve's points in one segment, in time order.
+fn segment_points(curve: &Curve, d: Direction) -> Vec<usize> {
+    (0..curve.len())
+        .filter(|&i| curve.segment[i] == d)
+        .collect()
+}
+
+fn seg_name(d: Direction) -> &'static str {
+    if d == Direction::Approach {
+        "approach"
+    } else {
+        "retract"
+    }
+}
+
+/// One approach and one retract at most: a curve whose segment goes back to one it has left
+/// holds several cycles (repeated cycles, or curves with the same id or pixel merged).
+fn check_cycles(curve: &Curve) -> Result<(), String> {
+    let changes: Vec<usize> = (1..curve.len())
+        .filter(|&i| curve.segment[i] != curve.segment[i - 1])
+        .collect();
+    if changes.len() >= 2 {
+        let at = changes[1];
+        return Err(format!(
+            "the curve holds {} approach-retract cycles: its segment goes back from {} to {} at point {} (a repeated cycle, or two curves with the same id or pixel x, y merged); give each cycle its own curve id",
+            (changes.len() + 1).div_ceil(2),
+            seg_name(curve.segment[at - 1]),
+            seg_name(curve.segment[at]),
+            at + 1
+        ));
+    }
+    Ok(())
+}
+
+/// A segment's heights must run its way (the approach lowers the base, the retract raises it).
+/// Measured heights jitter, by more than their step where the sampling is dense: what is
+/// refused is a segment that runs the wrong way overall or goes back by a large part of its
+/// span (a restart, or points out of time order); jitter is a note.
+fn check_order(curve: &Curve, d: Direction) -> Result<Option<String>, String> {
+    let idx = segment_points(curve, d);
+    if idx.len() < 3 {
+        return Ok(None);
+    }
+    let sign = if d == Direction::Approach { -1.0 } else { 1.0 };
+    let name = seg_name(d);
+    let way = if d == Direction::Approach {
+        "decrease"
+    } else {
+        "increase"
+    };
+    let h = |k: usize| curve.height[idx[k]];
+    let n = idx.len();
+    let (first, last) = (h(0), h(n - 1));
+    let lo = (0..n).map(h).fold(f64::INFINITY, f64::min);
+    let hi = (0..n).map(h).fold(f64::NEG_INFINITY, f64::max);
+    let span = hi - lo;
+    if !(sign * (last - first) > 0.0) {
+        return Err(format!(
+            "the {name} heights are not in order: they go from {} m at its first point to {} m at its last, and the {name} must {way} the height; check the segment column (approach and retract swapped?) and that height_m grows away from the sample",
+            crate::physics::domain::short(first),
+            crate::physics::domain::short(last)
+        ));
+    }
+    // The largest way back: progress sign*h should grow; its largest fall below its running
+    // maximum, and where.
+    let (mut top, mut back, mut at) = (f64::NEG_INFINITY, 0.0f64, 0usize);
+    for k in 0..n {
+        let p = sign * h(k);
+        top = top.max(p);
+        if top - p > back {
+            back = top - p;
+            at = k;
+        }
+    }
+    if back > 0.25 * span {
+        return Err(format!(
+            "the {name} heights go back by {} m (their span is {} m) at point {}: the {name} restarts there (two cycles in one curve?) or its points are out of time order; give each cycle its own curve id, in the order measured",
+            crate::physics::domain::short(back),
+            crate::physics::domain::short(span),
+            idx[at] + 1
+        ));
+    }
+    let wrong = (1..n).filter(|&k| sign * (h(k) - h(k - 1)) < 0.0).count();
+    Ok((wrong * 4 > n).then(|| {
+        format!(
+            "the {name} heights jitter by up to {} m, more than their mean step of {} m ({wrong} of {} steps go back): they are fitted as measured",
+            crate::physics::domain::short(back),
+            crate::physics::domain::short(span / (n - 1) as f64),
+            n - 1
+        )
+    }))
+}
+
+/// The quantile q (0..1) of sorted values.
+fn quantile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+}
+
+/// The points of one segment's forces (in time order) that are isolated spikes: outside the
+/// segment's robust range (its 2%..98% quantiles widened by half their span on each side),
+/// more than ten robust noise levels (the MAD of the second differences) from their
+/// neighbours' line, and standing out against how much those neighbours differ themselves (so
+/// that a sharp but genuine pull-off or snap-in is kept).
+fn spikes(f: &[f64]) -> Vec<usize> {
+    let n = f.len();
+    if n < 5 {
+        return Vec::new();
+    }
+    let mut sorted = f.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let (q02, q98) = (quantile(&sorted, 0.02), quantile(&sorted, 0.98));
+    let range = q98 - q02;
+    let out = |v: f64| v < q02 - 0.5 * range || v > q98 + 0.5 * range;
+    let mut second: Vec<f64> = (1..n - 1)
+        .map(|i| (f[i + 1] - 2.0 * f[i] + f[i - 1]).abs())
+        .collect();
+    second.sort_by(f64::total_cmp);
+    // Of white noise sigma the second differences have sigma sqrt 6; the median of their
+    // absolute values is 0.6745 of that.
+    let sigma = (quantile(&second, 0.5) / 0.6745 / 6f64.sqrt()).max(1e-4 * range);
+    let candidates: Vec<bool> = f.iter().map(|&v| out(v)).collect();
+    // The nearest points on each side that are not candidates.
+    let left = |i: usize| (0..i).rev().find(|&j| !candidates[j]);
+    let right = |i: usize| (i + 1..n).find(|&j| !candidates[j]);
+    (0..n)
+        .filter(|&i| candidates[i])
+        .filter(|&i| {
+            let (dev, spread) = match (left(i), right(i)) {
+                (Some(a), Some(b)) => (f[i] - 0.5 * (f[a] + f[b]), (f[b] - f[a]).abs()),
+                (None, Some(b)) => match right(b) {
+                    Some(c) => (f[i] - f[b], (f[c] - f[b]).abs()),
+                    None => return false,
+                },
+                (Some(a), None) => match left(a) {
+                    Some(c) => (f[i] - f[a], (f[a] - f[c]).abs()),
+                    None => return false,
+                },
+                (None, None) => return false,
+            };
+            dev.abs() > 10.0 * sigma && dev.abs() > 3.0 * spread
+        })
+        .collect()
+}
+
+/// The curve without its spikes and a note naming them, or None where there are none.
+fn drop_spikes(curve: &Curve) -> Option<(Curve, String)> {
+    let mut drop = vec![false; curve.len()];
+    let mut named = Vec::new();
+    for d in [Direction::Approach, Direction::Retract] {
+        let idx = segment_points(curve, d);
+        let f: Vec<f64> = idx.iter().map(|&i| curve.force[i]).collect();
+        for k in spikes(&f) {
+            drop[idx[k]] = true;
+            named.push(idx[k]);
+        }
+    }
+    if named.is_empty() {
+        return None;
+    }
+    named.sort_unstable();
+    let keep = |v: &[f64]| -> Vec<f64> {
+        v.iter()
+            .zip(&drop)
+            .filter(|(_, &x)| !x)
+            .map(|(v, _)| *v)
+            .collect()
+    };
+    let c = Curve {
+        height: keep(&curve.height),
+        force: keep(&curve.force),
+        segment: curve
+            .segment
+            .iter()
+            .zip(&drop)
+            .filter(|(_, &x)| !x)
+            .map(|(s, _)| *s)
+            .collect(),
+        ..curve.clone()
+    };
+    let list: Vec<String> = named
+        .iter()
+        .take(5)
+        .map(|&i| {
+            format!(
+                "point {} (force {} N)",
+                i + 1,
+                crate::physics::domain::short(curve.force[i])
+            )
+        })
+        .collect();
+    let note = format!(
+        "dropped {} outlier point{} far beyond the noise, isolated spikes that would steer the fit: {}{}",
+        named.len(),
+        if named.len() == 1 { "" } else { "s" },
+        list.join(", "),
+        if named.len() > 5 { ", ..." } else { "" }
+    );
+    Some((c, note))
 }
 
 /// The measured jump of each segment: on retract the largest rise of the force between
@@ -452,12 +745,14 @@ fn measured_sides(force: &[f64], dir: &[Direction], noise: f64) -> Vec<Side> {
             continue;
         }
         let sign = if d == Direction::Retract { 1.0 } else { -1.0 };
-        let (k, step) = idx
+        let Some((k, step)) = idx
             .windows(2)
             .enumerate()
             .map(|(k, w)| (k, sign * (force[w[1]] - force[w[0]])))
             .max_by(|a, b| a.1.total_cmp(&b.1))
-            .unwrap();
+        else {
+            continue;
+        };
         let tensile = idx.iter().map(|&i| -force[i]).fold(0.0, f64::max);
         if step > 5.0 * noise && step > tensile / 3.0 && tensile > 0.0 {
             for (n, &i) in idx.iter().enumerate() {
@@ -1105,6 +1400,7 @@ fn rank(m: &ModelFit) -> f64 {
 fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) -> ModelFit {
     let mut order: Vec<usize> = (0..profile.len()).collect();
     order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
+    // The profile has its 16 fixed lambdas.
     let best_profile = rank(&profile[order[0]]);
     // Scouts: short free fits from every profile point; the best two are then fitted fully.
     let mut scouts: Vec<ModelFit> = order
@@ -1128,7 +1424,9 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
             f
         })
         .collect();
-    let mut md = fulls.iter().cloned().reduce(better).expect("a profile");
+    let Some(mut md) = fulls.iter().cloned().reduce(better) else {
+        return profile[order[0]].clone();
+    };
     if key(&md) > best_profile {
         // The free fits failed or did worse: the best fixed-lambda fit stands.
         md = profile[order[0]].clone();
@@ -1219,7 +1517,28 @@ fn better(a: ModelFit, b: ModelFit) -> ModelFit {
 }
 
 /// Fits one curve: Maugis-Dugdale and the three closed forms, the adequate model, warnings.
+/// Whatever the data, the result is the curve's status: a panic inside (a bug) is caught here
+/// and becomes this curve's `not_converged`, so that the other curves of a batch go on.
 pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
+    if let Err(e) = opt.validate() {
+        return fail(curve, FitStatus::InvalidInput, e.message);
+    }
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fit_curve_inner(curve, opt)))
+        .unwrap_or_else(|p| {
+            let what = p
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            fail(
+                curve,
+                FitStatus::NotConverged,
+                format!("internal error while fitting this curve ({what}); please report it with the curve"),
+            )
+        })
+}
+
+fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     let d = match prepare(curve, opt) {
         Ok(d) => d,
         Err((status, message)) => return fail(curve, status, message),
@@ -1274,6 +1593,21 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
             let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
             let mut s = from(&best, 1.0, pc, pc);
             s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
+            if crate::solver::domain::check_lambda(s.lambda).is_err() {
+                let mut out = fail(
+                    curve,
+                    FitStatus::InvalidInput,
+                    format!(
+                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-8..1e8: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
+                        crate::physics::domain::short(z0),
+                        crate::physics::domain::short(s.lambda),
+                        crate::physics::domain::short(s.e_star),
+                        crate::physics::domain::short(s.w)
+                    ),
+                );
+                out.warnings = d.notes.clone();
+                return out;
+            }
             fit_model(Model::Md, &d, opt, s, w_ref, None)
         }
         None => {
@@ -1291,7 +1625,76 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
             free_fit(&d, opt, w_ref, profile)
         }
     };
-    summarize(curve, opt, &d, md, vec![hertz, dmt, jkr])
+    // A fit that ended where it started found nothing to follow (the misfit was flat there).
+    let unmoved = md.status == FitStatus::Ok
+        && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
+        && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
+    let mut out = summarize(curve, opt, &d, md, vec![hertz, dmt, jkr]);
+    if unmoved && out.status == FitStatus::Ok {
+        let mut r = fail(
+            curve,
+            FitStatus::NotConverged,
+            format!(
+                "the fit did not move from its start (the misfit does not change with E* and the contact point there){}",
+                unit_hints(&d, opt)
+            ),
+        );
+        r.points_fitted = out.points_fitted;
+        r.pulloff_force_measured_n = out.pulloff_force_measured_n;
+        r.max_load_n = out.max_load_n;
+        r.iterations = out.iterations;
+        r.stop = out.stop;
+        r.warnings = d.notes.clone();
+        r.models = out.models;
+        r.md = out.md;
+        out = r;
+    }
+    out
+}
+
+/// The likely causes of an absurd fit, from the scales of the data and options: units off by
+/// 1e9 (nN or nm given where N or m are read), a radius or a spring constant that no AFM has.
+fn unit_hints(d: &Prepared, opt: &FitOptions) -> String {
+    let h = hints(d, opt);
+    if h.is_empty() {
+        "; check the spring constant (a wrong one moves E* by orders of magnitude), the tip radius, and that height_m is in metres and force_n in newtons".into()
+    } else {
+        format!("; likely cause: {}", h.join("; "))
+    }
+}
+
+/// The scales of the data and options that no AFM curve has, each a sentence.
+fn hints(d: &Prepared, opt: &FitOptions) -> Vec<String> {
+    let short = crate::physics::domain::short;
+    let fmax = d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let hmax = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let hmin = d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mut h = Vec::new();
+    if fmax > 1e-4 {
+        h.push(format!(
+            "the forces reach {} N, far beyond an AFM's: if force_n is in nN, multiply it by 1e-9 (forces are read in newtons)",
+            short(fmax)
+        ));
+    }
+    if hmax - hmin > 1e-3 {
+        h.push(format!(
+            "the heights span {} m, far beyond an AFM's: if height_m is in nm, multiply it by 1e-9 (heights are read in metres)",
+            short(hmax - hmin)
+        ));
+    }
+    if !(1e-10..=1e-3).contains(&opt.radius) {
+        h.push(format!(
+            "the tip radius {} m is not an AFM tip's (1e-10..1e-3 m): give it in metres",
+            short(opt.radius)
+        ));
+    }
+    if !(1e-4..=1e4).contains(&opt.spring) {
+        h.push(format!(
+            "the spring constant {} N/m is not a cantilever's (1e-4..1e4 N/m): give it in N/m",
+            short(opt.spring)
+        ));
+    }
+    h
 }
 
 fn summarize(
@@ -1309,6 +1712,7 @@ fn summarize(
     out.iterations = md.iterations;
     out.stop = md.stop.clone();
     out.baseline_tilt_n_m = opt.tilt.then_some(d.baseline.1);
+    out.warnings = d.notes.clone();
     if md.status != FitStatus::Ok {
         out.message = format!("the Maugis-Dugdale fit did not converge: {}", md.stop);
         out.models = models;
@@ -1322,7 +1726,8 @@ fn summarize(
         zc: md.contact_point_m,
         f0: md.force_offset_n,
     };
-    let (_, a_md, states, _) = model_forces(
+    let short = crate::physics::domain::short;
+    let Some((_, a_md, states, _)) = model_forces(
         Model::Md,
         &p,
         opt.radius,
@@ -1330,9 +1735,55 @@ fn summarize(
         &d.height,
         &d.dir,
         None,
-    )
-    .expect("fitted");
+    ) else {
+        out.message = format!(
+            "the fitted parameters (E* = {} Pa, w = {} J/m^2, lambda = {}) cannot be evaluated: the fit left the models' domain{}",
+            short(p.e_star), short(p.w), short(p.lambda), unit_hints(d, opt)
+        );
+        out.status = FitStatus::NotConverged;
+        out.models = models;
+        out.md = Some(md);
+        return out;
+    };
     let in_contact = states.iter().filter(|s| s.piece == Piece::Contact).count();
+    let refused = |status: FitStatus, message: String| {
+        let mut r = fail(curve, status, message);
+        r.points_fitted = out.points_fitted;
+        r.pulloff_force_measured_n = out.pulloff_force_measured_n;
+        r.max_load_n = out.max_load_n;
+        r.iterations = md.iterations;
+        r.stop = md.stop.clone();
+        r.warnings = d.notes.clone();
+        r.models = models.clone();
+        r.md = Some(md.clone());
+        r
+    };
+    if in_contact == 0 {
+        return refused(
+            FitStatus::NoContact,
+            format!(
+                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
+                short(p.e_star),
+                short(p.w),
+                unit_hints(d, opt)
+            ),
+        );
+    }
+    let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
+    if !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX) {
+        return refused(
+            FitStatus::NotConverged,
+            format!(
+                "the fit ended outside physical sense: E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2){}",
+                short(p.e_star),
+                short(E_STAR_RANGE.0),
+                short(E_STAR_RANGE.1),
+                short(p.w),
+                short(W_MAX),
+                unit_hints(d, opt)
+            ),
+        );
+    }
     let amax = a_md.iter().cloned().fold(0.0, f64::max);
     let loads: Vec<f64> = states
         .iter()
@@ -1456,12 +1907,27 @@ fn summarize(
     out.why = adequate.1;
     let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
     if pull > 0.0 {
-        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap())
+        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
             .ok()
             .map(|i| i.verdict);
     }
     // Warnings.
-    let mut warn = Vec::new();
+    let mut warn = d.notes.clone();
+    // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
+    // on that value.
+    for h in hints(d, opt) {
+        warn.push(format!("{h}; the fitted values assume it"));
+    }
+    // Far above the noise of the baseline (and above rounding for noise-free data).
+    let floor = 1e-6 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    if md.rms_residual_n > 10.0 * d.noise + floor {
+        warn.push(format!(
+            "the fit does not describe this curve: its rms residual {:.3e} N is {:.0} times the baseline's noise {:.3e} N (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
+            md.rms_residual_n,
+            md.rms_residual_n / d.noise,
+            d.noise
+        ));
+    }
     if amax / opt.radius > 0.1 {
         warn.push(format!(
             "a/R reaches {:.2} (> 0.1): the small-strain (paraboloid) theory is stretched",

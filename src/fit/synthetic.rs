@@ -24,8 +24,32 @@ pub struct Synthetic {
 
 /// The curve: the base goes from far away to `depth` past the contact point and back, the far
 /// 40% of each segment beyond the last force (jump-out included), so a baseline can be taken.
+///
+/// Panics where the parameters are outside the model's domain: the generator of tests and
+/// examples; [`try_synthetic`] returns the reason instead.
 pub fn synthetic(s: &Synthetic) -> Curve {
+    try_synthetic(s).unwrap_or_else(|e| panic!("synthetic curve: {e}"))
+}
+
+/// [`synthetic`], or why the parameters give no curve.
+pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
     let p = s.params;
+    let finite = [
+        p.e_star, p.w, p.lambda, p.zc, p.f0, s.radius, s.spring, s.depth,
+    ];
+    let positive = [p.e_star, p.w, s.radius, s.spring, s.depth];
+    if !(finite.iter().all(|v| v.is_finite()) && positive.iter().all(|&v| v > 0.0)) {
+        return Err(format!(
+            "E* ({} Pa), w ({} J/m^2), the radius ({} m), the spring constant ({} N/m) and the depth ({}) must be positive and finite, lambda, the contact point and the offset finite",
+            p.e_star, p.w, s.radius, s.spring, s.depth
+        ));
+    }
+    if !(s.noise >= 0.0 && s.noise.is_finite()) {
+        return Err(format!(
+            "force noise {} N: must be finite and not negative",
+            s.noise
+        ));
+    }
     let u = units(&p, s.radius, s.spring);
     let path = SpringPath::new(s.model, p.lambda, u.kbar, s.depth);
     let reach = path.force_reach().min(0.0);
@@ -42,9 +66,14 @@ pub fn synthetic(s: &Synthetic) -> Curve {
     let mut segment = vec![Direction::Approach; n];
     segment.extend(vec![Direction::Retract; n]);
     let (f, _, _, _) = model_forces(s.model, &p, s.radius, s.spring, &height, &segment, None)
-        .expect("valid parameters");
+        .ok_or_else(|| {
+            format!(
+                "lambda {} is outside the models' domain 1e-8..1e8, or the units overflow",
+                p.lambda
+            )
+        })?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);
-    let normal = Normal::new(0.0, s.noise.max(0.0)).expect("finite noise");
+    let normal = Normal::new(0.0, s.noise).map_err(|e| format!("force noise: {e}"))?;
     let force = f
         .iter()
         .map(|f| {
@@ -56,12 +85,12 @@ pub fn synthetic(s: &Synthetic) -> Curve {
                 }
         })
         .collect();
-    Curve {
+    Ok(Curve {
         id: format!("synthetic-{}", s.seed),
         x: None,
         y: None,
         segment,
         height,
         force,
-    }
+    })
 }

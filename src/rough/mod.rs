@@ -5,6 +5,7 @@
 //! Units are one summit's (Johnson and Greenwood): loads per summit in `pi w R`, separations and
 //! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
 
+pub mod ensemble;
 pub mod scene;
 
 use crate::physics::domain::{short, DomainError};

@@ -1,0 +1,80 @@
+//! Rough surfaces (tabor::rough): dicts of NumPy arrays, no JSON in between.
+
+use crate::{arr, run};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use tabor::rough::{Mean, Rough};
+
+fn leg<'py>(py: Python<'py>, v: &[Mean]) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item(
+        "separation",
+        arr(py, v.iter().map(|m| m.separation).collect()),
+    )?;
+    d.set_item("load", arr(py, v.iter().map(|m| m.load).collect()))?;
+    d.set_item(
+        "contact_fraction",
+        arr(py, v.iter().map(|m| m.contact_fraction).collect()),
+    )?;
+    d.set_item(
+        "noncontact_fraction",
+        arr(py, v.iter().map(|m| m.noncontact_fraction).collect()),
+    )?;
+    Ok(d)
+}
+
+/// A rough surface's approach-retract cycle, as `tabor rough` computes it.
+#[pyfunction]
+#[pyo3(signature = (lam, sigma, min_separation, max_separation, points))]
+pub fn rough<'py>(
+    py: Python<'py>,
+    lam: f64,
+    sigma: f64,
+    min_separation: f64,
+    max_separation: Option<f64>,
+    points: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let c = run(py, move || {
+        Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("lambda", c.lambda)?;
+    d.set_item("sigma", c.sigma)?;
+    d.set_item("approach", leg(py, &c.approach)?)?;
+    d.set_item("retract", leg(py, &c.retract)?)?;
+    d.set_item("pulloff_load", c.pulloff_load)?;
+    d.set_item("pulloff_separation", c.pulloff_separation)?;
+    d.set_item("hysteresis", c.hysteresis)?;
+    d.set_item("smooth_pulloff", c.smooth_pulloff)?;
+    d.set_item("fuller_tabor_parameter", c.fuller_tabor_parameter)?;
+    Ok(d)
+}
+
+/// Loads per summit of explicit ensembles: `heights` (approach units) at each separation of
+/// `separations`, on the approach (`min_separation` None) or the retract after it.
+#[pyfunction]
+#[pyo3(signature = (lam, heights, separations, min_separation))]
+pub fn rough_ensemble<'py>(
+    py: Python<'py>,
+    lam: f64,
+    heights: Vec<f64>,
+    separations: Vec<f64>,
+    min_separation: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let v = run(py, move || {
+        if heights.is_empty() || heights.iter().any(|z| !z.is_finite()) {
+            anyhow::bail!("the summit heights must be finite, and at least one");
+        }
+        // The spread only sets the surface's own quadrature, unused here.
+        let r = Rough::new(lam, 1.0)?;
+        let leg = match min_separation {
+            None => tabor::rough::Leg::Approach,
+            Some(d_min) => tabor::rough::Leg::Retract { d_min },
+        };
+        separations
+            .iter()
+            .map(|&d| Ok(r.ensemble_mean(leg, &heights, d)?))
+            .collect::<anyhow::Result<Vec<Mean>>>()
+    })?;
+    leg(py, &v)
+}

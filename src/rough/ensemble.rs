@@ -1,0 +1,319 @@
+//! Explicit ensembles of summits in SI units: each summit its own height and radius, and so its
+//! own lambda, stepped through an approach and a retract on its own branch (docs/PHYSICS.md
+//! section 9). Summits come from a list (`height_m,radius_m`) or from a measured height map
+//! (local maxima, radius from the curvature there, as Greenwood and Williamson did).
+//!
+//! Memory is the summits (two numbers each) and one accumulator per separation and thread: each
+//! summit is taken once, its own context built, and its load at every separation added in.
+
+use super::{RoughError, Summit, SummitBranch};
+use crate::physics::domain::DomainError;
+use crate::physics::params::{Contact, ForceRange};
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Most summits an ensemble may hold (16 bytes each).
+pub const SUMMITS_MAX: usize = 20_000_000;
+/// Most separations of a cycle.
+pub const POINTS_MAX: usize = 10_000;
+
+/// One summit: its height above the reference plane and its radius (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Asperity {
+    pub height_m: f64,
+    pub radius_m: f64,
+}
+
+/// The materials every summit shares.
+#[derive(Clone, Copy, Debug)]
+pub struct Materials {
+    pub e_star_pa: f64,
+    pub work_of_adhesion_j_m2: f64,
+    pub range: ForceRange,
+}
+
+/// One half of an ensemble's cycle, one entry per separation.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct EnsembleLeg {
+    pub separation_m: Vec<f64>,
+    pub force_n: Vec<f64>,
+    pub real_contact_area_m2: Vec<f64>,
+    pub contact_fraction: Vec<f64>,
+    pub noncontact_fraction: Vec<f64>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct EnsembleCycle {
+    pub summits: usize,
+    pub approach: EnsembleLeg,
+    pub retract: EnsembleLeg,
+    /// The most tensile retract force among the separations (a sample: the ensemble's force
+    /// jumps wherever one summit does).
+    pub pulloff_force_n: f64,
+    pub pulloff_separation_m: f64,
+    /// Summit states evaluated (summits times separations times two), and the seconds it took.
+    pub summit_states: u64,
+    pub seconds: f64,
+}
+
+fn bad(name: &'static str, value: f64, range: &'static str, hint: &'static str) -> RoughError {
+    DomainError {
+        name,
+        value,
+        range,
+        hint,
+    }
+    .into()
+}
+
+/// Checks a list of summits: finite heights, positive finite radii, at least one, at most
+/// [`SUMMITS_MAX`].
+pub fn check(asp: &[Asperity]) -> Result<(), RoughError> {
+    if asp.is_empty() || asp.len() > SUMMITS_MAX {
+        return Err(bad(
+            "the number of summits",
+            asp.len() as f64,
+            "1..2e7",
+            "give at least one summit, and at most 20 million",
+        ));
+    }
+    for a in asp {
+        if !a.height_m.is_finite() {
+            return Err(bad(
+                "a summit height (m)",
+                a.height_m,
+                "finite",
+                "remove or fix it",
+            ));
+        }
+        if !(a.radius_m.is_finite() && a.radius_m > 0.0) {
+            return Err(bad(
+                "a summit radius (m)",
+                a.radius_m,
+                "(0, inf)",
+                "every summit needs a positive, finite radius",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The separations of a cycle: from above the highest summit's reach down to `d_min` (m).
+fn separations(
+    asp: &[Asperity],
+    m: &Materials,
+    d_min: f64,
+    d_max: Option<f64>,
+    points: usize,
+) -> Result<Vec<f64>, RoughError> {
+    if !(2..=POINTS_MAX).contains(&points) {
+        return Err(bad(
+            "the number of separations",
+            points as f64,
+            "2..10000",
+            "give at least 2 points",
+        ));
+    }
+    let top = asp
+        .iter()
+        .map(|a| a.height_m)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // A summit is free again beyond its reach (the Dugdale range, or its jump-out); three times
+    // the largest summit's Dugdale range plus an approach unit is beyond every summit's.
+    let r_max = asp.iter().map(|a| a.radius_m).fold(0.0, f64::max);
+    let c = Contact::new(r_max, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
+        .map_err(|e| RoughError::Scene(e.to_string()))?;
+    let reach = 3.0 * (c.work / c.s0) + 2.0 * c.approach_scale();
+    let d_max = d_max.unwrap_or(top + reach);
+    if !(d_min.is_finite() && d_max.is_finite() && d_max > d_min) {
+        return Err(bad(
+            "the smallest separation (m)",
+            d_min,
+            "below the largest separation",
+            "give a smallest separation below the highest summit's reach",
+        ));
+    }
+    Ok((0..points)
+        .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
+        .collect())
+}
+
+/// Sums per separation: force, area, contact and non-contact counts, for approach and retract.
+#[derive(Clone)]
+struct Sums {
+    v: Vec<[f64; 8]>,
+}
+
+impl Sums {
+    fn new(n: usize) -> Sums {
+        Sums {
+            v: vec![[0.0; 8]; n],
+        }
+    }
+    fn add(mut self, o: Sums) -> Sums {
+        for (a, b) in self.v.iter_mut().zip(o.v) {
+            for k in 0..8 {
+                a[k] += b[k];
+            }
+        }
+        self
+    }
+}
+
+/// Adds one summit's force, contact area and branch counts at every separation, approach and
+/// retract.
+fn add_summit(
+    acc: &mut Sums,
+    a: &Asperity,
+    m: &Materials,
+    seps: &[f64],
+    d_min: f64,
+) -> Result<(), RoughError> {
+    let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
+        .map_err(|e| RoughError::Scene(e.to_string()))?;
+    let s = Summit::new(c.lambda())?;
+    let (unit, force, r_unit) = (c.approach_scale(), c.force_scale(), c.radius_scale());
+    let delta_max = (a.height_m - d_min) / unit;
+    for (k, &d) in seps.iter().enumerate() {
+        let delta = (a.height_m - d) / unit;
+        for (leg, b) in [
+            (0, s.approach_branch(delta)),
+            (4, s.retract_branch(delta, delta_max)),
+        ] {
+            let slot = &mut acc.v[k];
+            match b {
+                SummitBranch::Free => {}
+                SummitBranch::NonContact => {
+                    slot[leg] += s.non_contact(delta) * force;
+                    slot[leg + 3] += 1.0;
+                }
+                SummitBranch::Contact => {
+                    let (p, ar) = s.contact(delta).ok_or(RoughError::Failed(d, s.lambda))?;
+                    slot[leg] += p * force;
+                    slot[leg + 1] += PI * (ar * r_unit).powi(2);
+                    slot[leg + 2] += 1.0;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Steps every summit through the approach from the largest separation down to `d_min` and
+/// the retract back; separations in m from the reference plane of the heights.
+pub fn cycle(
+    asp: &[Asperity],
+    m: &Materials,
+    d_min: f64,
+    d_max: Option<f64>,
+    points: usize,
+) -> Result<EnsembleCycle, RoughError> {
+    use rayon::prelude::*;
+    check(asp)?;
+    let seps = separations(asp, m, d_min, d_max, points)?;
+    let t = std::time::Instant::now();
+    let n = seps.len();
+    // Fixed chunks summed in order: the same bytes whatever the threads' schedule.
+    let chunk = (asp.len() / 64).max(1024);
+    let parts: Vec<Sums> = asp
+        .par_chunks(chunk)
+        .map(|part| -> Result<Sums, RoughError> {
+            let mut acc = Sums::new(n);
+            for a in part {
+                add_summit(&mut acc, a, m, &seps, d_min)?;
+            }
+            Ok(acc)
+        })
+        .collect::<Result<_, _>>()?;
+    let sums = parts.into_iter().fold(Sums::new(n), Sums::add);
+    let total = asp.len() as f64;
+    let leg = |off: usize, order: &mut dyn Iterator<Item = usize>| {
+        let mut l = EnsembleLeg::default();
+        for k in order {
+            let v = &sums.v[k];
+            l.separation_m.push(seps[k]);
+            l.force_n.push(v[off]);
+            l.real_contact_area_m2.push(v[off + 1]);
+            l.contact_fraction.push(v[off + 2] / total);
+            l.noncontact_fraction.push(v[off + 3] / total);
+        }
+        l
+    };
+    let approach = leg(0, &mut (0..n));
+    let retract = leg(4, &mut (0..n).rev());
+    let (i, f) = retract
+        .force_n
+        .iter()
+        .enumerate()
+        .fold(
+            (0, f64::INFINITY),
+            |b, (i, &f)| if f < b.1 { (i, f) } else { b },
+        );
+    Ok(EnsembleCycle {
+        summits: asp.len(),
+        pulloff_force_n: f,
+        pulloff_separation_m: retract.separation_m[i],
+        approach,
+        retract,
+        summit_states: 2 * (asp.len() * n) as u64,
+        seconds: t.elapsed().as_secs_f64(),
+    })
+}
+
+/// Summits of a measured height map (rows of `nx` heights in m, pixel `pixel_m` apart): every
+/// pixel higher than its eight neighbours, with the radius from the mean curvature there
+/// (`1/R = -(z_xx + z_yy) / 2` by central differences), as Greenwood and Williamson did.
+/// Border pixels are not summits; a maximum with no curvature (a plateau) is skipped.
+pub fn summits_of_topography(
+    z: &[f64],
+    nx: usize,
+    pixel_m: f64,
+) -> Result<Vec<Asperity>, RoughError> {
+    if !(pixel_m.is_finite() && pixel_m > 0.0) {
+        return Err(bad(
+            "the pixel size (m)",
+            pixel_m,
+            "(0, inf)",
+            "give the height map's pixel spacing in m",
+        ));
+    }
+    if nx < 3 || z.len() < 3 * nx || z.len() % nx != 0 {
+        return Err(bad(
+            "the height map's size",
+            z.len() as f64,
+            "at least 3 x 3 pixels, whole rows",
+            "give a 2-D array of heights",
+        ));
+    }
+    if let Some(v) = z.iter().find(|v| !v.is_finite()) {
+        return Err(bad(
+            "a height of the map (m)",
+            *v,
+            "finite",
+            "fill or crop the missing pixels first",
+        ));
+    }
+    let ny = z.len() / nx;
+    let at = |x: usize, y: usize| z[y * nx + x];
+    let mut out = Vec::new();
+    for y in 1..ny - 1 {
+        for x in 1..nx - 1 {
+            let h = at(x, y);
+            let peak =
+                (0..3).all(|j| (0..3).all(|i| (i == 1 && j == 1) || at(x + i - 1, y + j - 1) < h));
+            if !peak {
+                continue;
+            }
+            let zxx = (at(x + 1, y) - 2.0 * h + at(x - 1, y)) / (pixel_m * pixel_m);
+            let zyy = (at(x, y + 1) - 2.0 * h + at(x, y - 1)) / (pixel_m * pixel_m);
+            let kappa = -(zxx + zyy) / 2.0;
+            if kappa > 0.0 && kappa.is_finite() {
+                out.push(Asperity {
+                    height_m: h,
+                    radius_m: 1.0 / kappa,
+                });
+            }
+        }
+    }
+    Ok(out)
+}
