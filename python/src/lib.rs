@@ -3,7 +3,7 @@
 //! while it works, turns tabor's errors into ValueError with tabor's own message, and a panic
 //! into RuntimeError instead of an abort.
 
-use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -18,7 +18,7 @@ fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) ->
     let r = py.detach(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
     match r {
         Ok(Ok(v)) => Ok(v),
-        Ok(Err(e)) => Err(PyValueError::new_err(format!("{e:#}"))),
+        Ok(Err(e)) => Err(PyValueError::new_err(python_names(&format!("{e:#}")))),
         Err(p) => {
             let msg = p
                 .downcast_ref::<String>()
@@ -30,6 +30,40 @@ fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) ->
             )))
         }
     }
+}
+
+/// The command line's flags in tabor's messages, and the Python arguments that stand for them
+/// (longest first, so that "--backend cpu" goes before "--backend").
+const FLAGS: &[(&str, &str)] = &[
+    ("--backend auto", "backend=\"auto\""),
+    ("--backend cpu", "backend=\"cpu\""),
+    ("--backend gpu", "backend=\"gpu\""),
+    ("--precision f32", "precision=\"f32\""),
+    ("--load-axis linear", "load_axis=\"linear\""),
+    ("--segment approach", "fit_segment=\"approach\""),
+    ("--segment retract", "fit_segment=\"retract\""),
+    ("--check 0", "check=0"),
+    ("--npy or --json-full", "NPY files or save_json(full=True)"),
+    ("--lambda-min", "lambda_min"),
+    ("--lambda-max", "lambda_max"),
+    ("--load-min", "load_min"),
+    ("--load-max", "load_max"),
+    ("--strength-ratio", "strength_ratio"),
+    ("--tolerance", "tolerance"),
+    ("--width-mm", "width_mm"),
+    ("--points", "points"),
+    ("--dpi", "dpi"),
+    ("--nx", "nx"),
+    ("--ny", "ny"),
+    ("--z0", "z0_m"),
+];
+
+/// A message of tabor's with its command-line flags replaced by the Python arguments.
+#[pyfunction]
+fn python_names(msg: &str) -> String {
+    FLAGS
+        .iter()
+        .fold(msg.to_string(), |m, (flag, arg)| m.replace(flag, arg))
 }
 
 fn backend_of(s: &str) -> PyResult<Backend> {
@@ -57,8 +91,13 @@ fn arr<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     v.into_pyarray(py)
 }
 
+/// Points per chunk: between chunks the binding checks for Ctrl-C (a chunk takes well under a
+/// second on one core) and the working memory stays one chunk's states, whatever the input size.
+const CHUNK: usize = 1 << 18;
+
 /// Solves (lambda, value) pairs; `given` is "load" or "approach". Returns a dict of flat
-/// arrays and the status codes with their names, plus metadata.
+/// arrays and the status codes with their names, plus metadata. The states go straight into the
+/// output arrays chunk by chunk, without the GIL; Ctrl-C between chunks raises KeyboardInterrupt.
 #[pyfunction]
 #[pyo3(signature = (lam, value, given, backend, precision, adapter, check))]
 #[allow(clippy::too_many_arguments)]
@@ -82,100 +121,155 @@ fn solve_points<'py>(
         }
     };
     let (backend, precision) = (backend_of(backend)?, precision_of(precision)?);
-    let points: Vec<(f64, f64)> = lam
-        .as_slice()?
-        .iter()
-        .copied()
-        .zip(value.as_slice()?.iter().copied())
-        .collect();
-    let (states, engine_line, meta) = run(py, move || {
+    let (lam, value) = (lam.as_slice()?, value.as_slice()?);
+    if lam.len() != value.len() {
+        return Err(PyValueError::new_err(
+            "lambda and the value arrays differ in length",
+        ));
+    }
+    let n = lam.len();
+    let (engine, engine_line) = run(py, move || {
         let (mut engine, line) = Engine::select(backend, adapter.as_deref())?;
         engine.set_precision(precision)?;
-        let mut states = Vec::with_capacity(points.len());
-        let mut check_report = tabor::engine::CheckReport::empty(tabor::engine::GPU_TOLERANCE);
-        // The GPU takes bounded chunks; the CPU takes everything at once, so that each lambda
-        // builds one context (and one dense start) however many chunks its points would span.
-        let chunk = match engine {
-            Engine::Gpu(_) => 1 << 18,
-            _ => points.len().max(1),
-        };
-        for chunk in points.chunks(chunk) {
-            let s = engine.solve_points(chunk, control)?;
-            if let Engine::Gpu(_) = engine {
-                check_report.merge(tabor::engine::cross_check(
-                    chunk,
+        Ok((engine, line))
+    })?;
+    let out_a = PyArray1::<f64>::zeros(py, n, false);
+    let out_load = PyArray1::<f64>::zeros(py, n, false);
+    let out_approach = PyArray1::<f64>::zeros(py, n, false);
+    let out_m = PyArray1::<f64>::zeros(py, n, false);
+    let out_code = PyArray1::<u8>::zeros(py, n, false);
+    // SAFETY: the arrays were just created here and no other reference to them exists yet.
+    let (sa, sl, sp, sm, sc) = unsafe {
+        (
+            out_a.as_slice_mut()?,
+            out_load.as_slice_mut()?,
+            out_approach.as_slice_mut()?,
+            out_m.as_slice_mut()?,
+            out_code.as_slice_mut()?,
+        )
+    };
+    let gpu = matches!(engine, Engine::Gpu(_));
+    let mut check_report = tabor::engine::CheckReport::empty(tabor::engine::GPU_TOLERANCE);
+    let mut start = 0;
+    while start < n {
+        let end = (start + CHUNK).min(n);
+        let engine = &engine;
+        let (lam, value) = (&lam[start..end], &value[start..end]);
+        let (a, l, p, m, c) = (
+            &mut sa[start..end],
+            &mut sl[start..end],
+            &mut sp[start..end],
+            &mut sm[start..end],
+            &mut sc[start..end],
+        );
+        let report = run(py, move || {
+            let points: Vec<(f64, f64)> = lam.iter().copied().zip(value.iter().copied()).collect();
+            let s = engine.solve_points(&points, control)?;
+            for (i, st) in s.iter().enumerate() {
+                (a[i], l[i], p[i], m[i], c[i]) =
+                    (st.a, st.load, st.approach, st.m_minus_1, st.status as u8);
+            }
+            Ok(gpu.then(|| {
+                tabor::engine::cross_check(
+                    &points,
                     &s,
                     control,
                     check,
                     tabor::engine::GPU_TOLERANCE,
-                ));
-            }
-            states.extend(s);
+                )
+            }))
+        })?;
+        if let Some(r) = report {
+            check_report.merge(r);
         }
-        let meta = serde_json::json!({
-            "backend": engine.name(),
-            "adapter": engine.adapter(),
-            "precision": engine.precision(),
-            "cross_check": matches!(engine, Engine::Gpu(_)).then_some(check_report),
-        });
-        Ok((states, line, meta.to_string()))
-    })?;
+        py.check_signals()?;
+        start = end;
+    }
+    let meta = serde_json::json!({
+        "backend": engine.name(),
+        "adapter": engine.adapter(),
+        "precision": engine.precision(),
+        "cross_check": gpu.then_some(check_report),
+    });
     let d = PyDict::new(py);
-    d.set_item("A", arr(py, states.iter().map(|s| s.a).collect()))?;
-    d.set_item("load", arr(py, states.iter().map(|s| s.load).collect()))?;
-    d.set_item(
-        "approach",
-        arr(py, states.iter().map(|s| s.approach).collect()),
-    )?;
-    d.set_item(
-        "m_minus_1",
-        arr(py, states.iter().map(|s| s.m_minus_1).collect()),
-    )?;
-    let codes: Vec<u8> = states.iter().map(|s| s.status as u8).collect();
-    d.set_item("status_code", codes.into_pyarray(py))?;
-    d.set_item("engine", engine_line)?;
-    d.set_item("metadata_json", meta)?;
+    d.set_item("A", out_a)?;
+    d.set_item("load", out_load)?;
+    d.set_item("approach", out_approach)?;
+    d.set_item("m_minus_1", out_m)?;
+    d.set_item("status_code", out_code)?;
+    d.set_item("engine", python_names(&engine_line))?;
+    d.set_item("metadata_json", meta.to_string())?;
     Ok(d)
 }
 
-/// The curve points at given contact radii, with stability under both controls.
+/// The curve points at given contact radii, with stability under both controls: as
+/// [`solve_points`], chunk by chunk into the output arrays, Ctrl-C checked between chunks.
 #[pyfunction]
 fn solve_radius<'py>(
     py: Python<'py>,
     lam: PyReadonlyArray1<'py, f64>,
     a: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let points: Vec<(f64, f64)> = lam
-        .as_slice()?
-        .iter()
-        .copied()
-        .zip(a.as_slice()?.iter().copied())
-        .collect();
-    let states = run(py, move || Ok(tabor::solver::solve_radius_points(&points)))?;
+    let (lam, radius) = (lam.as_slice()?, a.as_slice()?);
+    if lam.len() != radius.len() {
+        return Err(PyValueError::new_err(
+            "lambda and the radius arrays differ in length",
+        ));
+    }
+    let n = lam.len();
+    let out_a = PyArray1::<f64>::zeros(py, n, false);
+    let out_load = PyArray1::<f64>::zeros(py, n, false);
+    let out_approach = PyArray1::<f64>::zeros(py, n, false);
+    let out_m = PyArray1::<f64>::zeros(py, n, false);
+    let out_ls = PyArray1::<bool>::zeros(py, n, false);
+    let out_ds = PyArray1::<bool>::zeros(py, n, false);
+    let out_code = PyArray1::<u8>::zeros(py, n, false);
+    // SAFETY: the arrays were just created here and no other reference to them exists yet.
+    let (sa, sl, sp, sm, sls, sds, sc) = unsafe {
+        (
+            out_a.as_slice_mut()?,
+            out_load.as_slice_mut()?,
+            out_approach.as_slice_mut()?,
+            out_m.as_slice_mut()?,
+            out_ls.as_slice_mut()?,
+            out_ds.as_slice_mut()?,
+            out_code.as_slice_mut()?,
+        )
+    };
+    let mut start = 0;
+    while start < n {
+        let end = (start + CHUNK).min(n);
+        let r = start..end;
+        let (lam, radius) = (&lam[r.clone()], &radius[r.clone()]);
+        let (a, l, p, m) = (
+            &mut sa[r.clone()],
+            &mut sl[r.clone()],
+            &mut sp[r.clone()],
+            &mut sm[r.clone()],
+        );
+        let (ls, ds, c) = (&mut sls[r.clone()], &mut sds[r.clone()], &mut sc[r]);
+        run(py, move || {
+            let points: Vec<(f64, f64)> = lam.iter().copied().zip(radius.iter().copied()).collect();
+            for (i, st) in tabor::solver::solve_radius_points(&points)
+                .iter()
+                .enumerate()
+            {
+                (a[i], l[i], p[i], m[i]) = (st.a, st.load, st.approach, st.m_minus_1);
+                (ls[i], ds[i], c[i]) = (st.load_stable, st.displacement_stable, st.status as u8);
+            }
+            Ok(())
+        })?;
+        py.check_signals()?;
+        start = end;
+    }
     let d = PyDict::new(py);
-    d.set_item("A", arr(py, states.iter().map(|s| s.a).collect()))?;
-    d.set_item("load", arr(py, states.iter().map(|s| s.load).collect()))?;
-    d.set_item(
-        "approach",
-        arr(py, states.iter().map(|s| s.approach).collect()),
-    )?;
-    d.set_item(
-        "m_minus_1",
-        arr(py, states.iter().map(|s| s.m_minus_1).collect()),
-    )?;
-    d.set_item(
-        "load_stable",
-        states.iter().map(|s| s.load_stable).collect::<Vec<_>>(),
-    )?;
-    d.set_item(
-        "displacement_stable",
-        states
-            .iter()
-            .map(|s| s.displacement_stable)
-            .collect::<Vec<_>>(),
-    )?;
-    let codes: Vec<u8> = states.iter().map(|s| s.status as u8).collect();
-    d.set_item("status_code", codes.into_pyarray(py))?;
+    d.set_item("A", out_a)?;
+    d.set_item("load", out_load)?;
+    d.set_item("approach", out_approach)?;
+    d.set_item("m_minus_1", out_m)?;
+    d.set_item("load_stable", out_ls)?;
+    d.set_item("displacement_stable", out_ds)?;
+    d.set_item("status_code", out_code)?;
     Ok(d)
 }
 
@@ -559,7 +653,8 @@ impl AdhesionMap {
                 })?,
             ),
         };
-        let print = tabor::render::Print::new(width_mm, dpi).map_err(PyValueError::new_err)?;
+        let print = tabor::render::Print::new(width_mm, dpi)
+            .map_err(|e| PyValueError::new_err(python_names(&e)))?;
         let out = tabor::render::Outputs::from_path(std::path::Path::new(&path))
             .map_err(PyValueError::new_err)?;
         let data = &self.data;
@@ -613,6 +708,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
     m.add("LAMBDA_D", tabor::physics::md::LAMBDA_D)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
+    m.add_function(wrap_pyfunction!(python_names, m)?)?;
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
     m.add_function(wrap_pyfunction!(status_names, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff, m)?)?;

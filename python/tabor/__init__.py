@@ -16,8 +16,10 @@ Closed forms in the same units: Hertz Pbar = A^3, DMT Pbar = A^3 - 2, JKR Pbar =
 Bradley (rigid) pull-off -2.
 
 Results that could not be computed are NaN, and the ``status`` array says why: ``ok``,
-``no_contact`` (below the pull-off), ``not_converged``, ``invalid_input`` (outside the domain).
-Bad arguments raise ``ValueError`` with tabor's own message.
+``no_contact`` (below the pull-off), ``not_converged``, ``invalid_input`` (outside the domain);
+``message`` gives the reason per point. A single value outside the domain (a scalar ``lam`` or
+``load``) raises ``ValueError`` with tabor's own message; what is not real numbers (complex,
+dates, strings, masked arrays) raises ``TypeError``. Ctrl-C interrupts a long solve.
 """
 
 import json
@@ -56,12 +58,37 @@ class Result(dict):
             raise AttributeError(name) from None
 
 
-def _flat(*arrays):
+def _numbers(a, name):
+    """``a`` as a float64 array; TypeError for what is not plain real numbers (complex values
+    would lose their imaginary part, dates and strings would be read as numbers, a masked
+    array would lose its mask)."""
+    if isinstance(a, np.ma.MaskedArray):
+        raise TypeError(f"{name}: masked arrays are not supported (the mask would be lost); "
+                        "pass a.filled(np.nan) or the unmasked values")
+    x = np.asarray(a)
+    kind = x.dtype.kind
+    if kind == "c":
+        raise TypeError(f"{name}: complex values are not supported (the imaginary part would "
+                        "be dropped); pass real numbers")
+    if kind in "mM":
+        raise TypeError(f"{name}: {x.dtype} values are not numbers; pass float values")
+    if kind in "USV":
+        raise TypeError(f"{name}: strings are not numbers; pass float values")
+    if kind == "O":
+        try:
+            for v in x.flat:
+                if not isinstance(v, (int, float, np.integer, np.floating)) or isinstance(v, bool):
+                    raise TypeError(type(v).__name__)
+        except TypeError as e:
+            raise TypeError(f"{name}: an element of type {e} is not a real number; pass float "
+                            "values") from None
+    return np.asarray(x, dtype=np.float64)
+
+
+def _flat(*arrays, names=None):
     """Broadcasts float64 inputs; returns the flat contiguous copies and the common shape."""
-    try:
-        f = [np.asarray(a, dtype=np.float64) for a in arrays]
-    except (TypeError, ValueError) as e:
-        raise TypeError(f"inputs must be numbers or arrays of numbers: {e}") from None
+    names = names or [f"argument {i + 1}" for i in range(len(arrays))]
+    f = [_numbers(a, n) for a, n in zip(arrays, names)]
     try:
         b = np.broadcast_arrays(*f)
     except ValueError as e:
@@ -70,8 +97,76 @@ def _flat(*arrays):
     return [np.ascontiguousarray(x.ravel()) for x in b], shape
 
 
+def _real(x, name):
+    """A float for a scalar argument (tabor checks its range); TypeError for what is not one
+    real number."""
+    if isinstance(x, np.ma.MaskedArray) or np.ndim(x) != 0:
+        raise TypeError(f"{name} = {x!r}: give one number")
+    return float(_numbers(x, name))
+
+
+def _finite(x, name):
+    """A finite float for a scalar argument, or ValueError naming it."""
+    v = _real(x, name)
+    if not np.isfinite(v):
+        raise ValueError(f"{name} = {v}: give a finite number")
+    return v
+
+
+#: The solver's domain per input: (name in messages, the test of a valid value, the range).
+_DOMAIN = {
+    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-8..1e8"),
+    "load": ("load", lambda x: np.abs(x) <= 1e12, "-1e12..1e12"),
+    "approach": ("approach", lambda x: np.abs(x) <= 1e8, "-1e8..1e8"),
+    "radius": ("radius", lambda x: (x > 0) & (x <= 1e4), "(0, 1e4]"),
+}
+
+
+def _bad(key, x):
+    """The mask of the values of ``x`` outside the domain of input ``key`` (NaN included)."""
+    with np.errstate(invalid="ignore"):
+        return ~_DOMAIN[key][1](x)
+
+
+def _why(key, v):
+    name, _, rng = _DOMAIN[key]
+    return f"{name} = {v:.6g} is outside the supported domain {rng}"
+
+
+def _check_scalar(key, x, flat):
+    """Raises ValueError for a single (0-d) input outside its domain: the whole input is bad."""
+    if np.ndim(x) == 0 and flat.size and _bad(key, flat[:1])[0]:
+        raise ValueError(_why(key, flat[0]))
+
+
+#: Why a point has each status other than ok.
+_STATUS_WHY = {
+    "no_contact": "below the pull-off: no contact on the stable branch",
+    "not_converged": "the solver did not converge at this point",
+}
+
+
+def _messages(status, keys, flats, shape):
+    """The per-point reasons (an object array: '' where ok), naming the value outside the
+    domain where the status is invalid_input."""
+    msg = np.full(shape, "", dtype=object)
+    flat = msg.reshape(-1)
+    st = status.reshape(-1)
+    for name, why in _STATUS_WHY.items():
+        flat[st == name] = why
+    bad = np.flatnonzero(st == "invalid_input")
+    for i in bad:
+        reasons = [_why(k, f[i]) for k, f in zip(keys, flats) if _bad(k, f[i:i + 1])[0]]
+        flat[i] = "; ".join(reasons) or "outside the supported domain"
+    return msg
+
+
 def _status(codes, shape):
-    return np.array(STATUS_NAMES, dtype=object)[codes].astype(str).reshape(shape)
+    # Indexing a string array as wide as the longest status present (2 characters where all are
+    # "ok"): no per-point object array on the way, and no wider than needed.
+    present = np.bincount(codes.ravel(), minlength=len(STATUS_NAMES)) > 0
+    width = max([len(n) for n, p in zip(STATUS_NAMES, present) if p], default=1)
+    return np.array(STATUS_NAMES, dtype=f"<U{width}")[codes].reshape(shape)
 
 
 def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precision="f32",
@@ -109,8 +204,18 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     Returns
     -------
     Result
-        float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1`` and a string array
-        ``status``, all of the broadcast shape; NaN only where ``status`` is not ``ok``.
+        float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1``, a string array
+        ``status`` and an object array ``message`` (why, where ``status`` is not ``ok``; ''
+        elsewhere), all of the broadcast shape; NaN only where ``status`` is not ``ok``.
+
+    Raises
+    ------
+    ValueError
+        a scalar ``lam`` or value outside the domain (the whole input is bad).
+    TypeError
+        complex, date, string or masked-array input.
+    KeyboardInterrupt
+        on Ctrl-C, checked between chunks of 262144 points.
 
     Examples
     --------
@@ -123,8 +228,10 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         raise ValueError("give exactly one of load=, approach= or radius= "
                          f"(got {', '.join(given) or 'none'})")
     value = {"load": load, "approach": approach, "radius": radius}[given[0]]
-    (lam_f, val_f), shape = _flat(lam, value)
-    if not isinstance(check, (int, np.integer)) or check < 0:
+    (lam_f, val_f), shape = _flat(lam, value, names=["lam", given[0]])
+    _check_scalar("lam", lam, lam_f)
+    _check_scalar(given[0], value, val_f)
+    if isinstance(check, bool) or not isinstance(check, (int, np.integer)) or check < 0:
         raise ValueError(f"check = {check!r}: give a number of points >= 0")
     if given[0] == "radius":
         r = _tabor.solve_radius(lam_f, val_f)
@@ -142,6 +249,7 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         out = {k: np.asarray(r[k]).reshape(shape)
                for k in ("A", "load", "approach", "m_minus_1")}
     out["status"] = _status(np.asarray(r["status_code"]), shape)
+    out["message"] = _messages(out["status"], ("lam", given[0]), (lam_f, val_f), shape)
     return Result(out, meta)
 
 
@@ -154,7 +262,7 @@ def pulloff(lam):
     ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
     Raises ValueError for a lambda outside 1e-8 .. 1e8.
     """
-    (lam_f,), shape = _flat(lam)
+    (lam_f,), shape = _flat(lam, names=["lam"])
     r = _tabor.pulloff(lam_f)
     return Result({k: np.asarray(v).reshape(shape) for k, v in r.items()}, {})
 
@@ -163,7 +271,7 @@ def _closed(model, load=None, A=None):
     if (load is None) == (A is None):
         raise ValueError("give exactly one of load= (returns A) or A= (returns the load)")
     what, x = ("radius", load) if load is not None else ("load", A)
-    (x_f,), shape = _flat(x)
+    (x_f,), shape = _flat(x, names=["load" if load is not None else "A"])
     return np.asarray(_tabor.closed_form(model, what, x_f)).reshape(shape)
 
 
@@ -193,7 +301,7 @@ def curve(lam, a_max=4.0, points=200):
     uniform from ``a_max`` down to 0, then the A = 0 end. Returns a Result of arrays ``A``,
     ``load``, ``approach``, ``m_minus_1`` (inf at the end), ``load_stable``,
     ``displacement_stable``."""
-    c = json.loads(_tabor.curve(float(lam), float(a_max), int(points)))
+    c = json.loads(_tabor.curve(_real(lam, "lam"), _real(a_max, "a_max"), int(points)))
     pts = c["points"]
     out = {k: np.array([p[k] if p[k] is not None else np.inf for p in pts], dtype=float)
            for k in ("A", "load", "approach", "m_minus_1")}
@@ -226,19 +334,25 @@ class AdhesionMap:
         self.region_counts = dict(inner.region_counts())
         self.backend = inner.backend
 
-    def save(self, path, quantity=None, width_mm=85.0, dpi=300.0):
+    def save(self, path, quantity=None, width_mm=85.0, dpi=300.0, *, npy=False):
         """Writes the figure (``.png``, ``.svg`` or ``.pdf``, ``width_mm`` wide: 85 for one
-        journal column, 175 for two; the PNG at ``dpi``), the JSON document (``.json``) or, for
-        a path without one of these extensions, the NumPy files ``PATH_lambda.npy``, ... exactly
-        as ``tabor map --out/--svg/--pdf/--json/--npy`` do."""
+        journal column, 175 for two; the PNG at ``dpi``) or the JSON document (``.json``),
+        exactly as ``tabor map --out/--svg/--pdf/--json`` do. With ``npy=True``, ``path`` is a
+        prefix and the NumPy files ``PATH_lambda.npy``, ... are written (``tabor map --npy``);
+        any other extension is refused rather than taken for a prefix."""
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
-        if ext in (".png", ".svg", ".pdf"):
+        if npy:
+            if quantity is not None:
+                raise ValueError("quantity applies to a figure, not to NPY files")
+            self._inner.save_npy(path)
+        elif ext in (".png", ".svg", ".pdf"):
             self._inner.save_figure(path, quantity, float(width_mm), float(dpi))
         elif ext == ".json":
             self._inner.save_json(path, False)
         else:
-            self._inner.save_npy(path)
+            raise ValueError(f"path = {path!r}: give a file ending in .png, .svg, .pdf or .json, "
+                             "or save(prefix, npy=True) for the NumPy files PREFIX_lambda.npy, ...")
 
     def save_json(self, path, full=False):
         """The JSON document; ``full`` adds the per-point arrays (``--json-full``)."""
@@ -260,12 +374,13 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
         raise ValueError(f"load_axis = {load_axis!r}: give 'log', 'above-pulloff' or 'linear'")
     lo, hi = defaults[load_axis]
     spec = {
-        "lambda_min": float(lambda_min), "lambda_max": float(lambda_max),
+        "lambda_min": _finite(lambda_min, "lambda_min"),
+        "lambda_max": _finite(lambda_max, "lambda_max"),
         "nx": int(nx), "ny": int(ny), "load_axis": load_axis,
-        "load_min": float(lo if load_min is None else load_min),
-        "load_max": float(hi if load_max is None else load_max),
-        "tolerance": float(tolerance),
-        "strength_ratios": [float(s) for s in strength_ratio],
+        "load_min": _finite(lo if load_min is None else load_min, "load_min"),
+        "load_max": _finite(hi if load_max is None else load_max, "load_max"),
+        "tolerance": _finite(tolerance, "tolerance"),
+        "strength_ratios": [_finite(s, "strength_ratio") for s in strength_ratio],
     }
     inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check))
     return AdhesionMap(inner)
@@ -274,6 +389,17 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
 def presets():
     """Names of the built-in scenes."""
     return list(_tabor.presets())
+
+
+def _leaves(d, prefix=""):
+    """(dotted key, value) for every leaf of nested dicts and lists."""
+    items = d.items() if isinstance(d, dict) else enumerate(d)
+    for k, v in items:
+        key = f"{prefix}.{k}" if prefix else str(k)
+        if isinstance(v, (dict, list, tuple)):
+            yield from _leaves(v, key)
+        else:
+            yield key, v
 
 
 class Scene:
@@ -291,7 +417,16 @@ class Scene:
         if _report is None:
             if not isinstance(scene, dict):
                 raise TypeError("Scene(...) takes a dict; use Scene.from_file or Scene.preset")
-            _report = json.loads(_tabor.scene(json.dumps(scene), None))
+            try:
+                text = json.dumps(scene, allow_nan=False)
+            except ValueError:
+                bad = [k for k, v in _leaves(scene)
+                       if isinstance(v, float) and not np.isfinite(v)]
+                raise ValueError(f"scene: {', '.join(bad)} is not a finite number; give "
+                                 "finite values") from None
+            except TypeError as e:
+                raise TypeError(f"scene: {e}; give numbers, strings, lists and dicts") from None
+            _report = json.loads(_tabor.scene(text, None))
         self.report = _report
         self.lam = _report["lambda"]
         self.recommended_model = _report["recommended_model"]
@@ -322,15 +457,16 @@ class Scene:
 def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9):
     """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
     the Tabor self-consistency verdict (``tabor infer``). Returns a dict."""
-    return json.loads(_tabor.infer_pulloff(float(force_n), float(radius_m), float(e_star_pa),
-                                           float(z0_m)))
+    return json.loads(_tabor.infer_pulloff(_finite(force_n, "force_n"),
+                                           _finite(radius_m, "radius_m"),
+                                           _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m")))
 
 
 def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
     """Fits w and E* to measured (load, contact radius) pairs with the exact MD model
     (``tabor infer --pairs``). Returns a dict."""
-    (p, a), _ = _flat(loads_n, radii_m)
-    return json.loads(_tabor.fit_pairs(p, a, float(radius_m), float(z0_m)))
+    (p, a), _ = _flat(loads_n, radii_m, names=["loads_n", "radii_m"])
+    return json.loads(_tabor.fit_pairs(p, a, _finite(radius_m, "radius_m"), _finite(z0_m, "z0_m")))
 
 
 def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
@@ -361,23 +497,51 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         ids = np.zeros(len(h), dtype=np.int64)
         labels = None
     else:
-        labels, ids = np.unique(np.asarray(curve).ravel(), return_inverse=True)
-        ids = np.ascontiguousarray(ids, dtype=np.int64)
+        labels, ids = _curve_ids(curve)
     if not (len(h) == len(f) == len(seg) == len(ids)):
         raise ValueError("height_m, force_n, segment (and curve) must have the same length")
     # JSON has no NaN or infinity: those go as text, and the library's check names them.
-    num = lambda x: float(x) if np.isfinite(float(x)) else repr(float(x))
-    options = {"radius": num(radius_m), "spring": num(spring_n_m), "segment": fit_segment,
-               "tilt": bool(tilt), "tolerance": num(tolerance)}
+    def num(x, name):
+        v = _real(x, name)
+        return v if np.isfinite(v) else repr(v)
+    options = {"radius": num(radius_m, "radius_m"), "spring": num(spring_n_m, "spring_n_m"),
+               "segment": fit_segment, "tilt": bool(tilt), "tolerance": num(tolerance, "tolerance")}
     if poisson is not None:
-        options["poisson"] = num(poisson)
+        options["poisson"] = num(poisson, "poisson")
     if z0_m is not None:
-        options["z0"] = num(z0_m)
+        options["z0"] = num(z0_m, "z0_m")
     out = json.loads(_tabor.fit_curves(ids, seg, h, f, json.dumps(options)))
+    for r in out:  # the fit's advice names command-line flags: name the arguments instead
+        for k in ("message", "why"):
+            if isinstance(r.get(k), str):
+                r[k] = _tabor.python_names(r[k])
+        if isinstance(r.get("warnings"), list):
+            r["warnings"] = [_tabor.python_names(w) if isinstance(w, str) else w
+                             for w in r["warnings"]]
     if labels is not None:
         for r in out:
-            r["curve"] = labels[int(r["curve"])].item()
+            label = labels[int(r["curve"])]
+            r["curve"] = label.item() if isinstance(label, np.generic) else label
     return out
+
+
+def _curve_ids(curve):
+    """(labels, int64 index of each point's label) for curve ids of any hashable type: sorted
+    labels where they compare, else in order of first appearance."""
+    c = np.asarray(curve).ravel()
+    if c.dtype.kind != "O":
+        labels, ids = np.unique(c, return_inverse=True)
+        return labels, np.ascontiguousarray(ids, dtype=np.int64)
+    index, labels = {}, []
+    try:
+        ids = np.fromiter((index.setdefault(v, len(index)) for v in c), dtype=np.int64,
+                          count=len(c))
+    except TypeError as e:
+        raise TypeError(f"curve: each id must be hashable (a number or a string): {e}") from None
+    labels = np.empty(len(index), dtype=object)
+    for v, i in index.items():
+        labels[i] = v
+    return labels, ids
 
 
 def fit_curve(height_m, force_n, segment, **options):
@@ -408,9 +572,9 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0):
     ``phase``, ``branch``, ``approach``, ``load``, ``A``, ``C``, ``control``, ``jump`` and the
     metadata ``hysteresis`` (energy lost per cycle, normalised; None under dead load) and
     ``jumps``."""
-    c = json.loads(_tabor.cycle(float(lam), drive,
-                                None if stiffness is None else float(stiffness),
-                                float(max_load)))
+    c = json.loads(_tabor.cycle(_real(lam, "lam"), drive,
+                                None if stiffness is None else _real(stiffness, "stiffness"),
+                                _real(max_load, "max_load")))
     steps = c["steps"]
     out = {
         "phase": np.array([s["phase"] for s in steps]),
@@ -436,7 +600,8 @@ def profile(lam, load=None, approach=None, radius=None, points=400):
              if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of load=, approach= or radius=")
-    p = json.loads(_tabor.profile(float(lam), given[0][0], float(given[0][1]), int(points)))
+    p = json.loads(_tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
+                                int(points)))
     for m in p["models"]:
         m["r"] = np.array(m["r"], dtype=float)
         m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],
