@@ -60,9 +60,18 @@ pub enum InputError {
 pub const MAX_LINE_BYTES: usize = 1 << 20;
 
 /// A reader that fails on a line longer than [`MAX_LINE_BYTES`].
-struct LineLimit<R> {
+pub(crate) struct LineLimit<R> {
     inner: R,
     since_newline: usize,
+}
+
+impl<R> LineLimit<R> {
+    pub(crate) fn new(inner: R) -> LineLimit<R> {
+        LineLimit {
+            inner,
+            since_newline: 0,
+        }
+    }
 }
 
 impl<R: Read> Read for LineLimit<R> {

@@ -101,9 +101,29 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         }
     }
     more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
+    if a.plot.is_none() && (a.figure.svg.is_some() || a.figure.pdf.is_some()) {
+        bail!("--svg and --pdf add formats to --plot's figure of one curve: give --plot too (the --on-map figure takes its format from its own name)");
+    }
+    let mut every: Vec<(String, std::path::PathBuf)> = more.clone();
+    every.extend(
+        [&figure.png, &figure.svg, &figure.pdf]
+            .into_iter()
+            .flatten()
+            .map(|p| ("--plot".to_string(), p.clone())),
+    );
     a.figure.check_distinct(a.plot.as_deref(), "--plot", more)?;
+    // Every output can be written, checked before the fits (which can take minutes): a
+    // temporary file is made beside each and removed again.
+    for (flag, path) in every.iter().filter(|(_, p)| p.as_os_str() != "-") {
+        drop(crate::io::output::Output::create(path).with_context(|| flag.clone())?);
+    }
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
+    if a.maps.is_some() {
+        fit::map_size(curves.iter().map(|c| (c.x, c.y, c.id.as_str())))
+            .map_err(anyhow::Error::msg)
+            .context("--maps")?;
+    }
     let plotted = match &a.curve {
         Some(id) => Some(
             curves

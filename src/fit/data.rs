@@ -61,7 +61,20 @@ pub enum DataError {
     Npz { path: String, what: String },
     #[error("{path}: no data rows")]
     Empty { path: String },
+    #[error("{path}: {what}")]
+    TooLarge { path: String, what: String },
 }
+
+/// Most points of one curve (an AFM curve has 1e3..1e5) and of one input: beyond them the
+/// input is refused, so that memory stays bounded (17 bytes a point).
+pub const POINTS_PER_CURVE_MAX: usize = 10_000_000;
+pub const POINTS_MAX: usize = 50_000_000;
+
+trait ReadSeek: std::io::Read + std::io::Seek {}
+impl<T: std::io::Read + std::io::Seek> ReadSeek for T {}
+
+/// The zip local-file header: an NPZ, whatever its name.
+const ZIP_MAGIC: &[u8; 4] = b"PK\x03\x04";
 
 fn segment_of(s: &str) -> Option<Direction> {
     match s.trim().to_ascii_lowercase().as_str() {
@@ -76,10 +89,25 @@ fn segment_of(s: &str) -> Option<Direction> {
 struct Grouper {
     curves: Vec<Curve>,
     index: HashMap<String, usize>,
+    points: usize,
 }
 
 impl Grouper {
-    fn push(&mut self, id: String, x: Option<i64>, y: Option<i64>, seg: Direction, h: f64, f: f64) {
+    fn push(
+        &mut self,
+        id: String,
+        x: Option<i64>,
+        y: Option<i64>,
+        seg: Direction,
+        h: f64,
+        f: f64,
+    ) -> Result<(), String> {
+        self.points += 1;
+        if self.points > POINTS_MAX {
+            return Err(format!(
+                "more than {POINTS_MAX} points: split the input into several files"
+            ));
+        }
         let k = match self.index.get(&id) {
             Some(&k) => k,
             None => {
@@ -94,9 +122,16 @@ impl Grouper {
             }
         };
         let c = &mut self.curves[k];
+        if c.height.len() >= POINTS_PER_CURVE_MAX {
+            return Err(format!(
+                "curve {} has more than {POINTS_PER_CURVE_MAX} points: is the curve column (or x, y) right?",
+                c.id
+            ));
+        }
         c.segment.push(seg);
         c.height.push(h);
         c.force.push(f);
+        Ok(())
     }
 }
 
@@ -110,23 +145,28 @@ fn curve_id(curve: Option<&str>, x: Option<i64>, y: Option<i64>) -> String {
 
 /// Reads the curves of a CSV/TSV (`-` is stdin) or `.npz` file.
 pub fn read_curves(path: &str) -> Result<CurveSet, DataError> {
-    if path.ends_with(".npz") {
-        return read_npz(path);
-    }
+    use std::io::BufRead as _;
     let io = |source| DataError::Io {
         path: path.to_string(),
         source,
     };
-    // Streamed: only the curves are held, not the file's text.
-    let reader: Box<dyn std::io::BufRead> = if path == "-" {
-        Box::new(std::io::BufReader::with_capacity(1 << 16, std::io::stdin()))
+    // Streamed: only the curves are held, not the file's text; a line over 1 MiB (/dev/zero, a
+    // binary file) ends the read.
+    let raw: Box<dyn std::io::Read> = if path == "-" {
+        Box::new(std::io::stdin())
     } else {
-        Box::new(std::io::BufReader::with_capacity(
-            1 << 16,
-            std::fs::File::open(path).map_err(io)?,
-        ))
+        Box::new(std::fs::File::open(path).map_err(io)?)
     };
-    parse_csv_reader(path, reader)
+    let mut reader = std::io::BufReader::with_capacity(1 << 16, raw);
+    // An NPZ by its zip magic, whatever its name (.NPZ, stdin).
+    let is_npz = reader.fill_buf().map_err(io)?.starts_with(ZIP_MAGIC);
+    if is_npz {
+        return read_npz(path, reader);
+    }
+    parse_csv_reader(
+        path,
+        std::io::BufReader::with_capacity(1 << 16, crate::io::LineLimit::new(reader)),
+    )
 }
 
 /// Parses CSV or TSV text held in memory.
@@ -171,6 +211,16 @@ fn parse_csv_reader(path: &str, mut input: impl std::io::BufRead) -> Result<Curv
         source,
     };
     let headers = rdr.headers().map_err(csv_err)?.clone();
+    for (i, h) in headers.iter().enumerate() {
+        if headers.iter().take(i).any(|g| g.eq_ignore_ascii_case(h)) {
+            return Err(DataError::Npz {
+                path: path.to_string(),
+                what: format!(
+                    "the column name `{h}` appears twice in the header: rename or remove one"
+                ),
+            });
+        }
+    }
     let col = |name: &str| headers.iter().position(|h| h.eq_ignore_ascii_case(name));
     let need = |name: &'static str| {
         col(name).ok_or_else(|| DataError::MissingColumn {
@@ -215,7 +265,11 @@ fn parse_csv_reader(path: &str, mut input: impl std::io::BufRead) -> Result<Curv
             .transpose()
         };
         let (x, y) = (int("x", cx)?, int("y", cy)?);
-        g.push(curve_id(cc.map(value), x, y), x, y, seg, h, f);
+        g.push(curve_id(cc.map(value), x, y), x, y, seg, h, f)
+            .map_err(|what| DataError::TooLarge {
+                path: path.to_string(),
+                what,
+            })?;
     }
     if g.curves.is_empty() {
         return Err(DataError::Empty {
@@ -225,23 +279,77 @@ fn parse_csv_reader(path: &str, mut input: impl std::io::BufRead) -> Result<Curv
     Ok(g.curves)
 }
 
-fn read_npz(path: &str) -> Result<CurveSet, DataError> {
+fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataError> {
+    use std::io::Read as _;
     let npz_err = |what: String| DataError::Npz {
         path: path.to_string(),
         what,
     };
-    let mut ar = npyz::npz::NpzArchive::open(path).map_err(|source| DataError::Io {
-        path: path.to_string(),
-        source,
-    })?;
-    let names: Vec<String> = ar.array_names().map(str::to_string).collect();
+    // A zip needs seeking: the file itself, or stdin read into memory (at most 1 GiB).
+    let seekable: Box<dyn ReadSeek> = if path == "-" {
+        let mut bytes = Vec::new();
+        (&mut input)
+            .take(1 << 30)
+            .read_to_end(&mut bytes)
+            .map_err(|source| DataError::Io {
+                path: path.to_string(),
+                source,
+            })?;
+        Box::new(std::io::Cursor::new(bytes))
+    } else {
+        Box::new(std::fs::File::open(path).map_err(|source| DataError::Io {
+            path: path.to_string(),
+            source,
+        })?)
+    };
+    let mut ar = zip::ZipArchive::new(seekable)
+        .map_err(|e| npz_err(format!("not a readable NPZ (zip) file: {e}")))?;
+    let names: Vec<String> = ar
+        .file_names()
+        .map(|n| n.trim_end_matches(".npy").to_string())
+        .collect();
     let mut get = |name: &'static str| -> Result<Option<Vec<f64>>, DataError> {
-        let Some(arr) = ar
-            .by_name(name)
-            .map_err(|e| npz_err(format!("array {name}: {e}")))?
-        else {
-            return Ok(None);
+        let mut member = match ar.by_name(&format!("{name}.npy")) {
+            Ok(m) => m,
+            Err(zip::result::ZipError::FileNotFound) => return Ok(None),
+            Err(e) => return Err(npz_err(format!("array {name}: {e}"))),
         };
+        // The declared size first (a zip bomb declares its size), then at most that much read:
+        // reading to the end checks the member's CRC.
+        let cap = 8 * POINTS_MAX as u64 + 4096;
+        if member.size() > cap {
+            return Err(DataError::TooLarge {
+                path: path.to_string(),
+                what: format!(
+                    "array {name} unpacks to {} bytes: at most {POINTS_MAX} points are read",
+                    member.size()
+                ),
+            });
+        }
+        let mut bytes = Vec::new();
+        (&mut member)
+            .take(cap + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|e| {
+                npz_err(format!(
+                    "array {name} is damaged ({e}): the file is corrupt"
+                ))
+            })?;
+        if bytes.len() as u64 > cap {
+            return Err(DataError::TooLarge {
+                path: path.to_string(),
+                what: format!("array {name} unpacks to more than {cap} bytes"),
+            });
+        }
+        let arr =
+            npyz::NpyFile::new(&bytes[..]).map_err(|e| npz_err(format!("array {name}: {e}")))?;
+        // One column of values: 1-D, or a vector stored as 2-D; any order reads the same then.
+        let shape = arr.shape().to_vec();
+        if shape.iter().filter(|&&d| d > 1).count() > 1 {
+            return Err(npz_err(format!(
+                "array {name} has shape {shape:?}: give each column as a 1-D array"
+            )));
+        }
         let dtype = arr.dtype();
         let descr = match &dtype {
             npyz::DType::Plain(ts) => ts.to_string(),
@@ -252,7 +360,10 @@ fn read_npz(path: &str) -> Result<CurveSet, DataError> {
             "<f4" => arr.into_vec::<f32>().map(|v| v.into_iter().map(f64::from).collect()),
             "<i8" => arr.into_vec::<i64>().map(|v| v.into_iter().map(|x| x as f64).collect()),
             "<i4" => arr.into_vec::<i32>().map(|v| v.into_iter().map(f64::from).collect()),
-            "|u1" | "|b1" => arr.into_vec::<u8>().map(|v| v.into_iter().map(f64::from).collect()),
+            "|u1" => arr.into_vec::<u8>().map(|v| v.into_iter().map(f64::from).collect()),
+            "|b1" => arr
+                .into_vec::<bool>()
+                .map(|v| v.into_iter().map(|b| f64::from(u8::from(b))).collect()),
             d => {
                 return Err(npz_err(format!(
                     "array {name} has dtype {d}: use float64, float32, int64, int32 or bool (segment: 0 approach, 1 retract)"
@@ -303,7 +414,11 @@ fn read_npz(path: &str) -> Result<CurveSet, DataError> {
         let xi = x.as_ref().map(|v| v[i] as i64);
         let yi = y.as_ref().map(|v| v[i] as i64);
         let id = c.as_ref().map(|v| format!("{}", v[i]));
-        g.push(curve_id(id.as_deref(), xi, yi), xi, yi, s, h[i], f[i]);
+        g.push(curve_id(id.as_deref(), xi, yi), xi, yi, s, h[i], f[i])
+            .map_err(|what| DataError::TooLarge {
+                path: path.to_string(),
+                what,
+            })?;
     }
     if g.curves.is_empty() {
         return Err(DataError::Empty {

@@ -322,26 +322,47 @@ pub const MAP_QUANTITIES: [MapQuantity; 5] = [
 
 /// The pixel grid of a force map: its size and, per pixel (row-major, row 0 at y = 0), the
 /// index of its curve. Every curve needs x and y.
-pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), String> {
-    let mut cells = Vec::with_capacity(results.len());
-    for r in results {
-        match (r.x, r.y) {
-            (Some(x), Some(y)) if x >= 0 && y >= 0 && x < 100_000 && y < 100_000 => {
-                cells.push((x as usize, y as usize))
+/// Most pixels of a force map (4096 x 4096, as an adhesion map): a grid sized by the largest
+/// pixel index would otherwise take memory without bound.
+pub const MAP_PIXELS_MAX: usize = 1 << 24;
+
+/// The force map's size from the curves' pixel indices (`x`, `y`, and the curve's name for the
+/// message), checked before any work: every curve needs indices in 0..99999 and the grid at most
+/// [`MAP_PIXELS_MAX`] pixels.
+pub fn map_size<'a>(
+    cells: impl Iterator<Item = (Option<i64>, Option<i64>, &'a str)>,
+) -> Result<(usize, usize), String> {
+    let (mut nx, mut ny, mut n) = (0usize, 0usize, 0usize);
+    for (x, y, name) in cells {
+        match (x, y) {
+            (Some(x), Some(y)) if (0..100_000).contains(&x) && (0..100_000).contains(&y) => {
+                nx = nx.max(x as usize + 1);
+                ny = ny.max(y as usize + 1);
+                n += 1;
             }
             _ => {
                 return Err(format!(
-                    "curve {} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999",
-                    r.curve
+                    "curve {name} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999"
                 ))
             }
         }
     }
-    let nx = cells.iter().map(|c| c.0).max().unwrap_or(0) + 1;
-    let ny = cells.iter().map(|c| c.1).max().unwrap_or(0) + 1;
+    if nx * ny > MAP_PIXELS_MAX {
+        return Err(format!(
+            "the pixel indices span a {nx} x {ny} grid ({} pixels for {n} curves): a force map holds at most 4096 x 4096 pixels; check the x and y columns (indices from 0)",
+            nx * ny
+        ));
+    }
+    Ok((nx, ny))
+}
+
+pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), String> {
+    let (nx, ny) = map_size(results.iter().map(|r| (r.x, r.y, r.curve.as_str())))?;
     let mut grid = vec![None; nx * ny];
-    for (i, (x, y)) in cells.into_iter().enumerate() {
-        grid[y * nx + x] = Some(i);
+    for (i, r) in results.iter().enumerate() {
+        if let (Some(x), Some(y)) = (r.x, r.y) {
+            grid[y as usize * nx + x as usize] = Some(i);
+        }
     }
     Ok((nx, ny, grid))
 }
