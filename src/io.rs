@@ -60,13 +60,13 @@ pub enum InputError {
 pub const MAX_LINE_BYTES: usize = 1 << 20;
 
 /// A reader that fails on a line longer than [`MAX_LINE_BYTES`].
-pub(crate) struct LineLimit<R> {
+pub struct LineLimit<R> {
     inner: R,
     since_newline: usize,
 }
 
 impl<R> LineLimit<R> {
-    pub(crate) fn new(inner: R) -> LineLimit<R> {
+    pub fn new(inner: R) -> LineLimit<R> {
         LineLimit {
             inner,
             since_newline: 0,
@@ -97,11 +97,43 @@ impl<R: Read> Read for LineLimit<R> {
     }
 }
 
+/// The one reader of input tables (`solve` and `fit`): CSV, or TSV if the header line has a
+/// tab; `#` lines are comments (also before the header, as afmformats writes them); cells are
+/// trimmed; a line over [`MAX_LINE_BYTES`] is an error.
+pub type Table<R> =
+    csv::Reader<std::io::Chain<std::io::Cursor<Vec<u8>>, std::io::BufReader<LineLimit<R>>>>;
+
+pub fn table<R: Read>(r: R) -> std::io::Result<Table<R>> {
+    use std::io::BufRead as _;
+    let mut input = std::io::BufReader::with_capacity(1 << 16, LineLimit::new(r));
+    // The lines up to the header, to see the delimiter; then the rest streamed behind them.
+    let mut head = Vec::new();
+    let mut delim = b',';
+    loop {
+        let start = head.len();
+        if input.read_until(b'\n', &mut head)? == 0 {
+            break;
+        }
+        let line = &head[start..];
+        if line[0] != b'#' && line.iter().any(|b| !b.is_ascii_whitespace()) {
+            if line.contains(&b'\t') {
+                delim = b'\t';
+            }
+            break;
+        }
+    }
+    Ok(csv::ReaderBuilder::new()
+        .delimiter(delim)
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(std::io::Cursor::new(head).chain(input)))
+}
+
 /// `(lambda, value)` rows of a CSV table with a header row, read in chunks so that memory stays
 /// bounded whatever the size of the input; `value_column` is `load` or `approach`. Other columns
 /// are ignored.
 pub struct PointReader {
-    rdr: csv::Reader<LineLimit<Box<dyn Read + Send>>>,
+    rdr: Table<Box<dyn Read + Send>>,
     source_name: String,
     names: (&'static str, &'static str),
     columns: (usize, usize),
@@ -137,12 +169,10 @@ impl PointReader {
         names: (&'static str, &'static str),
     ) -> Result<PointReader, InputError> {
         let value_column = names.1;
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(LineLimit {
-                inner: r,
-                since_newline: 0,
-            });
+        let mut rdr = table(r).map_err(|err| InputError::Read {
+            source_name: source_name.into(),
+            err,
+        })?;
         let csv_err = |e: csv::Error| csv_error(source_name, e);
         let headers = rdr.headers().map_err(csv_err)?.clone();
         if headers.iter().all(|h| h.is_empty()) {

@@ -233,3 +233,25 @@ fn endless_lines_duplicated_columns_and_stray_pixels_are_refused_up_front() {
     a.extend(["--svg", "x.svg"]);
     refused(&tabor(&a, None), "--plot");
 }
+
+#[test]
+fn solve_reads_the_tables_fit_reads() {
+    // Comments before and inside, and a tab-separated table: the same rows as plain CSV.
+    let plain = tabor(
+        &["solve", "-i", "-", "-o", "-"],
+        Some(b"lambda,load\n1,0.5\n5,-1.2\n"),
+    );
+    assert!(
+        plain.status.success(),
+        "{}",
+        String::from_utf8_lossy(&plain.stderr)
+    );
+    for text in [
+        &b"# measured 2026\nlambda\tload\n1\t0.5\n# a note\n5\t-1.2\n"[..],
+        &b"#\n\nlambda, load\n1, 0.5\n5, -1.2\n"[..],
+    ] {
+        let o = tabor(&["solve", "-i", "-", "-o", "-"], Some(text));
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert_eq!(o.stdout, plain.stdout);
+    }
+}

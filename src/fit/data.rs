@@ -5,7 +5,6 @@
 
 use super::path::Direction;
 use std::collections::HashMap;
-use std::io::Read as _;
 
 /// One approach-retract curve, points in the order measured.
 #[derive(Clone, Debug, Default)]
@@ -163,10 +162,7 @@ pub fn read_curves(path: &str) -> Result<CurveSet, DataError> {
     if is_npz {
         return read_npz(path, reader);
     }
-    parse_csv_reader(
-        path,
-        std::io::BufReader::with_capacity(1 << 16, crate::io::LineLimit::new(reader)),
-    )
+    parse_csv_reader(path, reader)
 }
 
 /// Parses CSV or TSV text held in memory.
@@ -176,36 +172,11 @@ pub fn parse_csv(path: &str, text: &[u8]) -> Result<CurveSet, DataError> {
 
 /// Parses CSV or TSV from a reader (the delimiter is a tab if the header line has one); `#`
 /// lines are comments.
-fn parse_csv_reader(path: &str, mut input: impl std::io::BufRead) -> Result<CurveSet, DataError> {
-    // The lines up to the header (comments first, as afmformats writes them), to see the
-    // delimiter; then the rest streamed behind them.
-    let mut head = Vec::new();
-    let mut delim = b',';
-    loop {
-        let start = head.len();
-        let n = input
-            .read_until(b'\n', &mut head)
-            .map_err(|source| DataError::Io {
-                path: path.to_string(),
-                source,
-            })?;
-        let line = &head[start..];
-        if n == 0 {
-            break;
-        }
-        if !line.is_empty() && line[0] != b'#' && line.iter().any(|b| !b.is_ascii_whitespace()) {
-            if line.contains(&b'\t') {
-                delim = b'\t';
-            }
-            break;
-        }
-    }
-    let text = std::io::Cursor::new(head).chain(input);
-    let mut rdr = csv::ReaderBuilder::new()
-        .delimiter(delim)
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text);
+fn parse_csv_reader(path: &str, input: impl std::io::Read) -> Result<CurveSet, DataError> {
+    let mut rdr = crate::io::table(input).map_err(|source| DataError::Io {
+        path: path.to_string(),
+        source,
+    })?;
     let csv_err = |source| DataError::Csv {
         path: path.to_string(),
         source,
