@@ -156,7 +156,8 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
     let r = radii(r_max, points, &edges);
 
     let h0 = 2.0 / (std::f64::consts::PI * lambda);
-    let j = md.gap(c) / h0;
+    // From mu, not the gap at C: C and A are equal in f64 where lambda is large.
+    let j = md.energy_release_over_w();
     let md_profile = ModelProfile {
         model: "md",
         status: "ok",
