@@ -93,3 +93,33 @@ fn energy_release_rate_is_one_where_c_equals_a_in_f64() {
         assert!((j - 1.0).abs() < 1e-9, "lambda {l} load {p}: J/w = {j}");
     }
 }
+
+/// Trapezoid of the printed pressure over 2 pi r dr, and the load.
+fn trapezoid_load(l: f64, p: f64, points: usize) -> (f64, f64) {
+    let pr = profile(l, Given::Load(p), points).unwrap();
+    let md = &pr.models[0];
+    let f: Vec<f64> = md
+        .r
+        .iter()
+        .zip(&md.pressure)
+        .map(|(r, q)| 2.0 * std::f64::consts::PI * r * q.unwrap())
+        .collect();
+    let s: f64 = (1..f.len())
+        .map(|i| 0.5 * (f[i] + f[i - 1]) * (md.r[i] - md.r[i - 1]))
+        .sum();
+    (s, md.load)
+}
+
+#[test]
+fn printed_pressure_integrates_to_the_load() {
+    for &(l, p) in &[(10.0, 0.0), (10.0, 1.0), (1.0, 0.0), (1.0, -1.0), (0.1, 0.5), (100.0, 2.0)] {
+        let (s, load) = trapezoid_load(l, p, 400);
+        // Relative to the cohesive zone's force scale: the Dugdale stress over the zone.
+        let pr = profile(l, Given::Load(p), 400).unwrap();
+        let (a, c) = (pr.models[0].a.unwrap(), pr.models[0].c.unwrap());
+        let zone = 0.5 * l * std::f64::consts::PI * (c * c - a * a);
+        let e = (s - load).abs() / zone.max(load.abs()).max(1e-300);
+        eprintln!("lambda {l} load {p}: trapezoid {s} load {load} rel {e:e}");
+        assert!(e < 1e-4, "lambda {l} load {p}: trapezoid {s} against {load} ({e:e})");
+    }
+}
