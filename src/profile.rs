@@ -136,6 +136,9 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
         }
     };
     if status != Status::Ok {
+        if let Given::Radius(a) = given {
+            return Err(ProfileError::RadiusNotFound(a));
+        }
         return Err(ProfileError::NoState(status));
     }
     let mu = (m_minus_1 * (m_minus_1 + 2.0)).sqrt();
@@ -303,6 +306,8 @@ pub enum ProfileError {
     Domain(#[from] crate::physics::domain::DomainError),
     #[error("the Maugis-Dugdale state is `{}`: no contact there, so no profile (give a load above the pull-off, an approach above the jump-out)", .0.name())]
     NoState(Status),
+    #[error("the Maugis-Dugdale state at contact radius A = {0:e} could not be computed (`not_converged`): f64 resolves the curve down to about A = 1e-150; give a larger radius")]
+    RadiusNotFound(f64),
     #[error("--points {0} is out of range: give 16..=100000")]
     Points(usize),
 }

@@ -123,3 +123,14 @@ fn printed_pressure_integrates_to_the_load() {
         assert!(e < 1e-4, "lambda {l} load {p}: trapezoid {s} against {load} ({e:e})");
     }
 }
+
+#[test]
+fn a_radius_too_small_to_resolve_says_so_without_speaking_of_loads() {
+    let e = profile(1.0, Given::Radius(1e-300), 64).unwrap_err().to_string();
+    assert!(e.contains("contact radius") && e.contains("1e-300"), "{e}");
+    assert!(!e.contains("load"), "{e}");
+    // A radius that resolves gives a profile with J/w = 1.
+    let p = profile(1.0, Given::Radius(1e-30), 64).unwrap();
+    let j = p.models[0].energy_release_rate_over_w.unwrap();
+    assert!((j - 1.0).abs() < 1e-9, "{j}");
+}
