@@ -168,7 +168,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
     let d0 = 0.5 * mu * mu;
     r.extend((-160..=240).filter_map(|k| {
         let d = d0 * 10f64.powf(k as f64 / 80.0);
-        (d > 1e-12 && d < 1.0).then(|| a * (1.0 - d))
+        (d > 1e-12 && d < 1.0).then_some(a * (1.0 - d))
     }));
     // r = a sin(theta), uniform in theta, makes the Hertz-like sqrt(a^2 - r^2) smooth and
     // resolves the 1/sqrt tail of the turn to the Dugdale stress.

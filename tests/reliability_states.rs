@@ -38,7 +38,14 @@ fn stability_near_zero_radius_follows_the_pull_off_radii() {
         );
     }
     // Where the slopes are resolved, the flags agree with their signs.
-    for &(l, a) in &[(1.0, 0.05), (1.0, 0.5), (1.0, 2.0), (0.5, 0.3), (10.0, 0.3), (10.0, 3.0)] {
+    for &(l, a) in &[
+        (1.0, 0.05),
+        (1.0, 0.5),
+        (1.0, 2.0),
+        (0.5, 0.3),
+        (10.0, 0.3),
+        (10.0, 3.0),
+    ] {
         let s = solve_radius(l, a);
         assert_eq!(
             (s.load_stable, s.displacement_stable),
@@ -49,7 +56,10 @@ fn stability_near_zero_radius_follows_the_pull_off_radii() {
     // The flags change exactly at the pull-off radii.
     let ctx = LambdaContext::new(1.0).unwrap();
     let (ac, ad) = (ctx.load_pulloff.a, ctx.disp_pulloff().a);
-    assert!((ac - 0.904).abs() < 1e-3 && (ad - 0.085).abs() < 1e-3, "{ac} {ad}");
+    assert!(
+        (ac - 0.904).abs() < 1e-3 && (ad - 0.085).abs() < 1e-3,
+        "{ac} {ad}"
+    );
     assert!(!ctx.solve_radius(ac * (1.0 - 1e-9)).load_stable);
     assert!(ctx.solve_radius(ac * (1.0 + 1e-9)).load_stable);
     assert!(!ctx.solve_radius(ad * (1.0 - 1e-9)).displacement_stable);
@@ -98,12 +108,11 @@ fn energy_release_rate_is_one_where_c_equals_a_in_f64() {
 fn trapezoid_load(l: f64, p: f64, points: usize) -> (f64, f64) {
     let pr = profile(l, Given::Load(p), points).unwrap();
     let md = &pr.models[0];
-    let f: Vec<f64> = md
-        .r
-        .iter()
-        .zip(&md.pressure)
-        .map(|(r, q)| 2.0 * std::f64::consts::PI * r * q.unwrap())
-        .collect();
+    let f: Vec<f64> =
+        md.r.iter()
+            .zip(&md.pressure)
+            .map(|(r, q)| 2.0 * std::f64::consts::PI * r * q.unwrap())
+            .collect();
     let s: f64 = (1..f.len())
         .map(|i| 0.5 * (f[i] + f[i - 1]) * (md.r[i] - md.r[i - 1]))
         .sum();
@@ -112,7 +121,14 @@ fn trapezoid_load(l: f64, p: f64, points: usize) -> (f64, f64) {
 
 #[test]
 fn printed_pressure_integrates_to_the_load() {
-    for &(l, p) in &[(10.0, 0.0), (10.0, 1.0), (1.0, 0.0), (1.0, -1.0), (0.1, 0.5), (100.0, 2.0)] {
+    for &(l, p) in &[
+        (10.0, 0.0),
+        (10.0, 1.0),
+        (1.0, 0.0),
+        (1.0, -1.0),
+        (0.1, 0.5),
+        (100.0, 2.0),
+    ] {
         let (s, load) = trapezoid_load(l, p, 400);
         // Relative to the cohesive zone's force scale: the Dugdale stress over the zone.
         let pr = profile(l, Given::Load(p), 400).unwrap();
@@ -120,13 +136,18 @@ fn printed_pressure_integrates_to_the_load() {
         let zone = 0.5 * l * std::f64::consts::PI * (c * c - a * a);
         let e = (s - load).abs() / zone.max(load.abs()).max(1e-300);
         eprintln!("lambda {l} load {p}: trapezoid {s} load {load} rel {e:e}");
-        assert!(e < 1e-4, "lambda {l} load {p}: trapezoid {s} against {load} ({e:e})");
+        assert!(
+            e < 1e-4,
+            "lambda {l} load {p}: trapezoid {s} against {load} ({e:e})"
+        );
     }
 }
 
 #[test]
 fn a_radius_too_small_to_resolve_says_so_without_speaking_of_loads() {
-    let e = profile(1.0, Given::Radius(1e-300), 64).unwrap_err().to_string();
+    let e = profile(1.0, Given::Radius(1e-300), 64)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("contact radius") && e.contains("1e-300"), "{e}");
     assert!(!e.contains("load"), "{e}");
     // A radius that resolves gives a profile with J/w = 1.

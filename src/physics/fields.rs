@@ -96,8 +96,8 @@ impl MdGeometry {
     }
 
     /// The energy release rate over w, the J-integral through the Dugdale zone (the gap at C
-    /// over h0): `(lambda A^2/2) [(m^2 - 2) arcsec m + sqrt(m^2 - 1)]
-    /// + (4 lambda^2 A/3) [sqrt(m^2 - 1) arcsec m - m + 1]`, from mu and m - 1, which keep
+    /// over h0): `(lambda A^2/2) [(m^2 - 2) arcsec m + sqrt(m^2 - 1)] +
+    /// (4 lambda^2 A/3) [sqrt(m^2 - 1) arcsec m - m + 1]`, from mu and m - 1, which keep
     /// their digits where C and A are equal in f64 (the JKR side).
     pub fn energy_release_over_w(&self) -> f64 {
         let (l, a, mu) = (self.lambda, self.a, self.mu);
