@@ -281,7 +281,12 @@ fn radius_json(s: &crate::solver::RadiusState) -> serde_json::Value {
 
 fn radius_text(ctx: &LambdaContext, s: &crate::solver::RadiusState) -> String {
     let mut t = String::new();
-    let yes = |b: bool| if b { "stable" } else { "unstable" };
+    let ok = s.status == crate::solver::Status::Ok;
+    let yes = |b: bool| match (ok, b) {
+        (false, _) => "not computed",
+        (true, true) => "stable",
+        (true, false) => "unstable",
+    };
     let _ = writeln!(
         t,
         "Maugis-Dugdale state, lambda = {} (contact radius given)",

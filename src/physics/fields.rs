@@ -95,6 +95,19 @@ impl MdGeometry {
         2.0 * PI * inner - 0.5 * self.lambda * PI * (c * c - a * a)
     }
 
+    /// The energy release rate over w, the J-integral through the Dugdale zone (the gap at C
+    /// over h0): `(lambda A^2/2) [(m^2 - 2) arcsec m + sqrt(m^2 - 1)] +
+    /// (4 lambda^2 A/3) [sqrt(m^2 - 1) arcsec m - m + 1]`, from mu and m - 1, which keep
+    /// their digits where C and A are equal in f64 (the JKR side).
+    pub fn energy_release_over_w(&self) -> f64 {
+        let (l, a, mu) = (self.lambda, self.a, self.mu);
+        let (at, mu_minus_at) = mu.atan_parts();
+        // m - 1 = mu^2 / (m + 1) without cancellation.
+        let m_minus_1 = mu * mu / ((1.0 + mu * mu).sqrt() + 1.0);
+        0.5 * l * a * a * (mu * mu * at + mu_minus_at)
+            + (4.0 * l * l * a / 3.0) * (mu * at - m_minus_1)
+    }
+
     /// The surface gap at r (zero inside the contact).
     ///
     /// The uniform tension on the disc r < C is itself a sum of flat punches (density

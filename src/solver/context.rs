@@ -48,25 +48,50 @@ impl RadiusState {
 
 /// The state at contact radius `a` (A > 0): the curve point there, with its stability under
 /// both controls. A falls strictly with mu, so A fixes the state; the only search is the
-/// bisection for mu, to the last bit, and no pull-off is needed (no per-lambda context).
+/// bisection for mu, to the last bit. Stability compares A with the pull-off radii (exact),
+/// not the sign of the slopes, which rounding decides near A = 0.
 pub fn solve_radius(lambda: f64, a: f64) -> RadiusState {
-    if super::domain::check_lambda(lambda).is_err() || super::domain::check_radius(a).is_err() {
+    match LambdaContext::new(lambda) {
+        Ok(ctx) => ctx.solve_radius(a),
+        Err(_) => RadiusState::failed(lambda, a, Status::InvalidInput),
+    }
+}
+
+fn solve_radius_in(ctx: &LambdaContext, a: f64) -> RadiusState {
+    let lambda = ctx.lambda;
+    if super::domain::check_radius(a).is_err() {
         return RadiusState::failed(lambda, a, Status::InvalidInput);
     }
-    let p = point(lambda, x_at_radius(lambda, a));
+    let mut x = x_at_radius(lambda, a);
+    if x >= 80.0 {
+        // A below the usual bracket's end (about 1e-35): mu up to e^700 reaches A ~ 1e-300.
+        x = bisect_sign(|x| a - point(lambda, x).a, 80.0, 700.0);
+    }
+    let p = point(lambda, x);
     let ok = [p.load, p.approach, p.m_minus_1]
         .iter()
         .all(|v| v.is_finite())
         && (p.a / a - 1.0).abs() < 1e-12;
+    if !ok {
+        // A state that was not found carries no numbers.
+        return RadiusState::failed(lambda, a, Status::NotConverged);
+    }
+    // Load control is stable from the load pull-off on (dPbar/dA > 0 there); displacement
+    // control from the displacement jump-out on, which is A = 0 for lambda <= lambda_D.
+    let disp_a = if lambda <= LAMBDA_D {
+        0.0
+    } else {
+        ctx.disp_pulloff().a
+    };
     RadiusState {
         lambda,
         a,
         load: p.load,
         approach: p.approach,
         m_minus_1: p.m_minus_1,
-        load_stable: p.dload_dmu < 0.0,
-        displacement_stable: p.dapproach_dmu < 0.0,
-        status: if ok { Status::Ok } else { Status::NotConverged },
+        load_stable: a >= ctx.load_pulloff.a,
+        displacement_stable: a >= disp_a,
+        status: Status::Ok,
     }
 }
 
@@ -752,7 +777,7 @@ impl LambdaContext {
 
     /// The state at contact radius `a`; see [`solve_radius`].
     pub fn solve_radius(&self, a: f64) -> RadiusState {
-        solve_radius(self.lambda, a)
+        solve_radius_in(self, a)
     }
 
     fn zero_gap_disp_state(&self, approach: f64) -> State {

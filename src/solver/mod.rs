@@ -169,9 +169,20 @@ pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
 
 /// The states at the contact radii of a list of (lambda, A) points, on all cores.
 pub fn solve_radius_points(points: &[(f64, f64)]) -> Vec<RadiusState> {
+    // One context (its pull-off radii decide the stability) per distinct lambda.
+    let mut lambdas: Vec<u64> = points.iter().map(|p| p.0.to_bits()).collect();
+    lambdas.sort_unstable();
+    lambdas.dedup();
+    let ctxs: std::collections::HashMap<u64, Option<LambdaContext>> = lambdas
+        .par_iter()
+        .map(|&b| (b, LambdaContext::new(f64::from_bits(b)).ok()))
+        .collect();
     points
         .par_iter()
-        .map(|&(lambda, a)| context::solve_radius(lambda, a))
+        .map(|&(lambda, a)| match &ctxs[&lambda.to_bits()] {
+            Some(ctx) => ctx.solve_radius(a),
+            None => RadiusState::failed(lambda, a, Status::InvalidInput),
+        })
         .collect()
 }
 
