@@ -338,6 +338,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
         }
         (sum + comp).max(0.0)
     });
+    refine_jump_outs(lambda, drive, &mut jumps);
     let stable = (0..n)
         .map(|i| {
             if i + 1 < n {
@@ -356,6 +357,69 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
         jumps,
         hysteresis,
     })
+}
+
+/// The retract's jump from the contact branch is a fold of the exact curve: under rigid grips
+/// the minimum of the approach, under dead load the minimum of the load (the pull-offs of the
+/// solver's context), and under a spring where `dPbar/dDbar = -kbar`. The path's samples only
+/// bracket it; this puts the jump where it is, to the solver's precision (the landing on the
+/// free branch moves with it).
+fn refine_jump_outs(lambda: f64, drive: Drive, jumps: &mut [Jump]) {
+    let Ok(ctx) = LambdaContext::new(lambda) else {
+        return;
+    };
+    let at = |a: f64| {
+        let p = curve_point(lambda, x_at_radius(lambda, a).exp());
+        PathPoint {
+            branch: Branch::Contact,
+            approach: p.approach,
+            load: p.load,
+            a: p.a,
+            c: (p.m_minus_1 + 1.0) * p.a,
+        }
+    };
+    for j in jumps
+        .iter_mut()
+        .filter(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
+    {
+        let exact = match drive {
+            Drive::RigidGrips => ctx.disp_pulloff(),
+            Drive::DeadLoad => ctx.load_pulloff,
+            Drive::Spring(k) => {
+                // Where the control's slope along the curve changes sign, by bisection in A
+                // around the sampled fold (the control rises with A on the stable side).
+                let slope = |a: f64| {
+                    let p = curve_point(lambda, x_at_radius(lambda, a).exp());
+                    p.dapproach_dmu + p.dload_dmu / k
+                };
+                let (mut lo, mut hi) = (0.8 * j.from.a, 1.25 * j.from.a + 1e-300);
+                if !(slope(lo) > 0.0) == !(slope(hi) > 0.0) {
+                    continue;
+                }
+                for _ in 0..200 {
+                    let m = 0.5 * (lo + hi);
+                    if (slope(m) > 0.0) == (slope(lo) > 0.0) {
+                        lo = m;
+                    } else {
+                        hi = m;
+                    }
+                }
+                let p = at(0.5 * (lo + hi));
+                j.from = p;
+                if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
+                    to.approach = p.approach + p.load / k;
+                }
+                continue;
+            }
+        };
+        if exact.a > 0.0 {
+            let p = at(exact.a);
+            if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
+                to.approach = p.approach;
+            }
+            j.from = p;
+        }
+    }
 }
 
 /// The normalised spring stiffness: k (N/m) times the approach unit over the force unit.

@@ -155,3 +155,113 @@ fn a_radius_too_small_to_resolve_says_so_without_speaking_of_loads() {
     let j = p.models[0].energy_release_rate_over_w.unwrap();
     assert!((j - 1.0).abs() < 1e-9, "{j}");
 }
+
+#[test]
+fn cycle_jump_out_is_the_fold_found_exactly() {
+    // Under rigid grips the retract jump-out is the displacement-controlled pull-off, a fold of
+    // the curve: the cycle must find the same point as the pull-off solver, not the best sample.
+    use tabor::cycle::{cycle, Drive, Phase};
+    for &lambda in &[2.0, 10.0, 100.0] {
+        let c = cycle(lambda, Drive::RigidGrips, 2.0).unwrap();
+        let po = LambdaContext::new(lambda).unwrap().disp_pulloff();
+        let j = c.jumps.iter().find(|j| j.phase == Phase::Retract).unwrap();
+        assert!(
+            (j.from.load - po.load).abs() < 1e-9,
+            "lambda {lambda}: {} vs {}",
+            j.from.load,
+            po.load
+        );
+        assert!(
+            (j.from.a - po.a).abs() < 1e-6,
+            "lambda {lambda}: A {} vs {}",
+            j.from.a,
+            po.a
+        );
+    }
+    // Under dead load the jump-out is the load-controlled pull-off.
+    let c = cycle(10.0, Drive::DeadLoad, 2.0).unwrap();
+    let j = c.jumps.iter().find(|j| j.phase == Phase::Retract).unwrap();
+    assert!(
+        (j.from.load - (-1.501624860426358)).abs() < 1e-9,
+        "{}",
+        j.from.load
+    );
+}
+
+fn scene_run(json: &str) -> std::process::Output {
+    let dir =
+        std::env::temp_dir().join(format!("tabor-scene-{}-{}", std::process::id(), json.len()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("s.json");
+    std::fs::write(&f, json).unwrap();
+    std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .env("TABOR_BACKEND", "cpu")
+        .arg("scene")
+        .arg(&f)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn scene_refusals_name_what_is_wrong() {
+    let base = r#""e_star_pa":1e9,"radius_m":1e-6,"work_of_adhesion_j_m2":0.05,"z0_m":3e-10"#;
+    let cases: &[(&str, &str)] = &[
+        (r#""loads_n":[]"#, "loads_n"),
+        (r#""load_range_n":[0,1e-6,1]"#, "at least 2"),
+        (r#""load_range_n":[0,1e-6,0]"#, "at least 2"),
+        (
+            r#""control":{"cantilever_n_m":1,"bogus":2}"#,
+            "cantilever_n_m",
+        ),
+        (
+            r#""body1":{"youngs_modulus_pa":1e9,"poisson_ratio":0.3,"radius_m":1e-6},"body2":{"youngs_modulus_pa":1e9,"poisson_ratio":0.3}"#,
+            "both",
+        ),
+    ];
+    for (extra, want) in cases {
+        let o = scene_run(&format!("{{{base},{extra}}}"));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{extra}: {err}");
+        assert!(err.contains(want), "{extra}: {err}");
+        assert!(!err.contains("no load is above"), "{extra}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{extra}: {err}");
+    }
+    // A cantilever's stiffness is printed to a few digits, not hundreds.
+    let o = scene_run(&format!(r#"{{{base},"control":{{"cantilever_n_m":0.1}}}}"#));
+    let out = String::from_utf8_lossy(&o.stderr).to_string() + &String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}");
+    let line = out.lines().find(|l| l.contains("cantilever k")).unwrap();
+    assert!(line.len() < 200, "{line}");
+}
+
+#[test]
+fn cycle_energy_uses_a_prefix_that_shows_it() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .env("TABOR_BACKEND", "cpu")
+        .args([
+            "cycle",
+            "--preset",
+            "afm-si",
+            "--format",
+            "csv",
+            "-o",
+            "/dev/null",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    let line = err.lines().find(|l| l.contains("energy lost")).unwrap();
+    assert!(!line.contains(" 0.0000 "), "{line}");
+    let value: f64 = line
+        .split('=')
+        .nth(1)
+        .unwrap()
+        .trim()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(value > 0.0, "{line}");
+}

@@ -92,11 +92,34 @@ pub fn read_scene(f: &str) -> anyhow::Result<SceneInput> {
     if text.len() as u64 > MAX_SCENE_BYTES {
         bail!("{f}: larger than 1 MiB, not a scene file");
     }
-    serde_json::from_str(&text).with_context(|| {
-        format!(
-            "{f}: not a valid scene (JSON with SI keys, e.g. body1.youngs_modulus_pa; see README)"
+    serde_json::from_str(&text).map_err(|e| {
+        // serde names an unknown key but, inside "control", only by its position: say what
+        // the control may be.
+        let inside_control = text
+            .get(..text.len().min(byte_at(&text, e.line(), e.column())))
+            .is_some_and(|head| {
+                head.rfind("\"control\"")
+                    .is_some_and(|i| !head[i..].contains('}'))
+            });
+        let hint = if inside_control {
+            "; control is \"load\", \"displacement\" or {\"cantilever_n_m\": k}"
+        } else {
+            ""
+        };
+        anyhow::anyhow!(
+            "{f}: not a valid scene ({e}){hint} (JSON with SI keys, e.g. body1.youngs_modulus_pa; see README)"
         )
     })
+}
+
+/// The byte offset of a 1-based line and column in `text`.
+fn byte_at(text: &str, line: usize, column: usize) -> usize {
+    let start: usize = text
+        .split_inclusive('\n')
+        .take(line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    start + column
 }
 
 /// A built-in scene by name.
@@ -119,16 +142,17 @@ fn si(x: f64, unit: &str) -> String {
         (1e-6, "u"),
         (1e-9, "n"),
         (1e-12, "p"),
+        (1e-15, "f"),
+        (1e-18, "a"),
+        (1e-21, "z"),
     ];
     if x == 0.0 || !x.is_finite() {
         return format!("{x} {unit}");
     }
-    let (s, p) = prefixes
-        .iter()
-        .find(|(s, _)| x.abs() >= *s * 0.9995)
-        .copied()
-        .unwrap_or((1e-12, "p"));
-    format!("{:.4} {p}{unit}", x / s)
+    match prefixes.iter().find(|(s, _)| x.abs() >= *s * 0.9995) {
+        Some((s, p)) => format!("{:.4} {p}{unit}", x / s),
+        None => format!("{x:.4e} {unit}"),
+    }
 }
 
 pub fn scene_text(r: &SceneResult) -> String {
@@ -441,20 +465,24 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     eprintln!("lambda = {lambda:.4}, {:?}", c.drive);
     for j in &c.jumps {
         match &j.to {
-            Some(to) => eprintln!("  {} jump: from (approach {:.5}, load {:.5}, A {:.4}) to (approach {:.5}, load {:.5}, A {:.4})", j.phase, j.from.approach, j.from.load, j.from.a, to.approach, to.load, to.a),
-            None => eprintln!("  {} jump: from (approach {:.5}, load {:.5}, A {:.4}): the surfaces separate", j.phase, j.from.approach, j.from.load, j.from.a),
+            Some(to) => eprintln!("  {} jump: from (approach {:.6}, load {:.6}, A {:.6}) to (approach {:.6}, load {:.6}, A {:.6})", j.phase, j.from.approach, j.from.load, j.from.a, to.approach, to.load, to.a),
+            None => eprintln!("  {} jump: from (approach {:.6}, load {:.6}, A {:.6}): the surfaces separate", j.phase, j.from.approach, j.from.load, j.from.a),
         }
     }
     match (c.hysteresis, &contact) {
         (Some(w), Some(ct)) => eprintln!(
-            "  energy lost per cycle: {w:.6} (normalised) = {} ",
+            "  energy lost per cycle: {w:.6} (normalised) = {}",
             si(w * ct.force_scale() * ct.approach_scale(), "J")
         ),
         (Some(w), None) => eprintln!(
             "  energy lost per cycle: {w:.6} (in units of pi w R times the approach unit)"
         ),
         (None, _) => eprintln!(
-            "  energy lost per cycle: not defined (under dead load the surfaces separate for good)"
+            "  energy lost per cycle: not defined ({} the surfaces separate for good: the loop does not close)",
+            match c.drive {
+                crate::cycle::Drive::Spring(_) => "the spring is too soft to catch them after the jump-out:",
+                _ => "under dead load",
+            }
         ),
     }
     if !figure.is_empty() {

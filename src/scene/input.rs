@@ -46,6 +46,11 @@ pub enum SceneControl {
 }
 
 pub fn contact_of(s: &SceneInput) -> Result<Contact, ParamError> {
+    if (s.body1.is_some() || s.body2.is_some()) && (s.e_star_pa.is_some() || s.radius_m.is_some()) {
+        return Err(ParamError::Missing(
+            "give the bodies (body1 and body2) or e_star_pa and radius_m, not both",
+        ));
+    }
     let (e_star, radius) = match (&s.body1, &s.body2) {
         (Some(b1), Some(b2)) => (reduced_modulus(b1, b2)?, effective_radius(b1, b2)?),
         (Some(_), None) | (None, Some(_)) => {

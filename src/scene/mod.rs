@@ -181,12 +181,22 @@ fn scene_loads(s: &SceneInput) -> Result<Vec<f64>, ParamError> {
         });
     }
     match (&s.loads_n, s.load_range_n) {
+        (Some(l), None) if l.is_empty() => Err(ParamError::OutOfRange {
+            field: "the number of loads in loads_n",
+            value: 0.0,
+            allowed: "at least one load (N); leave loads_n out for zero load",
+        }),
         (Some(l), None) => Ok(l.clone()),
         (None, Some((a, b, n))) if n >= 2 => Ok((0..n)
             .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
             .collect()),
+        (None, Some((_, _, n))) => Err(ParamError::OutOfRange {
+            field: "the count of load_range_n = [min, max, count]",
+            value: n as f64,
+            allowed: "at least 2 (for one load use loads_n = [P])",
+        }),
         (None, None) => Ok(vec![0.0]),
-        _ => Err(ParamError::Missing(
+        (Some(_), Some(_)) => Err(ParamError::Missing(
             "give loads_n or load_range_n = [min, max, count >= 2], not both",
         )),
     }
@@ -334,7 +344,10 @@ fn pulloff_under_control(
                 .map_or(ctx.disp_pulloff().load, |j| j.from.load);
             (
                 out * fs,
-                format!("cantilever k = {k} N/m (normalised {kbar:.4e})"),
+                format!(
+                    "cantilever k = {} N/m (normalised {kbar:.4e})",
+                    crate::physics::domain::short(*k)
+                ),
             )
         }
     })
