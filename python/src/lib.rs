@@ -91,6 +91,60 @@ fn arr<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
     v.into_pyarray(py)
 }
 
+/// `run`, its result handed to Python as objects (`to_py`).
+fn run_py<'py, T: serde::Serialize + Send>(
+    py: Python<'py>,
+    f: impl FnOnce() -> anyhow::Result<T> + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let r = run(py, f)?;
+    to_py(py, &r)
+}
+
+/// A library result as Python objects, not JSON text: objects become dicts, arrays of numbers
+/// NumPy float64 arrays (a missing number, JSON's null for NaN, becomes NaN), other arrays
+/// lists, and the scalars Python's own.
+fn to_py<'py>(py: Python<'py>, value: &impl serde::Serialize) -> PyResult<Bound<'py, PyAny>> {
+    let v = serde_json::to_value(value)
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error in tabor: {e}")))?;
+    value_to_py(py, &v)
+}
+
+fn value_to_py<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
+    use serde_json::Value;
+    Ok(match v {
+        Value::Null => py.None().into_bound(py),
+        Value::Bool(b) => b.into_pyobject(py)?.to_owned().into_any(),
+        Value::Number(n) => match n.as_i64() {
+            Some(i) if !n.is_f64() => i.into_pyobject(py)?.into_any(),
+            _ => n.as_f64().unwrap_or(f64::NAN).into_pyobject(py)?.into_any(),
+        },
+        Value::String(s) => s.into_pyobject(py)?.into_any(),
+        Value::Array(a)
+            if a.iter().any(Value::is_number) && a.iter().all(|x| x.is_number() || x.is_null()) =>
+        {
+            arr(
+                py,
+                a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect(),
+            )
+            .into_any()
+        }
+        Value::Array(a) => {
+            let items = a
+                .iter()
+                .map(|x| value_to_py(py, x))
+                .collect::<PyResult<Vec<_>>>()?;
+            pyo3::types::PyList::new(py, items)?.into_any()
+        }
+        Value::Object(o) => {
+            let d = PyDict::new(py);
+            for (k, x) in o {
+                d.set_item(k, value_to_py(py, x)?)?;
+            }
+            d.into_any()
+        }
+    })
+}
+
 /// Points per chunk: between chunks the binding checks for Ctrl-C (a chunk takes well under a
 /// second on one core) and the working memory stays one chunk's states, whatever the input size.
 const CHUNK: usize = 1 << 18;
@@ -198,7 +252,7 @@ fn solve_points<'py>(
     d.set_item("m_minus_1", out_m)?;
     d.set_item("status_code", out_code)?;
     d.set_item("engine", python_names(&engine_line))?;
-    d.set_item("metadata_json", meta.to_string())?;
+    d.set_item("metadata", value_to_py(py, &meta)?)?;
     Ok(d)
 }
 
@@ -340,18 +394,22 @@ fn closed_form<'py>(
 
 /// The MD curve of one lambda as JSON (`tabor curve`'s columns).
 #[pyfunction]
-fn curve(py: Python<'_>, lam: f64, a_max: f64, points: usize) -> PyResult<String> {
-    run(py, move || {
+fn curve<'py>(py: Python<'py>, lam: f64, a_max: f64, points: usize) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || {
         let c = tabor::solver::curve::curve(lam, a_max, points)?;
-        Ok(serde_json::to_string(&c)?)
+        Ok(c)
     })
 }
 
 /// A scene (JSON text, or a preset name) solved: `tabor scene --format json`'s report.
 #[pyfunction]
 #[pyo3(signature = (scene_json=None, preset=None))]
-fn scene(py: Python<'_>, scene_json: Option<String>, preset: Option<String>) -> PyResult<String> {
-    run(py, move || {
+fn scene<'py>(
+    py: Python<'py>,
+    scene_json: Option<String>,
+    preset: Option<String>,
+) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || {
         let input: tabor::scene::SceneInput = match (scene_json, preset) {
             (Some(j), None) => {
                 serde_json::from_str(&j).map_err(|e| anyhow::anyhow!("not a valid scene: {e}"))?
@@ -364,7 +422,7 @@ fn scene(py: Python<'_>, scene_json: Option<String>, preset: Option<String>) -> 
             })?,
             _ => anyhow::bail!("give a scene or a preset name"),
         };
-        Ok(serde_json::to_string(&tabor::scene::solve_scene(&input)?)?)
+        Ok(tabor::scene::solve_scene(&input)?)
     })
 }
 
@@ -374,17 +432,15 @@ fn presets() -> Vec<&'static str> {
 }
 
 #[pyfunction]
-fn infer_pulloff(
-    py: Python<'_>,
+fn infer_pulloff<'py>(
+    py: Python<'py>,
     force: f64,
     radius: f64,
     e_star: f64,
     z0: f64,
-) -> PyResult<String> {
-    run(py, move || {
-        Ok(serde_json::to_string(&tabor::scene::infer(
-            force, radius, e_star, z0,
-        )?)?)
+) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || {
+        Ok(tabor::scene::infer(force, radius, e_star, z0)?)
     })
 }
 
@@ -395,18 +451,14 @@ fn fit_pairs<'py>(
     radii: PyReadonlyArray1<'py, f64>,
     radius: f64,
     z0: f64,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let pairs: Vec<(f64, f64)> = loads
         .as_slice()?
         .iter()
         .copied()
         .zip(radii.as_slice()?.iter().copied())
         .collect();
-    run(py, move || {
-        Ok(serde_json::to_string(&tabor::scene::fit_pairs(
-            &pairs, radius, z0,
-        )?)?)
-    })
+    run_py(py, move || Ok(tabor::scene::fit_pairs(&pairs, radius, z0)?))
 }
 
 /// Force curves fitted (`tabor fit`): flat arrays of the points with a curve index, the
@@ -419,14 +471,14 @@ fn fit_curves<'py>(
     height: PyReadonlyArray1<'py, f64>,
     force: PyReadonlyArray1<'py, f64>,
     options_json: String,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     let (c, s, h, f) = (
         curve.as_slice()?.to_vec(),
         segment.as_slice()?.to_vec(),
         height.as_slice()?.to_vec(),
         force.as_slice()?.to_vec(),
     );
-    run(py, move || {
+    run_py(py, move || {
         use tabor::fit::{Curve, Direction, FitOptions, Segments};
         let o: serde_json::Value = serde_json::from_str(&options_json)?;
         // Non-finite numbers come as text ("nan", "inf"), JSON having none.
@@ -487,20 +539,20 @@ fn fit_curves<'py>(
             .par_iter()
             .map(|cv| tabor::fit::fit_curve(cv, &opt))
             .collect();
-        Ok(serde_json::to_string(&results)?)
+        Ok(results)
     })
 }
 
 /// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`).
 #[pyfunction]
 #[pyo3(signature = (lam, drive, stiffness, max_load))]
-fn cycle(
-    py: Python<'_>,
+fn cycle<'py>(
+    py: Python<'py>,
     lam: f64,
     drive: &str,
     stiffness: Option<f64>,
     max_load: f64,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, PyAny>> {
     use tabor::cycle::Drive;
     let drive = match (drive, stiffness) {
         ("grips", None) => Drive::RigidGrips,
@@ -518,16 +570,18 @@ fn cycle(
             )))
         }
     };
-    run(py, move || {
-        Ok(serde_json::to_string(&tabor::cycle::cycle(
-            lam, drive, max_load,
-        )?)?)
-    })
+    run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?))
 }
 
 /// Pressure and gap profiles (JSON): `given` load|approach|radius.
 #[pyfunction]
-fn profile(py: Python<'_>, lam: f64, given: &str, value: f64, points: usize) -> PyResult<String> {
+fn profile<'py>(
+    py: Python<'py>,
+    lam: f64,
+    given: &str,
+    value: f64,
+    points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
     use tabor::profile::Given;
     let g = match given {
         "load" => Given::Load(value),
@@ -539,11 +593,7 @@ fn profile(py: Python<'_>, lam: f64, given: &str, value: f64, points: usize) -> 
             ))
         }
     };
-    run(py, move || {
-        Ok(serde_json::to_string(&tabor::profile::profile(
-            lam, g, points,
-        )?)?)
-    })
+    run_py(py, move || Ok(tabor::profile::profile(lam, g, points)?))
 }
 
 /// An adhesion map, kept on the Rust side for its arrays, figure, JSON and NPY files.

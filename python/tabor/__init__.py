@@ -243,7 +243,7 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
             r["displacement_stable"], dtype=bool).reshape(shape)
     else:
         r = _tabor.solve_points(lam_f, val_f, given[0], backend, precision, adapter, int(check))
-        meta = json.loads(r["metadata_json"])
+        meta = dict(r["metadata"])
         meta["control"] = "load" if given[0] == "load" else "displacement"
         meta["engine"] = r["engine"]
         out = {k: np.asarray(r[k]).reshape(shape)
@@ -301,7 +301,7 @@ def curve(lam, a_max=4.0, points=200):
     uniform from ``a_max`` down to 0, then the A = 0 end. Returns a Result of arrays ``A``,
     ``load``, ``approach``, ``m_minus_1`` (inf at the end), ``load_stable``,
     ``displacement_stable``."""
-    c = json.loads(_tabor.curve(_real(lam, "lam"), _real(a_max, "a_max"), int(points)))
+    c = _tabor.curve(_real(lam, "lam"), _real(a_max, "a_max"), int(points))
     pts = c["points"]
     out = {k: np.array([p[k] if p[k] is not None else np.inf for p in pts], dtype=float)
            for k in ("A", "load", "approach", "m_minus_1")}
@@ -426,7 +426,7 @@ class Scene:
                                  "finite values") from None
             except TypeError as e:
                 raise TypeError(f"scene: {e}; give numbers, strings, lists and dicts") from None
-            _report = json.loads(_tabor.scene(text, None))
+            _report = _tabor.scene(text, None)
         self.report = _report
         self.lam = _report["lambda"]
         self.recommended_model = _report["recommended_model"]
@@ -447,7 +447,7 @@ class Scene:
 
     @classmethod
     def preset(cls, name):
-        return cls(_report=json.loads(_tabor.scene(None, name)))
+        return cls(_report=_tabor.scene(None, name))
 
     def __repr__(self):
         return (f"Scene({self.report.get('name')!r}, lambda={self.lam:.4g}, "
@@ -457,16 +457,16 @@ class Scene:
 def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9):
     """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
     the Tabor self-consistency verdict (``tabor infer``). Returns a dict."""
-    return json.loads(_tabor.infer_pulloff(_finite(force_n, "force_n"),
+    return _tabor.infer_pulloff(_finite(force_n, "force_n"),
                                            _finite(radius_m, "radius_m"),
-                                           _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m")))
+                                           _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"))
 
 
 def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
     """Fits w and E* to measured (load, contact radius) pairs with the exact MD model
     (``tabor infer --pairs``). Returns a dict."""
     (p, a), _ = _flat(loads_n, radii_m, names=["loads_n", "radii_m"])
-    return json.loads(_tabor.fit_pairs(p, a, _finite(radius_m, "radius_m"), _finite(z0_m, "z0_m")))
+    return _tabor.fit_pairs(p, a, _finite(radius_m, "radius_m"), _finite(z0_m, "z0_m"))
 
 
 def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
@@ -510,7 +510,7 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         options["poisson"] = num(poisson, "poisson")
     if z0_m is not None:
         options["z0"] = num(z0_m, "z0_m")
-    out = json.loads(_tabor.fit_curves(ids, seg, h, f, json.dumps(options)))
+    out = _tabor.fit_curves(ids, seg, h, f, json.dumps(options))
     for r in out:  # the fit's advice names command-line flags: name the arguments instead
         for k in ("message", "why"):
             if isinstance(r.get(k), str):
@@ -572,9 +572,9 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0):
     ``phase``, ``branch``, ``approach``, ``load``, ``A``, ``C``, ``control``, ``jump`` and the
     metadata ``hysteresis`` (energy lost per cycle, normalised; None under dead load) and
     ``jumps``."""
-    c = json.loads(_tabor.cycle(_real(lam, "lam"), drive,
+    c = _tabor.cycle(_real(lam, "lam"), drive,
                                 None if stiffness is None else _real(stiffness, "stiffness"),
-                                _real(max_load, "max_load")))
+                                _real(max_load, "max_load"))
     steps = c["steps"]
     out = {
         "phase": np.array([s["phase"] for s in steps]),
@@ -600,8 +600,8 @@ def profile(lam, load=None, approach=None, radius=None, points=400):
              if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of load=, approach= or radius=")
-    p = json.loads(_tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
-                                int(points)))
+    p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
+                                int(points))
     for m in p["models"]:
         m["r"] = np.array(m["r"], dtype=float)
         m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],

@@ -1,0 +1,147 @@
+# Type stubs of tabor's public Python API (the implementation is tabor/__init__.py over the
+# compiled tabor._tabor). Results are dicts of NumPy arrays (``Result``) or plain dicts of
+# numbers, strings, lists and arrays: no JSON text.
+from os import PathLike
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+Array = npt.NDArray[np.float64]
+Backend = Literal["auto", "cpu", "gpu"]
+Precision = Literal["f32", "f64"]
+
+__version__: str
+LAMBDA_MIN: float
+LAMBDA_MAX: float
+LAMBDA_D: float
+STATUS_NAMES: Tuple[str, ...]
+__all__: List[str]
+
+class Result(Dict[str, npt.NDArray[Any]]):
+    """Arrays by name, with the run's metadata; items are also attributes."""
+    metadata: Dict[str, Any]
+    def __init__(self, arrays: Dict[str, npt.NDArray[Any]], metadata: Dict[str, Any]) -> None: ...
+    def __getattr__(self, name: str) -> npt.NDArray[Any]: ...
+
+def solve(
+    lam: ArrayLike,
+    load: Optional[ArrayLike] = None,
+    approach: Optional[ArrayLike] = None,
+    radius: Optional[ArrayLike] = None,
+    *,
+    backend: Backend = "cpu",
+    precision: Precision = "f32",
+    check: int = 1000,
+    adapter: Optional[str] = None,
+) -> Result: ...
+def pulloff(lam: ArrayLike) -> Result: ...
+def hertz(load: Optional[ArrayLike] = None, A: Optional[ArrayLike] = None) -> Array: ...
+def dmt(load: Optional[ArrayLike] = None, A: Optional[ArrayLike] = None) -> Array: ...
+def jkr(load: Optional[ArrayLike] = None, A: Optional[ArrayLike] = None) -> Array: ...
+def bradley() -> float: ...
+def curve(lam: float, a_max: float = 4.0, points: int = 200) -> Result: ...
+
+class AdhesionMap:
+    lam: Array
+    load_axis: Array
+    pulloff: Array
+    A: Array
+    load: Array
+    approach: Array
+    m_minus_1: Array
+    region: npt.NDArray[np.uint8]
+    region_names: Tuple[str, ...]
+    status: npt.NDArray[np.str_]
+    region_counts: Dict[str, int]
+    backend: str
+    def __init__(self, inner: Any) -> None: ...
+    def save(
+        self,
+        path: Union[str, "PathLike[str]"],
+        quantity: Optional[str] = None,
+        width_mm: float = 85.0,
+        dpi: float = 300.0,
+        *,
+        npy: bool = False,
+    ) -> None: ...
+    def save_json(self, path: Union[str, "PathLike[str]"], full: bool = False) -> None: ...
+
+def adhesion_map(
+    lambda_min: float = 1e-3,
+    lambda_max: float = 1e3,
+    nx: int = 1024,
+    ny: int = 1024,
+    load_axis: Literal["log", "linear", "above-pulloff"] = "log",
+    load_min: Optional[float] = None,
+    load_max: Optional[float] = None,
+    tolerance: float = 0.05,
+    strength_ratio: Tuple[float, float] = (0.001, 0.01),
+    *,
+    backend: Backend = "auto",
+    precision: Precision = "f32",
+    check: int = 1000,
+    adapter: Optional[str] = None,
+) -> AdhesionMap: ...
+def presets() -> List[str]: ...
+
+class Scene:
+    report: Dict[str, Any]
+    lam: float
+    recommended_model: str
+    load_n: Array
+    contact_radius_m: Array
+    approach_m: Array
+    model: npt.NDArray[np.str_]
+    warnings: List[List[str]]
+    def __init__(self, scene: Optional[Dict[str, Any]] = None, *, _report: Optional[Dict[str, Any]] = None) -> None: ...
+    @classmethod
+    def from_file(cls, path: Union[str, "PathLike[str]"]) -> "Scene": ...
+    @classmethod
+    def preset(cls, name: str) -> "Scene": ...
+
+def infer_pulloff(force_n: float, radius_m: float, e_star_pa: float, z0_m: float = 0.3e-9) -> Dict[str, Any]: ...
+def fit_pairs(loads_n: ArrayLike, radii_m: ArrayLike, radius_m: float, z0_m: float = 0.3e-9) -> Dict[str, Any]: ...
+def fit_curves(
+    height_m: ArrayLike,
+    force_n: ArrayLike,
+    segment: ArrayLike,
+    curve: Optional[ArrayLike] = None,
+    *,
+    radius_m: float,
+    spring_n_m: float,
+    poisson: Optional[float] = None,
+    fit_segment: Literal["retract", "approach", "both"] = "retract",
+    z0_m: Optional[float] = None,
+    tilt: bool = False,
+    tolerance: float = 0.05,
+) -> List[Dict[str, Any]]: ...
+def fit_curve(height_m: ArrayLike, force_n: ArrayLike, segment: ArrayLike, **options: Any) -> Dict[str, Any]: ...
+def fit_afmformats(data: Any, radius_m: float, **options: Any) -> List[Dict[str, Any]]: ...
+def cycle(
+    lam: float,
+    drive: Literal["grips", "dead_load", "spring"] = "grips",
+    stiffness: Optional[float] = None,
+    max_load: float = 2.0,
+) -> Result: ...
+def profile(
+    lam: float,
+    load: Optional[float] = None,
+    approach: Optional[float] = None,
+    radius: Optional[float] = None,
+    points: int = 400,
+) -> Dict[str, Any]: ...
+def rough(
+    lam: float,
+    sigma: float,
+    min_separation: float,
+    max_separation: Optional[float] = None,
+    points: int = 400,
+) -> Dict[str, Any]: ...
+def rough_ensemble(
+    lam: float,
+    heights: ArrayLike,
+    separations: ArrayLike,
+    min_separation: Optional[float] = None,
+) -> Dict[str, Any]: ...
