@@ -130,7 +130,7 @@ fn values_outside_the_domain_are_refused() {
     );
     refused(
         &["cycle", "--lambda", "1", "--max-load", "1e20"],
-        "--max-load",
+        "the largest load of the approach",
     );
     refused(
         &[

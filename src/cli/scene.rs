@@ -428,16 +428,11 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
                 (None, Some(_), None) => bail!("--spring-n-m needs a scene (--scene or --preset) to normalise it; or give --stiffness"),
                 _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
             };
-            if !(k > 0.0 && k.is_finite()) {
-                bail!(
-                    "the spring stiffness must be a positive, finite number, got {}",
-                    crate::solver::domain::short(k)
-                );
-            }
+            // The library checks k (and the rest), in the same words as for Python.
             Drive::Spring(k)
         }
     };
-    let c = cycle(lambda, drive, a.max_load).context("--max-load")?;
+    let c = cycle(lambda, drive, a.max_load)?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
