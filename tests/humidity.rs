@@ -397,3 +397,142 @@ fn bad_zones_are_refused_with_one_line() {
         assert!(!m.contains('\n') && !m.is_empty(), "{m}");
     }
 }
+
+// Scenes and the command line.
+
+use tabor::scene::humidity::HumidityInput;
+use tabor::scene::{contact_of, preset, solve_scene};
+use tabor::solver::two_zone::pulloffs_dimensional;
+
+fn tabor_cli(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn wet_scene_is_the_two_zone_law_with_the_kelvin_meniscus() {
+    let mut s = preset("afm-si").unwrap();
+    s.humidity = Some(HumidityInput::water(0.4, 20.0));
+    let r = solve_scene(&s).unwrap();
+    let c = contact_of(&s).unwrap();
+    // Kelvin: gamma V_m / (R T ln(1/RH)).
+    let r_k = 0.072 * 1.8e-5 / (8.314_462_618 * 298.15 * (1.0f64 / 0.4).ln());
+    let m = r.meniscus.unwrap();
+    assert!(rel(m.kelvin_radius_m, r_k) < 1e-14);
+    let cos = (20.0f64).to_radians().cos();
+    assert!(rel(m.range_m, 2.0 * r_k * cos) < 1e-14);
+    assert!(rel(m.work_of_adhesion_j_m2, 2.0 * 0.072 * cos) < 1e-14);
+    let (pl, pd) = pulloffs_dimensional(
+        c.k(),
+        c.radius,
+        [c.s0, 0.072 / r_k],
+        [c.work / c.s0, 2.0 * r_k * cos],
+    )
+    .unwrap();
+    assert!(rel(r.pulloff_force_load_control_N, pl) < 1e-12);
+    assert!(rel(r.pulloff_force_displacement_control_N, pd) < 1e-12);
+    // The dry pull-off is kept and the meniscus pulls harder: near the rigid limit the total
+    // is within 10% of 2 pi R (w + 2 gamma cos theta).
+    let dry = solve_scene(&preset("afm-si").unwrap()).unwrap();
+    assert_eq!(
+        r.dry_pulloff_force_load_control_N,
+        Some(dry.pulloff_force_load_control_N)
+    );
+    let rigid = -2.0 * PI * c.radius * (c.work + 2.0 * 0.072 * cos);
+    assert!(rel(r.pulloff_force_load_control_N, rigid) < 0.1);
+}
+
+#[test]
+fn no_meniscus_at_90_degrees_or_zero_humidity_is_the_dry_scene() {
+    let dry = solve_scene(&preset("pdms-glass").unwrap()).unwrap();
+    for (rh, theta) in [(0.5, 90.0), (0.9, 150.0), (0.0, 10.0)] {
+        let mut s = preset("pdms-glass").unwrap();
+        s.humidity = Some(HumidityInput::water(rh, theta));
+        let r = solve_scene(&s).unwrap();
+        assert!(r.meniscus.is_none());
+        assert_eq!(
+            r.pulloff_force_load_control_N,
+            dry.pulloff_force_load_control_N
+        );
+        assert_eq!(r.zero_load_contact_radius_m, dry.zero_load_contact_radius_m);
+    }
+}
+
+#[test]
+fn bad_humidity_values_are_one_line_and_write_nothing() {
+    let dir = std::env::temp_dir().join(format!("tabor-humidity-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (key, value) in [
+        ("relative_humidity", "1.2"),
+        ("relative_humidity", "-0.1"),
+        ("contact_angle_deg", "200"),
+        ("surface_tension_n_m", "-0.07"),
+        ("temperature_k", "0"),
+    ] {
+        let mut h = serde_json::json!({"relative_humidity": 0.4, "contact_angle_deg": 20});
+        h[key] = serde_json::from_str(value).unwrap();
+        let mut scene = serde_json::to_value(preset("afm-si").unwrap()).unwrap();
+        scene["humidity"] = h;
+        let f = dir.join("scene.json");
+        std::fs::write(&f, scene.to_string()).unwrap();
+        let out = dir.join("out.json");
+        let _ = std::fs::remove_file(&out);
+        let o = tabor_cli(&[
+            "scene",
+            f.to_str().unwrap(),
+            "--format",
+            "json",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{key} = {value}: {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(
+            err.contains(key) && err.contains(value.trim_start_matches('-')),
+            "{err}"
+        );
+        assert!(!out.exists());
+    }
+    let o = tabor_cli(&["humidity", "--preset", "afm-si", "--rh-max", "1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--rh-max"));
+}
+
+#[test]
+fn humidity_sweep_of_a_soft_sphere_is_jkr_with_the_summed_work() {
+    // PDMS on glass is deep in JKR (lambda ~ 1e4): every RH gives -1.5 pi R (w + 2 gamma cos).
+    let o = tabor_cli(&[
+        "humidity",
+        "--preset",
+        "pdms-glass",
+        "--contact-angle-deg",
+        "30",
+        "--points",
+        "4",
+        "--format",
+        "csv",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let c = contact_of(&preset("pdms-glass").unwrap()).unwrap();
+    let w2 = 2.0 * 0.072 * (30.0f64).to_radians().cos();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 4);
+    for r in rows {
+        let (solid, meniscus, total, share) = (r[4], r[5], r[6], r[7]);
+        assert!(
+            rel(total, -1.5 * PI * c.radius * (c.work + w2)) < 1e-3,
+            "{total}"
+        );
+        assert!(rel(meniscus, -1.5 * PI * c.radius * w2) < 1e-3);
+        assert!(rel(solid, -1.5 * PI * c.radius * c.work) < 1e-3);
+        assert!((share - (1.0 - solid / total)).abs() < 1e-12);
+    }
+}
