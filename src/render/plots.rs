@@ -1346,7 +1346,7 @@ where
                 .max(p.pulloff_meniscus_N.abs())
         })
         .fold(0.0, f64::max)
-        * 1.15;
+        * 1.5;
     let (fu, fp) = super::si_prefix(fmax);
     let mut chart = builder(root, &r.name).build_cartesian_2d(x0..x1, 0.0..fmax / fu)?;
     chart
@@ -1400,7 +1400,8 @@ where
             )))?;
         }
     }
-    let (lx, ly) = chart.backend_coord(&(x0 + 0.05 * (x1 - x0), 0.3 * fmax / fu));
+    // The legend in the band above the curves (the axis reaches 1.5 times the largest force).
+    let (lx, ly) = chart.backend_coord(&(x0 + 0.03 * (x1 - x0), 0.98 * fmax / fu));
     let (px, py) = chart.plotting_area().get_pixel_range();
     let at = SeriesLabelPosition::Coordinate(lx - px.start, ly - py.start);
     super::legend(&mut chart, at, NOTE)?;
