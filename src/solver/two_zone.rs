@@ -349,7 +349,7 @@ impl TwoZoneContext {
         }
     }
 
-    fn from_md(&self, s: &super::State, a_stable: (bool, bool)) -> TwoZoneState {
+    fn of_md_state(&self, s: &super::State, a_stable: (bool, bool)) -> TwoZoneState {
         if s.status != Status::Ok {
             return TwoZoneState::failed(s.status);
         }
@@ -424,7 +424,7 @@ impl TwoZoneContext {
             } else {
                 md.disp_pulloff().a
             };
-            return self.from_md(&s, (true, s.a >= disp_a));
+            return self.of_md_state(&s, (true, s.a >= disp_a));
         }
         self.on_branch(load, self.load_pulloff, |p| p.load)
     }
@@ -437,7 +437,7 @@ impl TwoZoneContext {
         }
         if let Some(md) = &self.md {
             let s = md.solve_approach(approach);
-            return self.from_md(&s, (s.a >= md.load_pulloff.a, true));
+            return self.of_md_state(&s, (s.a >= md.load_pulloff.a, true));
         }
         self.on_branch(approach, self.disp_pulloff, |p| p.approach)
     }
