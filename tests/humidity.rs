@@ -167,12 +167,14 @@ fn rigid_and_jkr_limits_of_the_total_work() {
 }
 
 /// `int_A^min(r,C) acos(s/r) s/sqrt(C^2-s^2) ds` by Gauss-Legendre after `s = b - (b - A) v^2`
-/// (which removes the end-point square roots); independent of the Carlson forms.
-fn band_quadrature(r: f64, a: f64, c: f64) -> f64 {
-    let b = r.min(c);
-    if b <= a {
+/// (which removes the end-point square roots); independent of the Carlson forms. The radii are
+/// given as `A` and the widths `r - A`, `C - A`, so that narrow bands keep their digits.
+fn band_quadrature_w(a: f64, dr: f64, dc: f64) -> f64 {
+    let db = dr.min(dc);
+    if db <= 0.0 {
         return 0.0;
     }
+    let (r, c) = (a + dr, a + dc);
     let (x, w) = gauss5();
     let n = 3000;
     let mut sum = 0.0;
@@ -180,9 +182,12 @@ fn band_quadrature(r: f64, a: f64, c: f64) -> f64 {
         let (v0, v1) = (k as f64 / n as f64, (k + 1) as f64 / n as f64);
         for q in 0..5 {
             let v = 0.5 * (v0 + v1) + 0.5 * (v1 - v0) * x[q];
-            let s = b - (b - a) * v * v;
-            let ds = 2.0 * (b - a) * v;
-            let f = (s / r).min(1.0).acos() * s / ((c - s) * (c + s)).sqrt();
+            let s = a + db * (1.0 - v * v);
+            let ds = 2.0 * db * v;
+            // r - s and c - s from their parts; acos(s/r) = 2 asin(sqrt((r - s)/(2r))) keeps
+            // its digits near s = r.
+            let (r_s, c_s) = ((dr - db) + db * v * v, (dc - db) + db * v * v);
+            let f = 2.0 * (r_s / (2.0 * r)).sqrt().asin() * s / (c_s * (c + s)).sqrt();
             if f.is_finite() {
                 sum += 0.5 * (v1 - v0) * w[q] * f * ds;
             }
@@ -199,12 +204,20 @@ fn gauss5() -> ([f64; 5], [f64; 5]) {
     ([-b, -a, 0.0, a, b], [wb, wa, 128.0 / 225.0, wa, wb])
 }
 
-/// The gap at r of a contact state, Hertz's closed form plus the bands by quadrature.
-fn gap_by_quadrature(z: &Zones, s: &TwoZoneState, r: f64) -> f64 {
-    let t = (r * r / (s.a * s.a) - 1.0).max(0.0).sqrt();
-    let mut h = s.a * s.a / PI * (t * t * t.atan() + t - t.atan());
+/// The gap at zone j's outer radius of a contact state, Hertz's closed form plus the bands by
+/// quadrature.
+fn gap_at_zone(z: &Zones, s: &TwoZoneState, j: usize) -> f64 {
+    let dr = s.a * s.m_minus_1[j];
+    let t = (dr * (2.0 * s.a + dr)).sqrt() / s.a;
+    // t - atan(t) by its series where t is small.
+    let t_at = if t < 1e-2 {
+        t * t * t * (1.0 / 3.0 - t * t / 5.0 + t.powi(4) / 7.0)
+    } else {
+        t - t.atan()
+    };
+    let mut h = s.a * s.a / PI * (t * t * t.atan() + t_at);
     for i in 0..2 {
-        h += 8.0 * z.lambda[i] / (3.0 * PI) * band_quadrature(r, s.a, s.c[i]);
+        h += 8.0 * z.lambda[i] / (3.0 * PI) * band_quadrature_w(s.a, dr, s.a * s.m_minus_1[i]);
     }
     h
 }
@@ -227,8 +240,7 @@ fn j_integral_is_the_total_work_across_the_branches() {
             assert_eq!(s.status, Status::Ok);
             let j = 0.5
                 * PI
-                * (z.lambda[0] * gap_by_quadrature(&z, &s, s.c[0])
-                    + z.lambda[1] * gap_by_quadrature(&z, &s, s.c[1]));
+                * (z.lambda[0] * gap_at_zone(&z, &s, 0) + z.lambda[1] * gap_at_zone(&z, &s, 1));
             assert!(
                 (j - 1.0).abs() < 1e-9,
                 "lambda {lambda} A {}: J/w = {j}",
@@ -236,7 +248,7 @@ fn j_integral_is_the_total_work_across_the_branches() {
             );
             // And each zone's gap condition on its own.
             for i in 0..2 {
-                let h = gap_by_quadrature(&z, &s, s.c[i]);
+                let h = gap_at_zone(&z, &s, i);
                 assert!((h / z.range[i] - 1.0).abs() < 1e-9, "zone {i}: {h}");
             }
         }
@@ -535,4 +547,33 @@ fn humidity_sweep_of_a_soft_sphere_is_jkr_with_the_summed_work() {
         assert!(rel(solid, -1.5 * PI * c.radius * c.work) < 1e-3);
         assert!((share - (1.0 - solid / total)).abs() < 1e-12);
     }
+}
+
+/// Every pair of zones over six decades of lambda and four of each ratio has both pull-offs,
+/// between the rigid (-2) and JKR (-3/2) values of the total work under load control, and its
+/// pull-off state meets both gap conditions (checked by quadrature).
+#[test]
+fn pulloffs_exist_across_the_parameter_plane() {
+    let mut worst: f64 = 0.0;
+    for &lambda in &[1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3] {
+        for &rho in &[0.01, 0.1, 1.0, 10.0, 100.0] {
+            for &eta in &[0.01, 0.1, 0.5, 2.0, 10.0, 100.0] {
+                let c = ratios(lambda, rho, eta);
+                let p = c.load_pulloff.load;
+                assert!(
+                    (-2.0 - 1e-12..=-1.5 + 1e-12).contains(&p),
+                    "lambda {lambda} rho {rho} eta {eta}: {p}"
+                );
+                assert!(c.disp_pulloff.load.is_finite() && c.disp_pulloff.load >= p - 1e-12);
+                let s = c.state_at_radius(c.load_pulloff.a.max(1e-6));
+                assert_eq!(s.status, Status::Ok, "lambda {lambda} rho {rho} eta {eta}");
+                for i in 0..2 {
+                    let h = gap_at_zone(&c.zones, &s, i);
+                    worst = worst.max((h / c.zones.range[i] - 1.0).abs());
+                }
+            }
+        }
+    }
+    eprintln!("worst relative error of a gap condition over the plane: {worst:.2e}");
+    assert!(worst < 1e-9, "worst gap condition {worst}");
 }

@@ -158,6 +158,9 @@ pub struct TwoZoneState {
     pub a: f64,
     /// Outer radii C_1 (solid) and C_2 (second zone): where the gap equals each range.
     pub c: [f64; 2],
+    /// `C_i / A - 1` to full relative precision (0 for an absent zone): C - A itself, where a
+    /// zone is narrow (the JKR end), keeps more digits here than in `c`.
+    pub m_minus_1: [f64; 2],
     pub load: f64,
     pub approach: f64,
     pub load_stable: bool,
@@ -170,6 +173,7 @@ impl TwoZoneState {
         TwoZoneState {
             a: f64::NAN,
             c: [f64::NAN; 2],
+            m_minus_1: [f64::NAN; 2],
             load: f64::NAN,
             approach: f64::NAN,
             load_stable: false,
@@ -339,6 +343,7 @@ impl TwoZoneContext {
             Some(p) if p.load.is_finite() && p.approach.is_finite() && p.a > 0.0 => TwoZoneState {
                 a: p.a,
                 c: p.c,
+                m_minus_1: p.mu.map(|m| m * m / (1.0 + (1.0 + m * m).sqrt())),
                 load: p.load,
                 approach: p.approach,
                 load_stable: x <= self.load_pulloff.x,
@@ -355,14 +360,17 @@ impl TwoZoneContext {
         }
         let c = s.a * (1.0 + s.m_minus_1);
         let mut cs = [s.a; 2];
-        for (i, ci) in cs.iter_mut().enumerate() {
+        let mut mm = [0.0; 2];
+        for i in 0..2 {
             if self.zones.present(i) {
-                *ci = c;
+                cs[i] = c;
+                mm[i] = s.m_minus_1;
             }
         }
         TwoZoneState {
             a: s.a,
             c: cs,
+            m_minus_1: mm,
             load: s.load,
             approach: s.approach,
             load_stable: a_stable.0,
@@ -383,14 +391,17 @@ impl TwoZoneContext {
             }
             let c = a * (1.0 + r.m_minus_1);
             let mut cs = [a; 2];
-            for (i, ci) in cs.iter_mut().enumerate() {
+            let mut mm = [0.0; 2];
+            for i in 0..2 {
                 if self.zones.present(i) {
-                    *ci = c;
+                    cs[i] = c;
+                    mm[i] = r.m_minus_1;
                 }
             }
             return TwoZoneState {
                 a,
                 c: cs,
+                m_minus_1: mm,
                 load: r.load,
                 approach: r.approach,
                 load_stable: r.load_stable,
