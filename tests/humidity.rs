@@ -577,3 +577,46 @@ fn pulloffs_exist_across_the_parameter_plane() {
     eprintln!("worst relative error of a gap condition over the plane: {worst:.2e}");
     assert!(worst < 1e-9, "worst gap condition {worst}");
 }
+
+#[test]
+fn pulloff_command_takes_the_second_zone_as_two_ratios() {
+    let csv = |args: &[&str]| -> Vec<f64> {
+        let o = tabor_cli(args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let t = String::from_utf8(o.stdout).unwrap();
+        let line = t.lines().nth(1).unwrap().to_string();
+        line.split(',').map(|v| v.parse().unwrap()).collect()
+    };
+    // Equal ranges and stresses: MD with twice the solid's stress in the total-w units,
+    // lambda_sum = 2 * 0.3 / 2^(1/3).
+    let two = csv(&[
+        "pulloff",
+        "--lambda",
+        "0.3",
+        "--stress-ratio",
+        "1",
+        "--range-ratio",
+        "1",
+        "--format",
+        "csv",
+    ]);
+    let sum = format!("{}", 2.0 * 0.3 / 2f64.cbrt());
+    let md = csv(&["pulloff", "--lambda", &sum, "--format", "csv"]);
+    assert!(rel(two[3], md[1]) < 1e-14, "{} vs {}", two[3], md[1]);
+    assert!(rel(two[6], md[4]) < 1e-14);
+    // A meniscus: between the limits, and below the solid's own pull-off in pi (w1 + w2) R.
+    let wet = csv(&[
+        "pulloff",
+        "--lambda",
+        "2",
+        "--stress-ratio",
+        "0.2",
+        "--range-ratio",
+        "8",
+        "--format",
+        "csv",
+    ]);
+    assert!(wet[3] > -2.0 && wet[3] < -1.5);
+    let o = tabor_cli(&["pulloff", "--lambda", "1", "--stress-ratio", "0.5"]);
+    assert_eq!(o.status.code(), Some(1));
+}
