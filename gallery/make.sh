@@ -30,6 +30,9 @@ $T atlas --out-dir $G/atlas
 $T scene --preset afm-si --plot $G/scene_afm.png > $G/scene_afm.txt
 $T scene --preset afm-si --double-column --plot $G/scene_afm_double.png > /dev/null
 $T scene --preset pdms-glass --plot $G/scene_pdms.png > $G/scene_pdms.txt
+$T scene examples/si_tip_40rh.json > $G/scene_afm_40rh.txt
+$T humidity --scene examples/si_tip_40rh.json --points 31 --plot $G/humidity_afm.png > $G/humidity_afm.txt
+$T humidity --preset pdms-glass --contact-angle-deg 30 --points 31 --plot $G/humidity_pdms.png > $G/humidity_pdms.txt
 for l in 0.1 1 10; do
     $T cycle --lambda $l --plot $G/cycle_grips_$l.png -o $G/cycle_grips_$l.csv
 done

@@ -646,13 +646,115 @@ pub struct PulloffArgs {
     /// Maugis parameters, comma separated.
     #[arg(long, value_delimiter = ',', required = true, num_args = 1..)]
     pub lambda: Vec<f64>,
+    /// A second Dugdale zone (e.g. a water meniscus): its stress over the solid's, s2/s1.
+    /// Loads and radii are then in units built on the total w (docs/PHYSICS.md section 10).
+    #[arg(long, requires = "range_ratio")]
+    pub stress_ratio: Option<f64>,
+    /// The second zone's range over the solid's, h2/h1.
+    #[arg(long, requires = "stress_ratio")]
+    pub range_ratio: Option<f64>,
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
 }
 
+/// Pull-offs of the two-zone law: the solid's lambda with a second zone given by its stress and
+/// range ratios.
+fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
+    use crate::physics::two_zone::Zones;
+    use crate::solver::two_zone::TwoZoneContext;
+    let mut rows = Vec::new();
+    for &l in &a.lambda {
+        let z = Zones::from_ratios(l, rho, eta)
+            .map_err(|e| anyhow::anyhow!("--lambda {l}, --stress-ratio, --range-ratio: {e}"))?;
+        let ctx = TwoZoneContext::new(z).map_err(|st| {
+            anyhow::anyhow!(
+                "--lambda {l}: the two-zone curve could not be computed ({})",
+                st.name()
+            )
+        })?;
+        rows.push((l, ctx));
+    }
+    let cols = [
+        "lambda",
+        "stress_ratio",
+        "range_ratio",
+        "load_control_load",
+        "load_control_A",
+        "load_control_approach",
+        "displacement_control_load",
+        "displacement_control_A",
+        "displacement_control_approach",
+    ];
+    let vals = |l: f64, c: &TwoZoneContext| {
+        [
+            l,
+            rho,
+            eta,
+            c.load_pulloff.load,
+            c.load_pulloff.a,
+            c.load_pulloff.approach,
+            c.disp_pulloff.load,
+            c.disp_pulloff.a,
+            c.disp_pulloff.approach,
+        ]
+    };
+    let text = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(cols)?;
+            for (l, c) in &rows {
+                w.write_record(vals(*l, c).map(fmt17))?;
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        Format::Json => {
+            let res: Vec<_> = rows
+                .iter()
+                .map(|(l, c)| {
+                    let m: serde_json::Map<_, _> = cols
+                        .iter()
+                        .zip(vals(*l, c))
+                        .map(|(k, v)| (k.to_string(), json_num(v)))
+                        .collect();
+                    serde_json::Value::Object(m)
+                })
+                .collect();
+            serde_json::to_string_pretty(&json!({"units": "total w = w1 + w2", "results": res}))?
+                + "\n"
+        }
+        Format::Text => {
+            let mut t = format!(
+                "two Dugdale zones, stress ratio {rho}, range ratio {eta}; loads in pi (w1 + w2) R\n{:>12}  {:>20} {:>12}   {:>20} {:>12}\n",
+                "lambda", "Pbar_c (load ctl)", "A there", "Pbar (displ. ctl)", "A there"
+            );
+            for (l, c) in &rows {
+                let _ = writeln!(
+                    t,
+                    "{:>12}  {:>20.15} {:>12.8}   {:>20.15} {:>12.8}{}",
+                    l,
+                    c.load_pulloff.load,
+                    c.load_pulloff.a,
+                    c.disp_pulloff.load,
+                    c.disp_pulloff.a,
+                    if c.disp_pulloff.at_zero_radius() {
+                        "  (lost at A = 0)"
+                    } else {
+                        ""
+                    }
+                );
+            }
+            t
+        }
+    };
+    write_output(&a.output, text.as_bytes())
+}
+
 pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
+    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+        return pulloff_two_zone(&a, rho, eta);
+    }
     let mut rows = Vec::new();
     for &l in &a.lambda {
         let ctx = LambdaContext::new(l).context("--lambda")?;

@@ -39,6 +39,9 @@ pub enum Command {
     Infer(scene::InferArgs),
     /// Approach-retract force curves: jump-in, jump-out and the energy lost per cycle.
     Cycle(scene::CycleArgs),
+    /// Pull-off against relative humidity: solid adhesion and the water meniscus together (two
+    /// Dugdale zones), the meniscus' share and where it dominates.
+    Humidity(scene::HumidityArgs),
     /// Pressure and surface gap inside and around the contact (MD, Hertz, DMT, JKR), stress
     /// intensity and energy release rate at the contact edge.
     Profile(profile::ProfileArgs),
@@ -242,6 +245,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Scene(a) => scene::scene(a),
         Command::Infer(a) => scene::infer_cmd(a),
         Command::Cycle(a) => scene::cycle(a),
+        Command::Humidity(a) => scene::humidity_cmd(a),
         Command::Profile(a) => profile::run(a),
         Command::Fit(a) => fit::run(*a),
         Command::Rough(a) => rough::run(a),

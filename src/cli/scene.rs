@@ -58,6 +58,11 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let r = solve_scene(&input)?;
+    if !figure.is_empty() && r.meniscus.is_some() {
+        bail!(
+            "--plot is not available yet for a scene with a meniscus: use `tabor humidity --plot`"
+        );
+    }
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         _ => scene_text(&r),
@@ -172,6 +177,33 @@ pub fn scene_text(r: &SceneResult) -> String {
         "  Maugis parameter lambda = {:.4}, Tabor parameter = {:.4}",
         r.lambda, r.tabor_parameter
     );
+    if let Some(m) = &r.meniscus {
+        let _ = writeln!(
+            t,
+            "  water meniscus at RH = {:.1}%: Kelvin radius {}, Laplace pressure {}, height {}, w = {:.4} J/m^2, lambda = {:.4}",
+            100.0 * r.relative_humidity.unwrap_or(f64::NAN),
+            si(m.kelvin_radius_m, "m"),
+            si(m.laplace_pressure_pa, "Pa"),
+            si(m.range_m, "m"),
+            m.work_of_adhesion_j_m2,
+            m.lambda
+        );
+        let _ = writeln!(
+            t,
+            "  dry pull-off for comparison: {} (load control), {} (displacement control); below: solid and meniscus",
+            si(r.dry_pulloff_force_load_control_N.unwrap_or(f64::NAN), "N"),
+            si(r.dry_pulloff_force_displacement_control_N.unwrap_or(f64::NAN), "N")
+        );
+        for w in &r.meniscus_warnings {
+            let _ = writeln!(t, "  warning: {w}");
+        }
+    } else if let Some(rh) = r.relative_humidity {
+        let _ = writeln!(
+            t,
+            "  RH = {:.1}%: no meniscus (contact angle 90 degrees or more, or RH = 0): the dry contact",
+            100.0 * rh
+        );
+    }
     let _ = writeln!(
         t,
         "  pull-off force: {} (load control), {} (displacement control); under this scene's control ({}): {}",
@@ -488,4 +520,127 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         eprintln!("wrote the figure");
     }
     Ok(())
+}
+
+#[derive(Args, Debug)]
+pub struct HumidityArgs {
+    /// Scene file (JSON, SI units); its "humidity" object, if any, gives the liquid and the
+    /// contact angle (its relative_humidity is replaced by the sweep).
+    #[arg(long, conflicts_with = "preset")]
+    pub scene: Option<String>,
+    /// A built-in scene: afm-si, pdms-glass, mica-sfa, graphene-mems, hydrogel-titanium.
+    #[arg(long)]
+    pub preset: Option<String>,
+    #[arg(long, default_value_t = 0.05)]
+    pub rh_min: f64,
+    #[arg(long, default_value_t = 0.95)]
+    pub rh_max: f64,
+    #[arg(long, default_value_t = 19)]
+    pub points: usize,
+    /// Contact angle of water (degrees) [default: the scene's, else 0, a fully wetting surface].
+    #[arg(long)]
+    pub contact_angle_deg: Option<f64>,
+    #[arg(long, value_parser = super::formats(&["text", "csv", "json"]), default_value_t = Format::Text)]
+    pub format: Format,
+    #[arg(long, short, default_value = "-")]
+    pub output: String,
+    /// Draw the pull-off against RH (solid, meniscus, total) (.png, .svg or .pdf).
+    #[arg(long)]
+    pub plot: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
+}
+
+pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
+    let input: SceneInput = match (&a.scene, &a.preset) {
+        (_, Some(p)) => preset_named(p)?,
+        (Some(f), None) => read_scene(f)?,
+        (None, None) => bail!(
+            "give --scene FILE or --preset ({})",
+            preset_names().join(", ")
+        ),
+    };
+    let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
+    a.figure.check_distinct(
+        a.plot.as_deref(),
+        "--plot",
+        std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
+    )?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let c = crate::scene::contact_of(&input)?;
+    let mut base = input
+        .humidity
+        .clone()
+        .unwrap_or_else(|| crate::scene::humidity::HumidityInput::water(0.5, 0.0));
+    if let Some(t) = a.contact_angle_deg {
+        base.contact_angle_deg = t;
+    }
+    // The liquid's values are checked once here, at a humidity inside the range.
+    base.relative_humidity = 0.5;
+    base.meniscus(&c)?;
+    let name = input.name.clone().unwrap_or_else(|| "scene".into());
+    let r = crate::scene::humidity::sweep(&name, &c, &base, a.rh_min, a.rh_max, a.points)?;
+    let text = match a.format {
+        Format::Json => serde_json::to_string_pretty(&r)? + "\n",
+        Format::Csv => humidity_csv(&r),
+        Format::Text => humidity_text(&r),
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Pulloff, &print, &figure, &|root| {
+            crate::render::plots::humidity(root, &r)
+        })
+        .context("drawing the humidity figure")?;
+        eprintln!("wrote the figure");
+    }
+    Ok(())
+}
+
+fn humidity_csv(r: &crate::scene::humidity::HumiditySweep) -> String {
+    let mut t = String::from("relative_humidity,kelvin_radius_m,meniscus_range_m,meniscus_lambda,pulloff_solid_N,pulloff_meniscus_N,pulloff_total_N,meniscus_share\n");
+    for p in &r.points {
+        let _ = writeln!(
+            t,
+            "{},{:e},{:e},{},{:e},{:e},{:e},{}",
+            p.relative_humidity,
+            p.kelvin_radius_m,
+            p.meniscus_range_m,
+            p.meniscus_lambda,
+            p.pulloff_solid_N,
+            p.pulloff_meniscus_N,
+            p.pulloff_total_N,
+            p.meniscus_share
+        );
+    }
+    t
+}
+
+fn humidity_text(r: &crate::scene::humidity::HumiditySweep) -> String {
+    let mut t = String::new();
+    let _ = writeln!(t, "{}", r.name);
+    let _ = writeln!(
+        t,
+        "  solid w = {} J/m^2; water meniscus w = 2 gamma cos(theta) = {:.4} J/m^2 (theta = {} deg)",
+        r.work_of_adhesion_solid_j_m2, r.work_of_adhesion_meniscus_j_m2, r.contact_angle_deg
+    );
+    let _ = writeln!(t, "  {}", r.meniscus_dominates);
+    let _ = writeln!(
+        t,
+        "  {:>6} {:>12} {:>12} {:>14} {:>14} {:>14} {:>7}",
+        "RH", "r_K", "height", "solid", "meniscus", "total", "share"
+    );
+    for p in &r.points {
+        let _ = writeln!(
+            t,
+            "  {:>5.1}% {:>12} {:>12} {:>14} {:>14} {:>14} {:>6.1}%",
+            100.0 * p.relative_humidity,
+            si(p.kelvin_radius_m, "m"),
+            si(p.meniscus_range_m, "m"),
+            si(p.pulloff_solid_N, "N"),
+            si(p.pulloff_meniscus_N, "N"),
+            si(p.pulloff_total_N, "N"),
+            100.0 * p.meniscus_share
+        );
+    }
+    t
 }

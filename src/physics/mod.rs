@@ -9,3 +9,4 @@ pub mod params;
 pub mod real;
 /// Every threshold of the contract and of the solvers' branching, named once.
 pub mod tolerances;
+pub mod two_zone;

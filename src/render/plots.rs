@@ -1320,3 +1320,90 @@ where
     }
     Ok(())
 }
+
+/// Pull-off force (magnitude, load control) against relative humidity: the dry solid, the
+/// meniscus alone and both together (two Dugdale zones), with the humidity above which the
+/// meniscus adds more than half.
+pub fn humidity<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    r: &crate::scene::humidity::HumiditySweep,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let pts = &r.points;
+    let (x0, x1) = (
+        100.0 * pts[0].relative_humidity,
+        100.0 * pts[pts.len() - 1].relative_humidity,
+    );
+    let fmax = pts
+        .iter()
+        .map(|p| {
+            p.pulloff_total_N
+                .abs()
+                .max(p.pulloff_solid_N.abs())
+                .max(p.pulloff_meniscus_N.abs())
+        })
+        .fold(0.0, f64::max)
+        * 1.5;
+    let (fu, fp) = super::si_prefix(fmax);
+    let mut chart = builder(root, &r.name).build_cartesian_2d(x0..x1, 0.0..fmax / fu)?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .light_line_style(RGBColor(245, 245, 245))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_desc("relative humidity  (%)")
+        .y_desc(format!("pull-off force  |P_{{c}}| ({fp}N)"))
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .draw()?;
+    let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(8);
+    for (label, color, f) in [
+        (
+            "solid and meniscus",
+            BLUE_,
+            &(|p: &crate::scene::humidity::HumidityPoint| p.pulloff_total_N)
+                as &dyn Fn(&crate::scene::humidity::HumidityPoint) -> f64,
+        ),
+        ("meniscus alone", GREEN_, &|p| p.pulloff_meniscus_N),
+        ("solid alone (dry)", ORANGE_, &|p| p.pulloff_solid_N),
+    ] {
+        chart
+            .draw_series(LineSeries::new(
+                pts.iter()
+                    .map(|p| (100.0 * p.relative_humidity, f(p).abs() / fu)),
+                thick(color),
+            ))?
+            .label(label)
+            .legend(sample(thick(color)));
+    }
+    if let Some(rh) = r.meniscus_dominates_above_rh {
+        let x = 100.0 * rh;
+        if x > x0 {
+            chart.draw_series(DashedLineSeries::new(
+                vec![(x, 0.0), (x, fmax / fu)],
+                8,
+                12,
+                ShapeStyle::from(&GRAY_).stroke_width(3),
+            ))?;
+            chart.draw_series(std::iter::once(Text::new(
+                "meniscus > half",
+                (x + 0.01 * (x1 - x0), 0.05 * fmax / fu),
+                ("sans-serif", NOTE)
+                    .into_font()
+                    .color(&GRAY_)
+                    .pos(Pos::new(HPos::Left, VPos::Bottom)),
+            )))?;
+        }
+    }
+    // The legend in the band above the curves (the axis reaches 1.5 times the largest force).
+    let (lx, ly) = chart.backend_coord(&(x0 + 0.03 * (x1 - x0), 0.98 * fmax / fu));
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let at = SeriesLabelPosition::Coordinate(lx - px.start, ly - py.start);
+    super::legend(&mut chart, at, NOTE)?;
+    Ok(())
+}

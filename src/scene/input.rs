@@ -34,6 +34,8 @@ pub struct SceneInput {
     pub control: Option<SceneControl>,
     /// Source of the values, for the record.
     pub source: Option<String>,
+    /// Ambient humidity: a water meniscus as a second Dugdale zone (docs/PHYSICS.md section 10).
+    pub humidity: Option<super::humidity::HumidityInput>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]

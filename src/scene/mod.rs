@@ -5,6 +5,7 @@
 //! built-in scenes (`presets`, from `data/presets.json`) are beside it.
 
 mod fit;
+pub mod humidity;
 mod infer;
 mod input;
 mod presets;
@@ -63,6 +64,19 @@ pub struct SceneResult {
     pub control: String,
     pub loads: Vec<LoadResult>,
     pub source: Option<String>,
+    /// With humidity: the meniscus, and every force, radius and approach above is for the solid
+    /// plus the meniscus.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meniscus: Option<humidity::Meniscus>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub relative_humidity: Option<f64>,
+    /// The dry contact's pull-offs (N), for comparison, where there is a meniscus.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dry_pulloff_force_load_control_N: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dry_pulloff_force_displacement_control_N: Option<f64>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub meniscus_warnings: Vec<String>,
 }
 
 fn opt(x: f64) -> Option<f64> {
@@ -125,7 +139,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let (rec, recommendation) = recommend(&results, tol, lambda, c.tabor());
     let (pulloff_control, control_name) = pulloff_under_control(s, &c, &ctx)?;
     let (fs, rs) = (c.force_scale(), c.radius_scale());
-    Ok(SceneResult {
+    let dry = SceneResult {
         pulloff_force_under_control_N: pulloff_control,
         control: control_name,
         name: s.name.clone().unwrap_or_else(|| "scene".into()),
@@ -145,6 +159,107 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         recommendation,
         loads: results,
         source: s.source.clone(),
+        meniscus: None,
+        relative_humidity: None,
+        dry_pulloff_force_load_control_N: None,
+        dry_pulloff_force_displacement_control_N: None,
+        meniscus_warnings: Vec::new(),
+    };
+    match &s.humidity {
+        None => Ok(dry),
+        Some(h) => match h.meniscus(&c)? {
+            None => Ok(SceneResult {
+                relative_humidity: Some(h.relative_humidity),
+                ..dry
+            }),
+            Some(m) => wet_scene(s, &c, m, h.relative_humidity, dry),
+        },
+    }
+}
+
+/// The scene's results for the solid plus the meniscus (the two-zone law), the dry pull-offs
+/// kept for comparison.
+fn wet_scene(
+    s: &SceneInput,
+    c: &Contact,
+    m: humidity::Meniscus,
+    rh: f64,
+    dry: SceneResult,
+) -> Result<SceneResult, ParamError> {
+    let (ctx, u) = humidity::wet_context(c, &m)?;
+    let (fs, rs, ds) = (u.load, u.radius, u.approach);
+    let mut loads = dry.loads.clone();
+    for l in loads.iter_mut() {
+        let st = ctx.state_at_load(l.load_n / fs);
+        let ok = st.status == Status::Ok;
+        let a = st.a * rs;
+        l.load_normalised = l.load_n / fs;
+        l.status = st.status;
+        l.contact_radius_m = ok.then_some(a);
+        l.approach_m = ok.then_some(st.approach * ds);
+        l.pressure_scale_pa = ok.then_some(2.0 * c.e_star * a / (std::f64::consts::PI * c.radius));
+        l.a_over_r = ok.then_some(a / c.radius);
+        (l.err_hertz, l.err_dmt, l.err_jkr, l.rigid_measure) = (None, None, None, None);
+        l.model = if ok {
+            "solid_and_meniscus"
+        } else {
+            "no_contact"
+        };
+        l.why = if ok {
+            "solid and meniscus: two Dugdale zones (docs/PHYSICS.md section 10)".into()
+        } else {
+            "the load is below the pull-off of solid and meniscus: no contact".into()
+        };
+        l.friction_n = s
+            .shear_strength_pa
+            .filter(|_| ok)
+            .map(|t| t * std::f64::consts::PI * a * a);
+        l.warnings
+            .retain(|w| !w.starts_with("a/R") && !w.contains("atomic spacings"));
+        let spacing = s.atomic_spacing_m.unwrap_or(0.25e-9);
+        if ok && a / c.radius > 0.1 {
+            l.warnings.push(format!(
+                "a/R = {:.2} > 0.1: small-strain (half-space) theory breaks down",
+                a / c.radius
+            ));
+        }
+        if ok && a < 10.0 * spacing {
+            l.warnings.push(format!(
+                "the contact radius is {:.1} atomic spacings: continuum theory is questionable here",
+                a / spacing
+            ));
+        }
+    }
+    let under = match &s.control {
+        None | Some(SceneControl::Load) => ctx.load_pulloff.load * fs,
+        Some(SceneControl::Displacement) => ctx.disp_pulloff.load * fs,
+        Some(SceneControl::CantileverNM(_)) => {
+            return Err(ParamError::Missing(
+                "humidity with a cantilever control is not available yet: use \"control\": \"load\" or \"displacement\"",
+            ))
+        }
+    };
+    let zero = ctx.state_at_load(0.0);
+    Ok(SceneResult {
+        pulloff_force_load_control_N: ctx.load_pulloff.load * fs,
+        pulloff_force_displacement_control_N: ctx.disp_pulloff.load * fs,
+        pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
+        zero_load_contact_radius_m: zero.a * rs,
+        pulloff_force_under_control_N: under,
+        recommended_model: "solid_and_meniscus",
+        recommendation: format!(
+            "solid and water meniscus together: two Dugdale zones (solid lambda = {:.3}, meniscus lambda = {:.3}, meniscus share of w = {:.0}%)",
+            dry.lambda,
+            m.lambda,
+            100.0 * m.work_of_adhesion_j_m2 / (m.work_of_adhesion_j_m2 + c.work)
+        ),
+        loads,
+        meniscus: Some(m),
+        relative_humidity: Some(rh),
+        dry_pulloff_force_load_control_N: Some(dry.pulloff_force_load_control_N),
+        dry_pulloff_force_displacement_control_N: Some(dry.pulloff_force_displacement_control_N),
+        meniscus_warnings: humidity::meniscus_warnings(&m, c),
+        ..dry
     })
 }
 

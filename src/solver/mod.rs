@@ -6,6 +6,7 @@ pub mod curve;
 pub mod naive;
 pub mod root;
 pub mod start;
+pub mod two_zone;
 
 pub use crate::physics::domain;
 pub use context::{LambdaContext, PullOff, RadiusState};

@@ -1,0 +1,321 @@
+//! Humidity: the water meniscus as a second Dugdale zone beside the solid's (docs/PHYSICS.md
+//! section 10). The Kelvin radius fixes the meniscus' Laplace pressure and its height; the
+//! contact is then the two-zone law, solved exactly.
+
+use crate::physics::params::{Contact, ParamError};
+use crate::solver::two_zone::{dimensional_zones, TwoZoneContext, Units};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// The gas constant (J/(mol K)).
+pub const R_GAS: f64 = 8.314_462_618;
+
+/// The scene's `"humidity"` object (SI units).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct HumidityInput {
+    /// Relative humidity, 0..1 (0: no meniscus).
+    pub relative_humidity: f64,
+    /// Contact angle of water on the surfaces (degrees); 90 or more: no meniscus.
+    pub contact_angle_deg: f64,
+    /// Surface tension of the liquid (N/m), default 0.072 (water at 25 C).
+    pub surface_tension_n_m: Option<f64>,
+    /// Molar volume of the liquid (m^3/mol), default 1.8e-5 (water).
+    pub molar_volume_m3_mol: Option<f64>,
+    /// Temperature (K), default 298.15.
+    pub temperature_k: Option<f64>,
+}
+
+/// The meniscus as a Dugdale zone, as the scene's JSON reports it.
+#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+pub struct Meniscus {
+    pub kelvin_radius_m: f64,
+    /// gamma / r_K: the meniscus' tensile stress (Pa).
+    pub laplace_pressure_pa: f64,
+    /// 2 r_K cos(theta): the largest gap the meniscus bridges (m).
+    pub range_m: f64,
+    /// 2 gamma cos(theta) (J/m^2).
+    pub work_of_adhesion_j_m2: f64,
+    /// The Maugis parameter of the meniscus alone, `2 s (R/(pi w K^2))^(1/3)` with its own w.
+    pub lambda: f64,
+}
+
+fn bad(field: &'static str, value: f64, allowed: &'static str) -> ParamError {
+    ParamError::OutOfRange {
+        field,
+        value,
+        allowed,
+    }
+}
+
+impl HumidityInput {
+    /// A humidity for `rh` with water's defaults and the contact angle `theta_deg`.
+    pub fn water(rh: f64, theta_deg: f64) -> HumidityInput {
+        HumidityInput {
+            relative_humidity: rh,
+            contact_angle_deg: theta_deg,
+            surface_tension_n_m: None,
+            molar_volume_m3_mol: None,
+            temperature_k: None,
+        }
+    }
+
+    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
+    /// contact angle of 90 degrees or more: water does not bridge the gap).
+    pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
+        let rh = self.relative_humidity;
+        if !(rh.is_finite() && (0.0..1.0).contains(&rh)) {
+            return Err(bad(
+                "humidity.relative_humidity",
+                rh,
+                "in 0..1 (a fraction, below 1: at 1 the Kelvin radius is infinite)",
+            ));
+        }
+        let theta = self.contact_angle_deg;
+        if !(theta.is_finite() && (0.0..=180.0).contains(&theta)) {
+            return Err(bad(
+                "humidity.contact_angle_deg",
+                theta,
+                "in 0..180 (degrees)",
+            ));
+        }
+        let gamma = self.surface_tension_n_m.unwrap_or(0.072);
+        if !(gamma.is_finite() && gamma > 0.0) {
+            return Err(bad("humidity.surface_tension_n_m", gamma, "> 0 (N/m)"));
+        }
+        let vm = self.molar_volume_m3_mol.unwrap_or(1.8e-5);
+        if !(vm.is_finite() && vm > 0.0) {
+            return Err(bad("humidity.molar_volume_m3_mol", vm, "> 0 (m^3/mol)"));
+        }
+        let t = self.temperature_k.unwrap_or(298.15);
+        if !(t.is_finite() && t > 0.0) {
+            return Err(bad("humidity.temperature_k", t, "> 0 (K)"));
+        }
+        if rh == 0.0 || theta >= 90.0 {
+            return Ok(None);
+        }
+        let r_k = gamma * vm / (R_GAS * t * (1.0 / rh).ln());
+        let cos = (theta * PI / 180.0).cos();
+        let stress = gamma / r_k;
+        let range = 2.0 * r_k * cos;
+        let w = stress * range;
+        let k = c.k();
+        Ok(Some(Meniscus {
+            kelvin_radius_m: r_k,
+            laplace_pressure_pa: stress,
+            range_m: range,
+            work_of_adhesion_j_m2: w,
+            lambda: 2.0 * stress * (c.radius / (PI * w * k * k)).cbrt(),
+        }))
+    }
+}
+
+/// Where the continuum meniscus is doubtful, one sentence each.
+pub fn meniscus_warnings(m: &Meniscus, c: &Contact) -> Vec<String> {
+    let mut w = Vec::new();
+    if m.kelvin_radius_m < 0.25e-9 {
+        w.push(format!(
+            "the Kelvin radius is {:.2} nm, below a water molecule's size: the continuum meniscus is questionable",
+            m.kelvin_radius_m * 1e9
+        ));
+    }
+    if m.range_m > 0.1 * c.radius {
+        w.push(format!(
+            "the meniscus height 2 r_K cos(theta) = {:.3e} m is {:.0}% of R: the thin-annulus model fails near saturation",
+            m.range_m,
+            100.0 * m.range_m / c.radius
+        ));
+    }
+    w
+}
+
+/// The contact of the solid plus the meniscus: the two-zone context and its units.
+pub fn wet_context(c: &Contact, m: &Meniscus) -> Result<(TwoZoneContext, Units), ParamError> {
+    let h0 = c.work / c.s0;
+    let (zones, units) = dimensional_zones(
+        c.k(),
+        c.radius,
+        [c.s0, m.laplace_pressure_pa],
+        [h0, m.range_m],
+    )
+    .map_err(|_| {
+        bad(
+            "humidity",
+            m.work_of_adhesion_j_m2,
+            "a meniscus the two-zone solver accepts",
+        )
+    })?;
+    let ctx = TwoZoneContext::new(zones).map_err(|_| {
+        bad(
+            "the stress numbers of solid and meniscus",
+            zones.lambda[1],
+            "in 1e-8..1e6 (check the units of E*, R, w and the force range)",
+        )
+    })?;
+    Ok((ctx, units))
+}
+
+/// One relative humidity of a sweep: the pull-offs (load control, N; tensile negative).
+#[derive(Clone, Debug, Serialize)]
+#[allow(non_snake_case)]
+pub struct HumidityPoint {
+    pub relative_humidity: f64,
+    pub kelvin_radius_m: f64,
+    pub meniscus_range_m: f64,
+    pub meniscus_lambda: f64,
+    /// The dry contact (solid adhesion alone).
+    pub pulloff_solid_N: f64,
+    /// The meniscus alone (no solid adhesion).
+    pub pulloff_meniscus_N: f64,
+    /// Solid and meniscus together (the two-zone law).
+    pub pulloff_total_N: f64,
+    /// The fraction of the total pull-off that the meniscus adds, 1 - solid / total.
+    pub meniscus_share: f64,
+}
+
+/// Pull-off against relative humidity for one scene.
+#[derive(Clone, Debug, Serialize)]
+pub struct HumiditySweep {
+    pub name: String,
+    pub contact_angle_deg: f64,
+    pub work_of_adhesion_solid_j_m2: f64,
+    pub work_of_adhesion_meniscus_j_m2: f64,
+    pub points: Vec<HumidityPoint>,
+    /// The relative humidity above which the meniscus adds more than half of the pull-off
+    /// (None where it never does in the range; the range's start where it always does).
+    pub meniscus_dominates_above_rh: Option<f64>,
+    pub meniscus_dominates: String,
+}
+
+/// Most points of a sweep.
+pub const MAX_SWEEP_POINTS: usize = 10_000;
+
+fn point_at(
+    c: &Contact,
+    base: &HumidityInput,
+    rh: f64,
+    dry: f64,
+) -> Result<Option<HumidityPoint>, ParamError> {
+    let h = HumidityInput {
+        relative_humidity: rh,
+        ..base.clone()
+    };
+    let Some(m) = h.meniscus(c)? else {
+        return Ok(None);
+    };
+    let (ctx, u) = wet_context(c, &m)?;
+    let alone = crate::solver::LambdaContext::new(m.lambda).map_err(|_| {
+        bad(
+            "the meniscus' Maugis parameter",
+            m.lambda,
+            "in 1e-8..1e8 (check the scene's units)",
+        )
+    })?;
+    let total = ctx.load_pulloff.load * u.load;
+    Ok(Some(HumidityPoint {
+        relative_humidity: rh,
+        kelvin_radius_m: m.kelvin_radius_m,
+        meniscus_range_m: m.range_m,
+        meniscus_lambda: m.lambda,
+        pulloff_solid_N: dry,
+        pulloff_meniscus_N: alone.load_pulloff.load * PI * m.work_of_adhesion_j_m2 * c.radius,
+        pulloff_total_N: total,
+        meniscus_share: 1.0 - dry / total,
+    }))
+}
+
+/// The pull-off of `c` against relative humidity, `n` points from `rh_min` to `rh_max`, with
+/// the liquid of `base` (its relative humidity is ignored).
+pub fn sweep(
+    name: &str,
+    c: &Contact,
+    base: &HumidityInput,
+    rh_min: f64,
+    rh_max: f64,
+    n: usize,
+) -> Result<HumiditySweep, ParamError> {
+    if !(rh_min.is_finite() && rh_min > 0.0 && rh_min < 1.0) {
+        return Err(bad("--rh-min", rh_min, "in (0, 1)"));
+    }
+    if !(rh_max.is_finite() && rh_max > rh_min && rh_max < 1.0) {
+        return Err(bad("--rh-max", rh_max, "above --rh-min and below 1"));
+    }
+    if !(2..=MAX_SWEEP_POINTS).contains(&n) {
+        return Err(bad("--points", n as f64, "in 2..10000"));
+    }
+    let dry_ctx = crate::solver::LambdaContext::new(c.lambda()).map_err(|_| {
+        bad(
+            "the Maugis parameter lambda of these inputs",
+            c.lambda(),
+            "in 1e-8..1e8, the solver's domain",
+        )
+    })?;
+    let dry = dry_ctx.load_pulloff.load * c.force_scale();
+    let mut points = Vec::with_capacity(n);
+    for i in 0..n {
+        let rh = rh_min + (rh_max - rh_min) * i as f64 / (n - 1) as f64;
+        match point_at(c, base, rh, dry)? {
+            Some(p) => points.push(p),
+            None => {
+                return Err(bad(
+                    "humidity.contact_angle_deg",
+                    base.contact_angle_deg,
+                    "below 90 for a meniscus (at 90 or more water does not bridge the gap: the dry scene)",
+                ))
+            }
+        }
+    }
+    let share = |rh: f64| -> Result<f64, ParamError> {
+        Ok(point_at(c, base, rh, dry)?.map_or(0.0, |p| p.meniscus_share))
+    };
+    let first = &points[0];
+    let (above, text) = if first.meniscus_share > 0.5 {
+        (
+            Some(rh_min),
+            format!(
+                "the meniscus adds more than half of the pull-off at every RH from {:.0}%",
+                100.0 * rh_min
+            ),
+        )
+    } else if let Some(k) = points.iter().position(|p| p.meniscus_share > 0.5) {
+        let (mut lo, mut hi) = (points[k - 1].relative_humidity, points[k].relative_humidity);
+        for _ in 0..30 {
+            let mid = 0.5 * (lo + hi);
+            if share(mid)? > 0.5 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let rh = 0.5 * (lo + hi);
+        (
+            Some(rh),
+            format!(
+                "the meniscus adds more than half of the pull-off above RH = {:.1}%",
+                100.0 * rh
+            ),
+        )
+    } else {
+        (
+            None,
+            format!(
+                "the meniscus adds less than half of the pull-off at every RH up to {:.0}%",
+                100.0 * rh_max
+            ),
+        )
+    };
+    let w2 = points_w(base);
+    Ok(HumiditySweep {
+        name: name.to_string(),
+        contact_angle_deg: base.contact_angle_deg,
+        work_of_adhesion_solid_j_m2: c.work,
+        work_of_adhesion_meniscus_j_m2: w2,
+        points,
+        meniscus_dominates_above_rh: above,
+        meniscus_dominates: text,
+    })
+}
+
+fn points_w(base: &HumidityInput) -> f64 {
+    2.0 * base.surface_tension_n_m.unwrap_or(0.072) * (base.contact_angle_deg * PI / 180.0).cos()
+}
