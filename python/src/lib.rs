@@ -706,6 +706,9 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
     m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
+    m.add("DMT_LIMIT_MAX", tabor::physics::domain::DMT_LIMIT_MAX)?;
+    m.add("LIMIT_LAMBDA_MIN", tabor::physics::domain::LIMIT_LAMBDA_MIN)?;
+    m.add("LIMIT_LAMBDA_MAX", tabor::physics::domain::LIMIT_LAMBDA_MAX)?;
     m.add("LAMBDA_D", tabor::physics::md::LAMBDA_D)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
     m.add_function(wrap_pyfunction!(python_names, m)?)?;

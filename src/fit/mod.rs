@@ -1619,7 +1619,7 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
                     curve,
                     FitStatus::InvalidInput,
                     format!(
-                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-8..1e8: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
+                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-26..1e26: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
                         crate::physics::domain::short(z0),
                         crate::physics::domain::short(s.lambda),
                         crate::physics::domain::short(s.e_star),
