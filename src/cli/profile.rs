@@ -106,6 +106,9 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         })
         .context("drawing the profile")?;
     }
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
+    }
     let md = &p.models[0];
     eprintln!(
         "lambda = {}, load {}: MD contact radius a = {}, cohesive zone to c = {}, J/w = {:.12}",
