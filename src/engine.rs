@@ -559,7 +559,10 @@ impl CheckReport {
 impl std::fmt::Display for CheckReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         if self.checked == 0 {
-            return write!(f, "cross-check against CPU f64: none made (--check 0)");
+            return write!(
+                f,
+                "cross-check against CPU f64: none made (0 points to check)"
+            );
         }
         write!(
             f,

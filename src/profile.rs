@@ -318,6 +318,6 @@ pub enum ProfileError {
     NoState(Status),
     #[error("the Maugis-Dugdale state at contact radius A = {0:e} could not be computed (`not_converged`): f64 resolves the curve down to about A = 1e-150; give a larger radius")]
     RadiusNotFound(f64),
-    #[error("--points {0} is out of range: give 16..=100000")]
+    #[error("points {0} is out of range: give 16..=100000 sampling radii")]
     Points(usize),
 }

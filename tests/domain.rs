@@ -362,3 +362,58 @@ fn command_line_reports_the_method() {
         "{err}"
     );
 }
+
+/// The library's messages name quantities, never command-line flags (the command line adds
+/// those): a map's ranges and sizes, a figure's size, a profile's sampling, a fit's segments.
+#[test]
+fn library_messages_name_quantities_not_flags() {
+    use tabor::map::{LoadAxis, MapSpec};
+    let spec = |f: &dyn Fn(&mut MapSpec)| {
+        let mut s = MapSpec {
+            lambda_min: 1e-3,
+            lambda_max: 1e3,
+            nx: 8,
+            load_axis: LoadAxis::Log,
+            load_min: 1e-3,
+            load_max: 1e3,
+            ny: 8,
+            tolerance: 0.05,
+            strength_ratios: vec![],
+        };
+        f(&mut s);
+        s.validate().unwrap_err().to_string()
+    };
+    let msgs = [
+        spec(&|s| s.lambda_min = 1e200),
+        spec(&|s| (s.lambda_min, s.lambda_max) = (10.0, 1.0)),
+        spec(&|s| s.nx = 1),
+        spec(&|s| s.tolerance = 2.0),
+        spec(&|s| s.load_min = -1.0),
+        tabor::render::Print::new(5.0, 300.0).unwrap_err(),
+        tabor::profile::profile(1.0, tabor::profile::Given::Load(0.0), 3)
+            .unwrap_err()
+            .to_string(),
+        tabor::gpu::GpuError::NoF64("x".into()).to_string(),
+    ];
+    let names = [
+        "lambda_min",
+        "lambda_min must be below lambda_max",
+        "nx and ny",
+        "tolerance",
+        "load_min > 0",
+        "width_mm 5",
+        "points 3",
+        "f32 precision",
+    ];
+    for (m, name) in msgs.iter().zip(names) {
+        assert!(m.contains(name), "{m}");
+        assert!(!m.contains("--"), "{m}");
+    }
+    // The command line puts its flags back.
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args(["map", "--nx", "1", "--out", "/nonexistent/m.png"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--nx and --ny must be in 2..=16384"), "{err}");
+}

@@ -44,6 +44,18 @@ const FLAGS: &[(&str, &str)] = &[
     ("--segment retract", "fit_segment=\"retract\""),
     ("--check 0", "check=0"),
     ("--npy or --json-full", "NPY files or save_json(full=True)"),
+    // The library's own phrases where a Python argument stands for them.
+    ("the linear load axis", "load_axis=\"linear\""),
+    ("f32 precision", "precision=\"f32\""),
+    ("the cpu backend", "backend=\"cpu\""),
+    (
+        "the approach segment instead",
+        "the approach segment instead (fit_segment=\"approach\")",
+    ),
+    (
+        "the retract segment instead",
+        "the retract segment instead (fit_segment=\"retract\")",
+    ),
     ("--lambda-min", "lambda_min"),
     ("--lambda-max", "lambda_max"),
     ("--load-min", "load_min"),

@@ -482,8 +482,8 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .collect();
     if fitted.is_empty() {
         let which = match opt.segments {
-            Segments::Retract => "no retract segment: fit the approach with --segment approach, or check the segment column (approach/retract or 0/1)",
-            Segments::Approach => "no approach segment: fit the retract with --segment retract, or check the segment column",
+            Segments::Retract => "no retract segment: fit the approach segment instead, or check the segment column (approach/retract or 0/1)",
+            Segments::Approach => "no approach segment: fit the retract segment instead, or check the segment column",
             Segments::Both => "no points",
         };
         return bad(which.to_string());
@@ -1969,7 +1969,7 @@ fn summarize(
     if let Some(e) = md.lambda_stderr {
         if e > p.lambda {
             warn.push(format!(
-                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it with --z0, fit both segments, or use a stiffer cantilever",
+                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever",
                 p.lambda
             ));
         }

@@ -69,7 +69,7 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
         .ok_or_else(|| {
             format!(
                 "lambda {} is outside the models' domain 1e-26..1e26, or the units overflow",
-                p.lambda
+                crate::physics::domain::short(p.lambda)
             )
         })?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);
