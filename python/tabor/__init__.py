@@ -6,7 +6,7 @@ library (the f64 solver on all cores, or the f32 GPU kernels with a cross-check)
 
 Normalisation (Johnson & Greenwood 1997), with K = 4/3 E*:
 
-- ``lam``: the Maugis parameter lambda = 2 s0 (R / (pi w K^2))^(1/3), in 1e-12 .. 1e12
+- ``lam``: the Maugis parameter lambda = 2 s0 (R / (pi w K^2))^(1/3), in 1e-26 .. 1e26
   (``solve`` answers loads and approaches by the DMT and JKR limits beyond it, see ``solve``)
 - ``load``: Pbar = P / (pi w R), tensile negative, |Pbar| <= 1e12
 - ``approach``: Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), |Dbar| <= 1e8
@@ -122,10 +122,10 @@ def _finite(x, name):
 
 #: The solver's domain per input: (name in messages, the test of a valid value, the range).
 _DOMAIN = {
-    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-12..1e12"),
+    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-26..1e26"),
     # Loads and approaches: the exact solver's range and the closed-form limits' beyond it.
     "lam_any": ("lambda", lambda x: _method(x) != "",
-                "1e-300..1e-26 (DMT limit), 1e-12..1e12 (exact), 1e12..1e150 (JKR limit)"),
+                "1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"),
     "load": ("load", lambda x: np.abs(x) <= 1e12, "-1e12..1e12"),
     "approach": ("approach", lambda x: np.abs(x) <= 1e8, "-1e8..1e8"),
     "radius": ("radius", lambda x: (x > 0) & (x <= 1e4), "(0, 1e4]"),
@@ -181,7 +181,7 @@ def _messages(status, keys, flats, shape):
         reasons = [_why(k, f[i]) for k, f in zip(keys, flats) if _bad(k, f[i:i + 1])[0]]
         flat[i] = "; ".join(reasons) or (
             "not certified by the DMT limit here (too close to its pull-off, or an approach "
-            "below its bound); the exact solver covers lambda >= 1e-12"
+            "below its bound); the exact solver covers lambda >= 1e-26"
             if keys[0] == "lam_any" else "outside the supported domain")
     return msg
 
@@ -201,16 +201,16 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
 
     Units (Johnson & Greenwood 1997, K = 4/3 E*): load Pbar = P / (pi w R), approach
     Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), contact radius A = a (K / (pi w R^2))^(1/3),
-    lam = 2 s0 (R / (pi w K^2))^(1/3). Domain: lam in 1e-12..1e12 (the exact solver),
+    lam = 2 s0 (R / (pi w K^2))^(1/3). Domain: lam in 1e-26..1e26 (the exact solver),
     |load| <= 1e12, |approach| <= 1e8, 0 < radius <= 1e4; outside it the status is
     ``invalid_input``. Beyond the exact solver's lambda range a load or an approach is answered
     by the closed-form limit where it is within 1e-13 of MD: DMT for lam in 1e-300..1e-26
-    (away from its pull-off), JKR for lam in 1e12..1e150; ``method`` says which.
+    (away from its pull-off), JKR for lam in 1e26..1e150; ``method`` says which.
 
     Parameters
     ----------
     lam : array_like
-        Maugis parameter lambda (1e-12 .. 1e12; the limits beyond, see above).
+        Maugis parameter lambda (1e-26 .. 1e26; the limits beyond, see above).
     load : array_like, optional
         Normalised load Pbar: the state on the stable branch under load control.
     approach : array_like, optional
@@ -294,7 +294,7 @@ def pulloff(lam):
     ``load_control_A``, ``load_control_approach``, ``displacement_control_load``,
     ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero radius),
     ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
-    Raises ValueError for a lambda outside 1e-12 .. 1e12.
+    Raises ValueError for a lambda outside 1e-26 .. 1e26.
     """
     (lam_f,), shape = _flat(lam, names=["lam"])
     r = _tabor.pulloff(lam_f)
