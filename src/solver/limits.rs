@@ -17,9 +17,9 @@ use crate::physics::domain::{self, Method, DMT_LIMIT_MAX, LAMBDA_MAX, LIMIT_TOL}
 use std::f64::consts::PI;
 
 /// `16 (pi/2 - 1) / (3 sqrt(pi))`: the lambda^1.5 term of Pbar_MD - Pbar_DMT at fixed A.
-pub const DMT_LOAD_C15: f64 = 1.717_532_490_160_009;
+pub const DMT_LOAD_C15: f64 = 1.717_532_490_160_009_3;
 /// `8 / (3 sqrt(pi))`: Dbar_DMT - Dbar_MD at fixed A, over lambda^0.5.
-pub const DMT_APPROACH_C05: f64 = 1.504_505_556_127_350;
+pub const DMT_APPROACH_C05: f64 = 1.504_505_556_127_350_2;
 
 /// The state of a (lambda, value) point by the closed-form limit for `lambda`; `None` where
 /// lambda has no limit method (inside the MD domain, or outside every domain).
