@@ -29,8 +29,12 @@
 //! assert!((s.a - 1.7289400402050878).abs() < 1e-14);
 //! let d = solve_one(1.0, s.approach, Control::Displacement);
 //! assert!((d.a / s.a - 1.0).abs() < 1e-12);
-//! // Outside the domain: a status, not a number.
-//! assert_eq!(solve_one(1e-22, 1.0, Control::Load).status, Status::InvalidInput);
+//! // Beyond the exact solver's lambda range (1e-26..1e26) the certified closed-form limit,
+//! // named by `domain::method`; outside every method a status, not a number.
+//! let j = solve_one(1e30, 0.0, Control::Load);
+//! assert!((j.a - 6f64.cbrt()).abs() < 1e-15);
+//! assert_eq!(tabor::physics::domain::method_name(1e30), "jkr_limit");
+//! assert_eq!(solve_one(1e-301, 1.0, Control::Load).status, Status::InvalidInput);
 //! ```
 //!
 //! Pull-offs under both controls, and the whole curve of one lambda:

@@ -60,6 +60,8 @@ pub struct Profile {
     /// Dugdale stress lambda/2 in the pressure's unit.
     pub dugdale_stress: f64,
     pub models: Vec<ModelProfile>,
+    /// Where the state is outside what the models assume (SI profiles: a/R above 0.1).
+    pub warnings: Vec<String>,
 }
 
 const EDGE_PER_DECADE: i32 = 12;
@@ -269,6 +271,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
         dugdale_range: h0,
         dugdale_stress: 0.5 * lambda,
         models: vec![md_profile, hertz, dmt, jkr],
+        warnings: Vec::new(),
     })
 }
 
@@ -280,6 +283,13 @@ impl Profile {
         let fp = ff / (fr * fr);
         let mut p = self.clone();
         p.units = "SI";
+        // The same small-strain check as a scene's, on the MD contact radius.
+        if let Some(a) = p.models.first().and_then(|m| m.a) {
+            p.warnings
+                .extend(crate::physics::params::small_strain_warning(
+                    a * fr / c.radius,
+                ));
+        }
         p.dugdale_range *= fd;
         p.dugdale_stress *= fp;
         for m in &mut p.models {
@@ -308,6 +318,6 @@ pub enum ProfileError {
     NoState(Status),
     #[error("the Maugis-Dugdale state at contact radius A = {0:e} could not be computed (`not_converged`): f64 resolves the curve down to about A = 1e-150; give a larger radius")]
     RadiusNotFound(f64),
-    #[error("--points {0} is out of range: give 16..=100000")]
+    #[error("points {0} is out of range: give 16..=100000 sampling radii")]
     Points(usize),
 }

@@ -27,13 +27,13 @@ fn solve_file_round_trip() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&out).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines[0], "lambda,load,A,approach,m_minus_1,status");
+    assert_eq!(lines[0], "lambda,load,A,approach,m_minus_1,status,method");
     assert_eq!(lines.len(), 4);
     // Row order kept; A at lambda = 1, load 0.5 (f64 solver, 17 digits).
     let a: f64 = lines[1].split(',').nth(2).unwrap().parse().unwrap();
     assert!((a - 1.7289400402050878).abs() < 1e-14);
-    assert!(lines[2].ends_with(",ok"));
-    assert!(lines[3].ends_with(",,,,no_contact"), "{}", lines[3]);
+    assert!(lines[2].ends_with(",ok,md"));
+    assert!(lines[3].ends_with(",,,,no_contact,md"), "{}", lines[3]);
 }
 
 #[test]

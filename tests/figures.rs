@@ -295,8 +295,8 @@ fn sizes_for_two_columns_and_the_same_bytes_each_time() {
     assert_eq!(img.width(), 2067);
     // Bad sizes are refused with the value and what to give.
     let e = Print::new(5.0, 300.0).unwrap_err();
-    assert!(e.contains("--width-mm 5") && e.contains("85"), "{e}");
-    assert!(Print::new(85.0, 0.0).unwrap_err().contains("--dpi 0"));
+    assert!(e.contains("width_mm 5") && e.contains("85"), "{e}");
+    assert!(Print::new(85.0, 0.0).unwrap_err().contains("dpi 0"));
     assert!(Print::new(600.0, 2400.0)
         .unwrap_err()
         .contains("pixels wide"));

@@ -566,7 +566,7 @@ fn command_line_on_the_gpu() {
         String::from_utf8_lossy(&o.stderr).into_owned(),
     );
     assert!(o.status.success(), "{err}");
-    assert!(err.contains("none made (--check 0)"), "{err}");
+    assert!(err.contains("none made (0 points to check)"), "{err}");
     let row: Vec<&str> = out.lines().nth(1).unwrap().split(',').collect();
     // The given numbers keep 17 digits, the computed ones have 9.
     assert_eq!(row[1], "5.0000000000000000e-1");

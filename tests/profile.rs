@@ -177,7 +177,7 @@ fn closed_form_fields() {
     let hertz = p.models.iter().find(|m| m.model == "hertz").unwrap();
     assert!(hertz.status == "no_contact" && hertz.r.is_empty());
     assert!(profile(1.0, Given::Load(-1.7), 200).is_err());
-    assert!(profile(1e-22, Given::Load(0.0), 200).is_err());
+    assert!(profile(1e-30, Given::Load(0.0), 200).is_err());
     // Given the approach or the radius: the same state as given the load.
     let by_load = profile(1.0, Given::Load(0.5), 100).unwrap().models[0].clone();
     let by_a = profile(1.0, Given::Radius(by_load.a.unwrap()), 100)
@@ -277,4 +277,29 @@ fn command_line_profile_and_radius_control() {
     assert!(String::from_utf8(o.stdout)
         .unwrap()
         .contains(",-1.5796270206018335e0,"));
+}
+
+/// A profile of a scene applies the scene's small-strain check (one function for both): afm-si
+/// at 1 kN has a/R = 274 (Hertz, `a = (3 P R / (4 E*))^(1/3)`, adhesion negligible there), far
+/// beyond 0.1, and says so on stderr and in the JSON; at 1 nN it does not.
+#[test]
+fn profile_warns_of_a_contact_too_large_for_small_strain() {
+    let o = tabor(&["profile", "--preset", "afm-si", "--load-n", "1e3"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let a = v["models"][0]["a"].as_f64().unwrap();
+    let (r, e) = (2e-8, 169e9);
+    let e_star = e / (2.0 * (1.0 - 0.27f64 * 0.27));
+    let hertz = (3.0 * 1e3 * r / (4.0 * e_star)).cbrt();
+    assert!((a / hertz - 1.0).abs() < 1e-3, "{a} vs Hertz {hertz}");
+    let want = tabor::physics::params::small_strain_warning(a / r).unwrap();
+    assert!(want.starts_with("a/R = 274.0"), "{want}");
+    assert_eq!(v["warnings"][0], want.as_str());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("warning: {want}")), "{err}");
+    let o = tabor(&["profile", "--preset", "afm-si", "--load-n", "1e-9"]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["warnings"].as_array().unwrap().len(), 0);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("warning"));
 }

@@ -44,6 +44,18 @@ const FLAGS: &[(&str, &str)] = &[
     ("--segment retract", "fit_segment=\"retract\""),
     ("--check 0", "check=0"),
     ("--npy or --json-full", "NPY files or save_json(full=True)"),
+    // The library's own phrases where a Python argument stands for them.
+    ("the linear load axis", "load_axis=\"linear\""),
+    ("f32 precision", "precision=\"f32\""),
+    ("the cpu backend", "backend=\"cpu\""),
+    (
+        "the approach segment instead",
+        "the approach segment instead (fit_segment=\"approach\")",
+    ),
+    (
+        "the retract segment instead",
+        "the retract segment instead (fit_segment=\"retract\")",
+    ),
     ("--lambda-min", "lambda_min"),
     ("--lambda-max", "lambda_max"),
     ("--load-min", "load_min"),
@@ -756,6 +768,9 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
     m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
+    m.add("DMT_LIMIT_MAX", tabor::physics::domain::DMT_LIMIT_MAX)?;
+    m.add("LIMIT_LAMBDA_MIN", tabor::physics::domain::LIMIT_LAMBDA_MIN)?;
+    m.add("LIMIT_LAMBDA_MAX", tabor::physics::domain::LIMIT_LAMBDA_MAX)?;
     m.add("LAMBDA_D", tabor::physics::md::LAMBDA_D)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
     m.add_function(wrap_pyfunction!(python_names, m)?)?;

@@ -6,7 +6,8 @@ library (the f64 solver on all cores, or the f32 GPU kernels with a cross-check)
 
 Normalisation (Johnson & Greenwood 1997), with K = 4/3 E*:
 
-- ``lam``: the Maugis parameter lambda = 2 s0 (R / (pi w K^2))^(1/3), in 1e-8 .. 1e8
+- ``lam``: the Maugis parameter lambda = 2 s0 (R / (pi w K^2))^(1/3), in 1e-26 .. 1e26
+  (``solve`` answers loads and approaches by the DMT and JKR limits beyond it, see ``solve``)
 - ``load``: Pbar = P / (pi w R), tensile negative, |Pbar| <= 1e12
 - ``approach``: Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), |Dbar| <= 1e8
 - ``A``: contact radius a (K / (pi w R^2))^(1/3), in (0, 1e4]
@@ -32,6 +33,12 @@ from . import _tabor
 __version__ = _tabor.__version__
 LAMBDA_MIN = _tabor.LAMBDA_MIN
 LAMBDA_MAX = _tabor.LAMBDA_MAX
+#: Beyond the exact solver's lambda range, ``solve`` answers loads and approaches by the DMT
+#: limit for lambda in LIMIT_LAMBDA_MIN..DMT_LIMIT_MAX and by the JKR limit above LAMBDA_MAX up
+#: to LIMIT_LAMBDA_MAX, where each is within 1e-13 of MD (the ``method`` array says which).
+DMT_LIMIT_MAX = _tabor.DMT_LIMIT_MAX
+LIMIT_LAMBDA_MIN = _tabor.LIMIT_LAMBDA_MIN
+LIMIT_LAMBDA_MAX = _tabor.LIMIT_LAMBDA_MAX
 #: Below this lambda the contact under rigid grips shrinks to zero radius.
 LAMBDA_D = _tabor.LAMBDA_D
 STATUS_NAMES = tuple(_tabor.status_names())
@@ -115,11 +122,26 @@ def _finite(x, name):
 
 #: The solver's domain per input: (name in messages, the test of a valid value, the range).
 _DOMAIN = {
-    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-8..1e8"),
+    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-26..1e26"),
+    # Loads and approaches: the exact solver's range and the closed-form limits' beyond it.
+    "lam_any": ("lambda", lambda x: _method(x) != "",
+                "1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"),
     "load": ("load", lambda x: np.abs(x) <= 1e12, "-1e12..1e12"),
     "approach": ("approach", lambda x: np.abs(x) <= 1e8, "-1e8..1e8"),
     "radius": ("radius", lambda x: (x > 0) & (x <= 1e4), "(0, 1e4]"),
 }
+
+
+def _method(lam):
+    """Per lambda, how ``solve`` answers a load or an approach: "md" (the exact solver),
+    "dmt_limit" or "jkr_limit" (the closed-form limits, beyond the exact solver's range), ""
+    where none is certified."""
+    lam = np.asarray(lam, dtype=float)
+    with np.errstate(invalid="ignore"):
+        md = (lam >= LAMBDA_MIN) & (lam <= LAMBDA_MAX)
+        dmt = (lam >= LIMIT_LAMBDA_MIN) & (lam <= DMT_LIMIT_MAX)
+        jkr = (lam > LAMBDA_MAX) & (lam <= LIMIT_LAMBDA_MAX)
+    return np.select([md, dmt, jkr], ["md", "dmt_limit", "jkr_limit"], "").astype("<U9")
 
 
 def _bad(key, x):
@@ -157,7 +179,10 @@ def _messages(status, keys, flats, shape):
     bad = np.flatnonzero(st == "invalid_input")
     for i in bad:
         reasons = [_why(k, f[i]) for k, f in zip(keys, flats) if _bad(k, f[i:i + 1])[0]]
-        flat[i] = "; ".join(reasons) or "outside the supported domain"
+        flat[i] = "; ".join(reasons) or (
+            "not certified by the DMT limit here (too close to its pull-off, or an approach "
+            "below its bound); the exact solver covers lambda >= 1e-26"
+            if keys[0] == "lam_any" else "outside the supported domain")
     return msg
 
 
@@ -176,13 +201,16 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
 
     Units (Johnson & Greenwood 1997, K = 4/3 E*): load Pbar = P / (pi w R), approach
     Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), contact radius A = a (K / (pi w R^2))^(1/3),
-    lam = 2 s0 (R / (pi w K^2))^(1/3). Domain: lam in 1e-8..1e8, |load| <= 1e12,
-    |approach| <= 1e8, 0 < radius <= 1e4; outside it the status is ``invalid_input``.
+    lam = 2 s0 (R / (pi w K^2))^(1/3). Domain: lam in 1e-26..1e26 (the exact solver),
+    |load| <= 1e12, |approach| <= 1e8, 0 < radius <= 1e4; outside it the status is
+    ``invalid_input``. Beyond the exact solver's lambda range a load or an approach is answered
+    by the closed-form limit where it is within 1e-13 of MD: DMT for lam in 1e-300..1e-26
+    (away from its pull-off), JKR for lam in 1e26..1e150; ``method`` says which.
 
     Parameters
     ----------
     lam : array_like
-        Maugis parameter lambda (1e-8 .. 1e8).
+        Maugis parameter lambda (1e-26 .. 1e26; the limits beyond, see above).
     load : array_like, optional
         Normalised load Pbar: the state on the stable branch under load control.
     approach : array_like, optional
@@ -205,8 +233,9 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     -------
     Result
         float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1``, a string array
-        ``status`` and an object array ``message`` (why, where ``status`` is not ``ok``; ''
-        elsewhere), all of the broadcast shape; NaN only where ``status`` is not ``ok``.
+        ``status``, an object array ``message`` (why, where ``status`` is not ``ok``; ''
+        elsewhere) and a string array ``method`` ("md", "dmt_limit", "jkr_limit", or '' where
+        lambda has none), all of the broadcast shape; NaN only where ``status`` is not ``ok``.
 
     Raises
     ------
@@ -229,7 +258,8 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
                          f"(got {', '.join(given) or 'none'})")
     value = {"load": load, "approach": approach, "radius": radius}[given[0]]
     (lam_f, val_f), shape = _flat(lam, value, names=["lam", given[0]])
-    _check_scalar("lam", lam, lam_f)
+    lam_key = "lam" if given[0] == "radius" else "lam_any"
+    _check_scalar(lam_key, lam, lam_f)
     _check_scalar(given[0], value, val_f)
     if isinstance(check, bool) or not isinstance(check, (int, np.integer)) or check < 0:
         raise ValueError(f"check = {check!r}: give a number of points >= 0")
@@ -249,7 +279,11 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         out = {k: np.asarray(r[k]).reshape(shape)
                for k in ("A", "load", "approach", "m_minus_1")}
     out["status"] = _status(np.asarray(r["status_code"]), shape)
-    out["message"] = _messages(out["status"], ("lam", given[0]), (lam_f, val_f), shape)
+    out["message"] = _messages(out["status"], (lam_key, given[0]), (lam_f, val_f), shape)
+    method = _method(lam_f).reshape(shape)
+    if given[0] == "radius":
+        method = np.where(method == "md", method, "")
+    out["method"] = method
     return Result(out, meta)
 
 
@@ -260,7 +294,7 @@ def pulloff(lam):
     ``load_control_A``, ``load_control_approach``, ``displacement_control_load``,
     ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero radius),
     ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
-    Raises ValueError for a lambda outside 1e-8 .. 1e8.
+    Raises ValueError for a lambda outside 1e-26 .. 1e26.
     """
     (lam_f,), shape = _flat(lam, names=["lam"])
     r = _tabor.pulloff(lam_f)

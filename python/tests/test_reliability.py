@@ -18,7 +18,7 @@ import tabor
 # --- bad input ---------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("kw, needle", [
-    (dict(lam=-1.0, load=1.0), "lambda = -1 is outside the supported domain 1e-8..1e8"),
+    (dict(lam=-1.0, load=1.0), "lambda = -1 is outside the supported domain 1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"),
     (dict(lam=float("nan"), load=1.0), "lambda = nan"),
     (dict(lam=1.0, load=float("inf")), "load = inf is outside the supported domain"),
     (dict(lam=1.0, approach=-1e9), "approach = -1e+09 is outside the supported domain -1e8..1e8"),
@@ -36,13 +36,13 @@ def test_arrays_give_a_reason_per_point():
     assert list(s["status"]) == ["ok", "invalid_input", "invalid_input", "no_contact"]
     m = s["message"]
     assert m.shape == (4,) and m[0] == ""
-    assert m[1] == "lambda = -1 is outside the supported domain 1e-8..1e8"
+    assert m[1] == "lambda = -1 is outside the supported domain 1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"
     assert m[2] == "load = 1e+13 is outside the supported domain -1e12..1e12"
     assert "pull-off" in m[3]
     # Shaped as the broadcast result; the valid point's value is the exact one.
-    s = tabor.solve([[1.0], [1e9]], approach=[0.0, 1.0])
+    s = tabor.solve([[1.0], [1e200]], approach=[0.0, 1.0])
     assert s["message"].shape == (2, 2) and (s["message"][1] != "").all()
-    assert s["message"][1, 0].startswith("lambda = 1e+09")
+    assert s["message"][1, 0].startswith("lambda = 1e+200")
     assert (s["message"][0] == "").all()
     assert s["A"][0, 0] == tabor.solve(1.0, approach=0.0)["A"]
 

@@ -98,7 +98,13 @@ pub fn engine_for(
     let backend = super::backend_choice(backend, default)?;
     let adapter = super::adapter_choice(gpu.adapter.as_deref(), backend)?;
     let (mut engine, line) = Engine::select(backend.into(), adapter.as_deref())?;
-    engine.set_precision(gpu.precision.into())?;
+    engine.set_precision(gpu.precision.into()).map_err(|e| {
+        let flags = [
+            ("f32 precision", "--precision f32"),
+            ("the cpu backend", "--backend cpu"),
+        ];
+        anyhow::anyhow!(super::with_flags(&e.to_string(), &flags))
+    })?;
     eprintln!("{line}");
     Ok(engine)
 }
@@ -184,11 +190,25 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: a single state is solved by the f64 CPU solver; --backend applies to --input files");
     }
-    let ctx = LambdaContext::new(lambda).context("--lambda")?;
+    // Beyond the exact solver's domain a load or an approach is answered by the closed-form
+    // limit where it is certified; a radius is not (the limits' curves are not MD's).
+    let limit = given != Given::Radius
+        && matches!(
+            crate::physics::domain::method(lambda),
+            Some(
+                crate::physics::domain::Method::DmtLimit | crate::physics::domain::Method::JkrLimit
+            )
+        );
+    let ctx = if limit {
+        None
+    } else {
+        Some(LambdaContext::new(lambda).context("--lambda")?)
+    };
     let format = a.format.unwrap_or(Format::Text);
     let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": given.name()});
     let text = if given == Given::Radius {
         crate::solver::domain::check_radius(value).context("--radius-a")?;
+        let ctx = ctx.context("--lambda")?;
         let s = ctx.solve_radius(value);
         match format {
             Format::Json => json_doc(&[radius_json(&s)], &meta)?,
@@ -208,7 +228,19 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
             crate::solver::domain::check_approach(value).context("--approach")?;
             Control::Displacement
         };
-        let s = crate::solver::solve_with(&ctx, value, control);
+        let s = match &ctx {
+            Some(ctx) => crate::solver::solve_with(ctx, value, control),
+            None => crate::solver::solve_one(lambda, value, control),
+        };
+        if ctx.is_none() && s.status == Status::InvalidInput {
+            bail!(
+                "--lambda {} with {} {}: {}",
+                crate::solver::domain::short(lambda),
+                given.flag(),
+                crate::solver::domain::short(value),
+                crate::solver::limits::refusal(lambda, control)
+            );
+        }
         match format {
             Format::Json => json_doc(&[state_json(&s)], &meta)?,
             Format::Csv => {
@@ -217,7 +249,7 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
                 w.write_record(state_fields(&s, 17, control))?;
                 String::from_utf8(crate::io::csv_finish(w)?)?
             }
-            Format::Text => state_text(&ctx, &s, control),
+            Format::Text => state_text(ctx.as_ref(), &s, control),
         }
     };
     write_output(&a.output, text.as_bytes())
@@ -531,7 +563,17 @@ fn indent(text: &str, n: usize) -> String {
         .join("\n")
 }
 
-const CSV_HEADER: [&str; 6] = ["lambda", "load", "A", "approach", "m_minus_1", "status"];
+/// `method`: `md` (the exact solver), `dmt_limit` or `jkr_limit` (beyond its domain, where the
+/// closed-form limit is certified; `domain::method`), empty where lambda has none.
+const CSV_HEADER: [&str; 7] = [
+    "lambda",
+    "load",
+    "A",
+    "approach",
+    "m_minus_1",
+    "status",
+    "method",
+];
 
 /// A CSV row of a state, as a CSV writer would write [`state_fields`] (numbers and status
 /// names never need quoting), appended without allocating.
@@ -552,11 +594,13 @@ fn state_row(s: &State, digits: usize, control: Control, buf: &mut Vec<u8>) {
     fmt_into(buf, s.m_minus_1, digits);
     buf.push(b',');
     buf.extend_from_slice(s.status.name().as_bytes());
+    buf.push(b',');
+    buf.extend_from_slice(crate::physics::domain::method_name(s.lambda).as_bytes());
     buf.push(b'\n');
 }
 
 /// The CSV fields of a state: what was given with 17 digits, what was computed with `digits`.
-fn state_fields(s: &State, digits: usize, control: Control) -> [String; 6] {
+fn state_fields(s: &State, digits: usize, control: Control) -> [String; 7] {
     let (load, approach) = match control {
         Control::Load => (fmt17(s.load), fmt_digits(s.approach, digits)),
         Control::Displacement => (fmt_digits(s.load, digits), fmt17(s.approach)),
@@ -568,6 +612,7 @@ fn state_fields(s: &State, digits: usize, control: Control) -> [String; 6] {
         approach,
         fmt_digits(s.m_minus_1, digits),
         s.status.name().to_string(),
+        crate::physics::domain::method_name(s.lambda).to_string(),
     ]
 }
 
@@ -575,7 +620,7 @@ pub fn state_json(s: &State) -> serde_json::Value {
     json!({
         "lambda": s.lambda, "load": json_num(s.load), "A": json_num(s.a),
         "approach": json_num(s.approach), "m_minus_1": json_num(s.m_minus_1),
-        "status": s.status.name(),
+        "status": s.status.name(), "method": crate::physics::domain::method(s.lambda),
     })
 }
 
@@ -604,7 +649,7 @@ fn shown(x: f64) -> String {
     }
 }
 
-fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
+fn state_text(ctx: Option<&LambdaContext>, s: &State, control: Control) -> String {
     let mut t = String::new();
     let _ = writeln!(
         t,
@@ -620,20 +665,53 @@ fn state_text(ctx: &LambdaContext, s: &State, control: Control) -> String {
     let _ = writeln!(t, "  approach Dbar     {}", shown(s.approach));
     let _ = writeln!(t, "  contact radius A  {}", shown(s.a));
     let _ = writeln!(t, "  m - 1 (c/a - 1)   {}", shown(s.m_minus_1));
-    let lp = ctx.load_pulloff;
-    let dp = ctx.disp_pulloff();
-    let _ = writeln!(
-        t,
-        "  pull-off, load control          Pbar_c = {}  at A = {}",
-        fmt17(lp.load),
-        fmt17(lp.a)
-    );
-    let _ = writeln!(
-        t,
-        "  jump-out, displacement control  Pbar   = {}  at A = {}",
-        fmt17(dp.load),
-        fmt17(dp.a)
-    );
+    match ctx {
+        Some(ctx) => {
+            let lp = ctx.load_pulloff;
+            let dp = ctx.disp_pulloff();
+            let _ = writeln!(
+                t,
+                "  pull-off, load control          Pbar_c = {}  at A = {}",
+                fmt17(lp.load),
+                fmt17(lp.a)
+            );
+            let _ = writeln!(
+                t,
+                "  jump-out, displacement control  Pbar   = {}  at A = {}",
+                fmt17(dp.load),
+                fmt17(dp.a)
+            );
+        }
+        None => {
+            let method = crate::physics::domain::method(s.lambda);
+            let _ = writeln!(
+                t,
+                "  method            {} (beyond the exact solver's lambda range {}..{}: the closed-form limit, within {} of MD)",
+                crate::physics::domain::method_name(s.lambda),
+                crate::solver::domain::short(crate::physics::domain::LAMBDA_MIN),
+                crate::solver::domain::short(crate::physics::domain::LAMBDA_MAX),
+                crate::solver::domain::short(crate::physics::domain::LIMIT_TOL),
+            );
+            if method == Some(crate::physics::domain::Method::JkrLimit) {
+                let _ = writeln!(t, "  pull-off, load control          Pbar_c = -1.5 (JKR)");
+                let _ = writeln!(
+                    t,
+                    "  jump-out, displacement control  Pbar   = -0.83333333333333333 (JKR)"
+                );
+            } else {
+                let _ = writeln!(
+                    t,
+                    "  pull-off                        Pbar_c = -2 (DMT/Bradley)"
+                );
+                if s.status == Status::InvalidInput {
+                    let _ = writeln!(
+                        t,
+                        "  (too close to the pull-off for the DMT limit: not certified here)"
+                    );
+                }
+            }
+        }
+    }
     if s.status == Status::NoContact {
         let _ = writeln!(t, "  (below the pull-off of this control: no contact)");
     }

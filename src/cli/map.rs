@@ -112,7 +112,8 @@ pub fn check_extension(path: &Path, ext: &str, flag: &str) -> anyhow::Result<()>
 
 pub fn run(a: MapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
-    spec.validate()?;
+    spec.validate()
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::MAP_FLAGS)))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let mut more: Vec<(String, PathBuf)> = a

@@ -275,6 +275,50 @@ pub struct FigureArgs {
     pub dpi: f64,
 }
 
+/// The library names quantities (`lambda_min`, `width_mm`, ...), never flags; the command line
+/// adds its flag names to the library's messages, from the list for that message's source.
+pub fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
+    names.iter().fold(msg.to_string(), |m, (name, flag)| {
+        // Whole words only: `nx` in `nx_min` or `dpi` in `dpis` stays.
+        let mut out = String::with_capacity(m.len());
+        let mut rest = m.as_str();
+        while let Some(i) = rest.find(name) {
+            let before = rest[..i].chars().last();
+            let after = rest[i + name.len()..].chars().next();
+            let word =
+                |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '-');
+            out.push_str(&rest[..i]);
+            out.push_str(if word(before) || word(after) {
+                name
+            } else {
+                flag
+            });
+            rest = &rest[i + name.len()..];
+        }
+        out + rest
+    })
+}
+
+/// The map's quantities as flags.
+pub const MAP_FLAGS: &[(&str, &str)] = &[
+    ("lambda_min", "--lambda-min"),
+    ("lambda_max", "--lambda-max"),
+    ("load_min", "--load-min"),
+    ("load_max", "--load-max"),
+    ("nx", "--nx"),
+    ("ny", "--ny"),
+    ("tolerance", "--tolerance"),
+    ("strength_ratio", "--strength-ratio"),
+    ("the linear load axis", "--load-axis linear"),
+    (
+        "the f64 values kept as NPY files or full JSON",
+        "--npy or --json-full",
+    ),
+];
+
+/// A figure's size as flags.
+pub const FIGURE_FLAGS: &[(&str, &str)] = &[("width_mm", "--width-mm"), ("dpi", "--dpi")];
+
 impl FigureArgs {
     /// The printed size; `default_mm` where no width is given.
     pub fn print(&self, default_mm: f64) -> anyhow::Result<crate::render::Print> {
@@ -283,7 +327,8 @@ impl FigureArgs {
             (None, true) => crate::render::DOUBLE_COLUMN_MM,
             (None, false) => default_mm,
         };
-        crate::render::Print::new(mm, self.dpi).map_err(anyhow::Error::msg)
+        crate::render::Print::new(mm, self.dpi)
+            .map_err(|e| anyhow::Error::msg(with_flags(&e, FIGURE_FLAGS)))
     }
 
     /// The figure's files with the options that name them (`main` given by `flag`), for

@@ -86,7 +86,11 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
             (l, g)
         }
     };
-    let mut p = profile(lambda, given, a.points).context(match given {
+    let p = profile(lambda, given, a.points);
+    if let Err(e @ crate::profile::ProfileError::Points(_)) = &p {
+        bail!(super::with_flags(&e.to_string(), &[("points", "--points")]));
+    }
+    let mut p = p.context(match given {
         Given::Load(_) if contact.is_some() => "--load-n",
         Given::Load(_) => "--load",
         Given::Approach(_) => "--approach",
@@ -105,6 +109,9 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
             crate::render::plots::profile(r, &p)
         })
         .context("drawing the profile")?;
+    }
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
     }
     let md = &p.models[0];
     eprintln!(

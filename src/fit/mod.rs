@@ -482,8 +482,8 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .collect();
     if fitted.is_empty() {
         let which = match opt.segments {
-            Segments::Retract => "no retract segment: fit the approach with --segment approach, or check the segment column (approach/retract or 0/1)",
-            Segments::Approach => "no approach segment: fit the retract with --segment retract, or check the segment column",
+            Segments::Retract => "no retract segment: fit the approach segment instead, or check the segment column (approach/retract or 0/1)",
+            Segments::Approach => "no approach segment: fit the retract segment instead, or check the segment column",
             Segments::Both => "no points",
         };
         return bad(which.to_string());
@@ -1619,7 +1619,7 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
                     curve,
                     FitStatus::InvalidInput,
                     format!(
-                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-8..1e8: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
+                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-26..1e26: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
                         crate::physics::domain::short(z0),
                         crate::physics::domain::short(s.lambda),
                         crate::physics::domain::short(s.e_star),
@@ -1969,7 +1969,7 @@ fn summarize(
     if let Some(e) = md.lambda_stderr {
         if e > p.lambda {
             warn.push(format!(
-                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it with --z0, fit both segments, or use a stiffer cantilever",
+                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever",
                 p.lambda
             ));
         }

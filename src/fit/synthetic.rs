@@ -68,8 +68,8 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
     let (f, _, _, _) = model_forces(s.model, &p, s.radius, s.spring, &height, &segment, None)
         .ok_or_else(|| {
             format!(
-                "lambda {} is outside the models' domain 1e-8..1e8, or the units overflow",
-                p.lambda
+                "lambda {} is outside the models' domain 1e-26..1e26, or the units overflow",
+                crate::physics::domain::short(p.lambda)
             )
         })?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);

@@ -26,7 +26,7 @@ pub enum GpuError {
     Runtime(String),
     #[error("{0}")]
     TooLarge(String),
-    #[error("the adapter {0} has no f64 shaders (SHADER_F64); use --precision f32, or --backend cpu for f64")]
+    #[error("the adapter {0} has no f64 shaders (SHADER_F64); use f32 precision, or the cpu backend for f64")]
     NoF64(String),
 }
 

@@ -118,7 +118,11 @@ fn interior_branch(
 
 /// Prepares one lambda for the kernels.
 pub fn prepare(lambda: f64) -> GpuLambda {
-    let Ok(ctx) = LambdaContext::new(lambda) else {
+    // Outside the kernels' domain the lambda is marked invalid (the engine solves it on the CPU).
+    let ctx = LambdaContext::new(lambda)
+        .ok()
+        .filter(|_| crate::engine::kernel_lambda(lambda));
+    let Some(ctx) = ctx else {
         return GpuLambda {
             lambda: lambda as f32,
             invalid: 1,
@@ -130,6 +134,9 @@ pub fn prepare(lambda: f64) -> GpuLambda {
 
 pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
     let lambda = ctx.lambda;
+    if !crate::engine::kernel_lambda(lambda) {
+        return prepare(lambda);
+    }
     let small = crate::physics::tolerances::carries_load_plus_2(lambda);
     let xc = ctx.load_pulloff.x;
     let load_end = if small {
@@ -198,7 +205,7 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
 
 /// Prepares one lambda for the f64 refinement (`shaders/polish64.wgsl`).
 pub fn prepare64(ctx: Option<&LambdaContext>, lambda: f64) -> Lambda64 {
-    let Some(ctx) = ctx else {
+    let Some(ctx) = ctx.filter(|c| crate::engine::kernel_lambda(c.lambda)) else {
         return Lambda64 {
             lambda,
             invalid: 1,

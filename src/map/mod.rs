@@ -247,8 +247,8 @@ impl MapSpec {
         use crate::physics::domain::{check_lambda, short, LOAD_MAX};
         let bad = |m: String| Err(MapError::Spec(m));
         for (flag, l) in [
-            ("--lambda-min", self.lambda_min),
-            ("--lambda-max", self.lambda_max),
+            ("lambda_min", self.lambda_min),
+            ("lambda_max", self.lambda_max),
         ] {
             if let Err(e) = check_lambda(l) {
                 return bad(format!("{flag}: {e}"));
@@ -256,20 +256,20 @@ impl MapSpec {
         }
         if !(self.lambda_max > self.lambda_min) {
             return bad(format!(
-                "--lambda-min must be below --lambda-max, got {} and {}",
+                "lambda_min must be below lambda_max, got {} and {}",
                 short(self.lambda_min),
                 short(self.lambda_max)
             ));
         }
         if self.nx < 2 || self.ny < 2 || self.nx > 16384 || self.ny > 16384 {
             return bad(format!(
-                "--nx and --ny must be in 2..=16384, got {} and {}",
+                "nx and ny must be in 2..=16384, got {} and {}",
                 self.nx, self.ny
             ));
         }
         if self.nx * self.ny > MAX_MAP_POINTS {
             return bad(format!(
-                "--nx {} x --ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with --npy or --json-full); use fewer points, or split the range into several maps",
+                "nx {} x ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with the f64 values kept as NPY files or full JSON); use fewer points, or split the range into several maps",
                 self.nx,
                 self.ny,
                 self.nx * self.ny
@@ -280,7 +280,7 @@ impl MapSpec {
             && self.load_max.is_finite())
         {
             return bad(format!(
-                "--load-min must be below --load-max, got {} and {}",
+                "load_min must be below load_max, got {} and {}",
                 short(self.load_min),
                 short(self.load_max)
             ));
@@ -290,18 +290,18 @@ impl MapSpec {
             _ => (LOG_LOAD_MIN, LOAD_MAX, "1e-15..1e12"),
         };
         if self.load_axis != LoadAxis::Linear && self.load_min <= 0.0 {
-            return bad(format!("a log load axis needs --load-min > 0 (got {}); use --load-axis linear for tensile loads", short(self.load_min)));
+            return bad(format!("a log load axis needs load_min > 0 (got {}); use the linear load axis for tensile loads", short(self.load_min)));
         }
         if !(self.load_min >= lo && self.load_max <= hi) {
             return bad(format!(
-                "--load-min {} and --load-max {} must lie within {range} on this load axis (the solver's domain); narrow the range",
+                "load_min {} and load_max {} must lie within {range} on this load axis (the solver's domain); narrow the range",
                 short(self.load_min),
                 short(self.load_max)
             ));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return bad(format!(
-                "--tolerance must be in (0, 1), got {}",
+                "tolerance must be in (0, 1), got {}",
                 self.tolerance
             ));
         }
@@ -310,7 +310,7 @@ impl MapSpec {
             .iter()
             .any(|r| !(*r > 0.0 && r.is_finite()))
         {
-            return bad("--strength-ratio values must be > 0".into());
+            return bad("strength_ratio values must be > 0".into());
         }
         Ok(())
     }

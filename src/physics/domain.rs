@@ -2,20 +2,75 @@
 //! returns `invalid_input` and the command line refuses with a message that names the limit; it
 //! never extrapolates a number it cannot certify.
 //!
-//! The limits come from the f64 solver: its bracket reaches loads of 1e12 at every lambda in
-//! 1e-8..1e8 (`tests/properties.rs` checks the residuals over and beyond these limits), and at
-//! 1e-22 or 1e160 the pull-off search meets underflow and overflow.
+//! The exact Maugis-Dugdale solver is certified for lambda in [`LAMBDA_MIN`]..[`LAMBDA_MAX`]
+//! against a 50-digit oracle (`tests/reference/md_oracle.py`, `tests/data/md_extended.csv`,
+//! `examples/domain_probe.rs` measures it: within 0.41 of the contract's bound over
+//! 1e-26..1e26, and the pull-offs within 1.4e-14). Beyond it a state is answered by the
+//! closed-form limit (`crate::solver::limits`) only where the limit's difference from MD is
+//! below [`LIMIT_TOL`]: JKR above [`LAMBDA_MAX`] (to [`LIMIT_LAMBDA_MAX`]), DMT below
+//! [`LAMBDA_MIN`] (from [`LIMIT_LAMBDA_MIN`]); [`method`] says which.
 
-/// Smallest Maugis parameter.
-pub const LAMBDA_MIN: f64 = 1e-8;
-/// Largest Maugis parameter.
-pub const LAMBDA_MAX: f64 = 1e8;
+use serde::Serialize;
+
+/// Smallest Maugis parameter of the exact solver.
+pub const LAMBDA_MIN: f64 = 1e-26;
+/// Largest Maugis parameter of the exact solver.
+pub const LAMBDA_MAX: f64 = 1e26;
+/// The DMT limit answers lambda below this (and below [`LAMBDA_MIN`]): its approach differs
+/// from MD's by 1.5045 lambda^0.5, 1.5e-13 here (docs/PHYSICS.md section 5.1).
+pub const DMT_LIMIT_MAX: f64 = 1e-26;
+/// Smallest lambda answered by the DMT limit (a normal double's square root stays normal).
+pub const LIMIT_LAMBDA_MIN: f64 = 1e-300;
+/// Largest lambda answered by the JKR limit: its m - 1, 3/(4 A lambda^2), stays a normal
+/// double up to A = 1e4.
+pub const LIMIT_LAMBDA_MAX: f64 = 1e150;
+/// A limit answers only where its estimated difference from MD is below this: a tenth of the
+/// f64 contract (1e-12).
+pub const LIMIT_TOL: f64 = 1e-13;
 /// Largest |Pbar| (the normalised load).
 pub const LOAD_MAX: f64 = 1e12;
 /// Largest |Dbar| (the normalised approach): Dbar ~ Pbar^(2/3) at the largest load.
 pub const APPROACH_MAX: f64 = 1e8;
 /// Largest contact radius A: A ~ Pbar^(1/3) at the largest load.
 pub const RADIUS_MAX: f64 = 1e4;
+
+/// How a state is computed: the exact Maugis-Dugdale solver or a closed-form limit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Method {
+    Md,
+    DmtLimit,
+    JkrLimit,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Md => "md",
+            Method::DmtLimit => "dmt_limit",
+            Method::JkrLimit => "jkr_limit",
+        }
+    }
+}
+
+/// The method that answers `lambda`; None outside every domain (NaN, <= 0, or beyond the
+/// limits).
+pub fn method(lambda: f64) -> Option<Method> {
+    if within(lambda, LAMBDA_MIN, LAMBDA_MAX) {
+        Some(Method::Md)
+    } else if within(lambda, LIMIT_LAMBDA_MIN, DMT_LIMIT_MAX.min(LAMBDA_MIN)) {
+        Some(Method::DmtLimit)
+    } else if lambda > LAMBDA_MAX && lambda <= LIMIT_LAMBDA_MAX {
+        Some(Method::JkrLimit)
+    } else {
+        None
+    }
+}
+
+/// The method's name for an output column ("" where lambda has none).
+pub fn method_name(lambda: f64) -> &'static str {
+    method(lambda).map_or("", Method::name)
+}
 
 /// A value outside the domain: what it is, its value and the allowed range.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -56,7 +111,8 @@ fn within(x: f64, lo: f64, hi: f64) -> bool {
     x.is_finite() && x >= lo && x <= hi
 }
 
-/// The Maugis parameter lambda must lie in [`LAMBDA_MIN`], [`LAMBDA_MAX`].
+/// The Maugis parameter lambda must lie in [`LAMBDA_MIN`], [`LAMBDA_MAX`] (the exact solver's
+/// domain: pull-offs, curves, profiles, cycles, maps and fits need it).
 pub fn check_lambda(lambda: f64) -> Result<f64, DomainError> {
     if within(lambda, LAMBDA_MIN, LAMBDA_MAX) {
         Ok(lambda)
@@ -64,9 +120,22 @@ pub fn check_lambda(lambda: f64) -> Result<f64, DomainError> {
         Err(DomainError {
             name: "lambda",
             value: lambda,
-            range: "1e-8..1e8",
-            hint: "outside it the solver cannot certify its answer; MD tends to DMT/Bradley as lambda -> 0 and to JKR as lambda -> inf, so use those closed forms there",
+            range: "1e-26..1e26",
+            hint: "outside it the exact solver cannot certify its answer; single states (solve) are answered by the DMT limit for lambda in 1e-300..1e-26 and by the JKR limit for lambda in 1e26..1e150 (method field), where each is within 1e-13 of MD",
         })
+    }
+}
+
+/// lambda must have a method ([`method`]): the exact solver's domain or a limit's.
+pub fn check_lambda_any(lambda: f64) -> Result<f64, DomainError> {
+    match method(lambda) {
+        Some(_) => Ok(lambda),
+        None => Err(DomainError {
+            name: "lambda",
+            value: lambda,
+            range: "1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)",
+            hint: "give a finite lambda > 0 in that range",
+        }),
     }
 }
 
@@ -118,12 +187,22 @@ mod tests {
 
     #[test]
     fn limits_are_inclusive_and_messages_are_short() {
-        assert!(check_lambda(1e-8).is_ok() && check_lambda(1e8).is_ok());
-        let e = check_lambda(1e-22).unwrap_err().to_string();
+        assert!(check_lambda(1e-26).is_ok() && check_lambda(1e26).is_ok());
+        let e = check_lambda(1e-30).unwrap_err().to_string();
         assert!(
-            e.contains("lambda = 1e-22") && e.contains("1e-8..1e8"),
+            e.contains("lambda = 1e-30") && e.contains("1e-26..1e26"),
             "{e}"
         );
+        assert_eq!(method(1e-26), Some(Method::Md));
+        assert_eq!(method(1.0000001e26), Some(Method::JkrLimit));
+        assert_eq!(method(0.9999999e-26), Some(Method::DmtLimit));
+        assert_eq!(method(1e-301), None);
+        assert_eq!(method(1e151), None);
+        assert_eq!(method(f64::NAN), None);
+        assert!(check_lambda_any(1e151)
+            .unwrap_err()
+            .to_string()
+            .contains("1e150"));
         let e = check_lambda(1e300).unwrap_err().to_string();
         assert!(e.contains("lambda = 1e300"), "{e}");
         assert!(check_lambda(f64::NAN).is_err() && check_lambda(-1.0).is_err());

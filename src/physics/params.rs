@@ -70,6 +70,20 @@ pub struct Contact {
 }
 
 /// The LJ-matched Dugdale stress is `LJ_STRESS / z0 * w`.
+/// Above this contact radius over sphere radius the half-space (small-strain) theory that every
+/// model here rests on breaks down.
+pub const A_OVER_R_MAX: f64 = 0.1;
+
+/// The warning for a contact too large for small-strain theory (a/R above [`A_OVER_R_MAX`]),
+/// the one check that scenes and profiles share.
+pub fn small_strain_warning(a_over_r: f64) -> Option<String> {
+    (a_over_r > A_OVER_R_MAX).then(|| {
+        format!(
+            "a/R = {a_over_r:.2} > {A_OVER_R_MAX}: small-strain (half-space) theory breaks down"
+        )
+    })
+}
+
 pub const LJ_STRESS: f64 = 16.0 / (9.0 * 1.7320508075688772);
 
 /// `1/E* = (1-v1^2)/E1 + (1-v2^2)/E2`, with range checks that name the field.

@@ -163,14 +163,14 @@ impl Print {
     /// A checked size: 40..600 mm wide, 50..2400 dpi, and a PNG of at most [`MAX_PNG_SIDE`].
     pub fn new(width_mm: f64, dpi: f64) -> Result<Print, String> {
         if !(40.0..=600.0).contains(&width_mm) {
-            return Err(format!("--width-mm {} is outside 40..600: give the printed width in millimetres (85 for one column, 175 for two)", crate::physics::domain::short(width_mm)));
+            return Err(format!("width_mm {} is outside 40..600: give the printed width in millimetres (85 for one column, 175 for two)", crate::physics::domain::short(width_mm)));
         }
         if !(50.0..=2400.0).contains(&dpi) {
-            return Err(format!("--dpi {} is outside 50..2400: give the PNG resolution in dots per inch (300 is usual for print)", crate::physics::domain::short(dpi)));
+            return Err(format!("dpi {} is outside 50..2400: give the PNG resolution in dots per inch (300 is usual for print)", crate::physics::domain::short(dpi)));
         }
         let p = Print { width_mm, dpi };
         if p.png_width() > MAX_PNG_SIDE {
-            return Err(format!("--width-mm {} at --dpi {} makes a PNG {} pixels wide, more than {MAX_PNG_SIDE}: lower one of them", crate::physics::domain::short(width_mm), crate::physics::domain::short(dpi), p.png_width()));
+            return Err(format!("width_mm {} at dpi {} makes a PNG {} pixels wide, more than {MAX_PNG_SIDE}: lower one of them", crate::physics::domain::short(width_mm), crate::physics::domain::short(dpi), p.png_width()));
         }
         Ok(p)
     }

@@ -42,7 +42,7 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
             return Err(ParamError::OutOfRange {
                 field: "pulloff_force_n",
                 value: pulloff_n,
-                allowed: "a force whose work of adhesion gives a Maugis parameter in 1e-8..1e8 with this R, E* and z0 (check the units)",
+                allowed: "a force whose work of adhesion gives a Maugis parameter in 1e-26..1e26 with this R, E* and z0 (check the units)",
             });
         }
     }

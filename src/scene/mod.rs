@@ -129,7 +129,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         field: "the Maugis parameter lambda of these inputs",
         value: lambda,
         allowed:
-            "in 1e-8..1e8, the solver's domain (check the units of E*, R, w and the force range)",
+            "in 1e-26..1e26, the solver's domain (check the units of E*, R, w and the force range)",
     })?;
     let loads = scene_loads(s)?;
     let results = loads
@@ -345,11 +345,11 @@ fn load_result(
     let cr = criteria(ctx.lambda, st.load, st.a, st.approach);
     let a = st.a * rs;
     let mut warnings = Vec::new();
-    if ok && a / c.radius > 0.1 {
-        warnings.push(format!(
-            "a/R = {:.2} > 0.1: small-strain (half-space) theory breaks down",
-            a / c.radius
-        ));
+    if let Some(w) = ok
+        .then(|| crate::physics::params::small_strain_warning(a / c.radius))
+        .flatten()
+    {
+        warnings.push(w);
     }
     // A 1.35 nm contact on a 0.25 nm lattice is only about 5 atoms across (the AFM example).
     if ok && a < 10.0 * spacing {

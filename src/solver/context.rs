@@ -10,7 +10,7 @@ use crate::physics::tolerances::carries_load_plus_2;
 const X_TOL: f64 = 1e-15;
 const MAX_ITER: u32 = 100;
 /// Width of the search bracket in x below the pull-off: enough for loads up to 1e12 at every
-/// lambda in 1e-8..1e8.
+/// lambda in 1e-26..1e26 (measured against the oracle table, tests/domain.rs).
 const BRACKET: f64 = 60.0;
 pub use crate::physics::tolerances::TABLE_NODES;
 /// The first table node's distance from the pull-off in x; node k lies at TABLE_DX0 2^k.
@@ -288,6 +288,22 @@ fn load_pulloff_x(lambda: f64, guess: (f64, f64)) -> Option<f64> {
     minimum_polished(slope, slope_dd, guess, lambda < 0.5, lambda < 1e-3)
 }
 
+/// Below this lambda the load pull-off's radius comes from its series, not from the zero of the
+/// slope: that slope is a difference of terms larger by lambda^-3, so even in double-double its
+/// zero moves A_c by about 1.5e-33 lambda^-3 (1.5e-9 at lambda = 1e-8, measured against the
+/// 50-digit oracle), while the series' next term is O(lambda^3).
+pub const PULLOFF_SERIES_BELOW: f64 = 1e-6;
+
+/// The contact radius of the load pull-off as lambda -> 0 (docs/PHYSICS.md section 5.1):
+/// `Pbar + 2 = 1.7175 lambda^1.5 - pi lambda (1 + 0.16144 lambda^1.5) A^2 + (1 + sqrt(pi)
+/// lambda^1.5) A^3 + ...`, whose minimum is at `A_c = (2 pi lambda / 3) (1 - (4 (pi - 1) /
+/// (3 sqrt(pi))) lambda^1.5 + O(lambda^3))`.
+pub fn pulloff_radius_series(lambda: f64) -> f64 {
+    use std::f64::consts::PI;
+    let c = 4.0 * (PI - 1.0) / (3.0 * PI.sqrt());
+    (2.0 * PI * lambda / 3.0) * (1.0 - c * lambda * lambda.sqrt())
+}
+
 fn second_derivative(slope: impl Fn(f64) -> f64, x: f64) -> f64 {
     let h = 1e-3;
     (slope(x + h) - slope(x - h)) / (2.0 * h)
@@ -310,7 +326,7 @@ fn pulloff_at(lambda: f64, x: f64) -> PullOff {
 mod pulloff_fit {
     use std::sync::OnceLock;
 
-    /// log10(lambda) covered: the domain, 1e-8..1e8.
+    /// log10(lambda) covered: 1e-8..1e8 (beyond it the search starts from the asymptotes).
     const U_LO: f64 = -8.0;
     const PIECES: usize = 16;
     /// Chebyshev points per decade: the interpolant is within 1.2e-8 of x_c (measured at 4000
@@ -378,9 +394,25 @@ mod pulloff_fit {
 
 impl LambdaContext {
     pub fn new(lambda: f64) -> Result<Self, SolveError> {
-        let lambda = super::domain::check_lambda(lambda)?;
-        let xc = load_pulloff_x(lambda, pulloff_fit::guess(lambda))
-            .ok_or(SolveError::NoPullOff(lambda))?;
+        Self::new_uncertified(super::domain::check_lambda(lambda)?)
+    }
+
+    /// As [`LambdaContext::new`] for any finite lambda > 0, outside the certified domain too:
+    /// for measuring where the solver stops (`examples/domain_probe.rs`), never for answers.
+    #[doc(hidden)]
+    pub fn new_uncertified(lambda: f64) -> Result<Self, SolveError> {
+        if !(lambda.is_finite() && lambda > 0.0) {
+            return Err(super::domain::check_lambda(f64::NAN).unwrap_err().into());
+        }
+        let xc = if lambda < PULLOFF_SERIES_BELOW {
+            // The radius of the minimum from its series, x from the radius (well conditioned).
+            // mu_c ~ 0.54 lambda^-1.5 passes e^80 below lambda ~ 1e-23.
+            let a = pulloff_radius_series(lambda);
+            bisect_sign(|x| a - point(lambda, x).a, -80.0, 200.0)
+        } else {
+            load_pulloff_x(lambda, pulloff_fit::guess(lambda))
+                .ok_or(SolveError::NoPullOff(lambda))?
+        };
         let p = point(lambda, xc);
         let load_pulloff = PullOff {
             x: xc,
@@ -681,7 +713,14 @@ impl LambdaContext {
             } else {
                 p.load - self.load_pulloff.load
             };
-            gap.ln()
+            // Below lambda ~ 3e-9 the nearest nodes' gap, ~6e-4 lambda^3, is under the f64
+            // noise of Pbar + 2 (~1e-16 lambda^1.5) and may come out <= 0: such a node is below
+            // every load (-inf), not NaN, which would break the bisection over the nodes.
+            if gap > 0.0 {
+                gap.ln()
+            } else {
+                f64::NEG_INFINITY
+            }
         })
     }
 
@@ -714,6 +753,10 @@ impl LambdaContext {
             return ((xc - 4.0 * BRACKET, f64::INFINITY), (x1, t1 - t), x1 - 1.0);
         }
         let ((t0, x0), (t1, x1)) = (tab(k - 1), tab(k));
+        if t0 == f64::NEG_INFINITY {
+            // A node below the noise: no interpolation, the bracket's middle.
+            return ((x1, t1 - t), (x0, f64::NEG_INFINITY), 0.5 * (x0 + x1));
+        }
         let w = (t - t0) / (t1 - t0);
         let y = (xc - x0).ln() * (1.0 - w) + (xc - x1).ln() * w;
         ((x1, t1 - t), (x0, t0 - t), xc - y.exp())

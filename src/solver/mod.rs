@@ -3,6 +3,7 @@
 
 pub mod context;
 pub mod curve;
+pub mod limits;
 pub mod naive;
 pub mod root;
 pub mod start;
@@ -105,11 +106,18 @@ pub enum SolveError {
 }
 
 /// The state of one (lambda, value) point; `value` is the load or the approach.
+/// Inside the exact solver's domain by MD; beyond it by the closed-form limit where that is
+/// certified (`domain::method` says which), else `invalid_input`.
 pub fn solve_one(lambda: f64, value: f64, control: Control) -> State {
     match LambdaContext::new(lambda) {
         Ok(ctx) => solve_with(&ctx, value, control),
-        Err(_) => invalid(lambda, value, control),
+        Err(_) => beyond(lambda, value, control),
     }
+}
+
+/// A state outside the exact solver's domain: the limit's, or `invalid_input`.
+fn beyond(lambda: f64, value: f64, control: Control) -> State {
+    limits::solve_limit(lambda, value, control).unwrap_or_else(|| invalid(lambda, value, control))
 }
 
 fn invalid(lambda: f64, value: f64, control: Control) -> State {
@@ -127,7 +135,8 @@ pub fn solve_with(ctx: &LambdaContext, value: f64, control: Control) -> State {
     }
 }
 
-/// Solves a list of (lambda, value) points on all cores, one context per distinct lambda: the
+/// Solves a list of (lambda, value) points on all cores (beyond the exact solver's domain by
+/// the limits, as [`solve_one`]), one context per distinct lambda: the
 /// points are grouped by lambda (a sort, not a map of contexts), each group builds its context
 /// (with a dense start where it has enough load-controlled states to pay for it), solves its
 /// points and drops it, so memory is the points and their states whatever the mix.
@@ -144,7 +153,7 @@ pub fn solve_points(points: &[(f64, f64)], control: Control) -> Vec<State> {
             let Ok(mut ctx) = LambdaContext::new(lambda) else {
                 return g
                     .iter()
-                    .map(|&i| (i, invalid(lambda, points[i as usize].1, control)))
+                    .map(|&i| (i, beyond(lambda, points[i as usize].1, control)))
                     .collect();
             };
             if control == Control::Load && g.len() >= context::START_MIN_STATES {
