@@ -258,7 +258,7 @@ where
     let at = |f: f64, lo: f64, hi: f64, n: usize| {
         10f64.powf(lo.log10() + f / (n - 1) as f64 * (hi.log10() - lo.log10()))
     };
-    for level in crate::rough::map::CONTOURS {
+    for (k, level) in crate::rough::map::CONTOURS.into_iter().enumerate() {
         let paths = contour_paths(&field, sp.nx, sp.ny, level.log10());
         for path in &paths {
             let pts: Vec<(f64, f64)> = path
@@ -272,9 +272,14 @@ where
                 .collect();
             chart.draw_series(LineSeries::new(pts.clone(), BLACK.stroke_width(5)))?;
         }
-        // The level's label at the middle of its longest path.
+        // The level's label on its longest path, the three staggered across the map (at 35%,
+        // 60% and 85% of the lambda axis) so that they never overlap.
+        let want_x = (0.35 + 0.25 * k as f64) * (sp.nx - 1) as f64;
         if let Some(path) = paths.iter().max_by_key(|p| p.len()) {
-            let (x, y) = path[path.len() / 2];
+            let &(x, y) = path
+                .iter()
+                .min_by(|a, b| (a.0 - want_x).abs().total_cmp(&(b.0 - want_x).abs()))
+                .unwrap_or(&path[path.len() / 2]);
             let p = (
                 at(x, sp.lambda_min, sp.lambda_max, sp.nx),
                 at(y, sp.sigma_min, sp.sigma_max, sp.ny),
