@@ -653,6 +653,6 @@ def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max
     shape = (len(d["sigma"]), len(d["lambda"]))
     for k in ["pulloff", "relative_pulloff", "pulloff_separation"]:
         d[k] = d[k].reshape(shape)
-    d["region"] = np.array(d["region"], dtype=np.uint8).reshape(shape)
+    d["region"] = np.frombuffer(bytes(d["region"]), dtype=np.uint8).reshape(shape).copy()
     d["model_error"] = d["model_error"].reshape(shape + (4,))
     return d
