@@ -60,3 +60,5 @@ rm -f "$curves"
 $T rough --lambda 0.2 --sigma 0.3 --min-separation -1 --plot $G/rough_cycle_0.2.png -o $G/rough_cycle_0.2.json
 $T rough --lambda 2 --sigma 0.5 --min-separation -1 --plot $G/rough_cycle_2.png -o $G/rough_cycle_2.json
 $T rough-pulloff --plot $G/rough_pulloff.png -o $G/rough_pulloff.json
+# The rough adhesion map: pull-off relative to the smooth summit's, and the adequate summit model.
+$T rough-map --out $G/rough_map.png --json $G/rough_map.json

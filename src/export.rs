@@ -118,7 +118,7 @@ pub fn map_json(
     })
 }
 
-fn npy_write<T: npyz::AutoSerialize + Copy>(
+pub(crate) fn npy_write<T: npyz::AutoSerialize + Copy>(
     out: &mut Output,
     shape: &[u64],
     data: impl Iterator<Item = T>,

@@ -65,6 +65,9 @@ const FLAGS: &[(&str, &str)] = &[
     ("--width-mm", "width_mm"),
     ("--points", "points"),
     ("--dpi", "dpi"),
+    ("--sigma-min", "sigma_min"),
+    ("--sigma-max", "sigma_max"),
+    ("--press-sigmas", "press_sigmas"),
     ("--nx", "nx"),
     ("--ny", "ny"),
     ("--z0", "z0_m"),
@@ -788,6 +791,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(profile, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_map, m)?)?;
     m.add_class::<AdhesionMap>()?;
     Ok(())
 }

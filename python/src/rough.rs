@@ -47,6 +47,77 @@ pub fn rough<'py>(
     d.set_item("hysteresis", c.hysteresis)?;
     d.set_item("smooth_pulloff", c.smooth_pulloff)?;
     d.set_item("fuller_tabor_parameter", c.fuller_tabor_parameter)?;
+    d.set_item("quadrature_error", c.quadrature_error)?;
+    Ok(d)
+}
+
+/// The rough adhesion map, as `tabor rough-map` computes it: flat row-major arrays (rows are
+/// sigma), reshaped in `tabor/__init__.py`.
+#[pyfunction]
+#[pyo3(signature = (lambda_min, lambda_max, nx, sigma_min, sigma_max, ny, tolerance, press_sigmas, check))]
+#[allow(clippy::too_many_arguments)]
+pub fn rough_map<'py>(
+    py: Python<'py>,
+    lambda_min: f64,
+    lambda_max: f64,
+    nx: usize,
+    sigma_min: f64,
+    sigma_max: f64,
+    ny: usize,
+    tolerance: f64,
+    press_sigmas: f64,
+    check: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let spec = tabor::rough::map::RoughMapSpec {
+        lambda_min,
+        lambda_max,
+        nx,
+        sigma_min,
+        sigma_max,
+        ny,
+        tolerance,
+        press_sigmas,
+    };
+    let m = run(py, move || {
+        if check > 100_000 {
+            anyhow::bail!("check {check}: give at most 100000 points to re-solve");
+        }
+        Ok(tabor::rough::map::compute(&spec, check)?)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("lambda", arr(py, m.lambdas.clone()))?;
+    d.set_item("sigma", arr(py, m.sigmas.clone()))?;
+    d.set_item("smooth_pulloff", arr(py, m.smooth_pulloff.clone()))?;
+    d.set_item("pulloff", arr(py, m.pulloff.clone()))?;
+    d.set_item("relative_pulloff", arr(py, m.relative_pulloff.clone()))?;
+    d.set_item("pulloff_separation", arr(py, m.pulloff_separation.clone()))?;
+    d.set_item(
+        "region",
+        m.regions.iter().map(|&r| r as u8).collect::<Vec<u8>>(),
+    )?;
+    d.set_item(
+        "region_names",
+        tabor::map::Region::ALL
+            .iter()
+            .map(|r| r.name())
+            .collect::<Vec<_>>(),
+    )?;
+    d.set_item(
+        "model_error",
+        arr(
+            py,
+            m.model_error
+                .iter()
+                .flat_map(|e| e.iter().copied())
+                .collect(),
+        ),
+    )?;
+    d.set_item("table_error", m.table_error_max())?;
+    d.set_item("check_points", m.check.points)?;
+    d.set_item(
+        "check_max_relative_difference",
+        m.check.max_relative_difference,
+    )?;
     Ok(d)
 }
 

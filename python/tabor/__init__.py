@@ -46,7 +46,7 @@ STATUS_NAMES = tuple(_tabor.status_names())
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
-    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble",
+    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble", "rough_map",
 ]
 
 
@@ -651,7 +651,8 @@ def rough(lam, sigma, min_separation, max_separation=None, points=400):
     Loads per summit in pi w R, separations and sigma in the summit's approach unit. Returns a
     dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
     ``noncontact_fraction``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
-    ``smooth_pulloff``, ``fuller_tabor_parameter``."""
+    ``smooth_pulloff``, ``fuller_tabor_parameter``, ``quadrature_error`` (the largest error
+    estimate of the quadrature over the loads given)."""
     return _tabor.rough(float(lam), float(sigma), float(min_separation),
                         None if max_separation is None else float(max_separation), int(points))
 
@@ -664,3 +665,28 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     d = np.ascontiguousarray(separations, dtype=float).ravel()
     return _tabor.rough_ensemble(float(lam), h.tolist(), d.tolist(),
                                  None if min_separation is None else float(min_separation))
+
+
+def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max=1e2, ny=256,
+              tolerance=0.05, press_sigmas=3.0, check=64):
+    """The rough adhesion map, as ``tabor rough-map`` computes it: over ``lambda`` (nx, log) and
+    ``sigma`` (ny, log, approach units), the pull-off per summit after pressing to
+    ``-press_sigmas * sigma`` and retracting, relative to the smooth summit's, and the simplest
+    adequate summit model. Returns a dict of NumPy arrays: ``lambda`` (nx), ``sigma`` (ny),
+    ``smooth_pulloff`` (nx); ``pulloff``, ``relative_pulloff``, ``pulloff_separation`` and
+    ``region`` (uint8 codes named by ``region_names``), each (ny, nx); ``model_error``
+    (ny, nx, 4: Hertz, Bradley, DMT, JKR); ``table_error`` and the check of ``check`` points
+    against the adaptive quadrature (``check_points``, ``check_max_relative_difference``)."""
+    for name, v in [("nx", nx), ("ny", ny), ("check", check)]:
+        if int(v) < 0:
+            raise ValueError(f"{name} = {v}: give a count >= 0")
+    d = _tabor.rough_map(_real(lambda_min, "lambda_min"), _real(lambda_max, "lambda_max"),
+                         int(nx), _real(sigma_min, "sigma_min"), _real(sigma_max, "sigma_max"),
+                         int(ny), _real(tolerance, "tolerance"),
+                         _real(press_sigmas, "press_sigmas"), int(check))
+    shape = (len(d["sigma"]), len(d["lambda"]))
+    for k in ["pulloff", "relative_pulloff", "pulloff_separation"]:
+        d[k] = d[k].reshape(shape)
+    d["region"] = np.frombuffer(bytes(d["region"]), dtype=np.uint8).reshape(shape).copy()
+    d["model_error"] = d["model_error"].reshape(shape + (4,))
+    return d

@@ -44,3 +44,35 @@ def test_bad_roughness_raises():
         tabor.rough(1.0, -1.0, 0.0)
     with pytest.raises(ValueError, match="heights"):
         tabor.rough_ensemble(1.0, [np.nan], [0.0])
+
+
+def test_rough_map_equals_the_command_line(tmp_path):
+    got = tabor.rough_map(lambda_min=0.1, lambda_max=100, nx=5, sigma_min=0.05, sigma_max=5,
+                          ny=4, check=3)
+    prefix = str(tmp_path / "m")
+    subprocess.run([str(TABOR), "rough-map", "--lambda-min", "0.1", "--lambda-max", "100",
+                    "--nx", "5", "--sigma-min", "0.05", "--sigma-max", "5", "--ny", "4",
+                    "--check", "3", "--out", str(tmp_path / "m.png"), "--npy", prefix],
+                   capture_output=True, text=True, check=True)
+    for k in ["lambda", "sigma", "pulloff", "relative_pulloff", "pulloff_separation", "region",
+              "model_error"]:
+        want = np.load(f"{prefix}_{k}.npy")
+        assert isinstance(got[k], np.ndarray)
+        assert got[k].shape == want.shape, k
+        np.testing.assert_array_equal(got[k], want)
+    # The ratio is the pull-off over the smooth summit's, at most 1 (the grips path's minimum).
+    np.testing.assert_allclose(got["relative_pulloff"],
+                               got["pulloff"] / got["smooth_pulloff"][None, :], rtol=1e-15)
+    assert np.all(got["relative_pulloff"] <= 1 + 1e-9)
+    assert got["table_error"] < 1e-6 and got["check_max_relative_difference"] < 1e-6
+    names = got["region_names"]
+    assert set(names[r] for r in got["region"].ravel()) <= {"hertz", "rigid", "dmt", "jkr", "md"}
+
+
+def test_rough_map_refuses_bad_input():
+    with pytest.raises(ValueError, match="sigma_min"):
+        tabor.rough_map(sigma_min=-1.0, nx=4, ny=4)
+    with pytest.raises(ValueError, match="tolerance"):
+        tabor.rough_map(tolerance=2.0, nx=4, ny=4)
+    with pytest.raises(ValueError, match="nx"):
+        tabor.rough_map(nx=-3)

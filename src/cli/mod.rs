@@ -5,6 +5,7 @@ mod fit;
 mod map;
 mod profile;
 mod rough;
+mod rough_map;
 pub(crate) mod scene;
 
 use clap::{Parser, Subcommand, ValueEnum};
@@ -54,6 +55,9 @@ pub enum Command {
     /// Pull-off of a rough surface against its roughness for several lambda (Fuller and Tabor's
     /// figure), after pressing to a given separation.
     RoughPulloff(rough::RoughPulloffArgs),
+    /// The rough adhesion map over lambda and sigma: pull-off per summit relative to the smooth
+    /// summit's, and the simplest adequate summit model (Hertz, Bradley, DMT, JKR, MD).
+    RoughMap(rough_map::RoughMapArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -250,6 +254,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Fit(a) => fit::run(*a),
         Command::Rough(a) => rough::run(a),
         Command::RoughPulloff(a) => rough::pulloff(a),
+        Command::RoughMap(a) => rough_map::run(a),
     }
 }
 

@@ -96,6 +96,7 @@ struct Json<'a> {
     hysteresis: f64,
     smooth_pulloff: f64,
     fuller_tabor_parameter: f64,
+    quadrature_error: f64,
     model: &'a str,
 }
 
@@ -142,6 +143,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
                 hysteresis: c.hysteresis,
                 smooth_pulloff: c.smooth_pulloff,
                 fuller_tabor_parameter: c.fuller_tabor_parameter,
+                quadrature_error: c.quadrature_error,
                 model: MODEL,
             };
             serde_json::to_string_pretty(&j)? + "\n"

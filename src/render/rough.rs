@@ -161,3 +161,151 @@ where
     legend(&mut chart, SeriesLabelPosition::LowerLeft, NOTE)?;
     Ok(())
 }
+
+/// The rough adhesion map: regions (the simplest adequate summit model) coloured, the contours
+/// of the pull-off relative to the smooth summit's on top.
+pub fn map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    m: &crate::rough::map::RoughMap,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use super::map::{contour_paths, region_color, MARGIN, X_AREA, Y_AREA};
+    use super::{Entry, TITLE};
+    use crate::map::Region;
+    root.fill(&WHITE)?;
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    let sp = &m.spec;
+    let pad = 32;
+    let tol = format!("{}%", sp.tolerance * 100.0);
+    let present: Vec<Region> = m.region_counts().iter().map(|r| r.0).collect();
+    let mut legend: Vec<Entry> = present
+        .iter()
+        .map(|&r| Entry {
+            label: r
+                .label()
+                .replace("Bradley (rigid)", "Bradley (rigid summits)"),
+            style: region_color(r).stroke_width(28),
+            dashed: false,
+        })
+        .collect();
+    legend.push(Entry {
+        label: "P_{c}/P_{c,smooth} = 0.5, 0.1, 0.01".into(),
+        style: BLACK.stroke_width(5),
+        dashed: false,
+    });
+    let caption = super::wrap(
+        root,
+        &format!(
+            "Greenwood-Williamson summits, heights N(0, σ²), pressed to −{}σ and retracted. Colour: the simplest summit model whose rough pull-off is within {tol} of the smooth summit's pull-off and whose retract curve is within {tol} of its largest load, against exact Maugis-Dugdale summits. Lines: the rough pull-off per summit relative to the smooth summit's.",
+            crate::physics::domain::short(sp.press_sigmas)
+        ),
+        NOTE,
+        w - 2 * pad,
+    );
+    let bottom = super::legend_rows_height(root, &legend, NOTE, w - 2 * pad)
+        + caption.len() as i32 * super::line_height(NOTE)
+        + 28;
+    let (upper, lower) = root.split_vertically(h - bottom);
+    let mut chart = ChartBuilder::on(&upper)
+        .caption(
+            format!("Rough adhesion map (tolerance {tol})"),
+            ("sans-serif", TITLE),
+        )
+        .margin(MARGIN)
+        .margin_top(MARGIN + (TICK * 0.5) as i32)
+        .margin_right(MARGIN + (TICK * 0.9) as i32)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(Y_AREA)
+        .build_cartesian_2d(
+            (sp.lambda_min..sp.lambda_max).log_scale(),
+            (sp.sigma_min..sp.sigma_max).log_scale(),
+        )?;
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let (bw, bh) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
+    let mut buf = vec![0u8; (bw * bh * 3) as usize];
+    for r in 0..bh {
+        let iy = ((1.0 - (r as f64 + 0.5) / bh as f64) * (sp.ny - 1) as f64).round() as usize;
+        for c in 0..bw {
+            let ix = (((c as f64 + 0.5) / bw as f64) * (sp.nx - 1) as f64).round() as usize;
+            let col = region_color(m.regions[iy * sp.nx + ix]);
+            let k = ((r * bw + c) * 3) as usize;
+            buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
+        }
+    }
+    if let Some(el) = BitMapElement::with_owned_buffer((sp.lambda_min, sp.sigma_max), (bw, bh), buf)
+    {
+        chart.draw_series(std::iter::once(el))?;
+    }
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("Maugis parameter of a summit  λ")
+        .y_desc("roughness  σ/(π²w²R/K²)^{1/3}")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_label_formatter(&|v| super::log_label(*v))
+        .y_label_formatter(&|v| super::log_label(*v))
+        .draw()?;
+    // Contours of log10 of the ratio, in chart coordinates.
+    let field: Vec<f64> = m
+        .relative_pulloff
+        .iter()
+        .map(|&r| if r > 0.0 { r.log10() } else { -30.0 })
+        .collect();
+    let at = |f: f64, lo: f64, hi: f64, n: usize| {
+        10f64.powf(lo.log10() + f / (n - 1) as f64 * (hi.log10() - lo.log10()))
+    };
+    for (k, level) in crate::rough::map::CONTOURS.into_iter().enumerate() {
+        let paths = contour_paths(&field, sp.nx, sp.ny, level.log10());
+        for path in &paths {
+            let pts: Vec<(f64, f64)> = path
+                .iter()
+                .map(|&(x, y)| {
+                    (
+                        at(x, sp.lambda_min, sp.lambda_max, sp.nx),
+                        at(y, sp.sigma_min, sp.sigma_max, sp.ny),
+                    )
+                })
+                .collect();
+            chart.draw_series(LineSeries::new(pts.clone(), BLACK.stroke_width(5)))?;
+        }
+        // The level's label on its longest path, the three staggered across the map (at 35%,
+        // 60% and 85% of the lambda axis) so that they never overlap.
+        let want_x = (0.35 + 0.25 * k as f64) * (sp.nx - 1) as f64;
+        if let Some(path) = paths.iter().max_by_key(|p| p.len()) {
+            let &(x, y) = path
+                .iter()
+                .min_by(|a, b| (a.0 - want_x).abs().total_cmp(&(b.0 - want_x).abs()))
+                .unwrap_or(&path[path.len() / 2]);
+            let p = (
+                at(x, sp.lambda_min, sp.lambda_max, sp.nx),
+                at(y, sp.sigma_min, sp.sigma_max, sp.ny),
+            );
+            let text = crate::physics::domain::short(level);
+            let style = ("sans-serif", NOTE).into_font().color(&BLACK);
+            let (cx, cy) = chart.backend_coord(&p);
+            let tw = super::text_width(chart.plotting_area(), &text, NOTE);
+            let th = super::line_height(NOTE);
+            let area = chart.plotting_area().strip_coord_spec();
+            let base = area.get_base_pixel();
+            let (x0, y0) = (cx - base.0 - tw / 2 - 6, cy - base.1 - th / 2 - 4);
+            area.draw(&Rectangle::new(
+                [(x0, y0), (x0 + tw + 12, y0 + th + 8)],
+                WHITE.mix(0.85).filled(),
+            ))?;
+            area.draw(&Text::new(text, (x0 + 6, y0 + 4), style))?;
+        }
+    }
+    let used = super::draw_legend_rows(&lower, &legend, NOTE, (pad, 8), w - 2 * pad)?;
+    for (k, l) in caption.iter().enumerate() {
+        lower.draw(&Text::new(
+            l.clone(),
+            (pad, used + 16 + super::line_height(NOTE) * k as i32),
+            ("sans-serif", NOTE).into_font().color(&BLACK),
+        ))?;
+    }
+    Ok(())
+}

@@ -6,6 +6,7 @@
 //! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
 
 pub mod ensemble;
+pub mod map;
 pub mod scene;
 
 use crate::physics::domain::{short, DomainError};
@@ -370,6 +371,9 @@ pub struct RoughCycle {
     /// Fuller and Tabor's adhesion parameter E* sigma^(3/2) / (R^(1/2) w) = (3 pi / 4)
     /// sigma^(3/2).
     pub fuller_tabor_parameter: f64,
+    /// The largest error estimate of the quadrature over every reported load, the pull-off's
+    /// included (pi w R per summit): the sum over the pieces of the tanh-sinh estimates.
+    pub quadrature_error: f64,
 }
 
 impl Rough {
@@ -436,6 +440,12 @@ impl Rough {
             .collect::<Result<_, _>>()?;
         let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
         let hysteresis = self.hysteresis(d_min, d_max)?;
+        let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
+        let quadrature_error = approach
+            .iter()
+            .chain(&retract)
+            .map(|m| m.quadrature_error)
+            .fold(at_pulloff, f64::max);
         Ok(RoughCycle {
             lambda: self.summit.lambda,
             sigma: self.sigma,
@@ -446,6 +456,7 @@ impl Rough {
             hysteresis,
             smooth_pulloff: self.summit.ctx.load_pulloff.load,
             fuller_tabor_parameter: 0.75 * PI * self.sigma.powf(1.5),
+            quadrature_error,
         })
     }
 

@@ -1,0 +1,252 @@
+//! `tabor rough-map`: the rough adhesion map, its figure and its tables.
+
+use crate::io::Output;
+use crate::rough::map::{RoughMap, RoughMapSpec};
+use anyhow::Context;
+use clap::Args;
+use std::io::Write as _;
+use std::path::PathBuf;
+
+#[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct RoughMapArgs {
+    #[arg(long, default_value_t = 1e-2)]
+    pub lambda_min: f64,
+    #[arg(long, default_value_t = 1e3)]
+    pub lambda_max: f64,
+    /// Grid columns (lambda, log-spaced).
+    #[arg(long, default_value_t = 256)]
+    pub nx: usize,
+    /// The smallest roughness sigma (approach units).
+    #[arg(long, default_value_t = 1e-2)]
+    pub sigma_min: f64,
+    /// The largest roughness sigma.
+    #[arg(long, default_value_t = 1e2)]
+    pub sigma_max: f64,
+    /// Grid rows (sigma, log-spaced).
+    #[arg(long, default_value_t = 256)]
+    pub ny: usize,
+    /// Largest error a simpler summit model may have: its rough pull-off relative to the smooth
+    /// summit's, and its retract curve relative to the curve's largest |load|.
+    #[arg(long, default_value_t = 0.05)]
+    pub tolerance: f64,
+    /// How far the flat was pressed before the retract, in sigma below the mean summit plane.
+    #[arg(long, default_value_t = 3.0)]
+    pub press_sigmas: f64,
+    /// Points re-solved by the adaptive quadrature of `tabor rough` to check the map.
+    #[arg(long, default_value_t = 64)]
+    pub check: usize,
+    /// The figure: .png, .svg or .pdf.
+    #[arg(long, default_value = "rough-map.png")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub figure: super::FigureArgs,
+    /// JSON with metadata, axes, per-lambda table errors and the check.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Add the per-point arrays to the JSON.
+    #[arg(long, requires = "json")]
+    pub json_full: bool,
+    /// Put the computing time into the JSON (it differs between runs).
+    #[arg(long)]
+    pub timings: bool,
+    /// Write PREFIX_lambda.npy, PREFIX_sigma.npy, PREFIX_relative_pulloff.npy, ... .
+    #[arg(long)]
+    pub npy: Option<String>,
+}
+
+/// The NPY files of `--npy PREFIX`, each `PREFIX_<name>`.
+pub const NPY_FILES: [&str; 7] = [
+    "lambda.npy",
+    "sigma.npy",
+    "pulloff.npy",
+    "relative_pulloff.npy",
+    "pulloff_separation.npy",
+    "region.npy",
+    "model_error.npy",
+];
+
+impl RoughMapArgs {
+    pub fn spec(&self) -> RoughMapSpec {
+        RoughMapSpec {
+            lambda_min: self.lambda_min,
+            lambda_max: self.lambda_max,
+            nx: self.nx,
+            sigma_min: self.sigma_min,
+            sigma_max: self.sigma_max,
+            ny: self.ny,
+            tolerance: self.tolerance,
+            press_sigmas: self.press_sigmas,
+        }
+    }
+}
+
+/// How a region is decided, for the JSON and the figure.
+pub const REGION_RULE: &str = "each point takes the first of Hertz (no adhesion), Bradley (rigid summits: Dugdale attraction -2(1 + delta/h0) at a gap, -2 in contact), DMT (delta^(3/2) - 2 in contact, the same attraction at a gap), JKR (Fuller and Tabor: in at delta = 0, out at JKR's rigid-grip jump-out) whose rough pull-off differs from the exact MD summits' by at most the tolerance times the smooth summit's pull-off, and whose retract curve (at 20 separations from the smallest to where the summits are free) differs by at most the tolerance times the MD curve's largest |load|; else MD";
+
+pub fn json(m: &RoughMap, full: bool, timings: bool) -> serde_json::Value {
+    use crate::io::json_num;
+    let nums = |v: &[f64]| -> Vec<serde_json::Value> { v.iter().map(|&x| json_num(x)).collect() };
+    let mut j = serde_json::json!({
+        "spec": m.spec,
+        "model": "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd, when sigma is comparable to the summit radius, or for few summits",
+        "quantity": "relative_pulloff: the most tensile retract load per summit after pressing to -press_sigmas*sigma, over the smooth summit's load-controlled pull-off Pbar_c",
+        "region_rule": REGION_RULE,
+        "regions": m.region_counts().iter().map(|(r, n)| (r.name().to_string(), serde_json::json!(n))).collect::<serde_json::Map<_, _>>(),
+        "contours": crate::rough::map::CONTOURS,
+        "axes": {
+            "lambda": nums(&m.lambdas),
+            "sigma": nums(&m.sigmas),
+            "fuller_tabor_parameter": m.sigmas.iter().map(|s| json_num(0.75 * std::f64::consts::PI * s.powf(1.5))).collect::<Vec<_>>(),
+        },
+        "smooth_pulloff": nums(&m.smooth_pulloff),
+        "table_error": json_num(m.table_error_max()),
+        "table_error_per_lambda": nums(&m.table_error),
+        "quadrature_check": m.check,
+    });
+    if timings {
+        j["seconds"] = json_num(m.seconds);
+    }
+    if full {
+        j["pulloff"] = nums(&m.pulloff).into();
+        j["relative_pulloff"] = nums(&m.relative_pulloff).into();
+        j["pulloff_separation"] = nums(&m.pulloff_separation).into();
+        j["region"] = m
+            .regions
+            .iter()
+            .map(|r| r.name())
+            .collect::<Vec<_>>()
+            .into();
+        for (k, name) in ["hertz", "bradley", "dmt", "jkr"].iter().enumerate() {
+            j[format!("{name}_error")] = m
+                .model_error
+                .iter()
+                .map(|e| json_num(e[k]))
+                .collect::<Vec<_>>()
+                .into();
+        }
+    }
+    j
+}
+
+pub fn write_npy(m: &RoughMap, outs: &mut [Output]) -> anyhow::Result<()> {
+    use crate::export::npy_write;
+    let [lam, sig, pc, rel, sep, region, err] = outs else {
+        anyhow::bail!("write_npy needs the {} outputs", NPY_FILES.len());
+    };
+    let (nx, ny) = (m.spec.nx as u64, m.spec.ny as u64);
+    npy_write(lam, &[nx], m.lambdas.iter().copied())?;
+    npy_write(sig, &[ny], m.sigmas.iter().copied())?;
+    npy_write(pc, &[ny, nx], m.pulloff.iter().copied())?;
+    npy_write(rel, &[ny, nx], m.relative_pulloff.iter().copied())?;
+    npy_write(sep, &[ny, nx], m.pulloff_separation.iter().copied())?;
+    npy_write(region, &[ny, nx], m.regions.iter().map(|&r| r as u8))?;
+    npy_write(
+        err,
+        &[ny, nx, 4],
+        m.model_error.iter().flat_map(|e| e.iter().copied()),
+    )?;
+    Ok(())
+}
+
+pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
+    let spec = a.spec();
+    spec.validate()?;
+    if a.check > 100_000 {
+        anyhow::bail!(
+            "--check {}: give at most 100000 points to re-solve",
+            a.check
+        );
+    }
+    let figure = a.figure.outputs(Some(&a.out), "--out")?;
+    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let mut more: Vec<(String, PathBuf)> = a
+        .json
+        .clone()
+        .map(|p| ("--json".to_string(), p))
+        .into_iter()
+        .collect();
+    if let Some(prefix) = &a.npy {
+        more.extend(
+            NPY_FILES
+                .iter()
+                .map(|n| ("--npy".to_string(), PathBuf::from(format!("{prefix}_{n}")))),
+        );
+    }
+    a.figure.check_distinct(Some(&a.out), "--out", more)?;
+    // Every output is opened before the work; none is put in place unless all were written.
+    let open = |p: &Option<PathBuf>| -> anyhow::Result<Option<Output>> {
+        p.as_ref()
+            .map(|p| Output::create(p).with_context(|| p.display().to_string()))
+            .transpose()
+    };
+    let mut figure_out = [open(&figure.png)?, open(&figure.svg)?, open(&figure.pdf)?];
+    let mut json_out = open(&a.json).context("--json")?;
+    let mut npy: Vec<Output> = match &a.npy {
+        Some(prefix) => NPY_FILES
+            .iter()
+            .map(|n| Output::create(format!("{prefix}_{n}")))
+            .collect::<anyhow::Result<_>>()
+            .context("--npy")?,
+        None => Vec::new(),
+    };
+    let m = crate::rough::map::compute(&spec, a.check)?;
+    let want = crate::render::Formats {
+        png: figure.png.is_some(),
+        svg: figure.svg.is_some(),
+        pdf: figure.pdf.is_some(),
+    };
+    let fig = crate::render::draw_figure(crate::render::Kind::Map, &print, want, &|r| {
+        crate::render::rough::map(r, &m)
+    })
+    .map_err(anyhow::Error::from_boxed)
+    .context("rendering the figure")?;
+    let bytes = [
+        fig.png.as_deref(),
+        fig.svg.as_ref().map(|s| s.as_bytes()),
+        fig.pdf.as_deref(),
+    ];
+    let put = |o: &mut Output, bytes: &[u8]| -> anyhow::Result<()> {
+        let shown = o.name().display().to_string();
+        o.write_all(bytes)
+            .with_context(|| format!("cannot write {shown}"))
+    };
+    for (o, b) in figure_out.iter_mut().zip(bytes) {
+        if let (Some(o), Some(b)) = (o.as_mut(), b) {
+            put(o, b)?;
+        }
+    }
+    if let Some(o) = json_out.as_mut() {
+        let text = serde_json::to_string_pretty(&json(&m, a.json_full, a.timings))? + "\n";
+        put(o, text.as_bytes())?;
+    }
+    if !npy.is_empty() {
+        write_npy(&m, &mut npy)?;
+    }
+    for o in figure_out.into_iter().flatten().chain(json_out).chain(npy) {
+        o.commit()?;
+    }
+    let counts: Vec<String> = m
+        .region_counts()
+        .iter()
+        .map(|(r, n)| {
+            format!(
+                "{} {:.1}%",
+                r.name(),
+                100.0 * *n as f64 / m.regions.len() as f64
+            )
+        })
+        .collect();
+    eprintln!(
+        "rough map {}x{}: {:.3} s; table error {:.1e}; check on {} points: largest relative difference {:.1e}; wrote {}",
+        spec.nx,
+        spec.ny,
+        m.seconds,
+        m.table_error_max(),
+        m.check.points,
+        m.check.max_relative_difference,
+        a.out.display()
+    );
+    eprintln!("regions: {}", counts.join(", "));
+    Ok(())
+}

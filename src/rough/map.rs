@@ -1,0 +1,703 @@
+//! The rough adhesion map (`tabor rough-map`): over lambda and sigma, the pull-off per summit of
+//! a Greenwood-Williamson surface of exact Maugis-Dugdale summits relative to the smooth
+//! summit's, and the simplest summit model (Hertz, Bradley, DMT, JKR, else MD) whose rough
+//! pull-off and retract curve are within a tolerance of the exact ones (docs/PHYSICS.md
+//! section 9).
+//!
+//! Per lambda the summit's contact branch is tabulated once (exact f64 solves, cubic
+//! interpolation with its error measured at every interval's midpoint); every sigma of that
+//! column then only integrates the table against the Gaussian (piecewise Gauss-Legendre).
+
+use super::{Leg, Rough, RoughError, Summit};
+use crate::map::Region;
+use crate::physics::closed::{jkr_approach, jkr_load};
+use crate::physics::domain::short;
+use rayon::prelude::*;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// The Gaussian's mass beyond this many sigma (2.6e-12) is dropped in the map's quadrature.
+const Z_MAP: f64 = 7.0;
+/// Widest quadrature piece, in sigma.
+const PIECE: f64 = 2.0;
+/// Gauss-Legendre nodes per piece.
+const GL_N: usize = 12;
+/// Samples of each retract curve (the curves are compared there; the pull-off is refined from
+/// the smallest).
+pub const CURVE_SAMPLES: usize = 20;
+/// Interpolation error the table aims at; intervals next to the fold that miss it (near
+/// lambda_D the branch turns within a tiny range of approaches) are solved exactly instead.
+const TABLE_TARGET: f64 = 1e-6;
+/// The exactly solved stretch may reach up to this v (u about 2.5).
+const EXACT_V_MAX: f64 = 2.0;
+/// Table step in the graded variable v (u = v + v^2 / (2 U_S), u = sqrt(delta - delta_out)).
+const TABLE_H: f64 = 0.025;
+const U_S: f64 = 4.0;
+/// The ratio contours drawn and exported.
+pub const CONTOURS: [f64; 3] = [0.5, 0.1, 0.01];
+
+/// What `tabor rough-map` computes.
+#[derive(Clone, Debug, Serialize)]
+pub struct RoughMapSpec {
+    pub lambda_min: f64,
+    pub lambda_max: f64,
+    pub nx: usize,
+    pub sigma_min: f64,
+    pub sigma_max: f64,
+    pub ny: usize,
+    /// Largest pull-off error (relative to the smooth summit's pull-off) and retract-curve error
+    /// (relative to the curve's largest |load|) a simpler summit model may have.
+    pub tolerance: f64,
+    /// The flat is pressed to `-press_sigmas * sigma` before the retract.
+    pub press_sigmas: f64,
+}
+
+impl RoughMapSpec {
+    /// One clear line for a bad value.
+    pub fn validate(&self) -> Result<(), RoughError> {
+        use crate::physics::domain::check_lambda;
+        let bad = |m: String| Err(RoughError::Scene(m));
+        for (flag, l) in [
+            ("--lambda-min", self.lambda_min),
+            ("--lambda-max", self.lambda_max),
+        ] {
+            if let Err(e) = check_lambda(l) {
+                return bad(format!("{flag}: {e}"));
+            }
+        }
+        if !(self.lambda_max > self.lambda_min) {
+            return bad(format!(
+                "--lambda-min must be below --lambda-max, got {} and {}",
+                short(self.lambda_min),
+                short(self.lambda_max)
+            ));
+        }
+        if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
+            return bad(format!(
+                "--sigma-min {} and --sigma-max {} are not a roughness range: give 0 < --sigma-min < --sigma-max <= 1e4 (approach units)",
+                short(self.sigma_min),
+                short(self.sigma_max)
+            ));
+        }
+        if !(2..=4096).contains(&self.nx) || !(2..=4096).contains(&self.ny) {
+            return bad(format!(
+                "--nx and --ny must be in 2..=4096, got {} and {}",
+                self.nx, self.ny
+            ));
+        }
+        if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
+            return bad(format!(
+                "--tolerance must be in (0, 1), got {}",
+                short(self.tolerance)
+            ));
+        }
+        if !(self.press_sigmas.is_finite() && self.press_sigmas.abs() <= 6.0) {
+            return bad(format!(
+                "--press-sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
+                short(self.press_sigmas)
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The summit's stable contact branch tabulated in v, where `u = v + v^2 / (2 U_S)` and
+/// `u = sqrt(delta - delta_out)`: the square root takes the fold's `sqrt(delta - delta_out)`
+/// singularity out of the table, and the grading spaces the nodes wider where the load is
+/// nearly Hertz's.
+#[derive(Clone, Debug)]
+pub struct BranchTable {
+    delta0: f64,
+    vals: Vec<f64>,
+    /// The largest difference, at the midpoints of all intervals, between the interpolant and
+    /// the exact load, divided by max(1, |load|), outside the exactly solved stretch.
+    pub error: f64,
+    /// Below this v the load is solved exactly, not interpolated (0: nowhere).
+    pub exact_below: f64,
+}
+
+fn u_of_v(v: f64) -> f64 {
+    v + v * v / (2.0 * U_S)
+}
+
+fn v_of_u(u: f64) -> f64 {
+    // The positive root of v^2 / (2 U_S) + v - u = 0, written without cancellation.
+    2.0 * u / (1.0 + (1.0 + 2.0 * u / U_S).sqrt())
+}
+
+impl BranchTable {
+    /// Tabulates `load(delta)` for `delta` in `[delta0, delta_hi]`; `None` where it fails.
+    pub fn new(delta0: f64, delta_hi: f64, load: impl Fn(f64) -> Option<f64>) -> Option<Self> {
+        let v_max = v_of_u((delta_hi - delta0).max(1.0).sqrt());
+        let n = (v_max / TABLE_H).ceil() as usize + 4;
+        let at = |v: f64| {
+            let u = u_of_v(v);
+            load(delta0 + u * u)
+        };
+        let vals: Vec<f64> = (0..n)
+            .map(|k| at(k as f64 * TABLE_H))
+            .collect::<Option<_>>()?;
+        let mut t = BranchTable {
+            delta0,
+            vals,
+            error: 0.0,
+            exact_below: 0.0,
+        };
+        let errs: Vec<f64> = (0..n - 3)
+            .map(|k| {
+                let v = (k as f64 + 0.5) * TABLE_H;
+                let exact = at(v)?;
+                Some((t.at_v(v) - exact).abs() / exact.abs().max(1.0))
+            })
+            .collect::<Option<_>>()?;
+        // The intervals near the fold that miss the target are left to exact solves.
+        let bad = (0..errs.len())
+            .take_while(|&k| (k as f64) * TABLE_H < EXACT_V_MAX)
+            .filter(|&k| errs[k] > TABLE_TARGET)
+            .last();
+        let first = match bad {
+            Some(k) => {
+                t.exact_below = (k + 1) as f64 * TABLE_H;
+                k + 1
+            }
+            None => 0,
+        };
+        t.error = errs[first..].iter().fold(0.0, |a, &b| a.max(b));
+        Some(t)
+    }
+
+    /// Cubic Lagrange interpolation through the four nodes around `v`.
+    #[inline]
+    fn at_v(&self, v: f64) -> f64 {
+        let n = self.vals.len();
+        let k = ((v / TABLE_H) as usize).clamp(1, n - 3);
+        let s = v / TABLE_H - k as f64;
+        let y = &self.vals[k - 1..k + 3];
+        // Nodes at s = -1, 0, 1, 2.
+        let (a, b, c, d) = (s + 1.0, s, s - 1.0, s - 2.0);
+        -y[0] * b * c * d / 6.0 + y[1] * a * c * d / 2.0 - y[2] * a * b * d / 2.0
+            + y[3] * a * b * c / 6.0
+    }
+
+    /// The interpolated load; where `v` is below [`BranchTable::exact_below`] the caller solves
+    /// exactly instead ([`BranchTable::load_or`]).
+    #[inline]
+    pub fn load(&self, delta: f64) -> f64 {
+        self.at_v(v_of_u((delta - self.delta0).max(0.0).sqrt()))
+    }
+
+    /// The load: interpolated, or from `exact` in the exactly solved stretch (NaN where that
+    /// fails).
+    #[inline]
+    pub fn load_or(&self, delta: f64, exact: Option<&Summit>) -> f64 {
+        let v = v_of_u((delta - self.delta0).max(0.0).sqrt());
+        match exact {
+            Some(s) if v < self.exact_below => s.contact(delta).map_or(f64::NAN, |c| c.0),
+            _ => self.at_v(v),
+        }
+    }
+}
+
+/// One summit's load on a branch of a summit model.
+#[derive(Clone, Copy, Debug)]
+enum Law<'a> {
+    /// MD contact branch (table; the summit solves its exactly solved stretch).
+    Table(&'a BranchTable, Option<&'a Summit>),
+    /// MD non-contact branch: -(pi lambda / 2) C^2, C = C* + sqrt(C*^2 + 2 (delta + h0)).
+    NonContact { lambda: f64, h0: f64, c_star: f64 },
+    /// Hertz: delta^(3/2).
+    Hertz,
+    /// DMT in contact: delta^(3/2) - 2.
+    DmtContact,
+    /// Rigid sphere in contact (Bradley): -2.
+    Rigid,
+    /// A rigid sphere's Dugdale attraction at a gap: -2 (1 + delta / h0).
+    Attract { h0: f64 },
+}
+
+impl Law<'_> {
+    #[inline]
+    fn load(self, delta: f64) -> f64 {
+        match self {
+            Law::Table(t, s) => t.load_or(delta, s),
+            Law::NonContact { lambda, h0, c_star } => {
+                let c = c_star + (c_star * c_star + 2.0 * (delta + h0)).max(0.0).sqrt();
+                -(PI * lambda / 2.0) * c * c
+            }
+            Law::Hertz => delta.max(0.0).powf(1.5),
+            Law::DmtContact => delta.max(0.0).powf(1.5) - 2.0,
+            Law::Rigid => -2.0,
+            Law::Attract { h0 } => -2.0 * (1.0 + delta / h0),
+        }
+    }
+}
+
+/// A summit model on the retract: the summits that touched (`delta_max >= touched_from`) follow
+/// `touched`, those that only reached `reached_from` follow `reached`; each a list of
+/// `(delta_lo, delta_hi, law)` (zero elsewhere; a fold's square root sits at a `delta_lo`).
+struct Model<'a> {
+    touched_from: f64,
+    touched: Vec<(f64, f64, Law<'a>)>,
+    reached_from: f64,
+    reached: Vec<(f64, f64, Law<'a>)>,
+}
+
+/// Gauss-Legendre nodes and weights on [0, 1].
+fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    (1..=n)
+        .map(|i| {
+            let mut x = (PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
+            let mut dp = 0.0;
+            for _ in 0..100 {
+                let (mut p0, mut p1) = (1.0, x);
+                for k in 2..=n {
+                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                    (p0, p1) = (p1, p2);
+                }
+                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
+                let dx = p1 / dp;
+                x -= dx;
+                if dx.abs() < 1e-16 {
+                    break;
+                }
+            }
+            (0.5 * (1.0 - x), 1.0 / ((1.0 - x * x) * dp * dp))
+        })
+        .collect()
+}
+
+struct Quad {
+    nodes: Vec<(f64, f64)>,
+}
+
+impl Quad {
+    fn new() -> Quad {
+        Quad {
+            nodes: gauss_legendre(GL_N),
+        }
+    }
+
+    /// Integral of phi(t) law(sigma t - d) over [t0, t1]; with `fold` the substitution
+    /// t = t0 + (t1 - t0) s^2 takes out a square root at t0.
+    fn piece(&self, law: Law, sigma: f64, d: f64, t0: f64, t1: f64, fold: bool) -> f64 {
+        let w = t1 - t0;
+        let mut sum = 0.0;
+        for &(s, g) in &self.nodes {
+            let (t, jac) = if fold {
+                (t0 + w * s * s, 2.0 * w * s)
+            } else {
+                (t0 + w * s, w)
+            };
+            sum += g * jac * (-0.5 * t * t).exp() * law.load(sigma * t - d);
+        }
+        sum / (2.0 * PI).sqrt()
+    }
+
+    /// The mean retract load per summit at separation `d` after pressing to `d_min`.
+    fn retract(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
+        let mut total = 0.0;
+        // Heights (in sigma) of each history class.
+        let t_touch = (d_min + m.touched_from) / sigma;
+        let t_reach = (d_min + m.reached_from) / sigma;
+        let classes = [
+            (t_touch, Z_MAP, &m.touched),
+            (t_reach, t_touch.min(Z_MAP), &m.reached),
+        ];
+        for (lo, hi, segs) in classes {
+            for &(dl, dh, law) in segs.iter() {
+                let s0 = (d + dl) / sigma;
+                let a = s0.max(lo).max(-Z_MAP);
+                let b = ((d + dh) / sigma).min(hi);
+                if !(b > a) {
+                    continue;
+                }
+                let pieces = ((b - a) / PIECE).ceil().max(1.0) as usize;
+                let w = (b - a) / pieces as f64;
+                for k in 0..pieces {
+                    let t0 = a + w * k as f64;
+                    let fold = k == 0 && a == s0;
+                    total += self.piece(law, sigma, d, t0, t0 + w, fold);
+                }
+            }
+        }
+        total
+    }
+}
+
+/// The summit models of one lambda, in the order tried, and exact MD last.
+struct Models<'a> {
+    list: [Model<'a>; 5],
+}
+
+/// JKR's stable branch under grips (lambda-independent), from its closed forms.
+pub fn jkr_table(delta_hi: f64) -> BranchTable {
+    let a_out = 6f64.powf(-1.0 / 3.0);
+    let d_out = jkr_approach(a_out);
+    let load = |delta: f64| {
+        // jkr_approach rises with A above a_out: bisection then a Newton polish.
+        let (mut lo, mut hi) = (a_out, 2.0 + delta.max(0.0).sqrt() * 1.5);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if jkr_approach(mid) < delta {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= 1e-15 * hi {
+                break;
+            }
+        }
+        Some(jkr_load(0.5 * (lo + hi)))
+    };
+    BranchTable::new(d_out, delta_hi, load).expect("closed forms do not fail")
+}
+
+fn models<'a>(s: &'a Summit, md: &'a BranchTable, jkr: &'a BranchTable) -> Models<'a> {
+    let inf = f64::INFINITY;
+    let h0 = s.h0;
+    let nc = Law::NonContact {
+        lambda: s.lambda,
+        h0,
+        c_star: s.c_star,
+    };
+    let md_model = match s.delta_nc {
+        Some(lo) => Model {
+            touched_from: s.delta_in,
+            touched: vec![
+                (s.delta_out, inf, Law::Table(md, Some(s))),
+                (lo, s.delta_out, nc),
+            ],
+            reached_from: -h0,
+            reached: vec![(lo, inf, nc)],
+        },
+        None => Model {
+            touched_from: s.delta_in,
+            touched: vec![(s.delta_out, inf, Law::Table(md, Some(s)))],
+            reached_from: s.delta_in,
+            reached: vec![],
+        },
+    };
+    let attract = Law::Attract { h0 };
+    let none = || (inf, vec![]);
+    let plain = |segs: Vec<(f64, f64, Law<'a>)>, from: f64| {
+        let (reached_from, reached) = none();
+        Model {
+            touched_from: from,
+            touched: segs,
+            reached_from,
+            reached,
+        }
+    };
+    Models {
+        list: [
+            plain(vec![(0.0, inf, Law::Hertz)], 0.0),
+            plain(vec![(-h0, 0.0, attract), (0.0, inf, Law::Rigid)], -h0),
+            plain(vec![(-h0, 0.0, attract), (0.0, inf, Law::DmtContact)], -h0),
+            plain(
+                vec![(
+                    jkr_approach(6f64.powf(-1.0 / 3.0)),
+                    inf,
+                    Law::Table(jkr, None),
+                )],
+                0.0,
+            ),
+            md_model,
+        ],
+    }
+}
+
+/// The pull-off and retract curve of one model at one roughness.
+struct Retract {
+    /// Loads at the sample separations.
+    curve: Vec<f64>,
+    pulloff: f64,
+    separation: f64,
+}
+
+fn retract(q: &Quad, m: &Model, sigma: f64, d_min: f64, seps: &[f64], refine: bool) -> Retract {
+    let curve: Vec<f64> = seps
+        .iter()
+        .map(|&d| q.retract(m, sigma, d_min, d))
+        .collect();
+    refined(q, m, sigma, d_min, seps, curve, refine)
+}
+
+/// The pull-off from the sampled curve: the smallest sample, refined between its neighbours.
+fn refined(
+    q: &Quad,
+    m: &Model,
+    sigma: f64,
+    d_min: f64,
+    seps: &[f64],
+    curve: Vec<f64>,
+    refine: bool,
+) -> Retract {
+    let load = |d: f64| q.retract(m, sigma, d_min, d);
+    let i = (0..curve.len())
+        .min_by(|&a, &b| curve[a].total_cmp(&curve[b]))
+        .unwrap_or(0);
+    let (mut best_d, mut best) = (seps[i], curve[i]);
+    if refine {
+        let (a, b) = (seps[i.saturating_sub(1)], seps[(i + 1).min(seps.len() - 1)]);
+        let (x, f) = brent_min(&load, a, b, 1e-9 * (b - a).abs().max(sigma));
+        if f < best {
+            (best_d, best) = (x, f);
+        }
+    }
+    Retract {
+        curve,
+        // No tensile load at all: the pull-off is zero (NaN stays NaN: a failed solve).
+        pulloff: if best > 0.0 { 0.0 } else { best },
+        separation: best_d,
+    }
+}
+
+/// The minimum of `f` on [a, b]: Brent's method (golden section with parabolic steps), to
+/// `abs_tol` in the abscissa.
+fn brent_min(f: &dyn Fn(f64) -> f64, a: f64, b: f64, abs_tol: f64) -> (f64, f64) {
+    const C: f64 = 0.381_966_011_250_105_1;
+    let (mut a, mut b) = (a.min(b), a.max(b));
+    let mut x = a + C * (b - a);
+    let (mut w, mut v) = (x, x);
+    let mut fx = f(x);
+    let (mut fw, mut fv) = (fx, fx);
+    let (mut d, mut e): (f64, f64) = (0.0, 0.0);
+    for _ in 0..100 {
+        let m = 0.5 * (a + b);
+        let tol1 = 1e-10 * x.abs() + abs_tol;
+        let tol2 = 2.0 * tol1;
+        if (x - m).abs() <= tol2 - 0.5 * (b - a) {
+            break;
+        }
+        let mut golden = true;
+        if e.abs() > tol1 {
+            let r = (x - w) * (fx - fv);
+            let mut q = (x - v) * (fx - fw);
+            let mut p = (x - v) * q - (x - w) * r;
+            q = 2.0 * (q - r);
+            if q > 0.0 {
+                p = -p;
+            } else {
+                q = -q;
+            }
+            let e_old = e;
+            e = d;
+            if p.abs() < (0.5 * q * e_old).abs() && p > q * (a - x) && p < q * (b - x) {
+                d = p / q;
+                let u = x + d;
+                if u - a < tol2 || b - u < tol2 {
+                    d = if m >= x { tol1 } else { -tol1 };
+                }
+                golden = false;
+            }
+        }
+        if golden {
+            e = if x >= m { a - x } else { b - x };
+            d = C * e;
+        }
+        let u = if d.abs() >= tol1 {
+            x + d
+        } else {
+            x + tol1.copysign(d)
+        };
+        let fu = f(u);
+        if fu <= fx {
+            if u >= x {
+                a = x;
+            } else {
+                b = x;
+            }
+            (v, fv, w, fw, x, fx) = (w, fw, x, fx, u, fu);
+        } else {
+            if u < x {
+                a = u;
+            } else {
+                b = u;
+            }
+            if fu <= fw || w == x {
+                (v, fv, w, fw) = (w, fw, u, fu);
+            } else if fu <= fv || v == x || v == w {
+                (v, fv) = (u, fu);
+            }
+        }
+    }
+    (x, fx)
+}
+
+/// The result of the map.
+#[derive(Clone, Debug)]
+pub struct RoughMap {
+    pub spec: RoughMapSpec,
+    pub lambdas: Vec<f64>,
+    pub sigmas: Vec<f64>,
+    /// Per column: the smooth summit's pull-off (Pbar_c) and the table's interpolation error.
+    pub smooth_pulloff: Vec<f64>,
+    pub table_error: Vec<f64>,
+    /// Per point (row-major, row = sigma): pull-off per summit, its separation, relative to the
+    /// smooth summit's, the region, and each simpler model's error (the larger of its pull-off
+    /// and curve errors; Hertz, Bradley, DMT, JKR).
+    pub pulloff: Vec<f64>,
+    pub pulloff_separation: Vec<f64>,
+    pub relative_pulloff: Vec<f64>,
+    pub regions: Vec<Region>,
+    pub model_error: Vec<[f64; 4]>,
+    /// The map's pull-offs against the adaptive quadrature of `tabor rough` at sample points.
+    pub check: Check,
+    pub seconds: f64,
+}
+
+/// The map's pull-off loads recomputed at sample points by [`Rough::mean`] (tanh-sinh, exact
+/// solver at every node) at the separation the map found.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Check {
+    pub points: usize,
+    /// Largest |map - exact| / max(|exact|, 1e-3 |Pbar_c|).
+    pub max_relative_difference: f64,
+}
+
+/// The models tried, in order; region codes as in [`crate::map::Region`].
+pub const MODEL_REGIONS: [Region; 4] = [Region::Hertz, Region::Rigid, Region::Dmt, Region::Jkr];
+
+/// Computes the map on all cores: per lambda one table, then every sigma.
+pub fn compute(spec: &RoughMapSpec, checks: usize) -> Result<RoughMap, RoughError> {
+    spec.validate()?;
+    let t0 = std::time::Instant::now();
+    let (nx, ny) = (spec.nx, spec.ny);
+    let lambdas = crate::map::axis(spec.lambda_min, spec.lambda_max, nx, true);
+    let sigmas = crate::map::axis(spec.sigma_min, spec.sigma_max, ny, true);
+    let p = spec.press_sigmas;
+    // The approaches the quadrature reaches: heights up to Z_MAP sigma above separations down
+    // to -press sigma.
+    let delta_hi = (Z_MAP + p.max(0.0)) * spec.sigma_max + 1.0;
+    let jkr = jkr_table(delta_hi);
+    let quad = Quad::new();
+    type Column = (f64, f64, Vec<(f64, f64, Region, [f64; 4])>);
+    let columns: Vec<Column> = lambdas
+        .par_iter()
+        .map(|&lambda| -> Result<Column, RoughError> {
+            let s = Summit::new(lambda)?;
+            let smooth = s.ctx.load_pulloff.load;
+            let table = BranchTable::new(s.delta_out, delta_hi, |d| s.contact(d).map(|c| c.0))
+                .ok_or(RoughError::Failed(f64::NAN, lambda))?;
+            let ms = models(&s, &table, &jkr);
+            let reach = [s.h0, -s.delta_out, -s.delta_nc.unwrap_or(0.0)]
+                .into_iter()
+                .fold(0.0, f64::max);
+            let col = sigmas
+                .par_iter()
+                .map(|&sigma| {
+                    let d_min = -p * sigma;
+                    let d_max = 6.0 * sigma + reach;
+                    let seps: Vec<f64> = (0..CURVE_SAMPLES)
+                        .map(|k| d_min + (d_max - d_min) * k as f64 / (CURVE_SAMPLES - 1) as f64)
+                        .collect();
+                    let md = retract(&quad, &ms.list[4], sigma, d_min, &seps, true);
+                    let scale = md.curve.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                    let mut errs = [f64::NAN; 4];
+                    let mut region = Region::Md;
+                    for (k, m) in ms.list[..4].iter().enumerate() {
+                        let r = retract(&quad, m, sigma, d_min, &seps, false);
+                        let curve_err = r
+                            .curve
+                            .iter()
+                            .zip(&md.curve)
+                            .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()))
+                            / scale.max(f64::MIN_POSITIVE);
+                        // The pull-off is refined only where the curve passes (Hertz's is zero,
+                        // no refinement needed); elsewhere the sampled one stands in for the
+                        // error, which fails either way.
+                        let r = if k > 0 && curve_err <= spec.tolerance {
+                            refined(&quad, m, sigma, d_min, &seps, r.curve, true)
+                        } else {
+                            r
+                        };
+                        let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
+                        errs[k] = curve_err.max(pull_err);
+                        if errs[k] <= spec.tolerance {
+                            region = MODEL_REGIONS[k];
+                            break;
+                        }
+                    }
+                    (md.pulloff, md.separation, region, errs)
+                })
+                .collect();
+            Ok((smooth, table.error.max(jkr.error), col))
+        })
+        .collect::<Result<_, _>>()?;
+    let n = nx * ny;
+    let mut m = RoughMap {
+        spec: spec.clone(),
+        smooth_pulloff: columns.iter().map(|c| c.0).collect(),
+        table_error: columns.iter().map(|c| c.1).collect(),
+        pulloff: vec![0.0; n],
+        pulloff_separation: vec![0.0; n],
+        relative_pulloff: vec![0.0; n],
+        regions: vec![Region::Failed; n],
+        model_error: vec![[f64::NAN; 4]; n],
+        lambdas,
+        sigmas,
+        check: Check::default(),
+        seconds: 0.0,
+    };
+    for (ix, (smooth, _, col)) in columns.iter().enumerate() {
+        for (iy, &(pc, sep, region, errs)) in col.iter().enumerate() {
+            let i = iy * nx + ix;
+            m.pulloff[i] = pc;
+            m.pulloff_separation[i] = sep;
+            m.relative_pulloff[i] = (pc / smooth).abs();
+            // A failed exact solve in the fold's stretch leaves NaN: no number, no region.
+            m.regions[i] = if pc.is_finite() {
+                region
+            } else {
+                Region::Failed
+            };
+            m.model_error[i] = errs;
+        }
+    }
+    m.check = check(&m, checks)?;
+    m.seconds = t0.elapsed().as_secs_f64();
+    Ok(m)
+}
+
+/// Recomputes the load at the map's pull-off separation at `count` evenly spread points with
+/// the adaptive quadrature and exact solves of `tabor rough`.
+fn check(m: &RoughMap, count: usize) -> Result<Check, RoughError> {
+    let n = m.pulloff.len();
+    let count = count.min(n);
+    let worst = (0..count)
+        .into_par_iter()
+        .map(|k| -> Result<f64, RoughError> {
+            let i = ((2 * k + 1) * n / (2 * count)).min(n - 1);
+            let (ix, iy) = (i % m.spec.nx, i / m.spec.nx);
+            let sigma = m.sigmas[iy];
+            let r = Rough::new(m.lambdas[ix], sigma)?;
+            let d_min = -m.spec.press_sigmas * sigma;
+            let exact = r
+                .mean(Leg::Retract { d_min }, m.pulloff_separation[i])?
+                .load
+                .min(0.0);
+            let floor = 1e-3 * m.smooth_pulloff[ix].abs();
+            Ok((m.pulloff[i] - exact).abs() / exact.abs().max(floor))
+        })
+        .collect::<Result<Vec<f64>, _>>()?
+        .into_iter()
+        .fold(0.0, f64::max);
+    Ok(Check {
+        points: count,
+        max_relative_difference: worst,
+    })
+}
+
+impl RoughMap {
+    pub fn region_counts(&self) -> Vec<(Region, usize)> {
+        Region::ALL
+            .iter()
+            .map(|&r| (r, self.regions.iter().filter(|&&x| x == r).count()))
+            .filter(|&(_, n)| n > 0)
+            .collect()
+    }
+
+    pub fn table_error_max(&self) -> f64 {
+        self.table_error.iter().fold(0.0, |a, &b| a.max(b))
+    }
+}
