@@ -16,6 +16,9 @@ __version__: str
 LAMBDA_MIN: float
 LAMBDA_MAX: float
 LAMBDA_D: float
+DMT_LIMIT_MAX: float
+LIMIT_LAMBDA_MIN: float
+LIMIT_LAMBDA_MAX: float
 STATUS_NAMES: Tuple[str, ...]
 __all__: List[str]
 
@@ -144,4 +147,15 @@ def rough_ensemble(
     heights: ArrayLike,
     separations: ArrayLike,
     min_separation: Optional[float] = None,
+) -> Dict[str, Any]: ...
+def rough_map(
+    lambda_min: float = 1e-2,
+    lambda_max: float = 1e3,
+    nx: int = 256,
+    sigma_min: float = 1e-2,
+    sigma_max: float = 1e2,
+    ny: int = 256,
+    tolerance: float = 0.05,
+    press_sigmas: float = 3.0,
+    check: int = 64,
 ) -> Dict[str, Any]: ...
