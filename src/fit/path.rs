@@ -750,3 +750,56 @@ pub fn near(
     }
     None
 }
+
+/// The signed distance from a measured point (`delta`, `load`) to a model piece near parameter
+/// `t`, in the plane (load, `scale` Delta), and the parameter of the nearest state: Gauss-Newton
+/// on t. Near a fold the load is a square root of Delta (its slope infinite there), so the force
+/// residual of a point at or beyond the fold is not smooth in the parameters while the distance
+/// to the curve, continued past the fold, is. The sign is that of the model's load minus the
+/// measured one where Delta rises with t. None where the iteration leaves the piece.
+#[allow(clippy::too_many_arguments)]
+pub fn fold_distance(
+    model: Model,
+    lambda: f64,
+    kbar: f64,
+    scale: f64,
+    piece: Piece,
+    t: f64,
+    delta: f64,
+    load: f64,
+) -> Option<(f64, f64)> {
+    if piece == Piece::Free {
+        return None;
+    }
+    let valid = |t: f64| t.is_finite() && !(model == Model::Jkr && piece == Piece::Contact && t <= 0.0);
+    let mut t = t;
+    // Where both the load and Delta barely move with t (a fold near the DMT end of the curve)
+    // Gauss-Newton creeps: the distance is then taken where the residual is normal to the curve
+    // to 1e-7 (its error goes as the square of that angle).
+    let mut last = None;
+    for _ in 0..200 {
+        if !valid(t) {
+            return last;
+        }
+        let p = state(model, lambda, piece, t);
+        let (ep, ed) = (p.load - load, scale * (p.approach + p.load / kbar - delta));
+        let (tp, td) = (p.dload, scale * (p.dapproach + p.dload / kbar));
+        let tt = tp * tp + td * td;
+        if !(tt > 0.0 && tt.is_finite()) {
+            return None;
+        }
+        let step = (ep * tp + ed * td) / tt;
+        let norm = tt.sqrt();
+        let e = ep.hypot(ed);
+        if (ep * tp + ed * td).abs() <= 1e-7 * e * norm {
+            last = Some(((ep * td - ed * tp) / norm, t));
+        }
+        // The distance is stationary in t: an error e in t moves it by about e^2.
+        let small = step.abs() <= 1e-12 * t.abs().max(1.0);
+        t -= step;
+        if small {
+            return Some(((ep * td - ed * tp) / norm, t));
+        }
+    }
+    last
+}
