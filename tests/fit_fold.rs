@@ -37,7 +37,11 @@ fn bisect(f: impl Fn(f64) -> f64, mu0: f64, mu1: f64) -> f64 {
     let s_lo = f(lo.exp()) > 0.0;
     if s_lo == (f(hi.exp()) > 0.0) {
         // No sign change (a root at an end, to rounding): the nearer end.
-        return if f(mu0).abs() <= f(mu1).abs() { mu0 } else { mu1 };
+        return if f(mu0).abs() <= f(mu1).abs() {
+            mu0
+        } else {
+            mu1
+        };
     }
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
@@ -79,7 +83,9 @@ fn retract(lambda: f64, k: f64, n: usize) -> Curve {
     // turns from negative.
     // From mu = 1e-4 (contact radii of thousands, far beyond Delta = 6; below it the slopes
     // lose their precision), in steps of 0.1% to 1e8.
-    let mus: Vec<f64> = (0..=12000).map(|i| 10f64.powf(-4.0 + i as f64 * 1e-3)).collect();
+    let mus: Vec<f64> = (0..=12000)
+        .map(|i| 10f64.powf(-4.0 + i as f64 * 1e-3))
+        .collect();
     assert!(contact(lambda, kbar, mus[0]).0 > 6.0);
     let fold_at = mus
         .windows(2)
@@ -106,9 +112,21 @@ fn retract(lambda: f64, k: f64, n: usize) -> Curve {
     // The pre-jump state at Delta: load.
     let before = |d: f64| -> f64 {
         match fold_at {
-            Some(mu_f) => contact(lambda, kbar, bisect(|m| contact(lambda, kbar, m).0 - d, mu_top, mu_f)).1,
+            Some(mu_f) => {
+                contact(
+                    lambda,
+                    kbar,
+                    bisect(|m| contact(lambda, kbar, m).0 - d, mu_top, mu_f),
+                )
+                .1
+            }
             None if d > delta_end => {
-                contact(lambda, kbar, bisect(|m| contact(lambda, kbar, m).0 - d, mu_top, 1e8)).1
+                contact(
+                    lambda,
+                    kbar,
+                    bisect(|m| contact(lambda, kbar, m).0 - d, mu_top, 1e8),
+                )
+                .1
             }
             None => {
                 let c = (-a1 + (a1 * a1 - 4.0 * a2 * (a0 - d)).max(0.0).sqrt()) / (2.0 * a2);
@@ -124,15 +142,15 @@ fn retract(lambda: f64, k: f64, n: usize) -> Curve {
         && nc_delta(c_star) <= delta_fold
         && nc_delta(c_end) >= delta_fold;
     if let Some(mu_f) = fold_at {
-        let lands = mus
-            .windows(2)
-            .filter(|w| w[0] > mu_f)
-            .any(|w| {
-                let (d0, _, s0) = contact(lambda, kbar, w[0]);
-                let (d1, _, s1) = contact(lambda, kbar, w[1]);
-                s0 < 0.0 && s1 < 0.0 && (d0 - delta_fold) * (d1 - delta_fold) <= 0.0
-            });
-        assert!(!lands, "lambda {lambda}, k {k}: lands on the contact branch");
+        let lands = mus.windows(2).filter(|w| w[0] > mu_f).any(|w| {
+            let (d0, _, s0) = contact(lambda, kbar, w[0]);
+            let (d1, _, s1) = contact(lambda, kbar, w[1]);
+            s0 < 0.0 && s1 < 0.0 && (d0 - delta_fold) * (d1 - delta_fold) <= 0.0
+        });
+        assert!(
+            !lands,
+            "lambda {lambda}, k {k}: lands on the contact branch"
+        );
         assert!(
             landed_nc || delta_fold <= a0,
             "lambda {lambda}, k {k}: no state after the jump"
@@ -143,7 +161,10 @@ fn retract(lambda: f64, k: f64, n: usize) -> Curve {
             let c = (-a1 + (a1 * a1 - 4.0 * a2 * (a0 - d)).max(0.0).sqrt()) / (2.0 * a2);
             -(PI * lambda / 2.0) * c * c
         } else {
-            assert!(d <= a0, "lambda {lambda}, k {k}: free at Delta {d} above {a0}");
+            assert!(
+                d <= a0,
+                "lambda {lambda}, k {k}: free at Delta {d} above {a0}"
+            );
             0.0
         }
     };
@@ -205,13 +226,11 @@ fn a_point_at_the_fold_is_fitted_like_any_other() {
             let c = retract(lambda, k, 300);
             let with = recovered(&fit_curve(&c, &opt(k)), lambda);
             // The same curve without the fold's point.
-            let i = c.force.iter().enumerate().fold(0, |b, (i, f)| {
-                if *f < c.force[b] {
-                    i
-                } else {
-                    b
-                }
-            });
+            let i =
+                c.force
+                    .iter()
+                    .enumerate()
+                    .fold(0, |b, (i, f)| if *f < c.force[b] { i } else { b });
             let mut d = c.clone();
             let last = (i..d.len() - 1)
                 .find(|&j| d.force[j + 1] > d.force[j] + 0.1 * (-d.force[i]))
@@ -233,24 +252,3 @@ fn a_point_at_the_fold_is_fitted_like_any_other() {
         );
     }
 }
-
-#[test]
-fn diag_generator() {
-    use tabor::fit::{model_forces, Model, Params};
-    for &(lambda, k) in &[(0.05, 0.5), (0.7, 2.083), (3.0, 2.0), (10.0, 10.0)] {
-        let c = retract(lambda, k, 300);
-        let p = Params { e_star: E_STAR, w: W, lambda, zc: ZC, f0: 0.0 };
-        let (f, _, st, _) = model_forces(Model::Md, &p, RADIUS, k, &c.height, &c.segment, None).unwrap();
-        let mut worst = (0.0, 0);
-        for i in 0..f.len() {
-            let e = (f[i] - c.force[i]).abs();
-            if e > worst.0 { worst = (e, i); }
-        }
-        let i = worst.1;
-        println!("lambda {lambda} k {k}: worst {:.3e} at {i} of {} (gen {:.4e} model {:.4e}, {:?}); pulloff {:.3e}", worst.0, f.len(), c.force[i], f[i], st[i], c.force.iter().cloned().fold(0.0, f64::min));
-        let opt = opt(k);
-        let r = fit_curve(&c, &opt);
-        println!("  fit: {:?} {} E {:?} w {:?} l {:?} rms {:?} stop {}", r.status, r.message, r.e_star_pa, r.work_of_adhesion_j_m2, r.lambda, r.rms_residual_n, r.stop);
-    }
-}
-

@@ -60,7 +60,15 @@ fn rss(f: &ModelFit, m: f64) -> f64 {
 
 /// A quantity's value and its variance at the fit's lambda (free: its marginal variance), in the
 /// units the interval is built in (ln E*, ln w, z_c in m, ln z0).
-fn moments(q: usize, f: &ModelFit, free: bool, s2: f64, f_scale: f64, z_scale: f64, radius: f64) -> Option<(f64, f64)> {
+fn moments(
+    q: usize,
+    f: &ModelFit,
+    free: bool,
+    s2: f64,
+    f_scale: f64,
+    z_scale: f64,
+    radius: f64,
+) -> Option<(f64, f64)> {
     let inv = f.jtj_inv.as_ref()?;
     let v = s2 / (f_scale * f_scale);
     let lam = f.lambda?;
@@ -129,7 +137,9 @@ pub fn profile_intervals(
         .collect();
     let (x_min, x_max) = pts
         .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| (a.min(p.x), b.max(p.x)));
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        });
     pts.push(Point {
         x: lam_md.ln(),
         chi: 0.0,
@@ -275,9 +285,9 @@ pub fn fixed_z0_intervals(d: &Prepared, md: &ModelFit) -> Intervals {
         out.e_star_pa[k] = log(md.e_star_pa, inv[(0, 0)]);
         out.work_of_adhesion_j_m2[k] = log(md.work_of_adhesion_j_m2, inv[(1, 1)]);
         let h = r * (inv[(2, 2)] * v).max(0.0).sqrt() * z_scale;
-        out.contact_point_m[k] =
-            h.is_finite()
-                .then_some([Some(md.contact_point_m - h), Some(md.contact_point_m + h)]);
+        out.contact_point_m[k] = h
+            .is_finite()
+            .then_some([Some(md.contact_point_m - h), Some(md.contact_point_m + h)]);
         // ln lambda = (2/3)(ln w - ln E*) + const at fixed z0.
         let var = (4.0 / 9.0) * (inv[(0, 0)] + inv[(1, 1)] - 2.0 * inv[(0, 1)]);
         out.lambda[k] = md.lambda.and_then(|l| log(l, var));

@@ -2121,7 +2121,11 @@ fn adequate_by_test(
         };
         let q = (n_md - n).max(1.0);
         // chi^2's 95% points for 1 and 2 degrees of freedom.
-        let crit = if q >= 2.0 { 5.991464547107979 } else { 3.841458820694124 };
+        let crit = if q >= 2.0 {
+            5.991464547107979
+        } else {
+            3.841458820694124
+        };
         let dchi = (rss(f) - rss(md)) / s2;
         if !dchi.is_finite() {
             notes.push(format!("{} did not fit", f.model.label()));
@@ -2144,11 +2148,21 @@ fn adequate_by_test(
                 )
             };
             let lam = match (f.model, l95) {
-                (Model::Jkr, Some([Some(lo), None])) => format!(", and lambda's 95% interval is open towards JKR (lambda > {})", sig(lo)),
-                (Model::Dmt, Some([None, Some(hi)])) => format!(", and lambda's 95% interval is open towards DMT (lambda < {})", sig(hi)),
+                (Model::Jkr, Some([Some(lo), None])) => format!(
+                    ", and lambda's 95% interval is open towards JKR (lambda > {})",
+                    sig(lo)
+                ),
+                (Model::Dmt, Some([None, Some(hi)])) => format!(
+                    ", and lambda's 95% interval is open towards DMT (lambda < {})",
+                    sig(hi)
+                ),
                 _ => String::new(),
             };
-            let before = if notes.is_empty() { String::new() } else { format!(" ({})", notes.join("; ")) };
+            let before = if notes.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", notes.join("; "))
+            };
             return (
                 f.model,
                 format!(

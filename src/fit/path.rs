@@ -771,15 +771,12 @@ pub fn fold_distance(
     if piece == Piece::Free {
         return None;
     }
-    let valid = |t: f64| t.is_finite() && !(model == Model::Jkr && piece == Piece::Contact && t <= 0.0);
+    let valid =
+        |t: f64| t.is_finite() && !(model == Model::Jkr && piece == Piece::Contact && t <= 0.0);
     let mut t = t;
-    // Where both the load and Delta barely move with t (a fold near the DMT end of the curve)
-    // Gauss-Newton creeps: the distance is then taken where the residual is normal to the curve
-    // to 1e-7 (its error goes as the square of that angle).
-    let mut last = None;
     for _ in 0..200 {
         if !valid(t) {
-            return last;
+            return None;
         }
         let p = state(model, lambda, piece, t);
         let (ep, ed) = (p.load - load, scale * (p.approach + p.load / kbar - delta));
@@ -788,18 +785,29 @@ pub fn fold_distance(
         if !(tt > 0.0 && tt.is_finite()) {
             return None;
         }
-        let step = (ep * tp + ed * td) / tt;
-        let norm = tt.sqrt();
-        let e = ep.hypot(ed);
-        if (ep * tp + ed * td).abs() <= 1e-7 * e * norm {
-            last = Some(((ep * td - ed * tp) / norm, t));
-        }
+        // Newton on the stationarity e.T = 0 with the curve's bend (T' by differences):
+        // Gauss-Newton alone creeps where the residual is not small against the curve's speed.
+        let h = 1e-5 * t.abs().max(1.0);
+        let tangent = |t: f64| {
+            let q = state(model, lambda, piece, t);
+            (q.dload, scale * (q.dapproach + q.dload / kbar))
+        };
+        let (ap, ad) = tangent(t + h);
+        let (bp, bd) = tangent(t - h);
+        let bend = (ep * (ap - bp) + ed * (ad - bd)) / (2.0 * h);
+        let g = ep * tp + ed * td;
+        let curv = tt + bend;
+        let step = if curv > 0.1 * tt && valid(t + h) && valid(t - h) {
+            g / curv
+        } else {
+            g / tt
+        };
         // The distance is stationary in t: an error e in t moves it by about e^2.
         let small = step.abs() <= 1e-12 * t.abs().max(1.0);
         t -= step;
         if small {
-            return Some(((ep * td - ed * tp) / norm, t));
+            return Some(((ep * td - ed * tp) / tt.sqrt(), t));
         }
     }
-    last
+    None
 }
