@@ -226,11 +226,11 @@ fn a_point_at_the_fold_is_fitted_like_any_other() {
             let c = retract(lambda, k, 300);
             let with = recovered(&fit_curve(&c, &opt(k)), lambda);
             // The same curve without the fold's point.
-            let i =
-                c.force
-                    .iter()
-                    .enumerate()
-                    .fold(0, |b, (i, f)| if *f < c.force[b] { i } else { b });
+            let i = c
+                .force
+                .iter()
+                .enumerate()
+                .fold(0, |b, (i, f)| if *f < c.force[b] { i } else { b });
             let mut d = c.clone();
             let last = (i..d.len() - 1)
                 .find(|&j| d.force[j + 1] > d.force[j] + 0.1 * (-d.force[i]))
