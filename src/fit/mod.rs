@@ -1904,19 +1904,13 @@ fn summarize(
         r.md = Some(md.clone());
         r
     };
-    if in_contact == 0 {
-        return refused(
-            FitStatus::NoContact,
-            format!(
-                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
-                short(p.e_star),
-                short(p.w),
-                unit_hints(d, opt)
-            ),
-        );
-    }
+    // A modulus or adhesion above physical sense first: that is the cause to name (forces in
+    // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
+    // no point in contact is a curve that does not press (no contact).
     let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
-    if !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX) {
+    let beyond = !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX);
+    let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
+    if beyond && (above || in_contact > 0) {
         return refused(
             FitStatus::NotConverged,
             format!(
@@ -1926,6 +1920,17 @@ fn summarize(
                 short(E_STAR_RANGE.1),
                 short(p.w),
                 short(W_MAX),
+                unit_hints(d, opt)
+            ),
+        );
+    }
+    if in_contact == 0 {
+        return refused(
+            FitStatus::NoContact,
+            format!(
+                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
+                short(p.e_star),
+                short(p.w),
                 unit_hints(d, opt)
             ),
         );
