@@ -252,3 +252,25 @@ fn a_point_at_the_fold_is_fitted_like_any_other() {
         );
     }
 }
+
+/// A noise-free curve fitted with a spring constant 10% off: no parameters fit it to rounding,
+/// and the result says so.
+#[test]
+fn a_noise_free_curve_not_fitted_to_rounding_says_so() {
+    let c = retract(1.0, 2.0, 300);
+    let r = fit_curve(&c, &opt(2.2));
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    let fmax = c.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    assert!(r.rms_residual_n.unwrap() > 1e-8 * fmax);
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("the fit does not describe this curve")),
+        "{:?}",
+        r.warnings
+    );
+    // The right spring: to rounding, and no such warning.
+    let r = fit_curve(&c, &opt(2.0));
+    assert!(r.rms_residual_n.unwrap() < 1e-12 * fmax);
+    assert!(!r.warnings.iter().any(|w| w.contains("does not describe")));
+}

@@ -2036,8 +2036,10 @@ fn summarize(
     for h in hints(d, opt) {
         warn.push(format!("{h}; the fitted values assume it"));
     }
-    // Far above the noise of the baseline (and above rounding for noise-free data).
-    let floor = 1e-6 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    // Far above the noise of the baseline (and above rounding for noise-free data, where the
+    // true parameters fit to 1e-12 of the force: a residual above 1e-8 is a local minimum or a
+    // wrong model, not a fit).
+    let floor = 1e-8 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     if md.rms_residual_n > 10.0 * d.noise + floor {
         warn.push(format!(
             "the fit does not describe this curve: its rms residual {:.3e} N is {:.0} times the baseline's noise {:.3e} N (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
