@@ -58,18 +58,40 @@ fn rss(f: &ModelFit, m: f64) -> f64 {
     f.rms_residual_n.powi(2) * m
 }
 
-/// A quantity's value and its variance at the fit's lambda (free: its marginal variance), in the
-/// units the interval is built in (ln E*, ln w, z_c in m, ln z0).
+/// A quantity's value and its variance at the fit's lambda, in the units the interval is built
+/// in (ln E*, ln w, z_c in m, ln z0). `free`: None for a fixed-lambda fit, Some(marginal) for
+/// the free fit (its marginal variance where lambda is determined, else its conditional one).
 fn moments(
     q: usize,
     f: &ModelFit,
-    free: bool,
+    free: Option<bool>,
     s2: f64,
     f_scale: f64,
     z_scale: f64,
     radius: f64,
 ) -> Option<(f64, f64)> {
     let inv = f.jtj_inv.as_ref()?;
+    // Where lambda is not determined the free fit's linearisation in ln lambda reaches far
+    // beyond where it holds: its variances at its own lambda (the Schur complement of ln lambda)
+    // are used, and the profile carries lambda's ambiguity.
+    let conditional;
+    let inv = if free == Some(false) && inv.nrows() == 5 {
+        let l = 2;
+        let vl = inv[(l, l)];
+        let mut c = inv.clone();
+        if vl > 0.0 {
+            for i in 0..c.nrows() {
+                for j in 0..c.ncols() {
+                    c[(i, j)] -= inv[(i, l)] * inv[(l, j)] / vl;
+                }
+            }
+        }
+        conditional = c;
+        &conditional
+    } else {
+        inv
+    };
+    let free = free.is_some();
     let v = s2 / (f_scale * f_scale);
     let lam = f.lambda?;
     // Internal order: ln E*, ln w, [ln lambda], z_c / z_scale, f0 / f_scale.
@@ -224,12 +246,17 @@ pub fn profile_intervals(
         lambda[k] = Some(ends);
     }
     // The other quantities: min over the profile's fits of chi + (theta - theta_l)^2 / var_l.
-    let quantity = |q: usize, level: f64| -> Option<Interval> {
+    let determined: Vec<bool> = lambda
+        .iter()
+        .map(|l| matches!(l, Some([Some(_), Some(_)])))
+        .collect();
+    let quantity = |q: usize, k: usize| -> Option<Interval> {
+        let level = LEVELS[k];
         let mut lo = f64::INFINITY;
         let mut hi = f64::NEG_INFINITY;
         for p in pts.iter().filter(|p| p.chi <= level) {
-            let Some((v, var)) = moments(q, &p.fit, p.free, s2, f_scale, z_scale, opt.radius)
-            else {
+            let free = p.free.then_some(determined[k]);
+            let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, opt.radius) else {
                 continue;
             };
             let half = ((level - p.chi) * var).sqrt();
@@ -249,13 +276,13 @@ pub fn profile_intervals(
         extra_fits: extra,
         ..Intervals::default()
     };
-    for (k, &level) in LEVELS.iter().enumerate() {
-        out.e_star_pa[k] = quantity(0, level);
-        out.work_of_adhesion_j_m2[k] = quantity(1, level);
-        out.contact_point_m[k] = quantity(2, level);
+    for k in 0..LEVELS.len() {
+        out.e_star_pa[k] = quantity(0, k);
+        out.work_of_adhesion_j_m2[k] = quantity(1, k);
+        out.contact_point_m[k] = quantity(2, k);
         out.lambda[k] = lambda[k];
         // z0 is inversely proportional to lambda: open where lambda's other end is.
-        out.z0_m[k] = quantity(3, level).map(|z| {
+        out.z0_m[k] = quantity(3, k).map(|z| {
             let l = lambda[k].unwrap_or([None, None]);
             [l[1].and(z[0]), l[0].and(z[1])]
         });

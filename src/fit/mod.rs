@@ -2065,7 +2065,11 @@ fn summarize(
             "only {in_contact} fitted points are in contact: E* is poorly determined"
         ));
     }
-    if let Some(e) = md.lambda_stderr {
+    if let (Some(false), Some(b)) = (out.lambda_determined, &out.lambda_bound) {
+        warn.push(format!(
+            "lambda is not determined by this curve: {b}; quote that bound and the intervals of E* and w (they span the lambdas the data cannot tell apart), or fix lambda with --z0, fit both segments, or use a stiffer cantilever"
+        ));
+    } else if let (None, Some(e)) = (out.lambda_determined, md.lambda_stderr) {
         if e > p.lambda {
             warn.push(format!(
                 "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it with --z0, fit both segments, or use a stiffer cantilever",
