@@ -515,7 +515,10 @@ fn lambda_near_the_jkr_end_with_a_soft_spring_is_bounded_from_below_only() {
         // Bounded by what the DMT-like and JKR-like fits give (their pull-offs differ by 4/3),
         // not by a linearisation stretched over decades of lambda.
         let (lo, hi) = (w[0].unwrap(), w[1].unwrap());
-        assert!(lo > 0.05 / 1.6 && hi < 0.05 * 1.6, "lambda {lambda}: w {w:?}");
+        assert!(
+            lo > 0.05 / 1.6 && hi < 0.05 * 1.6,
+            "lambda {lambda}: w {w:?}"
+        );
         let l68 = r.lambda_interval_68.unwrap();
         assert!(l68[1].is_none() && l68[0].unwrap_or(0.0) >= l[0].unwrap_or(0.0));
     });

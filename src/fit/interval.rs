@@ -276,14 +276,14 @@ pub fn profile_intervals(
         extra_fits: extra,
         ..Intervals::default()
     };
-    for k in 0..LEVELS.len() {
+    for (k, &lam) in lambda.iter().enumerate() {
         out.e_star_pa[k] = quantity(0, k);
         out.work_of_adhesion_j_m2[k] = quantity(1, k);
         out.contact_point_m[k] = quantity(2, k);
-        out.lambda[k] = lambda[k];
+        out.lambda[k] = lam;
         // z0 is inversely proportional to lambda: open where lambda's other end is.
         out.z0_m[k] = quantity(3, k).map(|z| {
-            let l = lambda[k].unwrap_or([None, None]);
+            let l = lam.unwrap_or([None, None]);
             [l[1].and(z[0]), l[0].and(z[1])]
         });
     }
