@@ -31,6 +31,18 @@ def test_arrays_give_what_the_command_line_gives(tmp_path):
         assert r[k] == pytest.approx(cli[k], rel=1e-12), k
     # The synthetic curve was made with E* = 2 GPa (see examples/synthetic_curves.rs).
     assert abs(r["e_star_pa"] - 2e9) < 3 * r["e_star_pa_stderr"]
+    # The profile-likelihood intervals, as the command line gives them; an open end is None.
+    for k in ("e_star_pa", "work_of_adhesion_j_m2", "lambda", "contact_point_m", "z0_m"):
+        for level in ("68", "95"):
+            key = f"{k}_interval_{level}"
+            assert [a is None for a in r[key]] == [b is None for b in cli[key]], key
+            assert [a for a in r[key] if a is not None] == pytest.approx(
+                [b for b in cli[key] if b is not None], rel=1e-9), key
+            lo, hi = r[key]
+            assert (lo is None or lo <= r[k]) and (hi is None or r[k] <= hi), key
+    lo, hi = r["e_star_pa_interval_95"]
+    assert lo <= 2e9 <= hi
+    assert r["lambda_determined"] == (None not in r["lambda_interval_95"])
     assert r["youngs_modulus_pa"] == pytest.approx(r["e_star_pa"] * (1 - 0.09))
 
 

@@ -179,11 +179,21 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     }
     if results.len() == 1 && ok == 1 {
         let r = &results[0];
+        // Where the data do not bound lambda, its bound is printed, not a point value.
+        let lambda = match (r.lambda_determined(), &r.lambda_bound) {
+            (false, Some(b)) => b.clone(),
+            _ => format!("lambda = {:.4}", r.lambda.unwrap_or(f64::NAN)),
+        };
+        let range = |i: Option<[Option<f64>; 2]>| match i {
+            Some([Some(lo), Some(hi)]) => format!(" (95%: {lo:.4e}..{hi:.4e})"),
+            _ => String::new(),
+        };
         eprintln!(
-            "  E* = {:.4e} Pa, w = {:.4e} J/m^2, lambda = {:.4}, adequate model: {}",
+            "  E* = {:.4e} Pa{}, w = {:.4e} J/m^2{}, {lambda}, adequate model: {}",
             r.e_star_pa.unwrap_or(f64::NAN),
+            range(r.e_star_pa_interval_95),
             r.work_of_adhesion_j_m2.unwrap_or(f64::NAN),
-            r.lambda.unwrap_or(f64::NAN),
+            range(r.work_of_adhesion_j_m2_interval_95),
             r.adequate_model.map_or("-", |m| m.name())
         );
         for w in &r.warnings {
@@ -292,6 +302,13 @@ fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
         "work_of_adhesion_j_m2_stderr",
         "lambda",
         "lambda_stderr",
+        "e_star_pa_95_low",
+        "e_star_pa_95_high",
+        "work_of_adhesion_j_m2_95_low",
+        "work_of_adhesion_j_m2_95_high",
+        "lambda_95_low",
+        "lambda_95_high",
+        "lambda_determined",
         "tabor_parameter",
         "z0_m",
         "contact_point_m",
@@ -330,6 +347,13 @@ fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
             f(r.work_of_adhesion_j_m2_stderr),
             f(r.lambda),
             f(r.lambda_stderr),
+            f(r.e_star_pa_interval_95.and_then(|i| i[0])),
+            f(r.e_star_pa_interval_95.and_then(|i| i[1])),
+            f(r.work_of_adhesion_j_m2_interval_95.and_then(|i| i[0])),
+            f(r.work_of_adhesion_j_m2_interval_95.and_then(|i| i[1])),
+            f(r.lambda_interval_95.and_then(|i| i[0])),
+            f(r.lambda_interval_95.and_then(|i| i[1])),
+            r.lambda_determined.map_or(String::new(), |d| d.to_string()),
             f(r.tabor_parameter),
             f(r.z0_m),
             f(r.contact_point_m),

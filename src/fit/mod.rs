@@ -11,6 +11,7 @@
 //! crate) with finite-difference Jacobians that keep each point on its branch.
 
 pub mod data;
+pub mod interval;
 pub mod path;
 pub mod synthetic;
 
@@ -200,6 +201,10 @@ pub struct ModelFit {
     pub stop: String,
     #[serde(skip)]
     cov: Option<DMatrix<f64>>,
+    /// (J^T J)^-1 in the internal parameters (ln E*, ln w, [ln lambda,] z_c / z_scale,
+    /// f0 / f_scale) with residuals in units of f_scale: the covariance at any noise level.
+    #[serde(skip)]
+    jtj_inv: Option<DMatrix<f64>>,
 }
 
 /// The result for one curve (SI units; `_stderr` from the covariance of the fit).
@@ -246,6 +251,25 @@ pub struct CurveFit {
     pub points_in_contact: usize,
     /// Hertz, DMT and JKR fitted with the same spring and jumps.
     pub models: Vec<ModelFit>,
+    /// Profile-likelihood intervals `[low, high]` (68% and 95%; `null` for an end the data
+    /// leave open), which carry lambda's ambiguity into E*, w, z0 and the contact point.
+    pub e_star_pa_interval_68: Option<interval::Interval>,
+    pub e_star_pa_interval_95: Option<interval::Interval>,
+    pub work_of_adhesion_j_m2_interval_68: Option<interval::Interval>,
+    pub work_of_adhesion_j_m2_interval_95: Option<interval::Interval>,
+    pub lambda_interval_68: Option<interval::Interval>,
+    pub lambda_interval_95: Option<interval::Interval>,
+    pub contact_point_m_interval_68: Option<interval::Interval>,
+    pub contact_point_m_interval_95: Option<interval::Interval>,
+    pub z0_m_interval_68: Option<interval::Interval>,
+    pub z0_m_interval_95: Option<interval::Interval>,
+    /// Whether the 95% interval of lambda is bounded at both ends.
+    pub lambda_determined: Option<bool>,
+    /// What the data say of lambda at 95% ("lambda > 4.1 at 95%", or the interval).
+    pub lambda_bound: Option<String>,
+    /// The statistical test of each closed form against Maugis-Dugdale: Delta chi^2 at the
+    /// noise of the residual.
+    pub noise_from_residual_n: Option<f64>,
     pub adequate_model: Option<Model>,
     pub why: String,
     /// The Tabor self-consistency verdict of `tabor infer` on the measured pull-off, with the
@@ -368,9 +392,13 @@ pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>
 }
 
 impl CurveFit {
-    /// Whether the data determine lambda: its standard error is below it.
+    /// Whether the data determine lambda: its 95% interval is bounded (without one, its
+    /// standard error is below it).
     pub fn lambda_determined(&self) -> bool {
-        matches!((self.lambda, self.lambda_stderr), (Some(l), Some(e)) if e <= l)
+        match self.lambda_determined {
+            Some(d) => d,
+            None => matches!((self.lambda, self.lambda_stderr), (Some(l), Some(e)) if e <= l),
+        }
     }
 }
 
@@ -382,6 +410,10 @@ pub struct Prepared {
     pub dir: Vec<Direction>,
     /// Each point's side of its segment's measured jump (Any where none was measured).
     pub side: Vec<Side>,
+    /// The last points before a measured jump: fitted by their distance to the model's curve
+    /// (`path::fold_distance`), which stays smooth in the parameters where the model's fold
+    /// passes them.
+    pub at_jump: Vec<bool>,
     pub baseline: (f64, f64),
     pub noise: f64,
     /// What preparing the curve changed or found (outliers dropped, jittering heights): warnings.
@@ -421,6 +453,19 @@ fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFit {
         points_fitted: 0,
         points_in_contact: 0,
         models: Vec::new(),
+        e_star_pa_interval_68: None,
+        e_star_pa_interval_95: None,
+        work_of_adhesion_j_m2_interval_68: None,
+        work_of_adhesion_j_m2_interval_95: None,
+        lambda_interval_68: None,
+        lambda_interval_95: None,
+        contact_point_m_interval_68: None,
+        contact_point_m_interval_95: None,
+        z0_m_interval_68: None,
+        z0_m_interval_95: None,
+        lambda_determined: None,
+        lambda_bound: None,
+        noise_from_residual_n: None,
         adequate_model: None,
         why: String::new(),
         verdict: None,
@@ -544,8 +589,10 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
     }
     let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
     let side = measured_sides(&force, &dir, noise);
+    let at_jump = last_before_jump(&side, &dir);
     Ok(Prepared {
         side,
+        at_jump,
         dir,
         height,
         force,
@@ -786,6 +833,23 @@ fn measured_sides(force: &[f64], dir: &[Direction], noise: f64) -> Vec<Side> {
         }
     }
     side
+}
+
+/// Points fitted by their distance to the curve: this many before each measured jump (the fold's
+/// point and its neighbour, which the fitted fold may pass while the fit moves).
+const AT_JUMP_POINTS: usize = 2;
+
+fn last_before_jump(side: &[Side], dir: &[Direction]) -> Vec<bool> {
+    let mut out = vec![false; side.len()];
+    for d in [Direction::Approach, Direction::Retract] {
+        let before: Vec<usize> = (0..side.len())
+            .filter(|&i| dir[i] == d && side[i] == Side::BeforeJump)
+            .collect();
+        for &i in before.iter().rev().take(AT_JUMP_POINTS) {
+            out[i] = true;
+        }
+    }
+    out
 }
 
 fn line_fit(x: &[f64], y: &[f64], tilt: bool) -> (f64, f64) {
@@ -1036,14 +1100,63 @@ impl Problem<'_> {
         };
         let r = DVector::from_iterator(
             states.len(),
-            states
-                .iter()
-                .zip(&d.force)
-                .map(|(s, f)| (s.load * u.force + p.f0 - f) / self.f_scale),
+            states.iter().enumerate().map(|(i, s)| {
+                self.fold_residual(&p, &u, i, s)
+                    .unwrap_or_else(|| (s.load * u.force + p.f0 - d.force[i]) / self.f_scale)
+            }),
         );
         r.iter().all(|v| v.is_finite()).then_some((r, states))
     }
+
+    /// A point before a measured jump: its distance to the model's curve near its state (in
+    /// the plane of load and FOLD_SCALE kbar Delta, so that away from the fold, where the slope
+    /// dP/dDelta is at most about kbar, it is the force residual within 0.5%).
+    fn fold_residual(&self, p: &Params, u: &Units, i: usize, s: &PathState) -> Option<f64> {
+        if !self.data.at_jump[i] || s.piece == Piece::Free {
+            return None;
+        }
+        let delta = (p.zc - self.data.height[i]) / u.approach;
+        let load = (self.data.force[i] - p.f0) / u.force;
+        path::fold_distance(
+            self.model,
+            p.lambda,
+            u.kbar,
+            FOLD_SCALE * u.kbar,
+            s.piece,
+            s.t,
+            delta,
+            load,
+        )
+        .map(|(r, _)| r * u.force / self.f_scale)
+    }
+
+    /// The rows of the points before a jump by central differences (the analytic slopes are the
+    /// force residual's).
+    fn fold_rows(&self, j: &mut DMatrix<f64>, base: &[PathState]) {
+        for (i, s) in base.iter().enumerate() {
+            if !self.data.at_jump[i] || s.piece == Piece::Free {
+                continue;
+            }
+            for k in 0..self.n() {
+                let h = 1e-6 * self.x[k].abs().max(1.0);
+                let at = |dx: f64| {
+                    let mut x = self.x.clone();
+                    x[k] += dx;
+                    let p = self.params(&x);
+                    let u = units(&p, self.radius, self.spring);
+                    self.fold_residual(&p, &u, i, s)
+                };
+                if let (Some(a), Some(b)) = (at(h), at(-h)) {
+                    j[(i, k)] = (a - b) / (2.0 * h);
+                }
+            }
+        }
+    }
 }
+
+/// The weight of Delta against the load in the distance of a point before a jump, in units of
+/// kbar (the largest slope of a stable stretch away from its fold).
+const FOLD_SCALE: f64 = 10.0;
 
 impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     type ResidualStorage = Owned<f64, Dyn>;
@@ -1088,6 +1201,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             let c = self.numeric_jacobian(&base, &[k])?;
             j.set_column(k, &c.column(k));
         }
+        self.fold_rows(&mut j, &base);
         Some(j)
     }
 }
@@ -1296,25 +1410,26 @@ fn fit_model_for(
             report.termination,
             TerminationReason::NoImprovementPossible(_)
         );
-    let (status, rms, cov) = match &evaluated {
+    let (status, rms, cov, jtj_inv) = match &evaluated {
         Some((r, _)) if ok || matches!(report.termination, TerminationReason::LostPatience) => {
             let m = r.len();
             let n = prob.n();
             let rss = r.norm_squared();
             let rms = (rss / m as f64).sqrt() * prob.f_scale;
-            let cov = prob.jacobian().and_then(|j| {
-                let jtj = j.transpose() * &j;
-                jtj.try_inverse()
-                    .map(|inv| inv * (rss / (m.saturating_sub(n).max(1)) as f64))
-            });
+            let inv = prob
+                .jacobian()
+                .and_then(|j| (j.transpose() * &j).try_inverse());
+            let cov = inv
+                .as_ref()
+                .map(|inv| inv * (rss / (m.saturating_sub(n).max(1)) as f64));
             let status = if ok {
                 FitStatus::Ok
             } else {
                 FitStatus::NotConverged
             };
-            (status, rms, cov)
+            (status, rms, cov, inv)
         }
-        _ => (FitStatus::NotConverged, f64::NAN, None),
+        _ => (FitStatus::NotConverged, f64::NAN, None, None),
     };
     let var = |i: usize| cov.as_ref().map_or(f64::NAN, |c| c[(i, i)].max(0.0).sqrt());
     let mut i = 1;
@@ -1375,6 +1490,7 @@ fn fit_model_for(
         iterations,
         stop: stop_text(&report.termination),
         cov,
+        jtj_inv,
     }
 }
 
@@ -1608,7 +1724,7 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     // Maugis-Dugdale: the misfit has local minima in lambda (the jump moves with it), so a
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
     // that side) picks the starts of the free fit, and gives the confidence region of lambda.
-    let md = match opt.z0 {
+    let (md, iv) = match opt.z0 {
         Some(z0) => {
             let best = better(dmt.clone(), jkr.clone());
             let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
@@ -1629,7 +1745,9 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
                 out.warnings = d.notes.clone();
                 return out;
             }
-            fit_model(Model::Md, &d, opt, s, w_ref, None)
+            let md = fit_model(Model::Md, &d, opt, s, w_ref, None);
+            let iv = interval::fixed_z0_intervals(&d, &md);
+            (md, iv)
         }
         None => {
             let profile: Vec<ModelFit> = profile_lambdas()
@@ -1643,14 +1761,20 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
                     fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
                 })
                 .collect();
-            free_fit(&d, opt, w_ref, profile)
+            let md = free_fit(&d, opt, w_ref, profile.clone());
+            let iv = if md.status == FitStatus::Ok {
+                interval::profile_intervals(&d, opt, w_ref, &md, &profile)
+            } else {
+                interval::Intervals::default()
+            };
+            (md, iv)
         }
     };
     // A fit that ended where it started found nothing to follow (the misfit was flat there).
     let unmoved = md.status == FitStatus::Ok
         && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
         && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
-    let mut out = summarize(curve, opt, &d, md, vec![hertz, dmt, jkr]);
+    let mut out = summarize(curve, opt, &d, md, vec![hertz, dmt, jkr], &iv);
     if unmoved && out.status == FitStatus::Ok {
         let mut r = fail(
             curve,
@@ -1724,6 +1848,7 @@ fn summarize(
     d: &Prepared,
     md: ModelFit,
     models: Vec<ModelFit>,
+    iv: &interval::Intervals,
 ) -> CurveFit {
     let mut out = fail(curve, md.status, String::new());
     out.points_fitted = d.force.len();
@@ -1779,19 +1904,13 @@ fn summarize(
         r.md = Some(md.clone());
         r
     };
-    if in_contact == 0 {
-        return refused(
-            FitStatus::NoContact,
-            format!(
-                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
-                short(p.e_star),
-                short(p.w),
-                unit_hints(d, opt)
-            ),
-        );
-    }
+    // A modulus or adhesion above physical sense first: that is the cause to name (forces in
+    // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
+    // no point in contact is a curve that does not press (no contact).
     let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
-    if !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX) {
+    let beyond = !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX);
+    let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
+    if beyond && (above || in_contact > 0) {
         return refused(
             FitStatus::NotConverged,
             format!(
@@ -1801,6 +1920,17 @@ fn summarize(
                 short(E_STAR_RANGE.1),
                 short(p.w),
                 short(W_MAX),
+                unit_hints(d, opt)
+            ),
+        );
+    }
+    if in_contact == 0 {
+        return refused(
+            FitStatus::NoContact,
+            format!(
+                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
+                short(p.e_star),
+                short(p.w),
                 unit_hints(d, opt)
             ),
         );
@@ -1855,8 +1985,242 @@ fn summarize(
         let hi = loads.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         out.load_range_normalised = Some([lo, hi]);
     }
-    // The adequate model: the simplest whose residual is within the tolerance of MD's, or whose
-    // contact radius is within the tolerance of MD's at every fitted point in contact.
+    // Intervals and what they say of lambda.
+    let [e68, e95] = iv.e_star_pa;
+    let [w68, w95] = iv.work_of_adhesion_j_m2;
+    let [l68, l95] = iv.lambda;
+    let [c68, c95] = iv.contact_point_m;
+    let [z68, z95] = iv.z0_m;
+    out.e_star_pa_interval_68 = e68;
+    out.e_star_pa_interval_95 = e95;
+    out.work_of_adhesion_j_m2_interval_68 = w68;
+    out.work_of_adhesion_j_m2_interval_95 = w95;
+    out.lambda_interval_68 = l68;
+    out.lambda_interval_95 = l95;
+    out.contact_point_m_interval_68 = c68;
+    out.contact_point_m_interval_95 = c95;
+    out.z0_m_interval_68 = z68;
+    out.z0_m_interval_95 = z95;
+    if let Some([lo, hi]) = l95 {
+        out.lambda_determined = Some(lo.is_some() && hi.is_some());
+        out.lambda_bound = Some(match (lo, hi) {
+            (Some(lo), Some(hi)) => format!("{} <= lambda <= {} at 95%", sig(lo), sig(hi)),
+            (Some(lo), None) => format!("lambda > {} at 95% (no upper bound: towards JKR the curve cannot tell lambda apart)", sig(lo)),
+            (None, Some(hi)) => format!("lambda < {} at 95% (no lower bound: towards DMT the curve cannot tell lambda apart)", sig(hi)),
+            (None, None) => "lambda is not bounded at 95% (0.01..1000 fit equally well)".to_string(),
+        });
+    }
+    let m = d.force.len() as f64;
+    let n_md = if opt.z0.is_some() { 4.0 } else { 5.0 };
+    let fmax = d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let s2 = (md.rms_residual_n.powi(2) * m / (m - n_md).max(1.0)).max((1e-13 * fmax).powi(2));
+    out.noise_from_residual_n = Some(s2.sqrt());
+    // A noise-free curve (the residual at rounding): no statistics, the tolerance decides.
+    let adequate = if s2.sqrt() <= 1e-9 * fmax {
+        adequate_by_tolerance(opt, d, &p, &md, &models, &a_md, &states, in_contact)
+    } else {
+        adequate_by_test(opt, &md, &models, s2, m, n_md, l95)
+    };
+    out.adequate_model = Some(adequate.0);
+    out.why = adequate.1;
+    let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
+    if pull > 0.0 {
+        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
+            .ok()
+            .map(|i| i.verdict);
+    }
+    // Warnings.
+    let mut warn = d.notes.clone();
+    // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
+    // on that value.
+    for h in hints(d, opt) {
+        warn.push(format!("{h}; the fitted values assume it"));
+    }
+    // Far above the noise of the baseline (and above rounding for noise-free data, where the
+    // true parameters fit to 1e-12 of the force: a residual above 1e-8 is a local minimum or a
+    // wrong model, not a fit).
+    let floor = 1e-8 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    if md.rms_residual_n > 10.0 * d.noise + floor {
+        warn.push(format!(
+            "the fit does not describe this curve: its rms residual {:.3e} N is {:.0} times the baseline's noise {:.3e} N (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
+            md.rms_residual_n,
+            md.rms_residual_n / d.noise,
+            d.noise
+        ));
+    }
+    if amax / opt.radius > 0.1 {
+        warn.push(format!(
+            "a/R reaches {:.2} (> 0.1): the small-strain (paraboloid) theory is stretched",
+            amax / opt.radius
+        ));
+    }
+    if amax > 0.0 && amax < 1e-9 {
+        warn.push(format!(
+            "the largest contact radius is {:.2e} m, a few atoms across: continuum theory is doubtful",
+            amax
+        ));
+    }
+    if in_contact < MIN_CONTACT_POINTS {
+        warn.push(format!(
+            "only {in_contact} fitted points are in contact: E* is poorly determined"
+        ));
+    }
+    if let (Some(false), Some(b)) = (out.lambda_determined, &out.lambda_bound) {
+        warn.push(format!(
+            "lambda is not determined by this curve: {b}; quote that bound and the intervals of E* and w (they span the lambdas the data cannot tell apart), or fix lambda by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever"
+        ));
+    } else if let (None, Some(e)) = (out.lambda_determined, md.lambda_stderr) {
+        if e > p.lambda {
+            warn.push(format!(
+                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever",
+                p.lambda
+            ));
+        }
+    }
+    let (mp, md_pull) = (
+        out.pulloff_force_measured_n.unwrap_or(0.0),
+        md.pulloff_force_model_n,
+    );
+    if md_pull > 0.0 && (md_pull - mp) > 0.05 * md_pull + 3.0 * d.noise {
+        warn.push(format!(
+            "the sampling does not resolve the jump-out: the model's pull-off {:.3e} N exceeds the most tensile measured force {:.3e} N; sample more densely near the jump",
+            md_pull, mp
+        ));
+    }
+    out.warnings = warn;
+    out.status = FitStatus::Ok;
+    out.message = "ok".into();
+    out.models = models;
+    out.md = Some(md);
+    out
+}
+
+/// Three significant figures, as a bound is written.
+fn sig(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let e = v.abs().log10().floor() as i32;
+    if (-3..5).contains(&e) {
+        format!("{:.*}", (2 - e).max(0) as usize, v)
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+/// The adequate model by statistics: the simplest closed form whose misfit is not significantly
+/// worse than Maugis-Dugdale's (the likelihood-ratio test at the noise of the residual: Delta
+/// chi^2 = (RSS - RSS_MD) / s^2 against chi^2's 95% point for the parameters it lacks), and
+/// consistent with lambda's 95% interval (JKR needs it open towards large lambda, DMT towards
+/// small).
+fn adequate_by_test(
+    opt: &FitOptions,
+    md: &ModelFit,
+    models: &[ModelFit],
+    s2: f64,
+    m: f64,
+    n_md: f64,
+    l95: Option<interval::Interval>,
+) -> (Model, String) {
+    let rss = |f: &ModelFit| f.rms_residual_n.powi(2) * m;
+    let fixed = opt.z0.is_some();
+    let mut notes = Vec::new();
+    for f in models {
+        let n = match f.model {
+            Model::Hertz => 3.0,
+            _ => 4.0,
+        };
+        let q = (n_md - n).max(1.0);
+        // chi^2's 95% points for 1 and 2 degrees of freedom.
+        let crit = if q >= 2.0 {
+            5.991464547107979
+        } else {
+            3.841458820694124
+        };
+        let dchi = (rss(f) - rss(md)) / s2;
+        if !dchi.is_finite() {
+            notes.push(format!("{} did not fit", f.model.label()));
+            continue;
+        }
+        let open = |end: usize| l95.is_none_or(|l| l[end].is_none());
+        let consistent = fixed
+            || match f.model {
+                Model::Jkr => open(1),
+                Model::Dmt => open(0),
+                _ => true,
+            };
+        if dchi <= crit && consistent {
+            let w_note = if f.model == Model::Hertz {
+                String::new()
+            } else {
+                format!(
+                    "; its w is {:+.1}% from Maugis-Dugdale's",
+                    100.0 * (f.work_of_adhesion_j_m2 / md.work_of_adhesion_j_m2 - 1.0)
+                )
+            };
+            let lam = match (f.model, l95) {
+                (Model::Jkr, Some([Some(lo), None])) => format!(
+                    ", and lambda's 95% interval is open towards JKR (lambda > {})",
+                    sig(lo)
+                ),
+                (Model::Dmt, Some([None, Some(hi)])) => format!(
+                    ", and lambda's 95% interval is open towards DMT (lambda < {})",
+                    sig(hi)
+                ),
+                _ => String::new(),
+            };
+            let before = if notes.is_empty() {
+                String::new()
+            } else {
+                format!(" ({})", notes.join("; "))
+            };
+            return (
+                f.model,
+                format!(
+                    "{} is not significantly worse than Maugis-Dugdale: Delta chi^2 = {:.2} against {:.2} (95%, {} fewer parameter{}) at the noise {:.3e} N of the residual{lam}{w_note}{before}",
+                    f.model.label(),
+                    dchi,
+                    crit,
+                    q,
+                    if q >= 2.0 { "s" } else { "" },
+                    s2.sqrt()
+                ),
+            );
+        }
+        notes.push(if dchi > crit {
+            format!("{} Delta chi^2 = {:.3} > {:.2}", f.model.label(), dchi, crit)
+        } else {
+            format!(
+                "{} fits within the noise (Delta chi^2 = {:.2}) but lambda's 95% interval excludes its limit",
+                f.model.label(),
+                dchi
+            )
+        });
+    }
+    (
+        Model::Md,
+        format!(
+            "every closed form is significantly worse than Maugis-Dugdale at the noise {:.3e} N of the residual (95%): {}",
+            s2.sqrt(),
+            notes.join("; ")
+        ),
+    )
+}
+
+/// The adequate model of a noise-free curve (residual at rounding): the simplest whose rms
+/// residual is within the tolerance of MD's, or whose contact radius is within it at every
+/// fitted point in contact.
+#[allow(clippy::too_many_arguments)]
+fn adequate_by_tolerance(
+    opt: &FitOptions,
+    d: &Prepared,
+    p: &Params,
+    md: &ModelFit,
+    models: &[ModelFit],
+    a_md: &[f64],
+    states: &[PathState],
+    in_contact: usize,
+) -> (Model, String) {
     let floor = 1e-9 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let mut adequate = (
         Model::Md,
@@ -1870,7 +2234,7 @@ fn summarize(
                 .join(", ")
         ),
     );
-    for m in &models {
+    for m in models {
         // A fit stopped by the iteration limit only over-states its misfit (each step lowers
         // it): if even that is within the tolerance, the model is adequate.
         if m.rms_residual_n.is_finite()
@@ -1911,7 +2275,7 @@ fn summarize(
             let worst = a_md
                 .iter()
                 .zip(&a_m)
-                .zip(&states)
+                .zip(states)
                 .filter(|(_, s)| s.piece == Piece::Contact)
                 .map(|((am, a), _)| (a / am - 1.0).abs())
                 .fold(0.0, f64::max);
@@ -1924,72 +2288,7 @@ fn summarize(
             }
         }
     }
-    out.adequate_model = Some(adequate.0);
-    out.why = adequate.1;
-    let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
-    if pull > 0.0 {
-        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
-            .ok()
-            .map(|i| i.verdict);
-    }
-    // Warnings.
-    let mut warn = d.notes.clone();
-    // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
-    // on that value.
-    for h in hints(d, opt) {
-        warn.push(format!("{h}; the fitted values assume it"));
-    }
-    // Far above the noise of the baseline (and above rounding for noise-free data).
-    let floor = 1e-6 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
-    if md.rms_residual_n > 10.0 * d.noise + floor {
-        warn.push(format!(
-            "the fit does not describe this curve: its rms residual {:.3e} N is {:.0} times the baseline's noise {:.3e} N (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
-            md.rms_residual_n,
-            md.rms_residual_n / d.noise,
-            d.noise
-        ));
-    }
-    if amax / opt.radius > 0.1 {
-        warn.push(format!(
-            "a/R reaches {:.2} (> 0.1): the small-strain (paraboloid) theory is stretched",
-            amax / opt.radius
-        ));
-    }
-    if amax > 0.0 && amax < 1e-9 {
-        warn.push(format!(
-            "the largest contact radius is {:.2e} m, a few atoms across: continuum theory is doubtful",
-            amax
-        ));
-    }
-    if in_contact < MIN_CONTACT_POINTS {
-        warn.push(format!(
-            "only {in_contact} fitted points are in contact: E* is poorly determined"
-        ));
-    }
-    if let Some(e) = md.lambda_stderr {
-        if e > p.lambda {
-            warn.push(format!(
-                "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever",
-                p.lambda
-            ));
-        }
-    }
-    let (mp, md_pull) = (
-        out.pulloff_force_measured_n.unwrap_or(0.0),
-        md.pulloff_force_model_n,
-    );
-    if md_pull > 0.0 && (md_pull - mp) > 0.05 * md_pull + 3.0 * d.noise {
-        warn.push(format!(
-            "the sampling does not resolve the jump-out: the model's pull-off {:.3e} N exceeds the most tensile measured force {:.3e} N; sample more densely near the jump",
-            md_pull, mp
-        ));
-    }
-    out.warnings = warn;
-    out.status = FitStatus::Ok;
-    out.message = "ok".into();
-    out.models = models;
-    out.md = Some(md);
-    out
+    adequate
 }
 
 #[cfg(test)]
@@ -2052,7 +2351,10 @@ mod tests {
                 ..prob
             };
             let base = prob.eval(&prob.x, None).unwrap().1;
-            let a = prob.analytic_jacobian(&base);
+            let mut a = prob.analytic_jacobian(&base);
+            // The points before the jump are fitted by their distance to the curve, by
+            // differences in both.
+            prob.fold_rows(&mut a, &base);
             let all: Vec<usize> = (0..prob.n()).collect();
             let n = prob.numeric_jacobian(&base, &all).unwrap();
             let lam = if model == Model::Md { Some(2) } else { None };

@@ -750,3 +750,64 @@ pub fn near(
     }
     None
 }
+
+/// The signed distance from a measured point (`delta`, `load`) to a model piece near parameter
+/// `t`, in the plane (load, `scale` Delta), and the parameter of the nearest state: Gauss-Newton
+/// on t. Near a fold the load is a square root of Delta (its slope infinite there), so the force
+/// residual of a point at or beyond the fold is not smooth in the parameters while the distance
+/// to the curve, continued past the fold, is. The sign is that of the model's load minus the
+/// measured one where Delta rises with t. None where the iteration leaves the piece.
+#[allow(clippy::too_many_arguments)]
+pub fn fold_distance(
+    model: Model,
+    lambda: f64,
+    kbar: f64,
+    scale: f64,
+    piece: Piece,
+    t: f64,
+    delta: f64,
+    load: f64,
+) -> Option<(f64, f64)> {
+    if piece == Piece::Free {
+        return None;
+    }
+    let valid =
+        |t: f64| t.is_finite() && !(model == Model::Jkr && piece == Piece::Contact && t <= 0.0);
+    let mut t = t;
+    for _ in 0..200 {
+        if !valid(t) {
+            return None;
+        }
+        let p = state(model, lambda, piece, t);
+        let (ep, ed) = (p.load - load, scale * (p.approach + p.load / kbar - delta));
+        let (tp, td) = (p.dload, scale * (p.dapproach + p.dload / kbar));
+        let tt = tp * tp + td * td;
+        if !(tt > 0.0 && tt.is_finite()) {
+            return None;
+        }
+        // Newton on the stationarity e.T = 0 with the curve's bend (T' by differences):
+        // Gauss-Newton alone creeps where the residual is not small against the curve's speed.
+        let h = 1e-5 * t.abs().max(1.0);
+        let tangent = |t: f64| {
+            let q = state(model, lambda, piece, t);
+            (q.dload, scale * (q.dapproach + q.dload / kbar))
+        };
+        let (ap, ad) = tangent(t + h);
+        let (bp, bd) = tangent(t - h);
+        let bend = (ep * (ap - bp) + ed * (ad - bd)) / (2.0 * h);
+        let g = ep * tp + ed * td;
+        let curv = tt + bend;
+        let step = if curv > 0.1 * tt && valid(t + h) && valid(t - h) {
+            g / curv
+        } else {
+            g / tt
+        };
+        // The distance is stationary in t: an error e in t moves it by about e^2.
+        let small = step.abs() <= 1e-12 * t.abs().max(1.0);
+        t -= step;
+        if small {
+            return Some(((ep * td - ed * tp) / tt.sqrt(), t));
+        }
+    }
+    None
+}

@@ -1,0 +1,323 @@
+//! Profile-likelihood intervals of a Maugis-Dugdale fit: lambda from the misfit profiled over
+//! lambda (every other parameter re-fitted at each lambda), E*, w, the contact point and the
+//! Lennard-Jones range z0 from the same profile, so that what lambda's ambiguity does to them is
+//! in their intervals.
+//!
+//! With the noise estimated from the best fit's residual (s^2 = RSS_min / (m - 5)), the profile
+//! is Delta chi^2(lambda) = (RSS(lambda) - RSS_min) / s^2, and the interval of confidence level
+//! 68% (95%) is where it stays below 1 (3.84). An end is open (`None`) where the profile stays
+//! below the level up to the edge of the lambda range (0.01 or 1000): towards DMT or JKR the
+//! curve cannot tell lambda from anything beyond. For a quantity theta other than lambda, the
+//! profile min over lambda of [Delta chi^2(lambda) + (theta - theta(lambda))^2 / var(theta |
+//! lambda)] is taken over the fits of the lambda profile, each quadratic in theta at its lambda
+//! (from its covariance at the common noise); at the best fit the covariance is the free one.
+
+use super::{fit_model, FitOptions, ModelFit, Prepared};
+use crate::fit::path::Model;
+use serde::Serialize;
+
+/// Delta chi^2 of the 68% and 95% levels (one parameter).
+pub const LEVELS: [f64; 2] = [1.0, 3.841458820694124];
+
+/// An interval `[low, high]`, `None` for an end the data leave open.
+pub type Interval = [Option<f64>; 2];
+
+/// The intervals of one fit at 68% and 95%.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Intervals {
+    pub e_star_pa: [Option<Interval>; 2],
+    pub work_of_adhesion_j_m2: [Option<Interval>; 2],
+    pub lambda: [Option<Interval>; 2],
+    pub contact_point_m: [Option<Interval>; 2],
+    pub z0_m: [Option<Interval>; 2],
+    /// Fits at fixed lambda added to the profile to place the crossings.
+    pub extra_fits: usize,
+}
+
+/// A fit on the profile: its ln lambda, Delta chi^2 and the fit.
+struct Point {
+    x: f64,
+    chi: f64,
+    fit: ModelFit,
+    free: bool,
+}
+
+/// The parameter scales of a curve's fits (`fit_model_for`'s).
+fn scales(d: &Prepared) -> (f64, f64) {
+    let f = d
+        .force
+        .iter()
+        .fold(0.0f64, |m, f| m.max(f.abs()))
+        .max(1e-30);
+    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+    (f, hspan.max(1e-30))
+}
+
+fn rss(f: &ModelFit, m: f64) -> f64 {
+    f.rms_residual_n.powi(2) * m
+}
+
+/// A quantity's value and its variance at the fit's lambda, in the units the interval is built
+/// in (ln E*, ln w, z_c in m, ln z0). `free`: None for a fixed-lambda fit, Some(marginal) for
+/// the free fit (its marginal variance where lambda is determined, else its conditional one).
+fn moments(
+    q: usize,
+    f: &ModelFit,
+    free: Option<bool>,
+    s2: f64,
+    f_scale: f64,
+    z_scale: f64,
+    radius: f64,
+) -> Option<(f64, f64)> {
+    let inv = f.jtj_inv.as_ref()?;
+    // Where lambda is not determined the free fit's linearisation in ln lambda reaches far
+    // beyond where it holds: its variances at its own lambda (the Schur complement of ln lambda)
+    // are used, and the profile carries lambda's ambiguity.
+    let conditional;
+    let inv = if free == Some(false) && inv.nrows() == 5 {
+        let l = 2;
+        let vl = inv[(l, l)];
+        let mut c = inv.clone();
+        if vl > 0.0 {
+            for i in 0..c.nrows() {
+                for j in 0..c.ncols() {
+                    c[(i, j)] -= inv[(i, l)] * inv[(l, j)] / vl;
+                }
+            }
+        }
+        conditional = c;
+        &conditional
+    } else {
+        inv
+    };
+    let free = free.is_some();
+    let v = s2 / (f_scale * f_scale);
+    let lam = f.lambda?;
+    // Internal order: ln E*, ln w, [ln lambda], z_c / z_scale, f0 / f_scale.
+    let zc = if free { 3 } else { 2 };
+    let (val, var) = match q {
+        0 => (f.e_star_pa.ln(), inv[(0, 0)] * v),
+        1 => (f.work_of_adhesion_j_m2.ln(), inv[(1, 1)] * v),
+        2 => (f.contact_point_m, inv[(zc, zc)] * v * z_scale * z_scale),
+        _ => {
+            // ln z0 = (2/3)(ln w - ln E*) - ln lambda + const.
+            let g: &[f64] = if free {
+                &[-2.0 / 3.0, 2.0 / 3.0, -1.0]
+            } else {
+                &[-2.0 / 3.0, 2.0 / 3.0]
+            };
+            let mut var = 0.0;
+            for i in 0..g.len() {
+                for j in 0..g.len() {
+                    var += g[i] * g[j] * inv[(i, j)];
+                }
+            }
+            (
+                super::z0_from_lambda(f.e_star_pa, f.work_of_adhesion_j_m2, radius, lam).ln(),
+                var * v,
+            )
+        }
+    };
+    (val.is_finite() && var.is_finite() && var >= 0.0).then_some((val, var))
+}
+
+/// The profile-likelihood intervals of the free fit `md`, from the fixed-lambda fits of its
+/// `profile` (0.01..1000) and a few more near each crossing of the levels.
+pub fn profile_intervals(
+    d: &Prepared,
+    opt: &FitOptions,
+    w_ref: f64,
+    md: &ModelFit,
+    profile: &[ModelFit],
+) -> Intervals {
+    let m = d.force.len() as f64;
+    let (f_scale, z_scale) = scales(d);
+    // The noise from the residual, at least rounding.
+    let floor = 1e-13 * f_scale;
+    let s2 = (rss(md, m) / (m - 5.0).max(1.0)).max(floor * floor);
+    let chi = |f: &ModelFit| {
+        let c = (rss(f, m) - rss(md, m)) / s2;
+        if c.is_finite() {
+            c.max(0.0)
+        } else {
+            f64::INFINITY
+        }
+    };
+    let (Some(lam_md), true) = (md.lambda, md.rms_residual_n.is_finite()) else {
+        return Intervals::default();
+    };
+    let mut pts: Vec<Point> = profile
+        .iter()
+        .filter(|f| f.lambda.is_some() && f.rms_residual_n.is_finite())
+        .map(|f| Point {
+            x: f.lambda.unwrap().ln(),
+            chi: chi(f),
+            fit: f.clone(),
+            free: false,
+        })
+        .collect();
+    let (x_min, x_max) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        });
+    pts.push(Point {
+        x: lam_md.ln(),
+        chi: 0.0,
+        fit: md.clone(),
+        free: true,
+    });
+    let x_md = lam_md.ln();
+    // ln lambda's parabolic standard error at the minimum: the first guess of each crossing.
+    let sd_x = md
+        .jtj_inv
+        .as_ref()
+        .filter(|i| i.nrows() == 5)
+        .map(|i| (i[(2, 2)] * s2 / (f_scale * f_scale)).max(0.0).sqrt())
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .unwrap_or(0.1);
+    let mut extra = 0;
+    let mut lambda = [None, None];
+    for (k, &level) in LEVELS.iter().enumerate().rev() {
+        let mut ends = [None, None];
+        for (e, sign) in [(0usize, -1.0f64), (1, 1.0)] {
+            // The outermost fit within the level on this side, and the next one out.
+            for iter in 0..4 {
+                let outward = |x: f64| sign * (x - x_md);
+                let inside = pts
+                    .iter()
+                    .filter(|p| p.chi <= level && outward(p.x) >= 0.0)
+                    .max_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
+                    .map(|p| (p.x, p.chi));
+                let Some((xi, ci)) = inside else { break };
+                let outside = pts
+                    .iter()
+                    .filter(|p| outward(p.x) > outward(xi))
+                    .min_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
+                    .map(|p| (p.x, p.chi));
+                let Some((xo, co)) = outside else {
+                    // No fit beyond: the profile is flat to the edge of the range.
+                    ends[e] = None;
+                    break;
+                };
+                // Delta chi^2 is near quadratic in ln lambda about the minimum: its square root
+                // is near linear, and interpolated.
+                let (ri, ro) = (ci.sqrt(), co.min(1e12).sqrt());
+                let t = if ro > ri {
+                    ((level.sqrt() - ri) / (ro - ri)).clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                let mut x = xi + t * (xo - xi);
+                if iter == 3 || (xo - xi).abs() < 0.005 {
+                    ends[e] = Some(x.exp());
+                    break;
+                }
+                if iter == 0 {
+                    // The parabola's crossing, where it lies inside the bracket.
+                    let guess = x_md + sign * level.sqrt() * sd_x;
+                    if outward(guess) > outward(xi) && outward(guess) < outward(xo) {
+                        x = guess;
+                    }
+                }
+                let x = x.clamp(x_min.min(x_md), x_max.max(x_md));
+                // A fit at this lambda, warm from the nearest fit.
+                let near = pts
+                    .iter()
+                    .min_by(|a, b| (a.x - x).abs().total_cmp(&(b.x - x).abs()))
+                    .unwrap();
+                let mut start = near.fit.params();
+                start.lambda = x.exp();
+                let f = fit_model(Model::Md, d, opt, start, w_ref, Some(x.exp()));
+                extra += 1;
+                if !f.rms_residual_n.is_finite() {
+                    ends[e] = Some(x.exp());
+                    break;
+                }
+                pts.push(Point {
+                    x,
+                    chi: chi(&f),
+                    fit: f,
+                    free: false,
+                });
+            }
+        }
+        lambda[k] = Some(ends);
+    }
+    // The other quantities: min over the profile's fits of chi + (theta - theta_l)^2 / var_l.
+    let determined: Vec<bool> = lambda
+        .iter()
+        .map(|l| matches!(l, Some([Some(_), Some(_)])))
+        .collect();
+    let quantity = |q: usize, k: usize| -> Option<Interval> {
+        let level = LEVELS[k];
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for p in pts.iter().filter(|p| p.chi <= level) {
+            let free = p.free.then_some(determined[k]);
+            let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, opt.radius) else {
+                continue;
+            };
+            let half = ((level - p.chi) * var).sqrt();
+            lo = lo.min(v - half);
+            hi = hi.max(v + half);
+        }
+        if !(lo.is_finite() && hi.is_finite()) {
+            return None;
+        }
+        Some(if q == 2 {
+            [Some(lo), Some(hi)]
+        } else {
+            [Some(lo.exp()), Some(hi.exp())]
+        })
+    };
+    let mut out = Intervals {
+        extra_fits: extra,
+        ..Intervals::default()
+    };
+    for (k, &lam) in lambda.iter().enumerate() {
+        out.e_star_pa[k] = quantity(0, k);
+        out.work_of_adhesion_j_m2[k] = quantity(1, k);
+        out.contact_point_m[k] = quantity(2, k);
+        out.lambda[k] = lam;
+        // z0 is inversely proportional to lambda: open where lambda's other end is.
+        out.z0_m[k] = quantity(3, k).map(|z| {
+            let l = lam.unwrap_or([None, None]);
+            [l[1].and(z[0]), l[0].and(z[1])]
+        });
+    }
+    out
+}
+
+/// The intervals of a fit with lambda fixed by z0 (no profile): parabolic, from the covariance,
+/// in the logarithms of E* and w (so that they stay positive).
+pub fn fixed_z0_intervals(d: &Prepared, md: &ModelFit) -> Intervals {
+    let m = d.force.len() as f64;
+    let (f_scale, z_scale) = scales(d);
+    let floor = 1e-13 * f_scale;
+    let s2 = (rss(md, m) / (m - 4.0).max(1.0)).max(floor * floor);
+    let Some(inv) = md.jtj_inv.as_ref().filter(|i| i.nrows() == 4) else {
+        return Intervals::default();
+    };
+    let v = s2 / (f_scale * f_scale);
+    let mut out = Intervals::default();
+    for (k, &level) in LEVELS.iter().enumerate() {
+        let r = level.sqrt();
+        let log = |val: f64, var: f64| {
+            let h = r * (var * v).max(0.0).sqrt();
+            h.is_finite()
+                .then_some([Some(val * (-h).exp()), Some(val * h.exp())])
+        };
+        out.e_star_pa[k] = log(md.e_star_pa, inv[(0, 0)]);
+        out.work_of_adhesion_j_m2[k] = log(md.work_of_adhesion_j_m2, inv[(1, 1)]);
+        let h = r * (inv[(2, 2)] * v).max(0.0).sqrt() * z_scale;
+        out.contact_point_m[k] = h
+            .is_finite()
+            .then_some([Some(md.contact_point_m - h), Some(md.contact_point_m + h)]);
+        // ln lambda = (2/3)(ln w - ln E*) + const at fixed z0.
+        let var = (4.0 / 9.0) * (inv[(0, 0)] + inv[(1, 1)] - 2.0 * inv[(0, 1)]);
+        out.lambda[k] = md.lambda.and_then(|l| log(l, var));
+    }
+    out
+}
