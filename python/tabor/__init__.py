@@ -124,7 +124,7 @@ def _finite(x, name):
 _DOMAIN = {
     "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-26..1e26"),
     # Loads and approaches: the exact solver's range and the closed-form limits' beyond it.
-    "lam_any": ("lambda", lambda x: _method(x) != "",
+    "lam_any": ("lambda", lambda x: _method_code(x) != 0,
                 "1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"),
     "load": ("load", lambda x: np.abs(x) <= 1e12, "-1e12..1e12"),
     "approach": ("approach", lambda x: np.abs(x) <= 1e8, "-1e8..1e8"),
@@ -132,16 +132,26 @@ _DOMAIN = {
 }
 
 
-def _method(lam):
-    """Per lambda, how ``solve`` answers a load or an approach: "md" (the exact solver),
-    "dmt_limit" or "jkr_limit" (the closed-form limits, beyond the exact solver's range), ""
-    where none is certified."""
+def _method_code(lam):
+    """Per lambda, how ``solve`` answers a load or an approach, as a small code: 1 the exact
+    solver, 2 the DMT limit, 3 the JKR limit (beyond the exact solver's range), 0 none."""
     lam = np.asarray(lam, dtype=float)
+    code = np.zeros(lam.shape, dtype=np.uint8)
     with np.errstate(invalid="ignore"):
-        md = (lam >= LAMBDA_MIN) & (lam <= LAMBDA_MAX)
-        dmt = (lam >= LIMIT_LAMBDA_MIN) & (lam <= DMT_LIMIT_MAX)
-        jkr = (lam > LAMBDA_MAX) & (lam <= LIMIT_LAMBDA_MAX)
-    return np.select([md, dmt, jkr], ["md", "dmt_limit", "jkr_limit"], "").astype("<U9")
+        code[(lam >= LIMIT_LAMBDA_MIN) & (lam <= DMT_LIMIT_MAX)] = 2
+        code[(lam > LAMBDA_MAX) & (lam <= LIMIT_LAMBDA_MAX)] = 3
+        code[(lam >= LAMBDA_MIN) & (lam <= LAMBDA_MAX)] = 1
+    return code
+
+
+#: The names of the codes of ``_method_code``.
+_METHODS = np.array(["", "md", "dmt_limit", "jkr_limit"], dtype="<U9")
+
+
+def _method(lam):
+    """Per lambda: "md" (the exact solver), "dmt_limit" or "jkr_limit" (the closed-form
+    limits, beyond the exact solver's range), "" where none is certified."""
+    return _METHODS[_method_code(lam)]
 
 
 def _bad(key, x):
@@ -280,10 +290,10 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
                for k in ("A", "load", "approach", "m_minus_1")}
     out["status"] = _status(np.asarray(r["status_code"]), shape)
     out["message"] = _messages(out["status"], (lam_key, given[0]), (lam_f, val_f), shape)
-    method = _method(lam_f).reshape(shape)
-    if given[0] == "radius":
-        method = np.where(method == "md", method, "")
-    out["method"] = method
+    code = _method_code(lam_f)
+    if given[0] == "radius":  # radius control has no closed-form stand-in
+        code[code != 1] = 0
+    out["method"] = _METHODS[code].reshape(shape)
     return Result(out, meta)
 
 
