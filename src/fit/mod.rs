@@ -1399,6 +1399,7 @@ fn fit_model_for(
         jacobians: RefCell::new(0),
     };
     prob.x = prob.internal(&start);
+    let scout = patience == SCOUT_PATIENCE;
     let lm = LevenbergMarquardt::new().with_patience(patience);
     let (prob, report) = lm.minimize(prob);
     let x = prob.x.clone();
@@ -1416,8 +1417,11 @@ fn fit_model_for(
             let n = prob.n();
             let rss = r.norm_squared();
             let rms = (rss / m as f64).sqrt() * prob.f_scale;
-            let inv = prob
-                .jacobian()
+            // A scout's covariance is never read (only its misfit and parameters): its final
+            // Jacobian, two path evaluations per column of lambda, is skipped.
+            let inv = (!scout)
+                .then(|| prob.jacobian())
+                .flatten()
                 .and_then(|j| (j.transpose() * &j).try_inverse());
             let cov = inv
                 .as_ref()
@@ -1456,7 +1460,7 @@ fn fit_model_for(
     };
     let zc_err = var(i) * prob.z_scale;
     // The path alone (the states at the points are not needed): its most tensile load.
-    let pulloff = evaluated.as_ref().map_or(f64::NAN, |_| {
+    let pulloff = evaluated.as_ref().filter(|_| !scout).map_or(f64::NAN, |_| {
         let u = units(&p, opt.radius, opt.spring);
         let top = d
             .height
