@@ -1224,10 +1224,11 @@ impl Problem<'_> {
             let (dp_dd, dp_dk) = if s.piece == Piece::Free || s.clamped {
                 (0.0, 0.0)
             } else {
-                let q = path::state(self.model, p.lambda, s.piece, s.t);
-                let g = q.dapproach + q.dload / u.kbar;
+                // The state's slopes at s.t, as stored with it (the same numbers as
+                // `path::state` gives there).
+                let g = s.dapproach + s.dload / u.kbar;
                 if g.abs() > 0.0 {
-                    (q.dload / g, q.dload * s.load / (u.kbar * u.kbar * g))
+                    (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
                 } else {
                     (0.0, 0.0)
                 }

@@ -85,6 +85,10 @@ pub struct PathState {
     pub approach: f64,
     /// Held at the end of its stretch (a point the data puts on the other side of a jump).
     pub clamped: bool,
+    /// The slopes of the load and the approach with respect to t there (the Jacobian of a fit
+    /// reads them instead of evaluating the state again).
+    pub(crate) dload: f64,
+    pub(crate) dapproach: f64,
 }
 
 impl PathState {
@@ -96,6 +100,8 @@ impl PathState {
             a: p.a,
             approach: p.approach,
             clamped,
+            dload: p.dload,
+            dapproach: p.dapproach,
         }
     }
 }
@@ -814,6 +820,8 @@ pub fn near(
             a: 0.0,
             approach: delta,
             clamped: false,
+            dload: 0.0,
+            dapproach: 1.0,
         });
     }
     let mut t = t;
