@@ -10,20 +10,28 @@ use tabor::solver::Status;
 
 #[test]
 fn states_match_the_independent_reference() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/two_zone_reference.csv");
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/two_zone_reference.csv"
+    );
     let mut rd = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .from_path(path)
         .expect("the reference table");
     let head = rd.headers().unwrap().clone();
     let col = |name: &str| head.iter().position(|h| h == name).unwrap();
-    let names = ["k", "r", "s1", "h1", "s2", "h2", "a", "load", "approach", "c1", "c2"];
+    let names = [
+        "k", "r", "s1", "h1", "s2", "h2", "a", "load", "approach", "c1", "c2",
+    ];
     let idx: Vec<usize> = names.iter().map(|n| col(n)).collect();
     let mut rows = 0;
     let mut worst = 0.0f64;
     for rec in rd.records() {
         let rec = rec.unwrap();
-        let v: Vec<f64> = idx.iter().map(|&i| rec[i].trim().parse().unwrap()).collect();
+        let v: Vec<f64> = idx
+            .iter()
+            .map(|&i| rec[i].trim().parse().unwrap())
+            .collect();
         let (k, r, s1, h1, s2, h2, a) = (v[0], v[1], v[2], v[3], v[4], v[5], v[6]);
         let st = state_at_radius_dimensional(k, r, s1, h1, s2, h2, a)
             .unwrap_or_else(|e| panic!("row {rows}: {e:?}"));

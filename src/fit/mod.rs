@@ -1224,10 +1224,11 @@ impl Problem<'_> {
             let (dp_dd, dp_dk) = if s.piece == Piece::Free || s.clamped {
                 (0.0, 0.0)
             } else {
-                let q = path::state(self.model, p.lambda, s.piece, s.t);
-                let g = q.dapproach + q.dload / u.kbar;
+                // The state's slopes at s.t, as stored with it (the same numbers as
+                // `path::state` gives there).
+                let g = s.dapproach + s.dload / u.kbar;
                 if g.abs() > 0.0 {
-                    (q.dload / g, q.dload * s.load / (u.kbar * u.kbar * g))
+                    (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
                 } else {
                     (0.0, 0.0)
                 }
@@ -1399,6 +1400,7 @@ fn fit_model_for(
         jacobians: RefCell::new(0),
     };
     prob.x = prob.internal(&start);
+    let scout = patience == SCOUT_PATIENCE;
     let lm = LevenbergMarquardt::new().with_patience(patience);
     let (prob, report) = lm.minimize(prob);
     let x = prob.x.clone();
@@ -1416,8 +1418,11 @@ fn fit_model_for(
             let n = prob.n();
             let rss = r.norm_squared();
             let rms = (rss / m as f64).sqrt() * prob.f_scale;
-            let inv = prob
-                .jacobian()
+            // A scout's covariance is never read (only its misfit and parameters): its final
+            // Jacobian, two path evaluations per column of lambda, is skipped.
+            let inv = (!scout)
+                .then(|| prob.jacobian())
+                .flatten()
                 .and_then(|j| (j.transpose() * &j).try_inverse());
             let cov = inv
                 .as_ref()
@@ -1456,7 +1461,7 @@ fn fit_model_for(
     };
     let zc_err = var(i) * prob.z_scale;
     // The path alone (the states at the points are not needed): its most tensile load.
-    let pulloff = evaluated.as_ref().map_or(f64::NAN, |_| {
+    let pulloff = evaluated.as_ref().filter(|_| !scout).map_or(f64::NAN, |_| {
         let u = units(&p, opt.radius, opt.spring);
         let top = d
             .height

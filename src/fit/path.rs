@@ -85,6 +85,10 @@ pub struct PathState {
     pub approach: f64,
     /// Held at the end of its stretch (a point the data puts on the other side of a jump).
     pub clamped: bool,
+    /// The slopes of the load and the approach with respect to t there (the Jacobian of a fit
+    /// reads them instead of evaluating the state again).
+    pub(crate) dload: f64,
+    pub(crate) dapproach: f64,
 }
 
 impl PathState {
@@ -96,6 +100,8 @@ impl PathState {
             a: p.a,
             approach: p.approach,
             clamped,
+            dload: p.dload,
+            dapproach: p.dapproach,
         }
     }
 }
@@ -213,27 +219,29 @@ impl SpringPath {
             let p = state(model, lambda, piece, t);
             p.approach + p.load / kbar
         };
+        // The states at the nodes do not depend on the spring: a fit at fixed lambda (the
+        // profile, the intervals) evaluates them once and only rescales Delta with kbar.
         let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
-            // The non-contact piece is a quadratic in C: one fold at most.
-            let n = if piece == Piece::NonContact {
-                64
-            } else {
-                NODES
-            };
-            (0..n)
-                .map(|i| {
-                    let t = t0 + (t1 - t0) * i as f64 / (n - 1) as f64;
-                    let p = state(model, lambda, piece, t);
-                    Node {
-                        t,
-                        delta: p.approach + p.load / kbar,
-                        slope: p.dapproach + p.dload / kbar,
-                    }
+            node_states(model, lambda, piece, t0, t1)
+                .iter()
+                .map(|&(t, p)| Node {
+                    t,
+                    delta: p.approach + p.load / kbar,
+                    slope: p.dapproach + p.dload / kbar,
                 })
                 .collect()
         };
         // The contact piece's top: the radius whose Delta passes delta_max (doubling).
-        let t_of_radius = |a: f64| if md { -x_at_radius(lambda, a) } else { a };
+        let t_of_radius = |a: f64| {
+            if md {
+                -cached(Key::Radius(lambda.to_bits(), a.to_bits()), || {
+                    Cached::X(x_at_radius(lambda, a))
+                })
+                .x()
+            } else {
+                a
+            }
+        };
         let mut a_max = 2.0;
         while delta_of(Piece::Contact, t_of_radius(a_max)) < delta_max.max(1.0) * 1.05
             && a_max < 1e5
@@ -700,6 +708,94 @@ impl SpringPath {
     }
 }
 
+/// What the per-thread cache holds: a radius's parameter on the contact piece, or the states at
+/// a piece's nodes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Key {
+    Radius(u64, u64),
+    Nodes(Model, u64, Piece, u64, u64),
+}
+
+#[derive(Clone)]
+enum Cached {
+    X(f64),
+    Nodes(std::rc::Rc<Vec<(f64, Pt)>>),
+}
+
+impl Cached {
+    fn x(&self) -> f64 {
+        match self {
+            Cached::X(x) => *x,
+            Cached::Nodes(_) => unreachable!("a radius key holds a parameter"),
+        }
+    }
+}
+
+/// Entries kept per thread: a fit at fixed lambda needs a handful (the radii of the doubling
+/// and the two pieces' nodes); a free fit, whose lambda moves at every step, only cycles them.
+const CACHE: usize = 16;
+
+thread_local! {
+    static PATH_CACHE: std::cell::RefCell<(usize, Vec<(Key, Cached)>)> =
+        const { std::cell::RefCell::new((0, Vec::new())) };
+}
+
+/// The cached value of `key`, computed by `f` on a miss (the same value, bit for bit).
+fn cached(key: Key, f: impl FnOnce() -> Cached) -> Cached {
+    if let Some(v) = PATH_CACHE.with(|c| {
+        c.borrow()
+            .1
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v.clone())
+    }) {
+        return v;
+    }
+    let v = f();
+    PATH_CACHE.with(|c| {
+        let mut c = c.borrow_mut();
+        let (next, entries) = &mut *c;
+        if entries.len() < CACHE {
+            entries.push((key, v.clone()));
+        } else {
+            entries[*next] = (key, v.clone());
+            *next = (*next + 1) % CACHE;
+        }
+    });
+    v
+}
+
+/// The states at the nodes of a piece between t0 and t1.
+fn node_states(
+    model: Model,
+    lambda: f64,
+    piece: Piece,
+    t0: f64,
+    t1: f64,
+) -> std::rc::Rc<Vec<(f64, Pt)>> {
+    let key = Key::Nodes(model, lambda.to_bits(), piece, t0.to_bits(), t1.to_bits());
+    let v = cached(key, || {
+        // The non-contact piece is a quadratic in C: one fold at most.
+        let n = if piece == Piece::NonContact {
+            64
+        } else {
+            NODES
+        };
+        Cached::Nodes(std::rc::Rc::new(
+            (0..n)
+                .map(|i| {
+                    let t = t0 + (t1 - t0) * i as f64 / (n - 1) as f64;
+                    (t, state(model, lambda, piece, t))
+                })
+                .collect(),
+        ))
+    });
+    match v {
+        Cached::Nodes(n) => n,
+        Cached::X(_) => unreachable!("a node key holds nodes"),
+    }
+}
+
 /// The segment whose Delta range holds `delta`.
 fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
     segs.iter()
@@ -724,6 +820,8 @@ pub fn near(
             a: 0.0,
             approach: delta,
             clamped: false,
+            dload: 0.0,
+            dapproach: 1.0,
         });
     }
     let mut t = t;

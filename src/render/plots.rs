@@ -30,7 +30,11 @@ pub(crate) fn builder<'a, 'b, DB: DrawingBackend>(
         // A long title shrinks to the figure's width rather than being cut at both ends.
         let room = 0.96 * area.dim_in_pixel().0 as f64;
         let wide = super::text_width(area, title, TITLE) as f64;
-        let size = if wide > room { TITLE * room / wide } else { TITLE };
+        let size = if wide > room {
+            TITLE * room / wide
+        } else {
+            TITLE
+        };
         b.caption(title, ("sans-serif", size));
     }
     // On the right, room for half of the last tick label.
