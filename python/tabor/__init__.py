@@ -671,10 +671,16 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     """Load per summit and branch fractions of an explicit ensemble of summit ``heights``
     (approach units, all of Maugis parameter ``lam``) at each of ``separations``: on the
     approach, or with ``min_separation`` on the retract after pressing to it."""
-    h = np.ascontiguousarray(heights, dtype=float).ravel()
-    d = np.ascontiguousarray(separations, dtype=float).ravel()
-    return _tabor.rough_ensemble(float(lam), h.tolist(), d.tolist(),
-                                 None if min_separation is None else float(min_separation))
+    h = _numbers(heights, "heights").ravel()
+    d = _numbers(separations, "separations").ravel()
+    d_min = None if min_separation is None else _finite(min_separation, "min_separation")
+    # Each separation's state depends only on it and min_separation: solved in chunks of about
+    # 2e6 summit-states (a fraction of a second), so Ctrl-C interrupts between them.
+    step = max(1, 2_000_000 // max(1, len(h)))
+    hl = h.tolist()
+    parts = [_tabor.rough_ensemble(_real(lam, "lam"), hl, d[i:i + step].tolist(), d_min)
+             for i in range(0, max(1, len(d)), step)]
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
 def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max=1e2, ny=256,

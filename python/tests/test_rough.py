@@ -76,3 +76,13 @@ def test_rough_map_refuses_bad_input():
         tabor.rough_map(tolerance=2.0, nx=4, ny=4)
     with pytest.raises(ValueError, match="nx"):
         tabor.rough_map(nx=-3)
+
+
+def test_ensemble_in_chunks_equals_one_call():
+    # 3e5 summits: chunks of 6 separations, so 40 separations cross six chunk seams.
+    h = np.random.default_rng(1).normal(0.0, 1.0, 300_000)
+    d = np.linspace(-3.0, 3.0, 40)
+    a = tabor.rough_ensemble(1.0, h, d, min_separation=-3.0)
+    b = tabor._tabor.rough_ensemble(1.0, h.tolist(), d.tolist(), -3.0)
+    for k in ("separation", "load", "contact_fraction", "noncontact_fraction"):
+        assert a[k].shape == (40,) and np.array_equal(a[k], b[k]), k
