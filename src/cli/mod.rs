@@ -304,6 +304,25 @@ pub fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
     })
 }
 
+/// The rough adhesion map's quantities as flags.
+pub const ROUGH_MAP_FLAGS: &[(&str, &str)] = &[
+    ("lambda_min", "--lambda-min"),
+    ("lambda_max", "--lambda-max"),
+    ("sigma_min", "--sigma-min"),
+    ("sigma_max", "--sigma-max"),
+    ("press_sigmas", "--press-sigmas"),
+    ("nx", "--nx"),
+    ("ny", "--ny"),
+    ("tolerance", "--tolerance"),
+];
+
+/// The humidity sweep's quantities as flags.
+pub const HUMIDITY_FLAGS: &[(&str, &str)] = &[
+    ("rh_min", "--rh-min"),
+    ("rh_max", "--rh-max"),
+    ("points", "--points"),
+];
+
 /// The map's quantities as flags.
 pub const MAP_FLAGS: &[(&str, &str)] = &[
     ("lambda_min", "--lambda-min"),

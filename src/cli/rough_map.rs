@@ -151,7 +151,8 @@ pub fn write_npy(m: &RoughMap, outs: &mut [Output]) -> anyhow::Result<()> {
 
 pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
-    spec.validate()?;
+    spec.validate()
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::ROUGH_MAP_FLAGS)))?;
     if a.check > 100_000 {
         anyhow::bail!(
             "--check {}: give at most 100000 points to re-solve",

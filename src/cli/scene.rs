@@ -579,7 +579,8 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
     base.relative_humidity = 0.5;
     base.meniscus(&c)?;
     let name = input.name.clone().unwrap_or_else(|| "scene".into());
-    let r = crate::scene::humidity::sweep(&name, &c, &base, a.rh_min, a.rh_max, a.points)?;
+    let r = crate::scene::humidity::sweep(&name, &c, &base, a.rh_min, a.rh_max, a.points)
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::HUMIDITY_FLAGS)))?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         Format::Csv => humidity_csv(&r),

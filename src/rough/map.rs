@@ -58,8 +58,8 @@ impl RoughMapSpec {
         use crate::physics::domain::check_lambda;
         let bad = |m: String| Err(RoughError::Scene(m));
         for (flag, l) in [
-            ("--lambda-min", self.lambda_min),
-            ("--lambda-max", self.lambda_max),
+            ("lambda_min", self.lambda_min),
+            ("lambda_max", self.lambda_max),
         ] {
             if let Err(e) = check_lambda(l) {
                 return bad(format!("{flag}: {e}"));
@@ -67,33 +67,33 @@ impl RoughMapSpec {
         }
         if !(self.lambda_max > self.lambda_min) {
             return bad(format!(
-                "--lambda-min must be below --lambda-max, got {} and {}",
+                "lambda_min must be below lambda_max, got {} and {}",
                 short(self.lambda_min),
                 short(self.lambda_max)
             ));
         }
         if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
             return bad(format!(
-                "--sigma-min {} and --sigma-max {} are not a roughness range: give 0 < --sigma-min < --sigma-max <= 1e4 (approach units)",
+                "sigma_min {} and sigma_max {} are not a roughness range: give 0 < sigma_min < sigma_max <= 1e4 (approach units)",
                 short(self.sigma_min),
                 short(self.sigma_max)
             ));
         }
         if !(2..=4096).contains(&self.nx) || !(2..=4096).contains(&self.ny) {
             return bad(format!(
-                "--nx and --ny must be in 2..=4096, got {} and {}",
+                "nx and ny must be in 2..=4096, got {} and {}",
                 self.nx, self.ny
             ));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
             return bad(format!(
-                "--tolerance must be in (0, 1), got {}",
+                "tolerance must be in (0, 1), got {}",
                 short(self.tolerance)
             ));
         }
         if !(self.press_sigmas.is_finite() && self.press_sigmas.abs() <= 6.0) {
             return bad(format!(
-                "--press-sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
+                "press_sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
                 short(self.press_sigmas)
             ));
         }

@@ -235,13 +235,13 @@ pub fn sweep(
     n: usize,
 ) -> Result<HumiditySweep, ParamError> {
     if !(rh_min.is_finite() && rh_min > 0.0 && rh_min < 1.0) {
-        return Err(bad("--rh-min", rh_min, "in (0, 1)"));
+        return Err(bad("rh_min", rh_min, "in (0, 1)"));
     }
     if !(rh_max.is_finite() && rh_max > rh_min && rh_max < 1.0) {
-        return Err(bad("--rh-max", rh_max, "above --rh-min and below 1"));
+        return Err(bad("rh_max", rh_max, "above rh_min and below 1"));
     }
     if !(2..=MAX_SWEEP_POINTS).contains(&n) {
-        return Err(bad("--points", n as f64, "in 2..10000"));
+        return Err(bad("points", n as f64, "in 2..10000"));
     }
     let dry_ctx = crate::solver::LambdaContext::new(c.lambda()).map_err(|_| {
         bad(
