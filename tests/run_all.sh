@@ -5,6 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo test --release
+# The library's documentation builds without a warning (broken links included).
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
 cargo build --release --bin tabor   # the Python tests compare with the command line
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"

@@ -6,7 +6,7 @@
 //! Dbar and in the relative m - 1 (whose leading term, `3 / (4 A lambda^2)`, is reported): at
 //! lambda > 1e26 below 1e-51, everywhere on both stable branches.
 //!
-//! DMT (lambda below [`LAMBDA_MIN`] = [`DMT_LIMIT_MAX`]): at fixed A, `Pbar_MD - Pbar_DMT = 1.7175 lambda^1.5 -
+//! DMT (lambda below [`LAMBDA_MIN`](crate::physics::domain::LAMBDA_MIN) = [`DMT_LIMIT_MAX`]): at fixed A, `Pbar_MD - Pbar_DMT = 1.7175 lambda^1.5 -
 //! pi lambda A^2` and `Dbar_MD - Dbar_DMT = -(8 / (3 sqrt(pi))) lambda^0.5`, so the limit holds
 //! only away from the pull-off (the MD pull-off is at A ~ 2 pi lambda / 3, not 0): a state whose
 //! estimated relative error of A exceeds [`LIMIT_TOL`] is `invalid_input`.
