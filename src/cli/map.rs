@@ -116,19 +116,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::MAP_FLAGS)))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    let mut more: Vec<(String, PathBuf)> = a
-        .json
-        .clone()
-        .map(|p| ("--json".to_string(), p))
-        .into_iter()
-        .collect();
-    if let Some(prefix) = &a.npy {
-        more.extend(
-            NPY_FILES
-                .iter()
-                .map(|n| ("--npy".to_string(), PathBuf::from(format!("{prefix}_{n}")))),
-        );
-    }
+    let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);
     a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work: a bad path fails at once, and none is put in
     // place unless all of them were written.
@@ -144,14 +132,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         .map(Output::create)
         .transpose()
         .context("--json")?;
-    let mut npy: Vec<Output> = match &a.npy {
-        Some(prefix) => NPY_FILES
-            .iter()
-            .map(|n| Output::create(format!("{prefix}_{n}")))
-            .collect::<anyhow::Result<_>>()
-            .context("--npy")?,
-        None => Vec::new(),
-    };
+    let mut npy = super::open_npy(a.npy.as_deref(), &NPY_FILES)?;
     let engine = super::basic::engine_for(a.backend, BackendArg::Auto, &a.gpu)?;
     // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
     // on a sample of points against the f64 solver as they are solved.

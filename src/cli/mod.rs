@@ -280,6 +280,33 @@ pub struct FigureArgs {
     pub dpi: f64,
 }
 
+/// The data outputs of a map-like command (`--json`, and `--npy PREFIX` as PREFIX_NAME for
+/// each of `files`), named by their options for `FigureArgs::check_distinct`.
+pub fn data_outputs(
+    json: Option<&std::path::Path>,
+    npy: Option<&str>,
+    files: &[&str],
+) -> Vec<(String, std::path::PathBuf)> {
+    let json = json.map(|p| ("--json".to_string(), p.to_path_buf()));
+    let npy = npy.into_iter().flat_map(|prefix| {
+        files
+            .iter()
+            .map(move |n| ("--npy".to_string(), format!("{prefix}_{n}").into()))
+    });
+    json.into_iter().chain(npy).collect()
+}
+
+/// Opens PREFIX_NAME for each of `files` (none without `--npy`).
+pub fn open_npy(prefix: Option<&str>, files: &[&str]) -> anyhow::Result<Vec<crate::io::Output>> {
+    use anyhow::Context;
+    prefix
+        .map_or(&[][..], |_| files)
+        .iter()
+        .map(|n| crate::io::Output::create(format!("{}_{n}", prefix.unwrap_or_default())))
+        .collect::<anyhow::Result<_>>()
+        .context("--npy")
+}
+
 /// The library names quantities (`lambda_min`, `width_mm`, ...), never flags; the command line
 /// adds its flag names to the library's messages, from the list for that message's source.
 pub fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {

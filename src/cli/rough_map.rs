@@ -161,19 +161,7 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     }
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    let mut more: Vec<(String, PathBuf)> = a
-        .json
-        .clone()
-        .map(|p| ("--json".to_string(), p))
-        .into_iter()
-        .collect();
-    if let Some(prefix) = &a.npy {
-        more.extend(
-            NPY_FILES
-                .iter()
-                .map(|n| ("--npy".to_string(), PathBuf::from(format!("{prefix}_{n}")))),
-        );
-    }
+    let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);
     a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work; none is put in place unless all were written.
     let open = |p: &Option<PathBuf>| -> anyhow::Result<Option<Output>> {
@@ -183,14 +171,7 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     };
     let mut figure_out = [open(&figure.png)?, open(&figure.svg)?, open(&figure.pdf)?];
     let mut json_out = open(&a.json).context("--json")?;
-    let mut npy: Vec<Output> = match &a.npy {
-        Some(prefix) => NPY_FILES
-            .iter()
-            .map(|n| Output::create(format!("{prefix}_{n}")))
-            .collect::<anyhow::Result<_>>()
-            .context("--npy")?,
-        None => Vec::new(),
-    };
+    let mut npy = super::open_npy(a.npy.as_deref(), &NPY_FILES)?;
     let m = crate::rough::map::compute(&spec, a.check)?;
     let want = crate::render::Formats {
         png: figure.png.is_some(),
