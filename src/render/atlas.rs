@@ -1,7 +1,7 @@
 //! The failure atlas: one error map per method over lambda and the distance above pull-off.
 
 use super::map::{MARGIN, X_AREA, Y_AREA};
-use super::{colorbar, log_label, viridis, Kind, Outputs, Print, AXIS, NOTE, TICK, TITLE};
+use super::{colorbar, log_label, viridis, Kind, Outputs, Print, NOTE, TICK, TITLE};
 use plotters::prelude::*;
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
@@ -72,16 +72,14 @@ where
     if let Some(el) = BitMapElement::with_owned_buffer((m.lambdas.0, m.gaps.1), (w, h), buf) {
         chart.draw_series(std::iter::once(el))?;
     }
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("Maugis parameter  λ")
-        .y_desc("load above pull-off  \\bar{P} − \\bar{P}_{c}")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| log_label(*v))
-        .draw()?;
+    super::house_axes(
+        chart.configure_mesh(),
+        "Maugis parameter  λ",
+        "load above pull-off  \\bar{P} − \\bar{P}_{c}",
+    )
+    .x_label_formatter(&|v| log_label(*v))
+    .y_label_formatter(&|v| log_label(*v))
+    .draw()?;
     lower.draw(&Rectangle::new(
         [(32, 8), (32 + lh, lh)],
         RGBColor(255, 0, 255).filled(),

@@ -409,13 +409,7 @@ where
         Panel::Full => ("Maugis parameter  λ", y_desc(sp.load_axis)),
         Panel::Inset => ("λ", "\\bar{P}"),
     };
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
+    super::house_axes(chart.configure_mesh(), x_desc, y_desc)
         .x_label_formatter(&|v| log_label(*v))
         .y_label_formatter(&|v| {
             if y_log {

@@ -346,6 +346,49 @@ pub type DrawSvg<'a> = &'a dyn for<'b> Fn(
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
 
+/// The house style of a chart's mesh: one faint light line between the bold ones, the axis
+/// titles and tick labels in the figure's sizes. Callers add their label formatters and draw.
+pub(crate) fn house_mesh<
+    'a,
+    'b,
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+    DB: plotters::prelude::DrawingBackend,
+>(
+    mut mesh: plotters::chart::MeshStyle<'a, 'b, X, Y, DB>,
+    x_desc: impl Into<String>,
+    y_desc: impl Into<String>,
+) -> plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.max_light_lines(1)
+        .light_line_style(plotters::style::RGBColor(245, 245, 245))
+        .bold_line_style(plotters::style::RGBColor(215, 215, 215))
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK));
+    mesh
+}
+
+/// The house style of a chart without a grid (maps: the pixels are the data).
+pub(crate) fn house_axes<
+    'a,
+    'b,
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+    DB: plotters::prelude::DrawingBackend,
+>(
+    mut mesh: plotters::chart::MeshStyle<'a, 'b, X, Y, DB>,
+    x_desc: impl Into<String>,
+    y_desc: impl Into<String>,
+) -> plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.disable_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK));
+    mesh
+}
+
 /// Draws a figure once, as SVG at its print size, and converts that SVG to the formats asked
 /// for: PNG rasterised by resvg with anti-aliasing, PDF by svg2pdf, both from the same parsed
 /// SVG with the same embedded font. The one drawing path of every figure.

@@ -13,7 +13,7 @@ type Err = Box<dyn std::error::Error + Send + Sync>;
 
 use super::map::{MARGIN, X_AREA, Y_AREA};
 pub use super::DrawSvg;
-use super::{sample, sample_dashed, Kind, Outputs, Print, AXIS, NOTE, TICK, TITLE};
+use super::{house_mesh, sample, sample_dashed, Kind, Outputs, Print, AXIS, NOTE, TICK, TITLE};
 
 /// Draws a figure of `kind` with `g` and writes it to the files in `out`.
 pub fn save(kind: Kind, print: &Print, out: &Outputs, g: DrawSvg) -> anyhow::Result<()> {
@@ -80,18 +80,14 @@ where
             .with_key_points(vec![1e-4, 1e-2, 1.0, 1e2, 1e4]),
         -2.1..-0.7f64,
     )?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("Maugis parameter  λ")
-        .y_desc("pull-off load  \\bar{P}_{c} = P_{c}/(πwR)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        "Maugis parameter  λ",
+        "pull-off load  \\bar{P}_{c} = P_{c}/(πwR)",
+    )
+    .x_label_formatter(&|v| log_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(8);
     chart
         .draw_series(LineSeries::new(
@@ -187,18 +183,14 @@ where
     root.fill(&WHITE)?;
     let mut chart = builder(root, "Contact radius against load")
         .build_cartesian_2d(-2.2..4.0f64, 0.0..2.6f64)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("load  \\bar{P} = P/(πwR)")
-        .y_desc("contact radius  A = a (K/πwR²)^{1/3}")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        "load  \\bar{P} = P/(πwR)",
+        "contact radius  A = a (K/πwR²)^{1/3}",
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let grid: Vec<f64> = (0..=600).map(|i| -2.2 + 6.2 * i as f64 / 600.0).collect();
     let closed = [
         ("Hertz", GRAY_, hertz_radius as fn(f64) -> Option<f64>),
@@ -304,18 +296,14 @@ where
         (1e-13..3.0f64).log_scale(),
         ((smin / 3.0).clamp(1.0, 1e18)..(smax * 5.0).clamp(10.0, 1e19)).log_scale(),
     )?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("max relative error of A against the exact solution")
-        .y_desc("throughput (solves per second)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| log_label(*v))
-        .y_label_formatter(&|v| log_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        "max relative error of A against the exact solution",
+        "throughput (solves per second)",
+    )
+    .x_label_formatter(&|v| log_label(*v))
+    .y_label_formatter(&|v| log_label(*v))
+    .draw()?;
     let pf: Vec<(f64, f64)> = front
         .iter()
         .map(|&i| (err(&results[i]), results[i].points_per_second))
@@ -420,18 +408,14 @@ where
     let p_lo = pc * 1.4;
     let mut chart =
         builder(&left, &r.name).build_cartesian_2d(p_lo / fu..pmax / fu, 0.0..amax / au)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc(format!("load  P ({fp}N)"))
-        .y_desc(format!("contact radius  a ({ap}m)"))
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        format!("load  P ({fp}N)"),
+        format!("contact radius  a ({ap}m)"),
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let closed = [
         (
             "hertz",
@@ -573,18 +557,14 @@ where
         xmin - pad..xmax + pad,
         ymin * 1.15 - 0.05..ymax * 1.05 + 0.05,
     )?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("approach  Δ = δ (K²/π²w²R)^{1/3}")
-        .y_desc("load  \\bar{P} = P/(πwR)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        "approach  Δ = δ (K²/π²w²R)^{1/3}",
+        "load  \\bar{P} = P/(πwR)",
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let eq: Vec<(f64, f64)> = c
         .path
         .iter()
@@ -704,14 +684,7 @@ where
     let amax = contact.iter().map(|p| p.a).fold(0.0, f64::max) * 1.05;
     let mut ch = builder(&right, "contact radius against load")
         .build_cartesian_2d(ymin * 1.15 - 0.05..ymax * 1.05 + 0.05, 0.0..amax)?;
-    ch.configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("load  \\bar{P}")
-        .y_desc("contact radius  A")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
+    house_mesh(ch.configure_mesh(), "load  \\bar{P}", "contact radius  A")
         .x_label_formatter(&|v| super::linear_label(*v))
         .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
@@ -785,17 +758,9 @@ where
         )
     };
     let mut chart = builder(&top, &title).build_cartesian_2d(0.0..r_max, p_lo..p_hi)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc(ru)
-        .y_desc(pu)
+    house_mesh(chart.configure_mesh(), ru, pu)
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
         .draw()?;
     for m in p.models.iter().filter(|m| m.status == "ok") {
         let (col, w) = colour(m.model);
@@ -836,17 +801,9 @@ where
         .fold(p.dugdale_range * 1.5, f64::max)
         * 1.05;
     let mut chart = builder(&bottom, "").build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc(ru)
-        .y_desc(gu)
+    house_mesh(chart.configure_mesh(), ru, gu)
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
         .draw()?;
     for m in p.models.iter().filter(|m| m.status == "ok") {
         let (col, w) = colour(m.model);
@@ -985,17 +942,9 @@ where
         .zip(dirs)
         .filter(|(hh, _)| x_of(*hh) <= xmax)
         .unzip();
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("")
+    house_mesh(chart.configure_mesh(), "", "force F (nN)")
         .x_labels(6)
         .y_labels(6)
-        .y_desc("force F (nN)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
         .x_label_formatter(&|v| super::linear_label(*v))
         .y_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
@@ -1080,19 +1029,16 @@ where
         * 1.3;
     let span = span.max(3.0 * md.rms_residual_n * 1e9);
     let mut rc = builder(&bottom, "").build_cartesian_2d(xmin..xmax, -span..span)?;
-    rc.configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("base height above the contact point (nm)")
-        .x_labels(6)
-        .y_labels(4)
-        .y_desc("residual (nN)")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        rc.configure_mesh(),
+        "base height above the contact point (nm)",
+        "residual (nN)",
+    )
+    .x_labels(6)
+    .y_labels(4)
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     for (pts, col) in &residuals {
         let st = ShapeStyle::from(col).filled();
         rc.draw_series(
@@ -1357,18 +1303,14 @@ where
         * 1.5;
     let (fu, fp) = super::si_prefix(fmax);
     let mut chart = builder(root, &r.name).build_cartesian_2d(x0..x1, 0.0..fmax / fu)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("relative humidity  (%)")
-        .y_desc(format!("pull-off force  |P_{{c}}| ({fp}N)"))
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    house_mesh(
+        chart.configure_mesh(),
+        "relative humidity  (%)",
+        format!("pull-off force  |P_{{c}}| ({fp}N)"),
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let thick = |c: RGBColor| ShapeStyle::from(&c).stroke_width(8);
     for (label, color, f) in [
         (

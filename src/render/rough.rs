@@ -2,7 +2,7 @@
 //! pull-off marked), and the fractions of summits in contact and on the non-contact branch.
 
 use super::plots::{builder, two_panels, BLUE_, GRAY_, ORANGE_};
-use super::{legend, sample, sample_dashed, AXIS, NOTE, TICK};
+use super::{legend, sample, sample_dashed, NOTE, TICK};
 use crate::rough::{Mean, RoughCycle};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -32,18 +32,14 @@ where
     );
     let mut chart =
         builder(&left, &title).build_cartesian_2d(xmin..xmax, ymin - pad..ymax + pad)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("separation  d (approach units)")
-        .y_desc("load per summit  \\bar{P}")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    super::house_mesh(
+        chart.configure_mesh(),
+        "separation  d (approach units)",
+        "load per summit  \\bar{P}",
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let pts =
         |v: &[Mean]| -> Vec<(f64, f64)> { v.iter().map(|m| (m.separation, m.load)).collect() };
     // Retract first and wide, approach on top and thin: where they coincide both stay visible.
@@ -73,17 +69,14 @@ where
     legend(&mut chart, SeriesLabelPosition::LowerRight, NOTE)?;
 
     let mut frac = builder(&right, "").build_cartesian_2d(xmin..xmax, 0.0..1.0)?;
-    frac.configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("separation  d")
-        .y_desc("fraction of summits")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    super::house_mesh(
+        frac.configure_mesh(),
+        "separation  d",
+        "fraction of summits",
+    )
+    .x_label_formatter(&|v| super::linear_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     // Colours as in the load panel; the legend names the line styles only.
     for (v, col) in [(&c.retract, ORANGE_), (&c.approach, BLUE_)] {
         let solid = ShapeStyle::from(&col).stroke_width(6);
@@ -132,18 +125,14 @@ where
     );
     let mut chart =
         builder(root, &title).build_cartesian_2d((xmin..xmax).log_scale(), 0.0..1.05)?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .light_line_style(RGBColor(245, 245, 245))
-        .bold_line_style(RGBColor(215, 215, 215))
-        .x_desc("adhesion parameter  θ = E*σ^{3/2}/(R^{1/2}w)")
-        .y_desc("pull-off / smooth summit's")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::log_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
+    super::house_mesh(
+        chart.configure_mesh(),
+        "adhesion parameter  θ = E*σ^{3/2}/(R^{1/2}w)",
+        "pull-off / smooth summit's",
+    )
+    .x_label_formatter(&|v| super::log_label(*v))
+    .y_label_formatter(&|v| super::linear_label(*v))
+    .draw()?;
     let colours = [BLUE_, ORANGE_, super::plots::GREEN_, GRAY_, BLACK];
     for (k, c) in curves.iter().enumerate() {
         let style = ShapeStyle::from(&colours[k % colours.len()]).stroke_width(6);
@@ -239,16 +228,14 @@ where
     {
         chart.draw_series(std::iter::once(el))?;
     }
-    chart
-        .configure_mesh()
-        .disable_mesh()
-        .x_desc("Maugis parameter of a summit  λ")
-        .y_desc("roughness  σ/(π²w²R/K²)^{1/3}")
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK))
-        .x_label_formatter(&|v| super::log_label(*v))
-        .y_label_formatter(&|v| super::log_label(*v))
-        .draw()?;
+    super::house_axes(
+        chart.configure_mesh(),
+        "Maugis parameter of a summit  λ",
+        "roughness  σ/(π²w²R/K²)^{1/3}",
+    )
+    .x_label_formatter(&|v| super::log_label(*v))
+    .y_label_formatter(&|v| super::log_label(*v))
+    .draw()?;
     // Contours of log10 of the ratio, in chart coordinates.
     let field: Vec<f64> = m
         .relative_pulloff
