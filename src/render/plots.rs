@@ -852,50 +852,146 @@ pub fn fit<DB: DrawingBackend>(
 where
     DB::ErrorType: 'static,
 {
-    use crate::fit::{model_forces, prepare, Model};
     root.fill(&WHITE)?;
-    let d = prepare(curve, opt).map_err(|(_, m)| m)?;
+    let d = crate::fit::prepare(curve, opt).map_err(|(_, m)| m)?;
     let md = r.md.as_ref().ok_or("no Maugis-Dugdale fit")?;
     let (top, bottom) = root.split_vertically(root.dim_in_pixel().1 * 2 / 3);
-    let zc = md.contact_point_m;
-    // Heights relative to the fitted contact point, in nm; forces in nN.
-    let x_of = |hgt: f64| (hgt - zc) * 1e9;
-    // The contact and the jump fill the width: the far baseline is cut to half the width of
-    // the part where the force is off zero (beyond 5% of its range).
-    let (xmin, xall) = d
-        .height
-        .iter()
-        .map(|&v| x_of(v))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
-            (a.min(v), b.max(v))
-        });
-    let frange = d
-        .force
-        .iter()
-        .fold(0.0f64, |m, f| m.max((f - md.force_offset_n).abs()));
-    let active = d
-        .height
-        .iter()
-        .zip(&d.force)
-        .filter(|(_, &f)| (f - md.force_offset_n).abs() > 0.05 * frange)
-        .map(|(&hh, _)| x_of(hh))
-        .fold(xmin, f64::max);
-    let xmax = xall.min(active + 0.6 * (active - xmin).max(1e-3));
-    let (fmin, fmax) = d
-        .force
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
-    let pad = 0.06 * (fmax - fmin);
-    // A dense grid along each fitted segment for the model curves.
-    let n = 600;
-    let mut hs = Vec::new();
-    let mut dirs = Vec::new();
-    for dir in [
-        crate::fit::Direction::Approach,
-        crate::fit::Direction::Retract,
-    ] {
+    let v = FitView::new(&d, md);
+    let (hs, dirs): (Vec<f64>, Vec<crate::fit::Direction>) = model_heights(&d, 600)
+        .into_iter()
+        .filter(|(hh, _)| v.x(*hh) <= v.xmax)
+        .unzip();
+    let pad = 0.06 * (v.fmax - v.fmin);
+    let mut chart = builder(&top, "")
+        .build_cartesian_2d(v.xmin..v.xmax, (v.fmin - pad) * 1e9..(v.fmax + pad) * 1e9)?;
+    house_mesh(chart.configure_mesh(), "", "force F (nN)")
+        .x_labels(6)
+        .y_labels(6)
+        .x_label_formatter(&|v| super::linear_label(*v))
+        .y_label_formatter(&|v| super::linear_label(*v))
+        .draw()?;
+    let dot = ShapeStyle::from(&RGBColor(150, 150, 150)).filled();
+    chart
+        .draw_series(
+            d.height
+                .iter()
+                .zip(&d.force)
+                .filter(|(&hh, _)| v.x(hh) <= v.xmax)
+                .map(|(&hh, &f)| Circle::new((v.x(hh), f * 1e9), 5, dot)),
+        )?
+        .label("measured")
+        .legend(move |(x, y)| Circle::new((x + 20, y), 6, dot));
+    let mut residuals: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
+    for (m, col, label) in fitted_models(md, r).iter().rev() {
+        let p = m.params();
+        let model = |h: &[f64], dir: &[crate::fit::Direction], side| {
+            crate::fit::model_forces(m.model, &p, opt.radius, opt.spring, h, dir, side)
+                .map(|(f, _, _, _)| f)
+        };
+        let Some(f) = model(&hs, &dirs, None) else {
+            continue;
+        };
+        let md_line = m.model == crate::fit::Model::Md;
+        let st = ShapeStyle::from(col).stroke_width(if md_line { 6 } else { 4 });
+        let rms = format!("{label}: rms {:.2e} N", m.rms_residual_n);
+        let pts = |dir| -> Vec<(f64, f64)> {
+            let by_dir = hs
+                .iter()
+                .zip(&dirs)
+                .zip(&f)
+                .filter(|((_, &dd), _)| dd == dir);
+            by_dir
+                .map(|((&hh, _), &ff)| (v.x(hh), (ff + p.f0) * 1e9))
+                .collect()
+        };
+        let mut label = Some(rms);
+        for dir in [
+            crate::fit::Direction::Approach,
+            crate::fit::Direction::Retract,
+        ] {
+            let pts = pts(dir);
+            if pts.is_empty() {
+                continue;
+            }
+            // Maugis-Dugdale solid, the closed forms dashed; one legend entry per model.
+            match (md_line, label.take()) {
+                (true, l) => {
+                    let s = chart.draw_series(LineSeries::new(pts, st))?;
+                    if let Some(l) = l {
+                        s.label(l).legend(sample(st));
+                    }
+                }
+                (false, l) => {
+                    let s = chart.draw_series(DashedLineSeries::new(pts, 14, 8, st))?;
+                    if let Some(l) = l {
+                        s.label(l).legend(sample_dashed(st));
+                    }
+                }
+            }
+        }
+        if let Some(fd) = model(&d.height, &d.dir, Some(&d.side)) {
+            let res = d.height.iter().zip(&fd).zip(&d.force);
+            let res = res.map(|((&hh, &fm), &fo)| (v.x(hh), (fo - fm - p.f0) * 1e9));
+            residuals.push((res.collect(), *col));
+        }
+    }
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
+    fit_residuals(&bottom, &v, &residuals, md.rms_residual_n)
+}
+
+/// The plotted window of a fitted curve: heights relative to the fitted contact point in nm,
+/// forces in N.
+struct FitView {
+    zc: f64,
+    xmin: f64,
+    xmax: f64,
+    fmin: f64,
+    fmax: f64,
+}
+
+impl FitView {
+    /// The contact and the jump fill the width: the far baseline is cut to half the width of
+    /// the part where the force is off zero (beyond 5% of its range).
+    fn new(d: &crate::fit::Prepared, md: &crate::fit::ModelFit) -> FitView {
+        let zc = md.contact_point_m;
+        let x = |hgt: f64| (hgt - zc) * 1e9;
+        let span = |it: &mut dyn Iterator<Item = f64>| {
+            it.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+                (a.min(v), b.max(v))
+            })
+        };
+        let (xmin, xall) = span(&mut d.height.iter().map(|&v| x(v)));
+        let off = |f: f64| (f - md.force_offset_n).abs();
+        let frange = d.force.iter().fold(0.0f64, |m, &f| m.max(off(f)));
+        let active = d
+            .height
+            .iter()
+            .zip(&d.force)
+            .filter(|(_, &f)| off(f) > 0.05 * frange)
+            .map(|(&hh, _)| x(hh))
+            .fold(xmin, f64::max);
+        let xmax = xall.min(active + 0.6 * (active - xmin).max(1e-3));
+        let (fmin, fmax) = span(&mut d.force.iter().copied());
+        FitView {
+            zc,
+            xmin,
+            xmax,
+            fmin,
+            fmax,
+        }
+    }
+
+    fn x(&self, height: f64) -> f64 {
+        (height - self.zc) * 1e9
+    }
+}
+
+/// A dense grid of `n` heights along each fitted segment, in time order (the approach descends,
+/// the retract climbs), for the model curves.
+fn model_heights(d: &crate::fit::Prepared, n: usize) -> Vec<(f64, crate::fit::Direction)> {
+    use crate::fit::Direction;
+    let mut out = Vec::new();
+    for dir in [Direction::Approach, Direction::Retract] {
         if !d.dir.contains(&dir) {
             continue;
         }
@@ -909,126 +1005,61 @@ where
             });
         for i in 0..n {
             let t = i as f64 / (n - 1) as f64;
-            // In time order: the approach descends, the retract climbs.
-            hs.push(if dir == crate::fit::Direction::Approach {
+            let h = if dir == Direction::Approach {
                 hi - t * (hi - lo)
             } else {
                 lo + t * (hi - lo)
-            });
-            dirs.push(dir);
-        }
-    }
-    let fits: Vec<(&crate::fit::ModelFit, RGBColor, &str)> =
-        std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
-            .chain(
-                r.models
-                    .iter()
-                    .filter(|m| m.status == crate::fit::FitStatus::Ok)
-                    .map(|m| {
-                        let (c, l) = match m.model {
-                            Model::Hertz => (GRAY_, "Hertz"),
-                            Model::Dmt => (ORANGE_, "DMT"),
-                            Model::Jkr => (BLUE_, "JKR"),
-                            Model::Md => (GREEN_, "Maugis-Dugdale"),
-                        };
-                        (m, c, l)
-                    }),
-            )
-            .collect();
-    let mut chart =
-        builder(&top, "").build_cartesian_2d(xmin..xmax, (fmin - pad) * 1e9..(fmax + pad) * 1e9)?;
-    let (hs, dirs): (Vec<f64>, Vec<crate::fit::Direction>) = hs
-        .into_iter()
-        .zip(dirs)
-        .filter(|(hh, _)| x_of(*hh) <= xmax)
-        .unzip();
-    house_mesh(chart.configure_mesh(), "", "force F (nN)")
-        .x_labels(6)
-        .y_labels(6)
-        .x_label_formatter(&|v| super::linear_label(*v))
-        .y_label_formatter(&|v| super::linear_label(*v))
-        .draw()?;
-    let dot = ShapeStyle::from(&RGBColor(150, 150, 150)).filled();
-    chart
-        .draw_series(
-            d.height
-                .iter()
-                .zip(&d.force)
-                .filter(|(&hh, _)| x_of(hh) <= xmax)
-                .map(|(&hh, &f)| Circle::new((x_of(hh), f * 1e9), 5, dot)),
-        )?
-        .label("measured")
-        .legend(move |(x, y)| Circle::new((x + 20, y), 6, dot));
-    let mut residuals: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
-    for (m, col, label) in fits.iter().rev() {
-        let p = m.params();
-        let Some((f, _, _, _)) =
-            model_forces(m.model, &p, opt.radius, opt.spring, &hs, &dirs, None)
-        else {
-            continue;
-        };
-        let width = if m.model == Model::Md { 6 } else { 4 };
-        let st = ShapeStyle::from(col).stroke_width(width);
-        let mut first = true;
-        for dir in [
-            crate::fit::Direction::Approach,
-            crate::fit::Direction::Retract,
-        ] {
-            let pts: Vec<(f64, f64)> = hs
-                .iter()
-                .zip(&dirs)
-                .zip(&f)
-                .filter(|((_, &dd), _)| dd == dir)
-                .map(|((&hh, _), &ff)| (x_of(hh), (ff + p.f0) * 1e9))
-                .collect();
-            if pts.is_empty() {
-                continue;
-            }
-            let s2 = if m.model == Model::Md {
-                chart.draw_series(LineSeries::new(pts, st))?
-            } else {
-                chart.draw_series(DashedLineSeries::new(pts, 14, 8, st))?
             };
-            if first {
-                let rms = format!("{label}: rms {:.2e} N", m.rms_residual_n);
-                if m.model == Model::Md {
-                    s2.label(rms).legend(sample(st));
-                } else {
-                    s2.label(rms).legend(sample_dashed(st));
-                }
-                first = false;
-            }
-        }
-        if let Some((fd, _, _, _)) = model_forces(
-            m.model,
-            &p,
-            opt.radius,
-            opt.spring,
-            &d.height,
-            &d.dir,
-            Some(&d.side),
-        ) {
-            residuals.push((
-                d.height
-                    .iter()
-                    .zip(&fd)
-                    .zip(&d.force)
-                    .map(|((&hh, &fm), &fo)| (x_of(hh), (fo - fm - p.f0) * 1e9))
-                    .collect(),
-                *col,
-            ));
+            out.push((h, dir));
         }
     }
-    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
-    // Residuals of Maugis-Dugdale (black) over those of the closed forms.
+    out
+}
+
+/// The fits drawn, Maugis-Dugdale first (black), then each closed form that fitted, with its
+/// colour and name.
+fn fitted_models<'a>(
+    md: &'a crate::fit::ModelFit,
+    r: &'a crate::fit::CurveFit,
+) -> Vec<(&'a crate::fit::ModelFit, RGBColor, &'static str)> {
+    use crate::fit::Model;
+    let ok = r
+        .models
+        .iter()
+        .filter(|m| m.status == crate::fit::FitStatus::Ok);
+    let closed = ok.map(|m| {
+        let (c, l) = match m.model {
+            Model::Hertz => (GRAY_, "Hertz"),
+            Model::Dmt => (ORANGE_, "DMT"),
+            Model::Jkr => (BLUE_, "JKR"),
+            Model::Md => (GREEN_, "Maugis-Dugdale"),
+        };
+        (m, c, l)
+    });
+    std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
+        .chain(closed)
+        .collect()
+}
+
+/// The residuals panel below a fit: Maugis-Dugdale's (black, last) over those of the closed
+/// forms, the axis spanning MD's residuals and at least three of its rms.
+fn fit_residuals<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    v: &FitView,
+    residuals: &[(Vec<(f64, f64)>, RGBColor)],
+    md_rms: f64,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
     let md_res = &residuals.last().ok_or("no residuals")?.0;
     let span = md_res
         .iter()
         .fold(0.0f64, |m, p| m.max(p.1.abs()))
         .max(1e-30)
         * 1.3;
-    let span = span.max(3.0 * md.rms_residual_n * 1e9);
-    let mut rc = builder(&bottom, "").build_cartesian_2d(xmin..xmax, -span..span)?;
+    let span = span.max(3.0 * md_rms * 1e9);
+    let mut rc = builder(area, "").build_cartesian_2d(v.xmin..v.xmax, -span..span)?;
     house_mesh(
         rc.configure_mesh(),
         "base height above the contact point (nm)",
@@ -1039,12 +1070,13 @@ where
     .x_label_formatter(&|v| super::linear_label(*v))
     .y_label_formatter(&|v| super::linear_label(*v))
     .draw()?;
-    for (pts, col) in &residuals {
+    for (pts, col) in residuals {
         let st = ShapeStyle::from(col).filled();
+        let r = if *col == RGBColor(0, 0, 0) { 4 } else { 3 };
         rc.draw_series(
             pts.iter()
-                .filter(|p| p.1.abs() <= span && p.0 <= xmax)
-                .map(|&p| Circle::new(p, if *col == RGBColor(0, 0, 0) { 4 } else { 3 }, st)),
+                .filter(|p| p.1.abs() <= span && p.0 <= v.xmax)
+                .map(|&p| Circle::new(p, r, st)),
         )?;
     }
     Ok(())
