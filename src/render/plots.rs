@@ -320,19 +320,7 @@ where
     let mut placer = super::Placer::default();
     for r in results {
         let (x, y) = (err(r), r.points_per_second);
-        let col = if r.name.starts_with("gpu") {
-            ORANGE_
-        } else if r.name.starts_with("cpu") || r.name.starts_with("naive") {
-            BLUE_
-        } else {
-            GRAY_
-        };
-        let style = if r.failures > 0 {
-            ShapeStyle::from(&col).stroke_width(6)
-        } else {
-            col.filled()
-        };
-        chart.draw_series(std::iter::once(Circle::new((x, y), 18, style)))?;
+        chart.draw_series(std::iter::once(Circle::new((x, y), 18, bench_marker(r))))?;
         let (px, py) = chart.backend_coord(&(x, y));
         placer.boxes.push((px - 22, py - 22, px + 22, py + 22));
     }
@@ -352,19 +340,11 @@ where
         } else {
             r.name.clone()
         };
-        let (px, py) = chart.backend_coord(&(x, y));
-        let (w, h) = (
+        let size = (
             super::text_width(root, &label, NOTE),
             super::line_height(NOTE),
         );
-        let right_first = x <= 1e-2;
-        let mut spots = Vec::new();
-        for dy in [0, -1, 1, -2, 2, -3, 3].map(|k| k * (h + 4)) {
-            for right in [right_first, !right_first] {
-                let x0 = if right { px + 28 } else { px - 28 - w };
-                spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
-            }
-        }
+        let spots = label_spots(chart.backend_coord(&(x, y)), size, x <= 1e-2);
         // The map's placer: the first spot over no marker, label or line, else the one that
         // crosses fewest lines.
         let spot = placer
@@ -384,6 +364,40 @@ where
     )))?;
     super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
     Ok(())
+}
+
+/// A variant's marker: orange for the GPU, blue for the CPU solvers, grey for the closed
+/// forms; hollow where some points failed.
+fn bench_marker(r: &crate::bench::VariantResult) -> ShapeStyle {
+    let col = if r.name.starts_with("gpu") {
+        ORANGE_
+    } else if r.name.starts_with("cpu") || r.name.starts_with("naive") {
+        BLUE_
+    } else {
+        GRAY_
+    };
+    if r.failures > 0 {
+        ShapeStyle::from(&col).stroke_width(6)
+    } else {
+        col.filled()
+    }
+}
+
+/// Candidate boxes for a label of size `(w, h)` beside a marker at `(px, py)`: level with it,
+/// then one, two and three lines up and down, on the preferred side first.
+fn label_spots(
+    (px, py): (i32, i32),
+    (w, h): (i32, i32),
+    right_first: bool,
+) -> Vec<(i32, i32, i32, i32)> {
+    let mut spots = Vec::new();
+    for dy in [0, -1, 1, -2, 2, -3, 3].map(|k| k * (h + 4)) {
+        for right in [right_first, !right_first] {
+            let x0 = if right { px + 28 } else { px - 28 - w };
+            spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
+        }
+    }
+    spots
 }
 
 /// A scene: a(P) in SI units with engineering prefixes (MD bold, the recommended model dashed,
@@ -470,8 +484,19 @@ where
     super::legend(&mut chart, SeriesLabelPosition::LowerRight, NOTE)?;
 
     // Where the scene sits on the map (normalised loads), drawn as `tabor map` draws.
-    let d = &fig.map;
-    let mut ch = super::map::inset(&right, d, "on the adhesion map")?;
+    scene_on_map(&right, r, &fig.map)
+}
+
+/// The scene's lambda and loads as crosses on an inset adhesion map.
+fn scene_on_map<DB: DrawingBackend>(
+    right: &DrawingArea<DB, Shift>,
+    r: &crate::scene::SceneResult,
+    d: &crate::map::MapData,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let mut ch = super::map::inset(right, d, "on the adhesion map")?;
     let l = r.lambda.clamp(d.spec.lambda_min, d.spec.lambda_max);
     for ld in &r.loads {
         let y = ld.load_normalised.clamp(d.spec.load_min, d.spec.load_max);
