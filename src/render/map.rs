@@ -357,24 +357,11 @@ pub(crate) enum Panel {
     Inset,
 }
 
-/// The raster, the axes, the lines and the labels of a map.
-fn body<'a, DB: DrawingBackend + 'a, Y>(
-    chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
-    d: &MapData,
-    q: Option<Quantity>,
-    traced: &Traced,
-    panel: Panel,
-) -> Result<(), Err>
-where
-    DB::ErrorType: 'static,
-    Y: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
-{
+/// The map's raster, `w` by `h` RGB bytes: the nearest grid point's region colour, or with a
+/// quantity its viridis colour (white where there is no contact, light grey where a model has no
+/// answer, the failure colour where the solve failed).
+fn raster(d: &MapData, q: Option<Quantity>, w: u32, h: u32) -> Vec<u8> {
     let sp = &d.spec;
-    let y_log = sp.load_axis != LoadAxis::Linear;
-    // The raster: one bitmap pixel per drawing unit, nearest grid point (the SVG and PDF embed
-    // it; the lines on top are vectors).
-    let (px, py) = chart.plotting_area().get_pixel_range();
-    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
     let range = q.map(|q| quantity_range(d, q));
     let mut buf = vec![0u8; (w * h * 3) as usize];
     for r in 0..h {
@@ -401,6 +388,49 @@ where
             buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
         }
     }
+    buf
+}
+
+/// Candidate boxes of size `(tw, th)` for a line's label: around each anchor point (nearest
+/// first), at three distances, on every side.
+fn spots_around(anchors: &[(i32, i32)], (tw, th): (i32, i32)) -> Vec<(i32, i32, i32, i32)> {
+    anchors
+        .iter()
+        .flat_map(|&(x, y)| {
+            [12, 36, 72].into_iter().flat_map(move |r| {
+                [
+                    (x + r, y + r),
+                    (x - tw - r, y - th - r),
+                    (x + r, y - th - r),
+                    (x - tw - r, y + r),
+                    (x + r, y - th / 2),
+                    (x - tw - r, y - th / 2),
+                ]
+                .map(|(x0, y0)| (x0, y0, x0 + tw, y0 + th))
+            })
+        })
+        .collect()
+}
+
+/// The raster, the axes, the lines and the labels of a map.
+fn body<'a, DB: DrawingBackend + 'a, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
+    d: &MapData,
+    q: Option<Quantity>,
+    traced: &Traced,
+    panel: Panel,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+    Y: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
+    let sp = &d.spec;
+    let y_log = sp.load_axis != LoadAxis::Linear;
+    // The raster: one bitmap pixel per drawing unit, nearest grid point (the SVG and PDF embed
+    // it; the lines on top are vectors).
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let (w, h) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
+    let buf = raster(d, q, w, h);
     let top_left = (sp.lambda_min, sp.load_max);
     if let Some(el) = BitMapElement::with_owned_buffer(top_left, (w, h), buf) {
         chart.draw_series(std::iter::once(el))?;
@@ -461,24 +491,9 @@ where
         let tw = super::text_width(chart.plotting_area(), &text, NOTE);
         let th = super::line_height(NOTE);
         let n = line.points.len();
-        // Around points along the line, nearest first, on every side.
-        let spots = [0.7, 0.5, 0.85, 0.3, 0.6, 0.4, 0.75, 0.2, 0.9, 0.1]
-            .iter()
-            .flat_map(|f| {
-                let (x, y) = chart.backend_coord(&line.points[((n - 1) as f64 * f) as usize]);
-                [12, 36, 72].into_iter().flat_map(move |r| {
-                    [
-                        (x + r, y + r),
-                        (x - tw - r, y - th - r),
-                        (x + r, y - th - r),
-                        (x - tw - r, y + r),
-                        (x + r, y - th / 2),
-                        (x - tw - r, y - th / 2),
-                    ]
-                    .map(|(x0, y0)| (x0, y0, x0 + tw, y0 + th))
-                })
-            })
-            .collect::<Vec<_>>();
+        let anchors = [0.7, 0.5, 0.85, 0.3, 0.6, 0.4, 0.75, 0.2, 0.9, 0.1]
+            .map(|f| chart.backend_coord(&line.points[((n - 1) as f64 * f) as usize]));
+        let spots = spots_around(&anchors, (tw, th));
         // Where every spot crosses a line (a crowded map), the one crossing fewest, on no label.
         let found = placer
             .take(spots.iter().copied(), frame)
@@ -500,6 +515,59 @@ where
     Ok(())
 }
 
+/// Region labels search a C x C grid of cells; all-pairs distances: 48 keeps it to ~5M per
+/// region.
+const C: usize = 48;
+
+/// The map's regions at the centres of a C x C grid of cells.
+fn coarse_regions(d: &MapData) -> Vec<Region> {
+    let (nx, ny) = (d.spec.nx, d.spec.ny);
+    (0..C * C)
+        .map(|k| {
+            let (cx, cy) = (k % C, k / C);
+            d.region_at(
+                (cx * 2 + 1) * (nx - 1) / (2 * C - 1),
+                (cy * 2 + 1) * (ny - 1) / (2 * C - 1),
+            )
+        })
+        .collect()
+}
+
+/// The cells of region `r`, freest first: each scored by its distance from any other region
+/// and from the frame (labels are wide: horizontal distance counts a third), capped, and among
+/// equally free cells the region's vertical middle first.
+fn ranked_cells(coarse: &[Region], r: Region) -> Vec<(f64, usize)> {
+    let mid_y = {
+        let ys: Vec<f64> = (0..C * C)
+            .filter(|&k| coarse[k] == r)
+            .map(|k| (k / C) as f64)
+            .collect();
+        ys.iter().sum::<f64>() / ys.len() as f64
+    };
+    let mut ranked: Vec<(f64, usize)> = (0..C * C)
+        .filter(|&k| coarse[k] == r)
+        .map(|k| {
+            let (x, y) = ((k % C) as f64, (k / C) as f64);
+            // Labels are wide: horizontal distance counts a third.
+            let mut dist = (x + 1.0)
+                .min(C as f64 - x)
+                .min(3.0 * (y + 1.0))
+                .min(3.0 * (C as f64 - y))
+                / 3.0;
+            for (j, &cj) in coarse.iter().enumerate() {
+                if cj != r {
+                    let (u, v) = ((j % C) as f64, (j / C) as f64);
+                    dist = dist.min((((x - u) / 3.0).powi(2) + (y - v).powi(2)).sqrt());
+                }
+            }
+            // Among equally free cells, prefer the region's vertical middle.
+            (dist.min(6.0) - 0.01 * (y - mid_y).abs(), k)
+        })
+        .collect();
+    ranked.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+    ranked
+}
+
 /// Region names at the freest spot of each region: cells of a coarse grid ranked by their
 /// distance from any other region (and from the frame), the first whose label box crosses no
 /// line and no label placed before.
@@ -513,8 +581,6 @@ where
     DB::ErrorType: 'static,
     Y: Ranged<ValueType = f64>,
 {
-    // All-pairs distances on a C x C grid: 48 keeps it to ~5M per region.
-    const C: usize = 48;
     let sizes: &[f64] = if panel == Panel::Full {
         &[REGION, NOTE]
     } else {
@@ -522,15 +588,7 @@ where
     };
     let (nx, ny) = (d.spec.nx, d.spec.ny);
     let frac = |c: usize, n: usize| ((c * 2 + 1) * (n - 1)) as f64 / (2 * C - 1) as f64;
-    let coarse: Vec<Region> = (0..C * C)
-        .map(|k| {
-            let (cx, cy) = (k % C, k / C);
-            d.region_at(
-                (cx * 2 + 1) * (nx - 1) / (2 * C - 1),
-                (cy * 2 + 1) * (ny - 1) / (2 * C - 1),
-            )
-        })
-        .collect();
+    let coarse = coarse_regions(d);
     let frame = {
         let (x, y) = chart.plotting_area().get_pixel_range();
         (x.start + 2, y.start + 2, x.end - 2, y.end - 2)
@@ -539,34 +597,7 @@ where
         if r == Region::NoContact || coarse.iter().filter(|&&x| x == r).count() < 12 {
             continue;
         }
-        let mid_y = {
-            let ys: Vec<f64> = (0..C * C)
-                .filter(|&k| coarse[k] == r)
-                .map(|k| (k / C) as f64)
-                .collect();
-            ys.iter().sum::<f64>() / ys.len() as f64
-        };
-        let mut ranked: Vec<(f64, usize)> = (0..C * C)
-            .filter(|&k| coarse[k] == r)
-            .map(|k| {
-                let (x, y) = ((k % C) as f64, (k / C) as f64);
-                // Labels are wide: horizontal distance counts a third.
-                let mut dist = (x + 1.0)
-                    .min(C as f64 - x)
-                    .min(3.0 * (y + 1.0))
-                    .min(3.0 * (C as f64 - y))
-                    / 3.0;
-                for (j, &cj) in coarse.iter().enumerate() {
-                    if cj != r {
-                        let (u, v) = ((j % C) as f64, (j / C) as f64);
-                        dist = dist.min((((x - u) / 3.0).powi(2) + (y - v).powi(2)).sqrt());
-                    }
-                }
-                // Among equally free cells, prefer the region's vertical middle.
-                (dist.min(6.0) - 0.01 * (y - mid_y).abs(), k)
-            })
-            .collect();
-        ranked.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let ranked = ranked_cells(&coarse, r);
         let label = match r {
             Region::Rigid => "Bradley".to_string(),
             Region::Md => "MD".to_string(),
