@@ -363,27 +363,36 @@ pub(crate) enum Panel {
 fn raster(d: &MapData, q: Option<Quantity>, w: u32, h: u32) -> Vec<u8> {
     let sp = &d.spec;
     let range = q.map(|q| quantity_range(d, q));
+    pixels((sp.nx, sp.ny), (w, h), |i| match (q, range) {
+        (Some(q), Some((lo, hi))) => {
+            let v = q.transform(q.value(d, i));
+            if d.regions[i] == Region::NoContact {
+                RGBColor(255, 255, 255)
+            } else if v.is_finite() {
+                viridis((v - lo) / (hi - lo))
+            } else if q.is_error() && d.regions[i] != Region::Failed {
+                RGBColor(235, 235, 235) // the model has no answer here
+            } else {
+                region_color(Region::Failed)
+            }
+        }
+        _ => region_color(d.regions[i]),
+    })
+}
+
+/// A `w` by `h` RGB raster of an `nx` by `ny` grid (row 0 at the bottom): each pixel the colour
+/// of the nearest grid point, `colour(index)`.
+pub(crate) fn pixels(
+    (nx, ny): (usize, usize),
+    (w, h): (u32, u32),
+    colour: impl Fn(usize) -> RGBColor,
+) -> Vec<u8> {
     let mut buf = vec![0u8; (w * h * 3) as usize];
     for r in 0..h {
-        let iy = ((1.0 - (r as f64 + 0.5) / h as f64) * (sp.ny - 1) as f64).round() as usize;
+        let iy = ((1.0 - (r as f64 + 0.5) / h as f64) * (ny - 1) as f64).round() as usize;
         for c in 0..w {
-            let ix = (((c as f64 + 0.5) / w as f64) * (sp.nx - 1) as f64).round() as usize;
-            let i = iy * sp.nx + ix;
-            let col = match (q, range) {
-                (Some(q), Some((lo, hi))) => {
-                    let v = q.transform(q.value(d, i));
-                    if d.regions[i] == Region::NoContact {
-                        RGBColor(255, 255, 255)
-                    } else if v.is_finite() {
-                        viridis((v - lo) / (hi - lo))
-                    } else if q.is_error() && d.regions[i] != Region::Failed {
-                        RGBColor(235, 235, 235) // the model has no answer here
-                    } else {
-                        region_color(Region::Failed)
-                    }
-                }
-                _ => region_color(d.regions[i]),
-            };
+            let ix = (((c as f64 + 0.5) / w as f64) * (nx - 1) as f64).round() as usize;
+            let col = colour(iy * nx + ix);
             let k = ((r * w + c) * 3) as usize;
             buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
         }

@@ -4,6 +4,7 @@
 use super::plots::{builder, two_panels, BLUE_, GRAY_, ORANGE_};
 use super::{legend, sample, sample_dashed, NOTE, TICK};
 use crate::rough::{Mean, RoughCycle};
+use plotters::coord::combinators::LogCoord;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -151,24 +152,11 @@ where
     Ok(())
 }
 
-/// The rough adhesion map: regions (the simplest adequate summit model) coloured, the contours
-/// of the pull-off relative to the smooth summit's on top.
-pub fn map<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    m: &crate::rough::map::RoughMap,
-) -> Result<(), Err>
-where
-    DB::ErrorType: 'static,
-{
-    use super::map::{contour_paths, region_color, MARGIN, X_AREA, Y_AREA};
-    use super::{Entry, TITLE};
+/// The rough map's legend: the regions present, then the contour levels.
+fn map_legend(m: &crate::rough::map::RoughMap) -> Vec<super::Entry> {
+    use super::map::region_color;
+    use super::Entry;
     use crate::map::Region;
-    root.fill(&WHITE)?;
-    let (w, h) = root.dim_in_pixel();
-    let (w, h) = (w as i32, h as i32);
-    let sp = &m.spec;
-    let pad = 32;
-    let tol = format!("{}%", sp.tolerance * 100.0);
     let present: Vec<Region> = m.region_counts().iter().map(|r| r.0).collect();
     let mut legend: Vec<Entry> = present
         .iter()
@@ -185,58 +173,20 @@ where
         style: BLACK.stroke_width(5),
         dashed: false,
     });
-    let caption = super::wrap(
-        root,
-        &format!(
-            "Greenwood-Williamson summits, heights N(0, σ²), pressed to −{}σ and retracted. Colour: the simplest summit model whose rough pull-off is within {tol} of the smooth summit's pull-off and whose retract curve is within {tol} of its largest load, against exact Maugis-Dugdale summits. Lines: the rough pull-off per summit relative to the smooth summit's.",
-            crate::physics::domain::short(sp.press_sigmas)
-        ),
-        NOTE,
-        w - 2 * pad,
-    );
-    let bottom = super::legend_rows_height(root, &legend, NOTE, w - 2 * pad)
-        + caption.len() as i32 * super::line_height(NOTE)
-        + 28;
-    let (upper, lower) = root.split_vertically(h - bottom);
-    let mut chart = ChartBuilder::on(&upper)
-        .caption(
-            format!("Rough adhesion map (tolerance {tol})"),
-            ("sans-serif", TITLE),
-        )
-        .margin(MARGIN)
-        .margin_top(MARGIN + (TICK * 0.5) as i32)
-        .margin_right(MARGIN + (TICK * 0.9) as i32)
-        .x_label_area_size(X_AREA)
-        .y_label_area_size(Y_AREA)
-        .build_cartesian_2d(
-            (sp.lambda_min..sp.lambda_max).log_scale(),
-            (sp.sigma_min..sp.sigma_max).log_scale(),
-        )?;
-    let (px, py) = chart.plotting_area().get_pixel_range();
-    let (bw, bh) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
-    let mut buf = vec![0u8; (bw * bh * 3) as usize];
-    for r in 0..bh {
-        let iy = ((1.0 - (r as f64 + 0.5) / bh as f64) * (sp.ny - 1) as f64).round() as usize;
-        for c in 0..bw {
-            let ix = (((c as f64 + 0.5) / bw as f64) * (sp.nx - 1) as f64).round() as usize;
-            let col = region_color(m.regions[iy * sp.nx + ix]);
-            let k = ((r * bw + c) * 3) as usize;
-            buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
-        }
-    }
-    if let Some(el) = BitMapElement::with_owned_buffer((sp.lambda_min, sp.sigma_max), (bw, bh), buf)
-    {
-        chart.draw_series(std::iter::once(el))?;
-    }
-    super::house_axes(
-        chart.configure_mesh(),
-        "Maugis parameter of a summit  λ",
-        "roughness  σ/(π²w²R/K²)^{1/3}",
-    )
-    .x_label_formatter(&|v| super::log_label(*v))
-    .y_label_formatter(&|v| super::log_label(*v))
-    .draw()?;
-    // Contours of log10 of the ratio, in chart coordinates.
+    legend
+}
+
+/// Contours of the pull-off relative to the smooth summit's (log10, in chart coordinates), each
+/// level labelled on its longest path.
+fn contours<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>,
+    m: &crate::rough::map::RoughMap,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use super::map::contour_paths;
+    let sp = &m.spec;
     let field: Vec<f64> = m
         .relative_pulloff
         .iter()
@@ -286,6 +236,70 @@ where
             area.draw(&Text::new(text, (x0 + 6, y0 + 4), style))?;
         }
     }
+    Ok(())
+}
+
+/// The rough adhesion map: regions (the simplest adequate summit model) coloured, the contours
+/// of the pull-off relative to the smooth summit's on top.
+pub fn map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    m: &crate::rough::map::RoughMap,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use super::map::{region_color, MARGIN, X_AREA, Y_AREA};
+    use super::TITLE;
+    root.fill(&WHITE)?;
+    let (w, h) = root.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    let sp = &m.spec;
+    let pad = 32;
+    let tol = format!("{}%", sp.tolerance * 100.0);
+    let legend = map_legend(m);
+    let caption = super::wrap(
+        root,
+        &format!(
+            "Greenwood-Williamson summits, heights N(0, σ²), pressed to −{}σ and retracted. Colour: the simplest summit model whose rough pull-off is within {tol} of the smooth summit's pull-off and whose retract curve is within {tol} of its largest load, against exact Maugis-Dugdale summits. Lines: the rough pull-off per summit relative to the smooth summit's.",
+            crate::physics::domain::short(sp.press_sigmas)
+        ),
+        NOTE,
+        w - 2 * pad,
+    );
+    let bottom = super::legend_rows_height(root, &legend, NOTE, w - 2 * pad)
+        + caption.len() as i32 * super::line_height(NOTE)
+        + 28;
+    let (upper, lower) = root.split_vertically(h - bottom);
+    let mut chart = ChartBuilder::on(&upper)
+        .caption(
+            format!("Rough adhesion map (tolerance {tol})"),
+            ("sans-serif", TITLE),
+        )
+        .margin(MARGIN)
+        .margin_top(MARGIN + (TICK * 0.5) as i32)
+        .margin_right(MARGIN + (TICK * 0.9) as i32)
+        .x_label_area_size(X_AREA)
+        .y_label_area_size(Y_AREA)
+        .build_cartesian_2d(
+            (sp.lambda_min..sp.lambda_max).log_scale(),
+            (sp.sigma_min..sp.sigma_max).log_scale(),
+        )?;
+    let (px, py) = chart.plotting_area().get_pixel_range();
+    let (bw, bh) = ((px.end - px.start) as u32, (py.end - py.start) as u32);
+    let buf = super::map::pixels((sp.nx, sp.ny), (bw, bh), |i| region_color(m.regions[i]));
+    if let Some(el) = BitMapElement::with_owned_buffer((sp.lambda_min, sp.sigma_max), (bw, bh), buf)
+    {
+        chart.draw_series(std::iter::once(el))?;
+    }
+    super::house_axes(
+        chart.configure_mesh(),
+        "Maugis parameter of a summit  λ",
+        "roughness  σ/(π²w²R/K²)^{1/3}",
+    )
+    .x_label_formatter(&|v| super::log_label(*v))
+    .y_label_formatter(&|v| super::log_label(*v))
+    .draw()?;
+    contours(&mut chart, m)?;
     let used = super::draw_legend_rows(&lower, &legend, NOTE, (pad, 8), w - 2 * pad)?;
     for (k, l) in caption.iter().enumerate() {
         lower.draw(&Text::new(
