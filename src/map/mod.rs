@@ -194,6 +194,47 @@ pub struct Points {
     pub status: Vec<u8>,
 }
 
+impl Points {
+    fn with_capacity(n: usize) -> Points {
+        Points {
+            a: Vec::with_capacity(n),
+            approach: Vec::with_capacity(n),
+            m_minus_1: Vec::with_capacity(n),
+            status: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends the compact (f32) records of `states`.
+    fn extend(&mut self, states: &[State]) {
+        self.a.extend(states.iter().map(|s| s.a as f32));
+        self.approach
+            .extend(states.iter().map(|s| s.approach as f32));
+        self.m_minus_1
+            .extend(states.iter().map(|s| s.m_minus_1 as f32));
+        self.status.extend(states.iter().map(|s| s.status as u8));
+    }
+}
+
+/// The top run of adequate rows per column and model, carried row by row from the bottom:
+/// `from[ix][m]` is the lowest row of the unbroken run of rows, up to the last one seen, where
+/// model m is adequate (None where the last row is not). `marks` are whole rows starting at
+/// row `first_row`.
+fn extend_adequate_runs(from: &mut [[Option<u32>; 4]], marks: &[(Region, u8)], first_row: usize) {
+    let nx = from.len();
+    for (k, row) in marks.chunks(nx).enumerate() {
+        let iy = (first_row + k) as u32;
+        for (ix, &(_, bits)) in row.iter().enumerate() {
+            for (m, f) in from[ix].iter_mut().enumerate() {
+                *f = if bits & (1 << m) != 0 {
+                    f.or(Some(iy))
+                } else {
+                    None
+                };
+            }
+        }
+    }
+}
+
 /// What [`compute_with`] keeps besides the compact records.
 #[derive(Clone, Copy, Debug)]
 pub struct ComputeOptions {
@@ -346,12 +387,7 @@ pub fn compute_with(
         _ => engine.solve_grid_with(&ctx, &lambdas, rows, crate::solver::Control::Load),
     };
     let n = nx * ny;
-    let mut points = Points {
-        a: Vec::with_capacity(n),
-        approach: Vec::with_capacity(n),
-        m_minus_1: Vec::with_capacity(n),
-        status: Vec::with_capacity(n),
-    };
+    let mut points = Points::with_capacity(n);
     let mut regions = Vec::with_capacity(n);
     let mut exact = opts.keep_exact.then(|| Vec::with_capacity(n));
     let mut adequate_from = vec![[None; 4]; nx];
@@ -376,14 +412,7 @@ pub fn compute_with(
             .map(|s| (classify(s, tol), adequate(s, tol)))
             .collect();
         regions.extend(marks.iter().map(|m| m.0));
-        points.a.extend(states.iter().map(|s| s.a as f32));
-        points
-            .approach
-            .extend(states.iter().map(|s| s.approach as f32));
-        points
-            .m_minus_1
-            .extend(states.iter().map(|s| s.m_minus_1 as f32));
-        points.status.extend(states.iter().map(|s| s.status as u8));
+        points.extend(&states);
         if let Some(e) = exact.as_mut() {
             e.extend(states.iter().map(|s| [s.a, s.approach, s.m_minus_1]));
         }
@@ -393,19 +422,7 @@ pub fn compute_with(
             sample_states.push(s);
             next_check += 1;
         }
-        // The top run of adequate rows per column and model, row by row from the bottom.
-        for (k, row) in marks.chunks(nx).enumerate() {
-            let iy = (b * band + k) as u32;
-            for (ix, &(_, bits)) in row.iter().enumerate() {
-                for (m, from) in adequate_from[ix].iter_mut().enumerate() {
-                    *from = if bits & (1 << m) != 0 {
-                        from.or(Some(iy))
-                    } else {
-                        None
-                    };
-                }
-            }
-        }
+        extend_adequate_runs(&mut adequate_from, &marks, b * band);
         classify_s += t.elapsed().as_secs_f64();
         progress.inc(states.len() as u64);
     }
