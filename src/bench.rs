@@ -516,6 +516,75 @@ type ClosedForm = (&'static str, &'static str, fn(f64, f64) -> Option<f64>);
 /// The atlas: the lambda axis, the gap axis and one error map per method.
 pub type Atlas = (Vec<f64>, Vec<f64>, Vec<AtlasMap>);
 
+/// An answer's relative error against the reference radius, NaN where it failed (no answer,
+/// not finite, or more than 50% off: another branch).
+fn atlas_error(a: Option<f64>, reference: f64) -> f64 {
+    match a {
+        Some(x) if x.is_finite() => {
+            let e = ((x - reference) / reference).abs();
+            if e > 0.5 {
+                f64::NAN
+            } else {
+                e
+            }
+        }
+        _ => f64::NAN,
+    }
+}
+
+/// The atlas maps of the closed forms used as stand-ins for MD. `reference[i]` is point i's
+/// (load, radius); `rel` its relative error.
+fn closed_form_maps(
+    lambdas: &[f64],
+    reference: &[(f64, f64)],
+    rel: &(dyn Fn(Option<f64>, usize) -> f64 + Sync),
+) -> Vec<AtlasMap> {
+    let nx = lambdas.len();
+    let closed: [ClosedForm; 3] = [
+        ("jkr", "JKR closed form as a stand-in for MD", |_, p| {
+            jkr_radius(p)
+        }),
+        ("dmt", "DMT closed form as a stand-in for MD", |_, p| {
+            dmt_radius(p)
+        }),
+        (
+            "cos",
+            "Carpick-Ogletree-Salmeron fit as a stand-in for MD",
+            cos_radius,
+        ),
+    ];
+    closed
+        .into_iter()
+        .map(|(name, title, f)| AtlasMap {
+            name,
+            title: title.into(),
+            err: (0..reference.len())
+                .into_par_iter()
+                .map(|i| rel(f(lambdas[i % nx], reference[i].0), i))
+                .collect(),
+        })
+        .collect()
+}
+
+impl AtlasMap {
+    /// Appends the largest error and the share of failed points to the title.
+    fn summarise(&mut self) {
+        let fails = self.err.iter().filter(|e| e.is_nan()).count();
+        let max = self
+            .err
+            .iter()
+            .filter(|e| !e.is_nan())
+            .cloned()
+            .fold(0.0, f64::max);
+        self.title = format!(
+            "{}: max error {:.1e}, {:.1}% failed",
+            self.title,
+            max,
+            100.0 * fails as f64 / self.err.len() as f64
+        );
+    }
+}
+
 /// The failure atlas: lambda 1e-6..1e6 (nx, log) by the gap above pull-off 1e-8..1e6 (ny, log),
 /// against the f64 solver, for the shipped f32 kernel (on the GPU if given, else its CPU
 /// mirror), the naive f32 and f64 methods and the closed forms.
@@ -537,19 +606,7 @@ pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gp
             (load, c.solve_load_gap(gaps[iy], load).a)
         })
         .collect();
-    let rel = |a: Option<f64>, i: usize| -> f64 {
-        match a {
-            Some(x) if x.is_finite() => {
-                let e = ((x - reference[i].1) / reference[i].1).abs();
-                if e > 0.5 {
-                    f64::NAN
-                } else {
-                    e
-                }
-            }
-            _ => f64::NAN,
-        }
-    };
+    let rel = |a: Option<f64>, i: usize| atlas_error(a, reference[i].1);
     let prepared: Vec<GpuLambda> = ctx.par_iter().map(prepare_ctx).collect();
     let mut maps = Vec::new();
     let f32_errs = |flags: KernelFlags| -> Result<Vec<f64>, crate::gpu::GpuError> {
@@ -602,44 +659,9 @@ pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gp
         title: "Naive f64: Brent on m in [1, 1e12] (the public Python method)".into(),
         err: naive64,
     });
-    let closed: [ClosedForm; 3] = [
-        ("jkr", "JKR closed form as a stand-in for MD", |_, p| {
-            jkr_radius(p)
-        }),
-        ("dmt", "DMT closed form as a stand-in for MD", |_, p| {
-            dmt_radius(p)
-        }),
-        (
-            "cos",
-            "Carpick-Ogletree-Salmeron fit as a stand-in for MD",
-            cos_radius,
-        ),
-    ];
-    for (name, title, f) in closed {
-        let e: Vec<f64> = (0..n)
-            .into_par_iter()
-            .map(|i| rel(f(lambdas[at(i).0], reference[i].0), i))
-            .collect();
-        maps.push(AtlasMap {
-            name,
-            title: title.into(),
-            err: e,
-        });
-    }
+    maps.extend(closed_form_maps(&lambdas, &reference, &rel));
     for m in &mut maps {
-        let fails = m.err.iter().filter(|e| e.is_nan()).count();
-        let max = m
-            .err
-            .iter()
-            .filter(|e| !e.is_nan())
-            .cloned()
-            .fold(0.0, f64::max);
-        m.title = format!(
-            "{}: max error {:.1e}, {:.1}% failed",
-            m.title,
-            max,
-            100.0 * fails as f64 / n as f64
-        );
+        m.summarise();
     }
     Ok((lambdas, gaps, maps))
 }
