@@ -291,31 +291,21 @@ fn lerp_point(p: Point, q: Point, c: f32) -> Point {
     return Point(p.a + c * (p.a - q.a), p.load + c * (p.load - q.load), p.load_plus_2 + c * (p.load_plus_2 - q.load_plus_2), p.approach + c * (p.approach - q.approach), p.m_minus_1 + c * (p.m_minus_1 - q.m_minus_1));
 }
 
-// One point, as src/kernel/cpu/md.rs solve_f32: the load (approach) is the pair hi + lo, or the
-// distance above the branch end if ROWS_ARE_GAPS. max_iter_in: 0, or a cap for benchmarks.
-fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
-    if lambdas[ci].invalid == 1u || !(abs(hi) < INF) {
-        return failed(STATUS_INVALID);
-    }
-    let lambda = lambdas[ci].lambda;
-    let small = lambdas[ci].small == 1u;
-    let end = br_end(ci);
-    let mu_ref = br_mu_ref(ci);
-    let zero_end = CONTROL == 1u && lambdas[ci].disp_at_zero == 1u;
-    let shift = select(0.0, 2.0, CONTROL == 0u && small);
-    // hi + shift - end.x is exact where it matters (Sterbenz), then the low parts are added.
-    var gap = select(((hi + shift) - end.x) + (lo - end.y), hi + lo, ROWS_ARE_GAPS);
-    if NAIVE {
-        gap = select(hi - ((end.x - shift) + end.y), hi, ROWS_ARE_GAPS);
-    }
-    if gap < 0.0 {
-        return failed(STATUS_NO_CONTACT);
-    }
-    if gap == 0.0 && zero_end {
-        return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
-    }
-    // Near the branch end the Chebyshev fit gives x = ln(mu / mu_ref) directly (one evaluation);
-    // elsewhere the table brackets the root and gives the first guess.
+// The root search's first x = ln(mu / mu_ref), the slope dF/dx for its first step, and the
+// bracket around it (src/kernel/cpu/md.rs, first_guess). Near the branch end the Chebyshev fit
+// gives x directly (one evaluation); elsewhere the table brackets the root and gives the first
+// guess, or the lambda's dense start where the grid has one (load control only).
+struct Guess {
+    direct: bool,
+    x: f32,
+    slope0: f32,
+    lo_x: f32,
+    f_lo: f32,
+    hi_x: f32,
+    f_hi: f32,
+}
+
+fn first_guess(ci: u32, gap: f32, zero_end: bool) -> Guess {
     let s = sqrt(gap);
     let s_max = br_s_max(ci);
     let direct = gap == 0.0 || (!NAIVE && s < s_max);
@@ -380,6 +370,40 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
             x = 0.5 * (lo_x + hi_x);
         }
     }
+    return Guess(direct, x, slope0, lo_x, f_lo, hi_x, f_hi);
+}
+
+// One point, as src/kernel/cpu/md.rs solve_f32: the load (approach) is the pair hi + lo, or the
+// distance above the branch end if ROWS_ARE_GAPS. max_iter_in: 0, or a cap for benchmarks.
+fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
+    if lambdas[ci].invalid == 1u || !(abs(hi) < INF) {
+        return failed(STATUS_INVALID);
+    }
+    let lambda = lambdas[ci].lambda;
+    let small = lambdas[ci].small == 1u;
+    let end = br_end(ci);
+    let mu_ref = br_mu_ref(ci);
+    let zero_end = CONTROL == 1u && lambdas[ci].disp_at_zero == 1u;
+    let shift = select(0.0, 2.0, CONTROL == 0u && small);
+    // hi + shift - end.x is exact where it matters (Sterbenz), then the low parts are added.
+    var gap = select(((hi + shift) - end.x) + (lo - end.y), hi + lo, ROWS_ARE_GAPS);
+    if NAIVE {
+        gap = select(hi - ((end.x - shift) + end.y), hi, ROWS_ARE_GAPS);
+    }
+    if gap < 0.0 {
+        return failed(STATUS_NO_CONTACT);
+    }
+    if gap == 0.0 && zero_end {
+        return Out(0.0, lambdas[ci].end_load, INF, STATUS_OK);
+    }
+    let g = first_guess(ci, gap, zero_end);
+    let direct = g.direct;
+    let slope0 = g.slope0;
+    var x = g.x;
+    var lo_x = g.lo_x;
+    var f_lo = g.f_lo;
+    var hi_x = g.hi_x;
+    var f_hi = g.f_hi;
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.
     var max_iter = select(max_iter_in, MAX_ITER, max_iter_in == 0u);
@@ -459,6 +483,13 @@ fn solve(ci: u32, hi: f32, lo: f32, max_iter_in: u32) -> Out {
         l_prev = d;
         dx_old = d;
     }
+    return finish(p, done, best, iterations);
+}
+
+// The answer: the converged point, or the best iterate where the cap was reached (status not
+// converged), with the iterations in the code's high bits (src/kernel/cpu/md.rs, finish).
+fn finish(p_in: Point, done: bool, best: Point, iterations: u32) -> Out {
+    var p = p_in;
     var status = STATUS_OK;
     if !done {
         status = STATUS_NOT_CONVERGED;

@@ -123,6 +123,112 @@ pub fn solve_f32(
     solve_f32_started(g, None, hi, lo, control, is_gap, flags)
 }
 
+/// The root search's first x = ln(mu / mu_ref), the slope dF/dx for its first step, and the
+/// bracket around it (the shader's `first_guess`).
+struct Guess {
+    /// x is the answer: no search (the Chebyshev fit near the branch end).
+    direct: bool,
+    x: f32,
+    slope0: f32,
+    lo_x: f32,
+    f_lo: f32,
+    hi_x: f32,
+    f_hi: f32,
+}
+
+/// Near the branch end the Chebyshev fit gives x directly (one evaluation); elsewhere the
+/// table brackets the root and gives the first guess, or the lambda's dense start where the
+/// grid has one (load control only).
+fn first_guess(
+    b: &Branch,
+    start: Option<&[u32]>,
+    gap: f32,
+    control: Control,
+    naive: bool,
+    zero_end: bool,
+) -> Guess {
+    let s = gap.sqrt();
+    let direct = gap == 0.0 || (!naive && s < b.s_max);
+    let start = start.filter(|_| control == Control::Load && !naive);
+    let n = TABLE_NODES;
+    let (mut lo_x, mut f_lo) = (b.dx[n - 1] - BRACKET_BELOW, f32::INFINITY);
+    let end_dx = if zero_end {
+        b.dx[0] + BRACKET_ABOVE
+    } else {
+        0.0
+    };
+    let (mut hi_x, mut f_hi) = (end_dx, f32::NEG_INFINITY);
+    if direct {
+        let x = if gap == 0.0 {
+            0.0
+        } else {
+            s * cheb_eval(&b.cheb, 2.0 * s / b.s_max - 1.0)
+        };
+        return Guess {
+            direct,
+            x,
+            slope0: 0.0,
+            lo_x,
+            f_lo,
+            hi_x,
+            f_hi,
+        };
+    }
+    let t = ln_f32(gap);
+    // First node with t_k >= t (the shader's binary search gives the same k).
+    let k = b.t.partition_point(|&tk| tk < t);
+    // Bracket one node wider than the interval, in case a node's f32 mu sits on the root.
+    if k >= 2 {
+        (hi_x, f_hi) = (b.dx[k - 2], b.t[k - 2] - t);
+    }
+    if k + 1 < n {
+        (lo_x, f_lo) = (b.dx[k + 1], b.t[k + 1] - t);
+    }
+    let mut x = b.dx[n - 1] - 1.0;
+    if k < n {
+        let k1 = k.max(1);
+        let d0 = b.dx[k1 - 1];
+        let w = (t - b.t[k1 - 1]) / (b.t[k1] - b.t[k1 - 1]);
+        x = if zero_end {
+            if k == 0 {
+                b.dx[0] + 1.0
+            } else {
+                d0 + w * (b.dx[k1] - d0)
+            }
+        } else {
+            // Interior nodes double (dx_k = dx_0 2^k), so ln|dx| is linear in k between
+            // nodes; before the first node the gap is quadratic in dx.
+            let e = if k == 0 {
+                0.5 * (t - b.t[0])
+            } else {
+                w * std::f32::consts::LN_2
+            };
+            d0 * exp_f32(e)
+        };
+    }
+    // The first step's slope dF/dx = dt/dx: the table's chord around the guess.
+    let kc = k.clamp(1, n - 1);
+    let mut slope0 = (b.t[kc] - b.t[kc - 1]) / (b.dx[kc] - b.dx[kc - 1]);
+    // The dense start: x to about f32 precision and its own slope, so that the first
+    // evaluation is usually the answer.
+    if let Some((xs, ss)) = start.and_then(|blk| crate::kernel::start::start_x(blk, t)) {
+        x = xs;
+        slope0 = ss;
+    }
+    if !(x > lo_x && x < hi_x) {
+        x = 0.5 * (lo_x + hi_x);
+    }
+    Guess {
+        direct,
+        x,
+        slope0,
+        lo_x,
+        f_lo,
+        hi_x,
+        f_hi,
+    }
+}
+
 /// As [`solve_f32`], with the lambda's dense start (its block, `kernel::start`) where it has
 /// one: the grid kernel's solve.
 pub fn solve_f32_started(
@@ -135,105 +241,21 @@ pub fn solve_f32_started(
     flags: KernelFlags,
 ) -> Out {
     let (naive, max_iter) = (flags.naive, flags.max_iter);
-    let fail = |st: Status| Out {
-        a: f32::NAN,
-        other: f32::NAN,
-        m_minus_1: f32::NAN,
-        code: st as u32,
-    };
-    if g.invalid == 1 || !hi.is_finite() {
-        return fail(Status::InvalidInput);
-    }
     let b = branch(g, control);
     let zero_end = control == Control::Displacement && g.disp_at_zero == 1;
-    let shift = shift(g, control);
-    // hi + shift - end_hi is exact where it matters (Sterbenz), then the low parts are added.
-    let gap = match (naive, is_gap) {
-        (true, true) => hi,
-        (true, false) => hi - naive_end(g, control),
-        (false, true) => hi + lo,
-        (false, false) => ((hi + shift) - b.end_hi) + (lo - b.end_lo),
+    let gap = match gap_above_end(g, hi, lo, control, is_gap, naive) {
+        Ok(gap) => gap,
+        Err(out) => return out,
     };
-    if gap < 0.0 {
-        return fail(Status::NoContact);
-    }
-    if gap == 0.0 && zero_end {
-        return Out {
-            a: 0.0,
-            other: g.end_load,
-            m_minus_1: f32::INFINITY,
-            code: 0,
-        };
-    }
-    // Near the branch end the Chebyshev fit gives x = ln(mu / mu_ref) directly (one
-    // evaluation); elsewhere the table brackets the root and gives the first guess.
-    let s = gap.sqrt();
-    let direct = gap == 0.0 || (!naive && s < b.s_max);
-    let n = TABLE_NODES;
-    let (mut lo_x, mut f_lo) = (b.dx[n - 1] - BRACKET_BELOW, f32::INFINITY);
-    let end_dx = if zero_end {
-        b.dx[0] + BRACKET_ABOVE
-    } else {
-        0.0
-    };
-    let (mut hi_x, mut f_hi) = (end_dx, f32::NEG_INFINITY);
-    let mut slope0 = 0.0f32;
-    let mut x = if direct {
-        if gap == 0.0 {
-            0.0
-        } else {
-            s * cheb_eval(&b.cheb, 2.0 * s / b.s_max - 1.0)
-        }
-    } else {
-        let t = ln_f32(gap);
-        // First node with t_k >= t (the shader's binary search gives the same k).
-        let k = b.t.partition_point(|&tk| tk < t);
-        // Bracket one node wider than the interval, in case a node's f32 mu sits on the root.
-        if k >= 2 {
-            (hi_x, f_hi) = (b.dx[k - 2], b.t[k - 2] - t);
-        }
-        if k + 1 < n {
-            (lo_x, f_lo) = (b.dx[k + 1], b.t[k + 1] - t);
-        }
-        let mut x = b.dx[n - 1] - 1.0;
-        if k < n {
-            let k1 = k.max(1);
-            let d0 = b.dx[k1 - 1];
-            let w = (t - b.t[k1 - 1]) / (b.t[k1] - b.t[k1 - 1]);
-            x = if zero_end {
-                if k == 0 {
-                    b.dx[0] + 1.0
-                } else {
-                    d0 + w * (b.dx[k1] - d0)
-                }
-            } else {
-                // Interior nodes double (dx_k = dx_0 2^k), so ln|dx| is linear in k between
-                // nodes; before the first node the gap is quadratic in dx.
-                let e = if k == 0 {
-                    0.5 * (t - b.t[0])
-                } else {
-                    w * std::f32::consts::LN_2
-                };
-                d0 * exp_f32(e)
-            };
-        }
-        // The first step's slope dF/dx = dt/dx: the table's chord around the guess.
-        let kc = k.clamp(1, n - 1);
-        slope0 = (b.t[kc] - b.t[kc - 1]) / (b.dx[kc] - b.dx[kc - 1]);
-        // The dense start, where the grid has one (load control only): x to about f32
-        // precision and its own slope, so that the first evaluation is usually the answer.
-        if let Some((xs, ss)) = start
-            .filter(|_| control == Control::Load && !naive)
-            .and_then(|blk| crate::kernel::start::start_x(blk, t))
-        {
-            x = xs;
-            slope0 = ss;
-        }
-        if !(x > lo_x && x < hi_x) {
-            x = 0.5 * (lo_x + hi_x);
-        }
-        x
-    };
+    let Guess {
+        direct,
+        mut x,
+        slope0,
+        mut lo_x,
+        mut f_lo,
+        mut hi_x,
+        mut f_hi,
+    } = first_guess(b, start, gap, control, naive, zero_end);
     // Secant in x with a bisection safeguard; mu is carried apart and updated multiplicatively,
     // since an f32 x near 14 resolves mu only to 1e-6.
     let max_iter = if max_iter == 0 { MAX_ITER } else { max_iter };
@@ -306,11 +328,63 @@ pub fn solve_f32_started(
         prev = Some((p, fx, d));
         dx_old = d;
     }
-    let mut status = if done {
-        Status::Ok
-    } else {
-        p = best;
-        Status::NotConverged
+    finish(if done { Some(p) } else { None }, best, control, iterations)
+}
+
+/// The distance of the load (approach) `hi + lo` above the branch end, or the point's answer
+/// where there is nothing to search: invalid input, no contact, or the zero-radius end itself.
+fn gap_above_end(
+    g: &GpuLambda,
+    hi: f32,
+    lo: f32,
+    control: Control,
+    is_gap: bool,
+    naive: bool,
+) -> Result<f32, Out> {
+    let fail = |st: Status| Out {
+        a: f32::NAN,
+        other: f32::NAN,
+        m_minus_1: f32::NAN,
+        code: st as u32,
+    };
+    if g.invalid == 1 || !hi.is_finite() {
+        return Err(fail(Status::InvalidInput));
+    }
+    let b = branch(g, control);
+    let zero_end = control == Control::Displacement && g.disp_at_zero == 1;
+    let shift = shift(g, control);
+    // hi + shift - end_hi is exact where it matters (Sterbenz), then the low parts are added.
+    let gap = match (naive, is_gap) {
+        (true, true) => hi,
+        (true, false) => hi - naive_end(g, control),
+        (false, true) => hi + lo,
+        (false, false) => ((hi + shift) - b.end_hi) + (lo - b.end_lo),
+    };
+    if gap < 0.0 {
+        return Err(fail(Status::NoContact));
+    }
+    if gap == 0.0 && zero_end {
+        return Err(Out {
+            a: 0.0,
+            other: g.end_load,
+            m_minus_1: f32::INFINITY,
+            code: 0,
+        });
+    }
+    Ok(gap)
+}
+
+/// The answer: the converged point, or the best iterate where the cap was reached (status not
+/// converged), with the iterations in the code's high bits.
+fn finish(
+    done: Option<CurvePoint<f32>>,
+    best: CurvePoint<f32>,
+    control: Control,
+    iterations: u32,
+) -> Out {
+    let (p, mut status) = match done {
+        Some(p) => (p, Status::Ok),
+        None => (best, Status::NotConverged),
     };
     let other = match control {
         Control::Load => p.approach,
