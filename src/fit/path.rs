@@ -13,11 +13,14 @@
 //! exact curve: the nodes only bracket it.
 
 use crate::physics::md::{curve_point, non_contact_point, zero_radius_end};
+use crate::physics::model::ContactModel;
 use crate::solver::context::x_at_radius;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// A contact model, from the simplest.
+/// The contact models a force curve is fitted with, from the simplest: those of
+/// [`ContactModel`] with an elastic path under a spring (not the rigid or two-zone ones). Names
+/// and labels are [`ContactModel`]'s.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Model {
@@ -30,22 +33,45 @@ pub enum Model {
 impl Model {
     pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
 
-    pub fn name(self) -> &'static str {
+    /// The model in the common vocabulary.
+    pub fn contact_model(self) -> ContactModel {
         match self {
-            Model::Hertz => "hertz",
-            Model::Dmt => "dmt",
-            Model::Jkr => "jkr",
-            Model::Md => "md",
+            Model::Hertz => ContactModel::Hertz,
+            Model::Dmt => ContactModel::Dmt,
+            Model::Jkr => ContactModel::Jkr,
+            Model::Md => ContactModel::Md,
         }
     }
 
+    pub fn name(self) -> &'static str {
+        self.contact_model().name()
+    }
+
     pub fn label(self) -> &'static str {
-        match self {
-            Model::Hertz => "Hertz",
-            Model::Dmt => "DMT",
-            Model::Jkr => "JKR",
-            Model::Md => "Maugis-Dugdale",
-        }
+        self.contact_model().label()
+    }
+}
+
+impl From<Model> for ContactModel {
+    fn from(m: Model) -> ContactModel {
+        m.contact_model()
+    }
+}
+
+impl TryFrom<ContactModel> for Model {
+    type Error = String;
+
+    /// The fitted model of a contact model; the rigid and two-zone ones are not fitted.
+    fn try_from(m: ContactModel) -> Result<Model, String> {
+        Model::ALL
+            .into_iter()
+            .find(|f| f.contact_model() == m)
+            .ok_or_else(|| {
+                format!(
+                    "the {} model is not fitted to force curves: use hertz, dmt, jkr or md",
+                    m.label()
+                )
+            })
     }
 }
 

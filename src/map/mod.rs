@@ -4,6 +4,7 @@
 
 use crate::engine::Engine;
 use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
+use crate::physics::model::ContactModel;
 
 use crate::solver::context::{point, x_at_radius};
 use crate::solver::{LambdaContext, State, Status};
@@ -62,26 +63,33 @@ impl Region {
         Region::Md,
         Region::Failed,
     ];
-    pub fn name(self) -> &'static str {
+    /// The contact model of a model's region; None for no contact and failed points.
+    pub fn model(self) -> Option<ContactModel> {
         match self {
-            Region::NoContact => "no_contact",
-            Region::Hertz => "hertz",
-            Region::Rigid => "rigid",
-            Region::Dmt => "dmt",
-            Region::Jkr => "jkr",
-            Region::Md => "md",
-            Region::Failed => "failed",
+            Region::Hertz => Some(ContactModel::Hertz),
+            Region::Rigid => Some(ContactModel::Rigid),
+            Region::Dmt => Some(ContactModel::Dmt),
+            Region::Jkr => Some(ContactModel::Jkr),
+            Region::Md => Some(ContactModel::Md),
+            Region::NoContact | Region::Failed => None,
         }
     }
+
+    /// The name in JSON and NPY legends: the model's name.
+    pub fn name(self) -> &'static str {
+        match (self, self.model()) {
+            (_, Some(m)) => m.name(),
+            (Region::NoContact, _) => "no_contact",
+            _ => "failed",
+        }
+    }
+
+    /// The name in figures: the model's label.
     pub fn label(self) -> &'static str {
-        match self {
-            Region::NoContact => "no contact",
-            Region::Hertz => "Hertz",
-            Region::Rigid => "Bradley (rigid)",
-            Region::Dmt => "DMT",
-            Region::Jkr => "JKR",
-            Region::Md => "Maugis-Dugdale",
-            Region::Failed => "not computed",
+        match (self, self.model()) {
+            (_, Some(m)) => m.label(),
+            (Region::NoContact, _) => "no contact",
+            _ => "not computed",
         }
     }
 }

@@ -5,6 +5,8 @@ pub mod domain;
 pub mod f32math;
 pub mod fields;
 pub mod md;
+/// The names of the contact models, one vocabulary for every part of tabor.
+pub mod model;
 pub mod params;
 pub mod real;
 /// Every threshold of the contract and of the solvers' branching, named once.

@@ -441,7 +441,7 @@ where
         ("jkr", "JKR", ORANGE_, jkr_radius),
     ];
     for (key, name, col, f) in closed {
-        let rec = r.recommended_model == key;
+        let rec = r.recommended_model.name() == key;
         let st = if rec {
             ShapeStyle::from(&col).stroke_width(8)
         } else {
@@ -1053,13 +1053,13 @@ fn fitted_models<'a>(
         .iter()
         .filter(|m| m.status == crate::fit::FitStatus::Ok);
     let closed = ok.map(|m| {
-        let (c, l) = match m.model {
-            Model::Hertz => (GRAY_, "Hertz"),
-            Model::Dmt => (ORANGE_, "DMT"),
-            Model::Jkr => (BLUE_, "JKR"),
-            Model::Md => (GREEN_, "Maugis-Dugdale"),
+        let c = match m.model {
+            Model::Hertz => GRAY_,
+            Model::Dmt => ORANGE_,
+            Model::Jkr => BLUE_,
+            Model::Md => GREEN_,
         };
-        (m, c, l)
+        (m, c, m.model.label())
     });
     std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
         .chain(closed)
@@ -1260,12 +1260,10 @@ where
     use crate::map::Region;
     root.fill(&WHITE)?;
     let colour = |m: Model| {
-        super::map::region_color(match m {
-            Model::Hertz => Region::Hertz,
-            Model::Dmt => Region::Dmt,
-            Model::Jkr => Region::Jkr,
-            Model::Md => Region::Md,
-        })
+        let region = Region::ALL
+            .into_iter()
+            .find(|r| r.model() == Some(m.into()));
+        super::map::region_color(region.unwrap_or(Region::Failed))
     };
     let mut chart = pixel_grid(
         root,

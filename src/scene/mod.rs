@@ -16,6 +16,7 @@ pub use input::{contact_of, SceneControl, SceneInput};
 pub use presets::{preset, preset_names};
 
 use crate::map::{classify, criteria, Region};
+use crate::physics::model::ContactModel;
 use crate::physics::params::{Contact, ParamError};
 use crate::solver::{LambdaContext, Status};
 use serde::Serialize;
@@ -56,7 +57,7 @@ pub struct SceneResult {
     pub pulloff_force_displacement_control_N: f64,
     pub pulloff_contact_radius_load_control_m: f64,
     pub zero_load_contact_radius_m: f64,
-    pub recommended_model: &'static str,
+    pub recommended_model: ContactModel,
     pub recommendation: String,
     /// The pull-off (jump-out) force under the scene's control (N); with a cantilever, where its
     /// stiffness equals the contact's force gradient (see `tabor cycle`).
@@ -155,7 +156,7 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         pulloff_force_displacement_control_N: ctx.disp_pulloff().load * fs,
         pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
         zero_load_contact_radius_m: ctx.solve_load(0.0).a * rs,
-        recommended_model: rec.name(),
+        recommended_model: rec,
         recommendation,
         loads: results,
         source: s.source.clone(),
@@ -246,7 +247,7 @@ fn wet_scene(
         pulloff_contact_radius_load_control_m: ctx.load_pulloff.a * rs,
         zero_load_contact_radius_m: zero.a * rs,
         pulloff_force_under_control_N: under,
-        recommended_model: "solid_and_meniscus",
+        recommended_model: ContactModel::SolidAndMeniscus,
         recommendation: format!(
             "solid and water meniscus together: two Dugdale zones (solid lambda = {:.3}, meniscus lambda = {:.3}, meniscus share of w = {:.0}%)",
             dry.lambda,
@@ -382,14 +383,9 @@ fn load_result(
 
 /// The simplest model adequate at every load of the scene in contact, in the map's order, and
 /// the sentence that says so.
-fn recommend(results: &[LoadResult], tol: f64, lambda: f64, tabor: f64) -> (Region, String) {
-    let order = [
-        Region::Hertz,
-        Region::Rigid,
-        Region::Dmt,
-        Region::Jkr,
-        Region::Md,
-    ];
+fn recommend(results: &[LoadResult], tol: f64, lambda: f64, tabor: f64) -> (ContactModel, String) {
+    use ContactModel as M;
+    let order = [M::Hertz, M::Rigid, M::Dmt, M::Jkr, M::Md];
     let contact: Vec<&LoadResult> = results.iter().filter(|r| r.status == Status::Ok).collect();
     let rec = order
         .iter()
@@ -398,19 +394,19 @@ fn recommend(results: &[LoadResult], tol: f64, lambda: f64, tabor: f64) -> (Regi
             !contact.is_empty()
                 && contact.iter().all(|r| {
                     let e = match m {
-                        Region::Hertz => r.err_hertz,
-                        Region::Rigid => r.rigid_measure,
-                        Region::Dmt => r.err_dmt,
-                        Region::Jkr => r.err_jkr,
+                        M::Hertz => r.err_hertz,
+                        M::Rigid => r.rigid_measure,
+                        M::Dmt => r.err_dmt,
+                        M::Jkr => r.err_jkr,
                         _ => Some(0.0),
                     };
                     e.is_some_and(|e| e <= tol)
                 })
         })
-        .unwrap_or(Region::Md);
+        .unwrap_or(M::Md);
     let recommendation = if contact.is_empty() {
         "no load of the scene is above the pull-off".to_string()
-    } else if rec == Region::Md {
+    } else if rec == ContactModel::Md {
         format!("no closed form is within {}% at every load in contact: use Maugis-Dugdale (lambda = {:.3}, Tabor parameter {:.3})", 100.0 * tol, lambda, tabor)
     } else {
         format!(
@@ -490,7 +486,7 @@ mod tests {
             .any(|l| l.warnings.iter().any(|w| w.contains("continuum"))));
         let pdms = solve_scene(&preset("pdms-glass").unwrap()).unwrap();
         assert!(
-            pdms.lambda > 100.0 && pdms.recommended_model == "jkr",
+            pdms.lambda > 100.0 && pdms.recommended_model == ContactModel::Jkr,
             "{} {}",
             pdms.lambda,
             pdms.recommended_model
