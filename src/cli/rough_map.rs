@@ -117,7 +117,11 @@ pub fn json(m: &RoughMap, full: bool, timings: bool) -> serde_json::Value {
             .map(|r| r.name())
             .collect::<Vec<_>>()
             .into();
-        for (k, name) in ["hertz", "bradley", "dmt", "jkr"].iter().enumerate() {
+        for (k, name) in crate::rough::map::MODEL_REGIONS
+            .map(|r| r.name())
+            .iter()
+            .enumerate()
+        {
             j[format!("{name}_error")] = m
                 .model_error
                 .iter()

@@ -571,7 +571,7 @@ impl MapData {
         (0..nx)
             .map(|ix| {
                 let mut entry = serde_json::json!({ "lambda": self.lambdas[ix], "pulloff_load": self.pulloff[ix] });
-                for (k, name) in ["hertz", "rigid", "dmt", "jkr"].iter().enumerate() {
+                for (k, name) in crate::physics::model::ContactModel::CLOSED_FORMS.map(|m| m.name()).iter().enumerate() {
                     let v = match self.adequate_from[ix][k] {
                         Some(iy) => serde_json::json!(self.load(iy as usize * nx + ix)),
                         None => serde_json::Value::Null,

@@ -33,6 +33,15 @@ impl ContactModel {
         ContactModel::SolidAndMeniscus,
     ];
 
+    /// The closed forms an adhesion map (smooth or rough) tries before Maugis-Dugdale, in the
+    /// order of its per-model columns.
+    pub const CLOSED_FORMS: [ContactModel; 4] = [
+        ContactModel::Hertz,
+        ContactModel::Rigid,
+        ContactModel::Dmt,
+        ContactModel::Jkr,
+    ];
+
     /// The name in JSON, CSV and on the command line (serde's).
     pub fn name(self) -> &'static str {
         match self {
