@@ -792,6 +792,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough::rough, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_map, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_pulloff, m)?)?;
     m.add_class::<AdhesionMap>()?;
     Ok(())
 }

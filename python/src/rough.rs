@@ -1,6 +1,6 @@
 //! Rough surfaces (tabor::rough): dicts of NumPy arrays, no JSON in between.
 
-use crate::{arr, run};
+use crate::{arr, run, run_py};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use tabor::rough::{Mean, Rough};
@@ -148,4 +148,26 @@ pub fn rough_ensemble<'py>(
             .collect::<anyhow::Result<Vec<Mean>>>()
     })?;
     leg(py, &v)
+}
+
+/// Fuller and Tabor's sweep, as `tabor rough-pulloff` computes it: one dict per lambda with the
+/// pull-off per summit against the roughness (the library checks the options).
+#[pyfunction]
+#[pyo3(signature = (lambdas, sigma_min, sigma_max, points, press_sigmas))]
+pub fn rough_pulloff<'py>(
+    py: Python<'py>,
+    lambdas: Vec<f64>,
+    sigma_min: f64,
+    sigma_max: f64,
+    points: usize,
+    press_sigmas: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let sweep = tabor::rough::PulloffSweep {
+        lambdas,
+        sigma_min,
+        sigma_max,
+        points,
+        press_sigmas,
+    };
+    run_py(py, move || Ok(sweep.compute()?))
 }

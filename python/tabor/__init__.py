@@ -47,6 +47,7 @@ __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
     "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble", "rough_map",
+    "rough_pulloff",
 ]
 
 
@@ -681,6 +682,20 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     parts = [_tabor.rough_ensemble(_real(lam, "lam"), hl, d[i:i + step].tolist(), d_min)
              for i in range(0, max(1, len(d)), step)]
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+
+
+def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10.0, points=24,
+                  press_sigmas=3.0):
+    """Fuller and Tabor's figure, as ``tabor rough-pulloff`` computes it: for each summit
+    ``lambda``, the pull-off per summit after pressing the flat ``press_sigmas`` sigma below the
+    mean summit plane, over ``points`` roughnesses log-spaced in ``sigma_min..sigma_max``
+    (approach units). Returns a list of dicts (one per lambda): ``lambda``, ``smooth_pulloff``,
+    and NumPy arrays ``sigma``, ``fuller_tabor_parameter``, ``pulloff``, ``relative_pulloff``."""
+    if int(points) < 0:
+        raise ValueError(f"points = {points}: give a count >= 0")
+    lams = [float(v) for v in np.atleast_1d(_numbers(lambdas, "lambdas")).ravel()]
+    return _tabor.rough_pulloff(lams, _real(sigma_min, "sigma_min"), _real(sigma_max, "sigma_max"),
+                                int(points), _real(press_sigmas, "press_sigmas"))
 
 
 def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max=1e2, ny=256,

@@ -148,6 +148,13 @@ def rough_ensemble(
     separations: ArrayLike,
     min_separation: Optional[float] = None,
 ) -> Dict[str, Any]: ...
+def rough_pulloff(
+    lambdas: Union[Sequence[float], npt.NDArray[np.float64]] = ...,
+    sigma_min: float = 0.01,
+    sigma_max: float = 10.0,
+    points: int = 24,
+    press_sigmas: float = 3.0,
+) -> List[Dict[str, Any]]: ...
 def rough_map(
     lambda_min: float = 1e-2,
     lambda_max: float = 1e3,

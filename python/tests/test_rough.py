@@ -86,3 +86,25 @@ def test_ensemble_in_chunks_equals_one_call():
     b = tabor._tabor.rough_ensemble(1.0, h.tolist(), d.tolist(), -3.0)
     for k in ("separation", "load", "contact_fraction", "noncontact_fraction"):
         assert a[k].shape == (40,) and np.array_equal(a[k], b[k]), k
+
+
+def test_rough_pulloff_equals_the_command_line_and_refuses_as_it_does():
+    got = tabor.rough_pulloff([0.1, 10.0], sigma_min=0.05, sigma_max=2.0, points=7)
+    out = subprocess.run([str(TABOR), "rough-pulloff", "--lambda", "0.1,10", "--sigma-min", "0.05",
+                          "--sigma-max", "2", "--points", "7"],
+                         capture_output=True, text=True, check=True)
+    want = json.loads(out.stdout)
+    want = want["curves"] if isinstance(want, dict) else want
+    assert [c["lambda"] for c in got] == [0.1, 10.0]
+    for g, w in zip(got, want):
+        assert g["smooth_pulloff"] == w["smooth_pulloff"]
+        for k in ["sigma", "fuller_tabor_parameter", "pulloff", "relative_pulloff"]:
+            assert isinstance(g[k], np.ndarray)
+            np.testing.assert_array_equal(g[k], np.array(w[k]))
+    # Rough enough, the pull-off falls below the smooth summit's (Fuller and Tabor).
+    assert got[1]["relative_pulloff"][-1] < 0.5 * got[1]["relative_pulloff"][0]
+    with pytest.raises(ValueError, match="sigma_min 0 and sigma_max 10"):
+        tabor.rough_pulloff(sigma_min=0.0)
+    cli = subprocess.run([str(TABOR), "rough-pulloff", "--sigma-min", "0"],
+                         capture_output=True, text=True)
+    assert cli.returncode == 1 and "--sigma-min 0 and --sigma-max 10" in cli.stderr

@@ -252,28 +252,24 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    if !(a.sigma_min > 0.0 && a.sigma_max > a.sigma_min && a.sigma_max <= 1e4) {
-        anyhow::bail!(
-            "the roughness range {}..{} is not valid: give 0 < --sigma-min < --sigma-max <= 1e4",
-            short(a.sigma_min),
-            short(a.sigma_max)
-        );
-    }
-    if !(2..=1000).contains(&a.points) || a.lambda.is_empty() || a.lambda.len() > 20 {
-        anyhow::bail!(
-            "give 2..1000 roughnesses (--points, got {}) and 1..20 lambda values (got {})",
-            a.points,
-            a.lambda.len()
-        );
-    }
-    let sigmas = crate::map::axis(a.sigma_min, a.sigma_max, a.points, true);
-    if !(a.press_sigmas.is_finite() && a.press_sigmas.abs() <= 12.0) {
-        anyhow::bail!(
-            "--press-sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -12..12",
-            short(a.press_sigmas)
-        );
-    }
-    let curves = crate::rough::pulloff_against_roughness(&a.lambda, &sigmas, -a.press_sigmas)?;
+    let sweep = crate::rough::PulloffSweep {
+        lambdas: a.lambda.clone(),
+        sigma_min: a.sigma_min,
+        sigma_max: a.sigma_max,
+        points: a.points,
+        press_sigmas: a.press_sigmas,
+    };
+    let flags = [
+        ("sigma_min", "--sigma-min"),
+        ("sigma_max", "--sigma-max"),
+        ("points", "--points"),
+        ("press_sigmas", "--press-sigmas"),
+        ("lambda values", "--lambda values"),
+    ];
+    let curves = sweep
+        .compute()
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &flags)))?;
+
     let text = match a.format {
         Format::Csv => {
             let mut w = crate::io::csv_writer();

@@ -293,23 +293,9 @@ pub const LOG_LOAD_MIN: f64 = 1e-15;
 
 impl MapSpec {
     pub fn validate(&self) -> Result<(), MapError> {
-        use crate::physics::domain::{check_lambda, short, LOAD_MAX};
+        use crate::physics::domain::{check_lambda_range, short, LOAD_MAX};
         let bad = |m: String| Err(MapError::Spec(m));
-        for (flag, l) in [
-            ("lambda_min", self.lambda_min),
-            ("lambda_max", self.lambda_max),
-        ] {
-            if let Err(e) = check_lambda(l) {
-                return bad(format!("{flag}: {e}"));
-            }
-        }
-        if !(self.lambda_max > self.lambda_min) {
-            return bad(format!(
-                "lambda_min must be below lambda_max, got {} and {}",
-                short(self.lambda_min),
-                short(self.lambda_max)
-            ));
-        }
+        check_lambda_range(self.lambda_min, self.lambda_max).map_err(MapError::Spec)?;
         if self.nx < 2 || self.ny < 2 || self.nx > 16384 || self.ny > 16384 {
             return bad(format!(
                 "nx and ny must be in 2..=16384, got {} and {}",

@@ -126,6 +126,22 @@ pub fn check_lambda(lambda: f64) -> Result<f64, DomainError> {
     }
 }
 
+/// A lambda axis (`lambda_min..lambda_max`, as a map spans it): both ends in the exact
+/// solver's domain ([`check_lambda`]) and in order. The message names the end at fault.
+pub fn check_lambda_range(lambda_min: f64, lambda_max: f64) -> Result<(), String> {
+    for (name, l) in [("lambda_min", lambda_min), ("lambda_max", lambda_max)] {
+        check_lambda(l).map_err(|e| format!("{name}: {e}"))?;
+    }
+    if !(lambda_max > lambda_min) {
+        return Err(format!(
+            "lambda_min must be below lambda_max, got {} and {}",
+            short(lambda_min),
+            short(lambda_max)
+        ));
+    }
+    Ok(())
+}
+
 /// lambda must have a method ([`method`]): the exact solver's domain or a limit's.
 pub fn check_lambda_any(lambda: f64) -> Result<f64, DomainError> {
     match method(lambda) {

@@ -55,23 +55,9 @@ pub struct RoughMapSpec {
 impl RoughMapSpec {
     /// One clear line for a bad value.
     pub fn validate(&self) -> Result<(), RoughError> {
-        use crate::physics::domain::check_lambda;
         let bad = |m: String| Err(RoughError::Scene(m));
-        for (flag, l) in [
-            ("lambda_min", self.lambda_min),
-            ("lambda_max", self.lambda_max),
-        ] {
-            if let Err(e) = check_lambda(l) {
-                return bad(format!("{flag}: {e}"));
-            }
-        }
-        if !(self.lambda_max > self.lambda_min) {
-            return bad(format!(
-                "lambda_min must be below lambda_max, got {} and {}",
-                short(self.lambda_min),
-                short(self.lambda_max)
-            ));
-        }
+        crate::physics::domain::check_lambda_range(self.lambda_min, self.lambda_max)
+            .map_err(RoughError::Scene)?;
         if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
             return bad(format!(
                 "sigma_min {} and sigma_max {} are not a roughness range: give 0 < sigma_min < sigma_max <= 1e4 (approach units)",

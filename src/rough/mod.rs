@@ -625,6 +625,80 @@ pub fn pulloff_against_roughness(
         .collect()
 }
 
+/// Fuller and Tabor's sweep: the pull-off per summit against the roughness for several
+/// lambda, after pressing the flat `press_sigmas` sigma below the mean summit plane.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PulloffSweep {
+    /// The summits' Maugis parameters (1 to 20 of them).
+    pub lambdas: Vec<f64>,
+    /// The smallest roughness, in approach units.
+    pub sigma_min: f64,
+    /// The largest roughness, in approach units (at most 1e4).
+    pub sigma_max: f64,
+    /// Roughnesses, log-spaced (2 to 1000).
+    pub points: usize,
+    /// How far the flat was pressed before the retract, in sigma below the mean summit plane.
+    pub press_sigmas: f64,
+}
+
+impl Default for PulloffSweep {
+    /// Lambda from DMT-like to JKR-like summits, sigma 0.01..10 (24 roughnesses), pressed 3
+    /// sigma (99.9% of the summits touched).
+    fn default() -> PulloffSweep {
+        PulloffSweep {
+            lambdas: vec![0.01, 0.1, 1.0, 1000.0],
+            sigma_min: 0.01,
+            sigma_max: 10.0,
+            points: 24,
+            press_sigmas: 3.0,
+        }
+    }
+}
+
+impl PulloffSweep {
+    /// One clear line for a bad value, naming the quantity.
+    pub fn validate(&self) -> Result<(), RoughError> {
+        let bad = |m: String| Err(RoughError::Scene(m));
+        if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
+            return bad(format!(
+                "sigma_min {} and sigma_max {} are not a roughness range: give 0 < sigma_min < sigma_max <= 1e4 (approach units)",
+                short(self.sigma_min),
+                short(self.sigma_max)
+            ));
+        }
+        if !(2..=1000).contains(&self.points) {
+            return bad(format!(
+                "points = {}: give 2..1000 roughnesses",
+                self.points
+            ));
+        }
+        if self.lambdas.is_empty() || self.lambdas.len() > 20 {
+            return bad(format!("{} lambda values: give 1..20", self.lambdas.len()));
+        }
+        for &l in &self.lambdas {
+            crate::physics::domain::check_lambda(l)?;
+        }
+        if !(self.press_sigmas.is_finite() && self.press_sigmas.abs() <= 12.0) {
+            return bad(format!(
+                "press_sigmas = {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -12..12",
+                short(self.press_sigmas)
+            ));
+        }
+        Ok(())
+    }
+
+    /// The roughnesses of the sweep, log-spaced.
+    pub fn sigmas(&self) -> Vec<f64> {
+        crate::map::axis(self.sigma_min, self.sigma_max, self.points, true)
+    }
+
+    /// Checks, then one curve per lambda on all cores.
+    pub fn compute(&self) -> Result<Vec<PulloffCurve>, RoughError> {
+        self.validate()?;
+        pulloff_against_roughness(&self.lambdas, &self.sigmas(), -self.press_sigmas)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
