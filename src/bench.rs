@@ -14,7 +14,9 @@ use std::time::Instant;
 /// The points of a benchmark: a grid of lambda 1e-4..1e4 by gaps above the load-controlled
 /// pull-off (1e-6..1e3), plus the 300 reference states, each with its reference A.
 pub struct Workload {
+    /// The lambdas of the grid, then those of the reference states.
     pub lambdas: Vec<f64>,
+    /// Each lambda's f64 solver.
     pub contexts: Vec<LambdaContext>,
     /// (lambda index, load, gap above pull-off (NaN: given by the load), reference A).
     pub points: Vec<(usize, f64, f64, f64)>,
@@ -23,6 +25,7 @@ pub struct Workload {
 const REFERENCE_POINTS: &str = include_str!("../data/points.csv");
 
 impl Workload {
+    /// A grid of `n_lambda` by `n_load` points plus the 300 reference states.
     pub fn new(n_lambda: usize, n_load: usize) -> Workload {
         let mut lambdas: Vec<f64> = crate::map::axis(1e-4, 1e4, n_lambda, true);
         let grid_n = lambdas.len();
@@ -68,14 +71,23 @@ impl Workload {
 }
 
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
+/// One variant's speed and accuracy.
 pub struct VariantResult {
+    /// Its name (`gpu_f32`, `cpu_f64`, ...).
     pub name: String,
+    /// What it is.
     pub description: String,
+    /// Points solved.
     pub points: usize,
+    /// Wall time (s).
     pub seconds: f64,
+    /// Throughput.
     pub points_per_second: f64,
+    /// The largest relative error of A against the reference.
     pub max_rel_err: f64,
+    /// The median relative error of A.
     pub median_rel_err: f64,
+    /// The 99th percentile of the relative error of A.
     pub p99_rel_err: f64,
     /// Max error over the points at least 1e-4 |Pbar_c| above pull-off (the f32 contract).
     pub max_rel_err_away: f64,
@@ -478,6 +490,7 @@ pub fn pareto(results: &[VariantResult]) -> Vec<usize> {
     front
 }
 
+/// The results as a text table with its legend.
 pub fn table(results: &[VariantResult]) -> String {
     let mut t = format!(
         "{:<26} {:>12} {:>10} {:>10} {:>10} {:>12} {:>9} {:>6}\n",
@@ -505,8 +518,11 @@ pub fn table(results: &[VariantResult]) -> String {
 
 /// One method's error over the atlas grid: relative error of A (NaN: failed).
 pub struct AtlasMap {
+    /// The file name (without extension).
     pub name: &'static str,
+    /// The figure's title.
     pub title: String,
+    /// Each grid point's relative error of A (NaN: failed).
     pub err: Vec<f64>,
 }
 

@@ -15,6 +15,7 @@ use EngineError as GpuError;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
+/// Which backend solves: chosen by the user, resolved by [`Engine::select`].
 pub enum Backend {
     /// A hardware GPU, else the CPU (a software adapter only when named with `--adapter`).
     Auto,
@@ -29,12 +30,17 @@ pub enum Backend {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Precision {
+    /// The f32 kernels alone.
     F32,
+    /// The f32 kernels' states refined by Newton steps in f64 on the GPU.
     F64,
 }
 
+/// The backend that solves: the f64 solver on the CPU, or a GPU device with its kernels.
 pub enum Engine {
+    /// The f64 solver on all CPU cores.
     Cpu,
+    /// A GPU device with the WGSL kernels.
     Gpu(Box<Gpu>),
 }
 
@@ -103,10 +109,12 @@ impl Engine {
         }
     }
 
+    /// The backend's name in JSON (`cpu`, `gpu`).
     pub fn name(&self) -> &'static str {
         self.solver().name()
     }
 
+    /// The arithmetic of the states it returns (`f64`, `f32`).
     pub fn precision(&self) -> &'static str {
         self.solver().precision()
     }
@@ -122,6 +130,7 @@ impl Engine {
         Ok(())
     }
 
+    /// The GPU adapter, if the engine has one.
     pub fn adapter(&self) -> Option<&crate::gpu::AdapterSummary> {
         self.solver().adapter()
     }
@@ -509,15 +518,22 @@ pub fn to_state(lambda: f64, value: f64, o: &Out, control: Control) -> State {
 /// Agreement of GPU results with the f64 reference on a sample.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct CheckReport {
+    /// Points re-solved by the f64 solver.
     pub checked: usize,
+    /// The largest relative error of A the contract allows.
     pub tolerance: f64,
+    /// The largest relative error of A.
     pub max_rel_err_a: f64,
+    /// The median relative error of A.
     pub median_rel_err_a: f64,
+    /// Points over the tolerance.
     pub over_tolerance: usize,
     /// Points closer than 1e-4 |Pbar_c| to the pull-off (load control), where the f32 contract
     /// does not apply: their largest error, reported apart.
     pub near_pulloff: usize,
+    /// The largest relative error of A near the pull-off.
     pub near_pulloff_max_rel_err_a: f64,
+    /// Points whose status differs from the f64 solver's.
     pub status_mismatches: usize,
     /// The errors behind the median, kept to at most `MEDIAN_SAMPLE` by thinning when reports of
     /// many chunks are merged.

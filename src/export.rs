@@ -83,6 +83,7 @@ pub fn write_map_json(
     Ok(())
 }
 
+/// A map's metadata as JSON: the spec, the engine, the check, the regions' counts and thresholds.
 pub fn map_json(
     d: &MapData,
     engine: &Engine,

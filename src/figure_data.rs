@@ -9,10 +9,13 @@ use crate::solver::{LambdaContext, SolveError};
 
 /// The pull-off figure: lambda 1e-4..1e4 (401 points) and each one's pull-offs.
 pub struct PulloffData {
+    /// The lambdas, log-spaced.
     pub lambdas: Vec<f64>,
+    /// Each lambda's solver, with both pull-offs.
     pub contexts: Vec<LambdaContext>,
 }
 
+/// The pull-offs of 401 lambdas from 1e-4 to 1e4.
 pub fn pulloff_data() -> Result<PulloffData, SolveError> {
     let lambdas: Vec<f64> = (0..=400)
         .map(|i| 10f64.powf(-4.0 + 8.0 * i as f64 / 400.0))
@@ -27,11 +30,15 @@ pub fn pulloff_data() -> Result<PulloffData, SolveError> {
 /// One MD curve of the A(P) figure: (Pbar, A, stable under load control) for A up to 2.6 and
 /// Pbar up to 4, and the load-controlled pull-off (Pbar_c, A_c).
 pub struct CurveSeries {
+    /// The Maugis parameter.
     pub lambda: f64,
+    /// (Pbar, A, stable under load control).
     pub points: Vec<(f64, f64, bool)>,
+    /// The load-controlled pull-off (Pbar_c, A_c).
     pub pulloff: (f64, f64),
 }
 
+/// The A(P) curves of the given lambdas.
 pub fn curves_data(lambdas: &[f64]) -> Result<Vec<CurveSeries>, SolveError> {
     lambdas
         .iter()
@@ -57,23 +64,30 @@ pub fn curves_data(lambdas: &[f64]) -> Result<Vec<CurveSeries>, SolveError> {
 /// The scene figure: its MD a(P) in SI units (from the pull-off to 1.1 times the largest load
 /// or twice the pull-off force) and the adhesion map it is placed on.
 pub struct SceneFigure {
+    /// The MD contact radius against the load (N, m).
     pub md: Vec<(f64, f64)>,
+    /// The adhesion map the scene is placed on.
     pub map: MapData,
     /// The force unit pi w R (N) and the radius unit (m) of the scene.
     pub force_scale: f64,
+    /// The radius unit `(pi w R^2 / K)^(1/3)` (m).
     pub radius_scale: f64,
     /// The load range drawn: from the pull-off force to the largest load (N).
     pub loads: (f64, f64),
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a figure's data could not be computed.
 pub enum FigureError {
     #[error(transparent)]
+    /// A state was not found.
     Solve(#[from] SolveError),
     #[error(transparent)]
+    /// The map failed.
     Map(#[from] MapError),
 }
 
+/// The scene figure's data.
 pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
     let fs = std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m;
     let rs =

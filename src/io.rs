@@ -7,17 +7,22 @@ pub use output::{write_output, Output};
 use std::io::Read;
 use std::path::Path;
 
+/// Why an input table could not be read: one line naming the file, the line and the column.
 #[derive(Debug, thiserror::Error)]
+#[allow(missing_docs)] // the fields are the message's parts: file, line, column, value
 pub enum InputError {
     #[error("{source_name}: cannot read")]
+    /// The file could not be read.
     Read {
         source_name: String,
         #[source]
         err: std::io::Error,
     },
     #[error("{0}: the file is empty; give a header row naming the columns (`lambda` and `{1}`), then one row per point")]
+    /// The file is empty.
     Empty(String, &'static str),
     #[error("{source_name}: no column `{column}` in the header (the first line is: {found}); the first line must name the columns, e.g. `{expected}`")]
+    /// The header lacks a column.
     MissingColumn {
         source_name: String,
         column: &'static str,
@@ -25,6 +30,7 @@ pub enum InputError {
         found: String,
     },
     #[error("{source_name}, line {line}: column `{column}`: cannot read {value:?} as a number")]
+    /// A cell is not a number.
     Parse {
         source_name: String,
         line: u64,
@@ -32,6 +38,7 @@ pub enum InputError {
         value: String,
     },
     #[error("{source_name}, line {line}: column `{column}` is {value}; every value must be a finite number")]
+    /// A cell is not finite.
     NotFinite {
         source_name: String,
         line: u64,
@@ -39,12 +46,14 @@ pub enum InputError {
         value: f64,
     },
     #[error("{source_name}, line {line}: lambda = {value}; the Maugis parameter must be > 0")]
+    /// A lambda is not positive.
     Lambda {
         source_name: String,
         line: u64,
         value: f64,
     },
     #[error("{source_name}, line {line}: not a CSV table")]
+    /// The table is not CSV.
     Csv {
         source_name: String,
         line: u64,
@@ -52,6 +61,7 @@ pub enum InputError {
         err: csv::Error,
     },
     #[error("{source_name}: a header row but no data rows")]
+    /// A header without data.
     NoRows { source_name: String },
 }
 
@@ -66,6 +76,7 @@ pub struct LineLimit<R> {
 }
 
 impl<R> LineLimit<R> {
+    /// Wraps a reader.
     pub fn new(inner: R) -> LineLimit<R> {
         LineLimit {
             inner,
@@ -103,6 +114,7 @@ impl<R: Read> Read for LineLimit<R> {
 pub type Table<R> =
     csv::Reader<std::io::Chain<std::io::Cursor<Vec<u8>>, std::io::BufReader<LineLimit<R>>>>;
 
+/// Opens an input table (see [`Table`]).
 pub fn table<R: Read>(r: R) -> std::io::Result<Table<R>> {
     use std::io::BufRead as _;
     let mut input = std::io::BufReader::with_capacity(1 << 16, LineLimit::new(r));
@@ -163,6 +175,7 @@ impl PointReader {
         PointReader::new(r, &source_name, names)
     }
 
+    /// A reader of (lambda, value) points from `r`, named `source_name` in messages, with the columns `names`.
     pub fn new(
         r: Box<dyn Read + Send>,
         source_name: &str,
@@ -281,6 +294,7 @@ pub fn read_points(path: &str, value_column: &'static str) -> Result<Vec<(f64, f
     PointReader::open(path, value_column)?.next_chunk(usize::MAX)
 }
 
+/// The (lambda, value) points of a table in `text`.
 pub fn parse_points(
     text: &str,
     source_name: &str,

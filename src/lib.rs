@@ -85,6 +85,8 @@
 
 // `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+// Every public item is documented; the modules marked `allow(missing_docs)` below are not yet.
+#![warn(missing_docs)]
 
 // Messages on stderr that never panic: std's `eprintln!` panics when stderr is a closed pipe
 // (`tabor ... 2>&1 | head -1`). Like stdout, a message nobody can read is dropped. Defined
@@ -105,21 +107,28 @@ macro_rules! eprint {
 
 pub mod bench;
 #[cfg(feature = "cli")]
+#[allow(missing_docs)] // not yet documented item by item
 pub mod cli;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod cycle;
 pub mod engine;
 pub mod export;
 pub mod figure_data;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod fit;
 pub mod gpu;
 pub mod io;
 pub mod kernel;
 pub mod map;
 pub mod physics;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod profile;
 pub mod progress;
 #[cfg(feature = "render")]
+#[allow(missing_docs)] // not yet documented item by item
 pub mod render;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod rough;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod scene;
 pub mod solver;

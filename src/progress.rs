@@ -36,6 +36,7 @@ mod bar {
 
     const DELAY: Duration = Duration::from_secs(2);
 
+    /// A progress bar on stderr, shown only on a terminal and only after two seconds.
     pub struct Progress {
         bar: ProgressBar,
         start: Instant,
@@ -99,11 +100,13 @@ mod bar {
             }
         }
 
+        /// Advances by `n`.
         pub fn inc(&mut self, n: u64) {
             self.bar.inc(n);
             self.reveal();
         }
 
+        /// Sets the position.
         pub fn set(&mut self, pos: u64) {
             self.bar.set_position(pos);
             self.reveal();

@@ -11,33 +11,53 @@ use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
 #[derive(Debug, thiserror::Error)]
+/// Why the GPU path could not run; the caller falls back to the CPU or says so.
 pub enum GpuError {
     #[error("no GPU adapter was found (is a Vulkan driver installed? `apt-get install mesa-vulkan-drivers` gives a software one)")]
+    /// No adapter at all.
     NoAdapter,
     #[error("no adapter name contains {wanted:?}; available: {available}")]
-    NoMatch { wanted: String, available: String },
+    /// No adapter's name contains the one asked for.
+    NoMatch {
+        /// The name asked for.
+        wanted: String,
+        /// The adapters there are.
+        available: String,
+    },
     #[error("could not open a device on {adapter}")]
+    /// The adapter would not open a device.
     Device {
+        /// The adapter's name.
         adapter: String,
+        /// wgpu's error.
         #[source]
         err: wgpu::RequestDeviceError,
     },
     #[error("the GPU reported an error: {0}")]
+    /// An error reported by the device while running.
     Runtime(String),
     #[error("{0}")]
+    /// A problem too large for the device's buffers.
     TooLarge(String),
     #[error("the adapter {0} has no f64 shaders (SHADER_F64); use f32 precision, or the cpu backend for f64")]
+    /// f64 precision asked of an adapter without f64 shaders.
     NoF64(String),
 }
 
 /// A short description of an adapter, for `tabor info` and result metadata.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct AdapterSummary {
+    /// The adapter's name.
     pub name: String,
+    /// Its graphics API (Vulkan, Metal, ...).
     pub backend: String,
+    /// Discrete, integrated, virtual or CPU.
     pub device_type: String,
+    /// The driver's name.
     pub driver: String,
+    /// The driver's version text.
     pub driver_info: String,
+    /// A software adapter (lavapipe, llvmpipe, SwiftShader), no faster than the CPU path.
     pub software: bool,
 }
 
@@ -187,6 +207,7 @@ impl Variant {
 
 /// Device, queue, the shader module and its pipelines (compiled on first use, then reused).
 pub struct Gpu {
+    /// The adapter in use.
     pub adapter: AdapterSummary,
     device: wgpu::Device,
     queue: wgpu::Queue,
@@ -212,6 +233,7 @@ pub struct Gpu {
 const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
 
 impl Gpu {
+    /// Opens the first hardware adapter, or the one whose name contains `adapter_name`.
     pub fn new(adapter_name: Option<&str>) -> Result<Gpu, GpuError> {
         let adapter = choose_adapter(adapter_name)?;
         let info = adapter.get_info();

@@ -15,6 +15,7 @@ pub struct Branch {
     /// The branch-end value of the residual's quantity (Pbar_c, Pbar_c + 2 or Dbar_min) as an
     /// unevaluated f32 pair hi + lo, so that value - end is exact near the end.
     pub end_hi: f32,
+    /// The low part of the branch end.
     pub end_lo: f32,
     /// Below gap = s_max^2 the state comes from the Chebyshev fit, not the iteration.
     pub s_max: f32,
@@ -30,6 +31,7 @@ pub struct Branch {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct GpuLambda {
+    /// The Maugis parameter.
     pub lambda: f32,
     /// 1: the load residual is written as Pbar + 2 (DMT side, lambda < 1).
     pub small: u32,
@@ -42,8 +44,11 @@ pub struct GpuLambda {
     /// Word offset of this lambda's dense start in the grid kernel's input (0: none); see
     /// `kernel::start`.
     pub start_at: u32,
+    /// Padding to the WGSL alignment.
     pub _pad: [u32; 2],
+    /// The load-controlled branch.
     pub load: Branch,
+    /// The displacement-controlled branch.
     pub disp: Branch,
 }
 
@@ -103,17 +108,22 @@ pub fn control_code(c: crate::solver::Control) -> u32 {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
 pub struct Out {
+    /// Contact radius A.
     pub a: f32,
     /// The approach under load control, the load under displacement control.
     pub other: f32,
+    /// m - 1.
     pub m_minus_1: f32,
+    /// Status in the low byte, iterations above.
     pub code: u32,
 }
 
 impl Out {
+    /// The status.
     pub fn status(&self) -> crate::solver::Status {
         crate::solver::Status::from_code(self.code & 0xff)
     }
+    /// The secant iterations used.
     pub fn iterations(&self) -> u32 {
         self.code >> 8
     }
@@ -123,6 +133,7 @@ impl Out {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct Lambda64 {
+    /// The Maugis parameter.
     pub lambda: f64,
     /// Branch end of the load residual's quantity: Pbar_c, or Pbar_c + 2 if `small`.
     pub load_end: f64,
@@ -132,9 +143,13 @@ pub struct Lambda64 {
     pub mu_load: f64,
     /// mu at the displacement-controlled jump-out (interior branches only).
     pub mu_disp: f64,
+    /// 1: the load residual is written as Pbar + 2 (DMT side).
     pub small: u32,
+    /// 1: the displacement branch ends at A = 0.
     pub disp_at_zero: u32,
+    /// 1: this lambda is invalid.
     pub invalid: u32,
+    /// Padding to the WGSL alignment.
     pub _pad: u32,
 }
 
@@ -143,10 +158,15 @@ pub struct Lambda64 {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct Point64 {
+    /// The load or approach.
     pub value: f64,
+    /// Index of the point's lambda.
     pub ci: u32,
+    /// The f32 kernel's code.
     pub code: u32,
+    /// The f32 kernel's m - 1, the refinement's start.
     pub m_minus_1: f32,
+    /// Padding to the WGSL alignment.
     pub _pad: u32,
 }
 
@@ -154,18 +174,24 @@ pub struct Point64 {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
 pub struct Out64 {
+    /// Contact radius A.
     pub a: f64,
     /// The approach under load control, the load under displacement control.
     pub other: f64,
+    /// m - 1.
     pub m_minus_1: f64,
+    /// Status in the low byte, Newton steps above.
     pub code: u32,
+    /// Padding to the WGSL alignment.
     pub _pad: u32,
 }
 
 impl Out64 {
+    /// The status.
     pub fn status(&self) -> crate::solver::Status {
         crate::solver::Status::from_code(self.code & 0xff)
     }
+    /// The Newton steps used.
     pub fn steps(&self) -> u32 {
         self.code >> 8
     }

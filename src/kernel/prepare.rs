@@ -40,6 +40,7 @@ fn cheb_fit(s_max: f64, dx_of_gap: &impl Fn(f64) -> f64) -> [f32; CHEB_TERMS] {
     })
 }
 
+/// The Chebyshev sum `sum c_k T_k(u)` (Clenshaw), as the shader evaluates it.
 pub fn cheb_eval(c: &[f32; CHEB_TERMS], u: f32) -> f32 {
     // Clenshaw recurrence, the same as the shader's.
     let (mut b1, mut b2) = (0.0f32, 0.0f32);
@@ -132,6 +133,7 @@ pub fn prepare(lambda: f64) -> GpuLambda {
     prepare_ctx(&ctx)
 }
 
+/// The kernels' data for one lambda, from its f64 context.
 pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
     let lambda = ctx.lambda;
     if !crate::engine::kernel_lambda(lambda) {

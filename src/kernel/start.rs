@@ -16,7 +16,9 @@ const HEADER: usize = 4;
 /// The blocks of a grid's lambdas: `at[i]` is lambda i's block offset within `words`, if any.
 #[derive(Clone, Debug, Default)]
 pub struct Starts {
+    /// Every block, one after another.
     pub words: Vec<u32>,
+    /// Lambda i's block offset within `words`, if it has one.
     pub at: Vec<Option<u32>>,
 }
 

@@ -25,14 +25,23 @@ pub enum LoadAxis {
 
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
+/// An adhesion map's grid and criteria; checked by [`MapSpec::validate`].
 pub struct MapSpec {
+    /// The smallest lambda (log axis).
     pub lambda_min: f64,
+    /// The largest lambda.
     pub lambda_max: f64,
+    /// Columns (lambdas).
     pub nx: usize,
+    /// The load axis: linear, log, or log above the pull-off.
     pub load_axis: LoadAxis,
+    /// The smallest load (or gap above the pull-off) of the axis.
     pub load_min: f64,
+    /// The largest.
     pub load_max: f64,
+    /// Rows (loads).
     pub ny: usize,
+    /// The relative error of A within which a closed form is adequate.
     pub tolerance: f64,
     /// s0/K ratios for the large-deformation lines a/R = 0.1.
     pub strength_ratios: Vec<f64>,
@@ -43,17 +52,24 @@ pub struct MapSpec {
 #[serde(rename_all = "snake_case")]
 #[repr(u8)]
 pub enum Region {
+    /// Below the pull-off: no contact.
     NoContact = 0,
+    /// Hertz is adequate.
     Hertz = 1,
+    /// Bradley's rigid spheres are adequate.
     Rigid = 2,
+    /// DMT is adequate.
     Dmt = 3,
+    /// JKR is adequate.
     Jkr = 4,
+    /// Only Maugis-Dugdale is.
     Md = 5,
     /// The solver could not give a state (not converged, invalid input).
     Failed = 6,
 }
 
 impl Region {
+    /// Every region, in code order.
     pub const ALL: [Region; 7] = [
         Region::NoContact,
         Region::Hertz,
@@ -98,12 +114,17 @@ impl Region {
 /// model has no answer) and the rigid-body measure (pi lambda / 2) max(A^2, |Dbar|).
 #[derive(Clone, Copy, Debug)]
 pub struct Criteria {
+    /// `|A_Hertz/A - 1|`.
     pub err_hertz: f64,
+    /// `|A_DMT/A - 1|`.
     pub err_dmt: f64,
+    /// `|A_JKR/A - 1|`.
     pub err_jkr: f64,
+    /// The rigid-body measure `(pi lambda / 2) max(A^2, |Dbar|)`.
     pub rigid: f64,
 }
 
+/// The criteria of a state (lambda, Pbar, A, Dbar).
 pub fn criteria(lambda: f64, load: f64, a: f64, approach: f64) -> Criteria {
     let err = |m: Option<f64>| m.map_or(f64::NAN, |am| (am / a - 1.0).abs());
     Criteria {
@@ -155,21 +176,30 @@ pub fn adequate(s: &State, tol: f64) -> u8 {
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// A line a/R = 0.1 of one strength ratio s0/K: beyond it the small-strain theory is stretched.
 pub struct LargeDeformationLine {
+    /// s0/K.
     pub strength_ratio: f64,
     /// (lambda, y) where a/R = 0.1; y in the map's load coordinate.
     pub points: Vec<(f64, f64)>,
 }
 
 #[derive(Clone, Debug, Default, Serialize)]
+/// Where a map's time went (s).
 pub struct Timings {
+    /// Solving the states.
     pub solve_s: f64,
+    /// Classifying and packing them.
     pub classify_s: f64,
+    /// Drawing the figure.
     pub render_s: f64,
 }
 
+/// A solved and classified adhesion map.
 pub struct MapData {
+    /// Its grid and criteria.
     pub spec: MapSpec,
+    /// The lambda of each column.
     pub lambdas: Vec<f64>,
     /// The load coordinate of each row: Pbar, or Pbar - Pbar_c for `AbovePulloff`.
     pub rows: Vec<f64>,
@@ -178,6 +208,7 @@ pub struct MapData {
     /// Compact per-point records (row-major, row 0 the lowest load), enough to draw the map:
     /// 13 bytes a point, where whole states took 48.
     pub points: Points,
+    /// The simplest adequate model of each point.
     pub regions: Vec<Region>,
     /// A, approach and m - 1 in f64 per point, kept only where asked
     /// ([`ComputeOptions::keep_exact`]: the NPY and full JSON exports, the Python arrays).
@@ -187,7 +218,9 @@ pub struct MapData {
     pub adequate_from: Vec<[Option<u32>; 4]>,
     /// The GPU's states against the f64 solver on a sample (GPU maps only).
     pub check: Option<crate::engine::CheckReport>,
+    /// The a/R = 0.1 lines.
     pub large_deformation: Vec<LargeDeformationLine>,
+    /// Where the time went.
     pub timings: Timings,
 }
 
@@ -195,8 +228,11 @@ pub struct MapData {
 /// and contour lines (the regions themselves are classified from the f64 states).
 #[derive(Default)]
 pub struct Points {
+    /// Contact radius A.
     pub a: Vec<f32>,
+    /// Dbar.
     pub approach: Vec<f32>,
+    /// m - 1.
     pub m_minus_1: Vec<f32>,
     /// [`Status`] codes.
     pub status: Vec<u8>,
@@ -261,6 +297,7 @@ impl Default for ComputeOptions {
     }
 }
 
+/// `n` points from `min` to `max`, log-spaced if `log`, with the ends exact.
 pub fn axis(min: f64, max: f64, n: usize, log: bool) -> Vec<f64> {
     (0..n)
         .map(|i| {
@@ -279,10 +316,13 @@ pub fn axis(min: f64, max: f64, n: usize, log: bool) -> Vec<f64> {
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a map was not computed.
 pub enum MapError {
     #[error("{0}")]
+    /// A bad grid or criterion (the message names the quantity).
     Spec(String),
     #[error(transparent)]
+    /// The GPU failed.
     Engine(#[from] crate::engine::EngineError),
 }
 
@@ -292,6 +332,7 @@ pub const MAX_MAP_POINTS: usize = 4096 * 4096;
 pub const LOG_LOAD_MIN: f64 = 1e-15;
 
 impl MapSpec {
+    /// One clear line for a bad value, naming the quantity.
     pub fn validate(&self) -> Result<(), MapError> {
         use crate::physics::domain::{check_lambda_range, short, LOAD_MAX};
         let bad = |m: String| Err(MapError::Spec(m));
@@ -495,6 +536,7 @@ fn large_deformation_line(
 }
 
 impl MapData {
+    /// The region at column `ix`, row `iy`.
     pub fn region_at(&self, ix: usize, iy: usize) -> Region {
         self.regions[iy * self.spec.nx + ix]
     }
@@ -504,6 +546,7 @@ impl MapData {
         self.regions.len()
     }
 
+    /// No points.
     pub fn is_empty(&self) -> bool {
         self.regions.is_empty()
     }
@@ -569,6 +612,7 @@ impl MapData {
             .collect()
     }
 
+    /// Each region present and its number of points.
     pub fn region_counts(&self) -> Vec<(Region, usize)> {
         Region::ALL
             .iter()

@@ -11,10 +11,13 @@ pub fn dmt_radius(load: f64) -> Option<f64> {
     (load >= -2.0).then(|| (load + 2.0).cbrt())
 }
 
+/// DMT's pull-off load, `-2` (in `pi w R`), under either control.
 pub const DMT_PULLOFF: f64 = -2.0;
 /// Bradley's rigid spheres: pull-off -2, no deformation.
 pub const BRADLEY_PULLOFF: f64 = -2.0;
+/// JKR's load-controlled pull-off, `-3/2`.
 pub const JKR_PULLOFF_LOAD: f64 = -1.5;
+/// JKR's displacement-controlled pull-off load, `-5/6`.
 pub const JKR_PULLOFF_DISPLACEMENT: f64 = -5.0 / 6.0;
 
 /// JKR on its load-stable branch: `A^3 = Pbar + 3 + sqrt(9 + 6 Pbar)`, for `Pbar >= -3/2`.

@@ -38,12 +38,16 @@ pub const RADIUS_MAX: f64 = 1e4;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Method {
+    /// The exact Maugis-Dugdale solver (lambda in its certified domain).
     Md,
+    /// DMT's closed form, certified below the exact domain.
     DmtLimit,
+    /// JKR's closed form, certified above the exact domain.
     JkrLimit,
 }
 
 impl Method {
+    /// The name in JSON (`method` fields).
     pub fn name(self) -> &'static str {
         match self {
             Method::Md => "md",
@@ -76,9 +80,13 @@ pub fn method_name(lambda: f64) -> &'static str {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{name} = {} is outside the supported domain {range}: {hint}", short(*.value))]
 pub struct DomainError {
+    /// The quantity, as the library names it (`lambda`, `load`, ...).
     pub name: &'static str,
+    /// The value given.
     pub value: f64,
+    /// The allowed range, in words.
     pub range: &'static str,
+    /// What to do, or why the range is what it is.
     pub hint: &'static str,
 }
 

@@ -55,8 +55,11 @@ pub fn integrate01(f: impl Fn(f64) -> f64) -> f64 {
 /// A Maugis-Dugdale state's geometry: lambda, the contact radius A and mu = sqrt(m^2 - 1).
 #[derive(Clone, Copy, Debug)]
 pub struct MdGeometry {
+    /// The Maugis parameter.
     pub lambda: f64,
+    /// Contact radius A.
     pub a: f64,
+    /// `mu = sqrt(m^2 - 1)`, m = C/A the Dugdale zone's outer radius over A.
     pub mu: f64,
 }
 

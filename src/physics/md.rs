@@ -13,6 +13,7 @@ pub const LAMBDA_D: f64 = 0.937947457210712;
 /// One point of the Maugis-Dugdale curve and its slopes with respect to mu.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CurvePoint<T> {
+    /// `mu = sqrt(m^2 - 1)`, the curve's parameter.
     pub mu: T,
     /// Contact radius A.
     pub a: T,
@@ -87,11 +88,15 @@ pub fn curve_point<T: Real>(lambda: T, mu: T) -> CurvePoint<T> {
 /// non-contact branch: `(pi lambda/4) C^2 + (2 (pi-2) lambda^2/3) C = 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ZeroRadiusEnd {
+    /// The Dugdale zone's outer radius C there.
     pub c: f64,
+    /// Pbar there.
     pub load: f64,
+    /// Dbar there.
     pub approach: f64,
 }
 
+/// The A -> 0 end of lambda's curve (the root of its quadratic in C).
 pub fn zero_radius_end(lambda: f64) -> ZeroRadiusEnd {
     use std::f64::consts::PI;
     let qa = PI * lambda / 4.0;

@@ -3,16 +3,23 @@
 use std::f64::consts::PI;
 
 #[derive(Debug, thiserror::Error, PartialEq)]
+/// A physical input that cannot be normalised: one line naming the field.
 pub enum ParamError {
     #[error("{field} = {} is out of range: it must be {allowed}", super::domain::short(*.value))]
+    /// A value outside its range.
     OutOfRange {
+        /// The input's name in a scene file.
         field: &'static str,
+        /// The value given.
         value: f64,
+        /// The allowed range, in words.
         allowed: &'static str,
     },
     #[error("{0}")]
+    /// A needed input is absent (the message says which).
     Missing(&'static str),
     #[error(transparent)]
+    /// A normalised value outside the solver's domain.
     Domain(#[from] super::domain::DomainError),
 }
 
@@ -37,8 +44,11 @@ fn check(
 #[derive(Clone, Copy, Debug, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Body {
+    /// Young's modulus E (Pa).
     pub youngs_modulus_pa: f64,
+    /// Poisson's ratio, in -1..0.5.
     pub poisson_ratio: f64,
+    /// The radius of curvature R (m); `None` for a flat.
     pub radius_m: Option<f64>,
 }
 
@@ -84,6 +94,7 @@ pub fn small_strain_warning(a_over_r: f64) -> Option<String> {
     })
 }
 
+/// The Lennard-Jones law's largest stress in units of `w / z0`: `16 / (9 sqrt 3)`.
 pub const LJ_STRESS: f64 = 16.0 / (9.0 * 1.7320508075688772);
 
 /// `1/E* = (1-v1^2)/E1 + (1-v2^2)/E2`, with range checks that name the field.
@@ -134,6 +145,7 @@ pub fn effective_radius(b1: &Body, b2: &Body) -> Result<f64, ParamError> {
 }
 
 impl Contact {
+    /// A contact from the combined radius (m), E* (Pa), w (J/m^2) and the force range; each checked.
     pub fn new(radius: f64, e_star: f64, work: f64, range: ForceRange) -> Result<Self, ParamError> {
         let radius = check("radius_m", radius, radius > 0.0, "> 0 (m)")?;
         let e_star = check("e_star_pa", e_star, e_star > 0.0, "> 0 (Pa)")?;

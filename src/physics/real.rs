@@ -6,6 +6,7 @@
 
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
+/// The number types the MD curve is written for (f64, f32, and the f64 pair of the kernels' host), so that one source serves every precision.
 pub trait Real:
     Copy
     + PartialOrd
@@ -15,8 +16,11 @@ pub trait Real:
     + Div<Output = Self>
     + Neg<Output = Self>
 {
+    /// The value of an f64 in this type.
     fn of(x: f64) -> Self;
+    /// This value as an f64.
     fn to_f64(self) -> f64;
+    /// The square root.
     fn sqrt(self) -> Self;
     /// `(atan(mu), mu - atan(mu))` for `mu >= 0`, both to full relative precision: the
     /// difference is what f1 needs at small mu, where subtracting the two loses every digit.
@@ -86,7 +90,9 @@ impl Real for f64 {
 /// error-free transformations two-sum and two-product (Dekker 1971; Hida, Li and Bailey's QD).
 #[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
 pub struct Dd {
+    /// The leading part.
     pub hi: f64,
+    /// The trailing part (below half an ulp of `hi`).
     pub lo: f64,
 }
 

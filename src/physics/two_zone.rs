@@ -161,9 +161,15 @@ pub struct Zones {
 pub enum Shape {
     /// One zone acts (the other is absent, or both share the range): MD with this lambda, its
     /// outer radius common to the zones present.
-    Single { lambda: f64 },
-    /// Two ranges: `long` is the index of the zone with the longer range.
-    Two { long: usize },
+    Single {
+        /// The single zone's (or the summed) Maugis parameter.
+        lambda: f64,
+    },
+    /// Two ranges.
+    Two {
+        /// The index of the zone with the longer range.
+        long: usize,
+    },
 }
 
 impl Zones {
@@ -186,6 +192,7 @@ impl Zones {
         }
     }
 
+    /// Which zones act: one (MD with its lambda) or two (with the longer-range zone's index).
     pub fn shape(&self) -> Shape {
         match (self.present(0), self.present(1)) {
             (true, false) => Shape::Single {
@@ -207,12 +214,15 @@ impl Zones {
 /// One state of the contact curve: contact radius, the zones' outer radii, load and approach.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoZonePoint {
+    /// Contact radius A.
     pub a: f64,
     /// `mu_i = sqrt(m_i^2 - 1)`, `m_i = C_i / A` (0 for an absent zone: no band).
     pub mu: [f64; 2],
     /// Outer radii C_i (A for an absent zone).
     pub c: [f64; 2],
+    /// Pbar.
     pub load: f64,
+    /// Dbar.
     pub approach: f64,
 }
 
@@ -358,9 +368,13 @@ pub fn pressure(zones: &Zones, p: &TwoZonePoint, r: f64) -> f64 {
 /// and the gap on the axis.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NonContactPoint {
+    /// The zones' outer radii (0 for a zone that has not opened).
     pub c: [f64; 2],
+    /// Pbar.
     pub load: f64,
+    /// Dbar.
     pub approach: f64,
+    /// The gap at the axis (r = 0).
     pub axis_gap: f64,
 }
 

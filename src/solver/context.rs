@@ -20,13 +20,21 @@ pub const TABLE_DX0: f64 = 0.01 * BRACKET / 81.92;
 /// is stable under load control (dPbar/dA > 0) and displacement control (dDbar/dA > 0).
 #[derive(Clone, Copy, Debug)]
 pub struct RadiusState {
+    /// The Maugis parameter.
     pub lambda: f64,
+    /// Contact radius A.
     pub a: f64,
+    /// Pbar.
     pub load: f64,
+    /// Dbar.
     pub approach: f64,
+    /// m - 1, m = C/A (carried apart: m -> 1 on the JKR side).
     pub m_minus_1: f64,
+    /// Stable under load control (before the load-controlled pull-off).
     pub load_stable: bool,
+    /// Stable under displacement control (before its jump-out).
     pub displacement_stable: bool,
+    /// Whether the state was found.
     pub status: Status,
 }
 
@@ -100,21 +108,27 @@ fn solve_radius_in(ctx: &LambdaContext, a: f64) -> RadiusState {
 pub struct PullOff {
     /// ln(mu) there; `+inf` when the contact is lost at zero radius.
     pub x: f64,
+    /// Pbar at the pull-off.
     pub load: f64,
+    /// Contact radius A there.
     pub a: f64,
+    /// Dbar there.
     pub approach: f64,
     /// m - 1 there (`inf` at zero radius).
     pub m_minus_1: f64,
 }
 
 impl PullOff {
+    /// The pull-off is the A -> 0 end of the curve (displacement control, lambda <= lambda_D).
     pub fn at_zero_radius(&self) -> bool {
         self.x == f64::INFINITY
     }
 }
 
 #[derive(Clone, Debug)]
+/// One lambda's solver: both pull-offs and the coarse table that starts every state.
 pub struct LambdaContext {
+    /// The Maugis parameter.
     pub lambda: f64,
     /// Load-controlled pull-off: the minimum of Pbar along the curve.
     pub load_pulloff: PullOff,
@@ -142,6 +156,7 @@ pub const START_MIN_STATES: usize = 16;
 const ONE_STEP_DX: f64 = 1e-7;
 
 #[inline]
+/// The curve point at `x = ln mu`.
 pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
     curve_point(lambda, x.exp())
 }
@@ -393,6 +408,7 @@ mod pulloff_fit {
 }
 
 impl LambdaContext {
+    /// Solves both pull-offs and builds the start table; lambda in the exact domain.
     pub fn new(lambda: f64) -> Result<Self, SolveError> {
         Self::new_uncertified(super::domain::check_lambda(lambda)?)
     }

@@ -11,10 +11,14 @@ use serde::Serialize;
 pub const MAX_CURVE_POINTS: usize = 1_000_000;
 
 #[derive(Clone, Copy, Debug, Serialize)]
+/// One point of a curve.
 pub struct CurveRow {
     #[serde(rename = "A")]
+    /// Contact radius A.
     pub a: f64,
+    /// Pbar.
     pub load: f64,
+    /// Dbar.
     pub approach: f64,
     /// `inf` at the A = 0 end (written as null in JSON).
     #[serde(serialize_with = "finite_or_null")]
@@ -34,18 +38,25 @@ fn finite_or_null<S: serde::Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// The whole MD curve of one lambda, from large A to the A -> 0 end.
 pub struct Curve {
+    /// The Maugis parameter.
     pub lambda: f64,
+    /// The points, A falling.
     pub points: Vec<CurveRow>,
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a curve was not computed.
 pub enum CurveError {
     #[error(transparent)]
+    /// The solver failed.
     Solve(#[from] SolveError),
     #[error(transparent)]
+    /// An input outside the domain.
     Domain(#[from] DomainError),
     #[error("points = {0} is out of range: give 2..=1000000")]
+    /// The number of points is not in 2..=1_000_000.
     Points(usize),
 }
 

@@ -19,11 +19,14 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Control {
+    /// Load control (dead load): the load is given.
     Load,
+    /// Displacement control (rigid grips): the approach is given.
     Displacement,
 }
 
 impl Control {
+    /// The name in JSON and on the command line.
     pub fn name(self) -> &'static str {
         match self {
             Control::Load => "load",
@@ -37,6 +40,7 @@ impl Control {
 #[serde(rename_all = "snake_case")]
 #[repr(u32)]
 pub enum Status {
+    /// A state was found.
     Ok = 0,
     /// The load is below the pull-off, or the approach below the jump-out: no contact.
     NoContact = 1,
@@ -47,6 +51,7 @@ pub enum Status {
 }
 
 impl Status {
+    /// The name in JSON and CSV.
     pub fn name(self) -> &'static str {
         match self {
             Status::Ok => "ok",
@@ -55,6 +60,7 @@ impl Status {
             Status::InvalidInput => "invalid_input",
         }
     }
+    /// The status of a kernel's code (its low byte).
     pub fn from_code(code: u32) -> Status {
         match code {
             0 => Status::Ok,
@@ -69,6 +75,7 @@ impl Status {
 /// (no contact, bad input) are NaN and are written as empty fields, never as numbers.
 #[derive(Clone, Copy, Debug)]
 pub struct State {
+    /// The Maugis parameter.
     pub lambda: f64,
     /// Pbar.
     pub load: f64,
@@ -78,12 +85,14 @@ pub struct State {
     pub a: f64,
     /// m - 1 (c/a - 1), full relative precision.
     pub m_minus_1: f64,
+    /// Whether the state was found; the numbers are NaN otherwise.
     pub status: Status,
     /// Curve evaluations spent on this state (its context's and tables' not counted).
     pub iterations: u32,
 }
 
 impl State {
+    /// A state that was not found: the inputs and the status, NaN for the rest.
     pub fn failed(lambda: f64, load: f64, approach: f64, status: Status) -> State {
         State {
             lambda,
@@ -98,10 +107,13 @@ impl State {
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a lambda's solver could not be built.
 pub enum SolveError {
     #[error(transparent)]
+    /// lambda outside the domain.
     Domain(#[from] domain::DomainError),
     #[error("no load-controlled pull-off found for lambda = {}", domain::short(*.0))]
+    /// The pull-off search failed at this lambda.
     NoPullOff(f64),
 }
 
@@ -128,6 +140,7 @@ fn invalid(lambda: f64, value: f64, control: Control) -> State {
 }
 
 #[inline]
+/// One state of a prepared lambda at a load or approach.
 pub fn solve_with(ctx: &LambdaContext, value: f64, control: Control) -> State {
     match control {
         Control::Load => ctx.solve_load(value),

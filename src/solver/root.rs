@@ -10,9 +10,13 @@ pub enum Stop {
 }
 
 #[derive(Clone, Copy, Debug)]
+/// A root found by a bracketed search.
 pub struct Root {
+    /// The root.
     pub x: f64,
+    /// Iterations used.
     pub iterations: u32,
+    /// Why the search stopped.
     pub stop: Stop,
 }
 

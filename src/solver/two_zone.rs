@@ -23,6 +23,7 @@ const X_FAR: f64 = -60.0;
 /// Stress numbers and work shares must lie in these bounds (the grid covers the pull-offs of
 /// MD for lambda in 1e-4..1e4).
 pub const LAMBDA_MIN: f64 = 1e-8;
+/// The largest stress number the two-zone solver takes.
 pub const LAMBDA_MAX: f64 = 1e6;
 
 /// A bad set of zones: the message names the value and what to do.
@@ -96,9 +97,13 @@ impl Zones {
 /// The scales of a dimensional two-zone problem: total w and the units of section 1 built on it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Units {
+    /// The total work of adhesion w1 + w2.
     pub w: f64,
+    /// The radius unit `(pi w R^2 / K)^(1/3)`.
     pub radius: f64,
+    /// The approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
     pub approach: f64,
+    /// The load unit `pi w R`.
     pub load: f64,
 }
 
@@ -155,16 +160,22 @@ pub fn dimensional_zones(
 /// other than `Ok`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoZoneState {
+    /// Contact radius A.
     pub a: f64,
     /// Outer radii C_1 (solid) and C_2 (second zone): where the gap equals each range.
     pub c: [f64; 2],
     /// `C_i / A - 1` to full relative precision (0 for an absent zone): C - A itself, where a
     /// zone is narrow (the JKR end), keeps more digits here than in `c`.
     pub m_minus_1: [f64; 2],
+    /// Pbar.
     pub load: f64,
+    /// Dbar.
     pub approach: f64,
+    /// Stable under load control.
     pub load_stable: bool,
+    /// Stable under displacement control.
     pub displacement_stable: bool,
+    /// Whether the state was found.
     pub status: Status,
 }
 
@@ -186,15 +197,20 @@ impl TwoZoneState {
 /// Where a stable branch ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoZonePullOff {
+    /// Pbar there.
     pub load: f64,
+    /// Contact radius A there.
     pub a: f64,
+    /// Dbar there.
     pub approach: f64,
+    /// The outer radii there.
     pub c: [f64; 2],
     /// x = ln(mu_L) there; +inf where the contact is lost at zero radius.
     pub x: f64,
 }
 
 impl TwoZonePullOff {
+    /// The contact is lost at zero radius.
     pub fn at_zero_radius(&self) -> bool {
         self.x == f64::INFINITY
     }
@@ -203,6 +219,7 @@ impl TwoZonePullOff {
 /// The curve of one pair of zones with its pull-offs, for many states.
 #[derive(Clone, Debug)]
 pub struct TwoZoneContext {
+    /// The pair of zones.
     pub zones: Zones,
     md: Option<LambdaContext>,
     /// Load-controlled pull-off: the first minimum of the load from large contact radii.
@@ -277,6 +294,7 @@ fn golden(f: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
 }
 
 impl TwoZoneContext {
+    /// Locates both pull-offs; the status says why a pair cannot be solved.
     pub fn new(zones: Zones) -> Result<TwoZoneContext, Status> {
         match zones.shape() {
             Shape::Single { lambda } => {
@@ -526,10 +544,15 @@ fn as_point(s: &TwoZoneState) -> TwoZonePoint {
 /// approach delta (Hertz: a^2/R), and the outer radii c1, c2 where the gap equals h1, h2.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DimensionalState {
+    /// Load P.
     pub load: f64,
+    /// Approach delta.
     pub approach: f64,
+    /// The solid zone's outer radius.
     pub c1: f64,
+    /// The second zone's outer radius.
     pub c2: f64,
+    /// Whether the state was found.
     pub status: Status,
 }
 
