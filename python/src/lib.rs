@@ -476,6 +476,27 @@ fn fit_pairs<'py>(
     run_py(py, move || Ok(tabor::scene::fit_pairs(&pairs, radius, z0)?))
 }
 
+/// Approach (0), retract (1) or dwell (-1) for each point of a curve whose file numbers its
+/// segments its own way, from the heights (`tabor::fit::segments::plan_segments`), and what
+/// was done in words.
+#[pyfunction]
+fn plan_segments(
+    py: Python<'_>,
+    height: Vec<f64>,
+    segment: Vec<i64>,
+) -> PyResult<(Vec<i8>, Vec<String>)> {
+    use tabor::fit::Direction;
+    let plan = run(py, move || {
+        tabor::fit::segments::plan_segments(&height, &segment).map_err(anyhow::Error::msg)
+    })?;
+    let code = |d: &Option<Direction>| match d {
+        Some(Direction::Approach) => 0,
+        Some(Direction::Retract) => 1,
+        None => -1,
+    };
+    Ok((plan.direction.iter().map(code).collect(), plan.notes))
+}
+
 /// Force curves fitted (`tabor fit`): flat arrays of the points with a curve index, the
 /// options as JSON; returns the JSON list of per-curve results.
 #[pyfunction]
@@ -786,6 +807,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(presets, m)?)?;
     m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
+    m.add_function(wrap_pyfunction!(plan_segments, m)?)?;
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;

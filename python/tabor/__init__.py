@@ -594,21 +594,52 @@ def fit_curve(height_m, force_n, segment, **options):
     return fit_curves(height_m, force_n, segment, **options)[0]
 
 
-def fit_afmformats(data, radius_m, **options):
-    """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum, NT-MDT,
-    ...): one ``AFMForceDistance`` or a list of them, each with its own spring constant from
-    its metadata. Uses ``height (measured)`` where present, else ``height (piezo)``. Returns a
-    list of dicts as :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
+def fit_afmformats(data, radius_m, spring_n_m=None, **options):
+    """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum/Igor,
+    NT-MDT, ...): one ``AFMForceDistance`` or a list of them, each with its own spring constant
+    from its metadata, or ``spring_n_m`` for all of them where given (a file without one needs
+    it; a file without a sensitivity is loaded with ``afmformats.load_data(path,
+    meta_override={"sensitivity": ...})``). Uses ``height (measured)`` where present, else
+    ``height (piezo)``. Approach and retract are taken from the heights, whatever the file's
+    segment numbers: a pause or a dwell (stress relaxation, creep) is left out, and a curve
+    kept in one segment is split where the base turns (each said in ``warnings``); a curve
+    without a clear turn gets the status ``invalid_input``. Returns a list of dicts as
+    :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
     items = [data] if hasattr(data, "columns") else list(data)
+    springs = []
+    for d in items:  # every curve's spring first: a missing one stops before any fit
+        # .get, not [...]: afmformats' metadata raises a BaseException for a missing key.
+        k = d.metadata.get("spring constant") if spring_n_m is None else spring_n_m
+        if k is None:
+            raise ValueError(f"{d.metadata.get('path', 'a curve')}: the file gives no spring "
+                             "constant: pass spring_n_m= (N/m)")
+        springs.append(_real(k, "spring_n_m"))
     out = []
-    for d in items:
+    for d, k in zip(items, springs):
         col = "height (measured)" if "height (measured)" in d.columns else "height (piezo)"
-        r = fit_curve(d[col], d["force"], np.asarray(d["segment"], dtype=np.int64),
-                      radius_m=radius_m, spring_n_m=d.metadata["spring constant"], **options)
+        h = np.asarray(d[col], dtype=float)
+        f = np.asarray(d["force"], dtype=float)
+        try:
+            code, notes = _tabor.plan_segments(h, np.asarray(d["segment"], dtype=np.int64))
+            keep = np.asarray(code) >= 0
+            r = fit_curve(h[keep], f[keep], np.asarray(code)[keep], radius_m=radius_m,
+                          spring_n_m=k, **options)
+            r["warnings"] = list(notes) + list(r.get("warnings", []))
+        except ValueError as e:
+            r = _refused(str(e))
         r["path"] = str(d.metadata.get("path", ""))
         r["enum"] = int(d.metadata.get("enum", 0))
         out.append(r)
     return out
+
+
+def _refused(message):
+    """A curve that could not be fitted at all: the keys of a fit, its numbers None."""
+    keys = ["e_star_pa", "work_of_adhesion_j_m2", "lambda", "contact_point_m",
+            "rms_residual_n", "pulloff_force_measured_n", "adequate_model"]
+    r = {k: None for k in keys}
+    r.update(status="invalid_input", message=message, warnings=[], why="")
+    return r
 
 
 def cycle(lam, drive="grips", stiffness=None, max_load=2.0):

@@ -61,8 +61,8 @@ def test_many_curves_and_bad_ones_in_one_call():
         tabor.fit_curve(h, f, np.array(["up"] * len(h)), radius_m=20e-9, spring_n_m=2.0)
 
 
-def _afmformats_samples(tmp_path):
-    """The JPK sample curves from afmformats' source distribution on PyPI."""
+def _afmformats_data(tmp_path):
+    """afmformats and the folder of sample files from its source distribution on PyPI."""
     if os.environ.get("CI"):
         import afmformats  # installed by tests/run_all.sh: a failure, not a skip
     else:
@@ -75,12 +75,81 @@ def _afmformats_samples(tmp_path):
             pytest.fail(f"cannot fetch the afmformats sdist: {dl.stderr}")
         pytest.skip(f"cannot fetch the afmformats sdist (offline?): {dl.stderr.strip()[:200]}")
     sdist = next(tmp_path.glob("afmformats-*.tar.gz"))
+    with tarfile.open(sdist) as t:
+        members = [m for m in t.getmembers() if "/tests/data/" in m.name and m.isfile()]
+        t.extractall(tmp_path, members=members)
+    return afmformats, next(tmp_path.rglob("tests/data"))
+
+
+def _afmformats_samples(tmp_path):
+    """The JPK sample curves from afmformats' source distribution on PyPI."""
+    afmformats, data = _afmformats_data(tmp_path)
     names = ["fmt-jpk-fd_spot3-0192.jpk-force",
              "fmt-jpk-fd_flipsign_2015.05.22-15.31.49.352.jpk-force"]
-    with tarfile.open(sdist) as t:
-        members = [m for m in t.getmembers() if m.name.split("/")[-1] in names]
-        t.extractall(tmp_path, members=members)
-    return afmformats, [next(tmp_path.rglob(n)) for n in names]
+    return afmformats, [data / n for n in names]
+
+
+def _load(afmformats, path):
+    """afmformats' curves of a file, or None where afmformats cannot load it (its errors derive
+    from BaseException, and it logs a traceback)."""
+    import logging
+    logging.disable(logging.CRITICAL)
+    try:
+        return afmformats.load_data(path)
+    except (Exception, afmformats.errors.MissingMetaDataError):
+        return None
+    finally:
+        logging.disable(logging.NOTSET)
+
+
+def test_every_afmformats_sample_fits_or_gets_its_own_status(tmp_path):
+    """Every sample force curve afmformats 0.18.7 ships: a dwell (stress relaxation, creep) is
+    left out, a one-segment file is split at its turn, a missing spring constant is one error
+    naming spring_n_m, and no file stops the call; each fit is sane."""
+    afmformats, data = _afmformats_data(tmp_path)
+    fitted, statuses = 0, {}
+    for p in sorted(data.iterdir()):
+        ds = _load(afmformats, p)
+        if not ds or ds[0].metadata.get("imaging mode") not in (
+                "force-distance", "creep-compliance", "stress-relaxation"):
+            continue
+        ds = ds[:4]
+        spring = None
+        if ds[0].metadata.get("spring constant") is None:
+            with pytest.raises(ValueError, match="spring_n_m="):
+                tabor.fit_afmformats(ds, radius_m=2.5e-6)
+            spring = 0.1
+        for r in tabor.fit_afmformats(ds, radius_m=2.5e-6, spring_n_m=spring):
+            statuses[p.name] = r["status"]
+            assert r["status"] in ("ok", "no_contact", "not_converged", "invalid_input"), r
+            assert r["message"]
+            if r["status"] != "ok":
+                continue
+            fitted += 1
+            for k in ("e_star_pa", "work_of_adhesion_j_m2", "lambda"):
+                v = r[k]
+                assert np.isfinite(v) and v > 0, (p.name, k, v)
+                # An open end is None or NaN.
+                lo68, hi68 = (np.nan if e is None else e for e in r[f"{k}_interval_68"])
+                lo95, hi95 = (np.nan if e is None else e for e in r[f"{k}_interval_95"])
+                # The estimate inside its intervals, the 95% one holding the 68% one.
+                assert (np.isnan(lo95) or lo95 <= v) and (np.isnan(hi95) or v <= hi95), (p.name, k)
+                assert np.isnan(lo95) or np.isnan(lo68) or lo95 <= lo68, (p.name, k)
+                assert np.isnan(hi95) or np.isnan(hi68) or hi68 <= hi95, (p.name, k)
+            assert 10 <= r["e_star_pa"] <= 1e12 and r["work_of_adhesion_j_m2"] <= 10
+    print(statuses)
+    # The files that once raised: a dwell and a single segment now fit, with a warning.
+    assert statuses["fmt-jpk-cc_pr14-brain-2021.06.30.jpk-force"] == "ok"
+    assert statuses["fmt-igor-fd_SiN_FD_plot.ibw"] == "ok"
+    assert "fmt-jpk-sr_cell1-0008.jpk-force" in statuses
+    assert fitted >= 15
+    (r,) = tabor.fit_afmformats(afmformats.load_data(data / "fmt-igor-fd_U3_3_p10004.ibw"),
+                                radius_m=2.5e-6)
+    assert any("split at the lowest height" in w for w in r["warnings"]), r["warnings"]
+    (r,) = tabor.fit_afmformats(
+        afmformats.load_data(data / "fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force"),
+        radius_m=2.5e-6)
+    assert any("a dwell, left out" in w for w in r["warnings"]), r["warnings"]
 
 
 def test_real_jpk_curves_with_adhesion_are_fitted(tmp_path):

@@ -287,7 +287,33 @@ pub fn profile_intervals(
             [l[1].and(z[0]), l[0].and(z[1])]
         });
     }
+    for q in [
+        &mut out.e_star_pa,
+        &mut out.work_of_adhesion_j_m2,
+        &mut out.lambda,
+        &mut out.contact_point_m,
+        &mut out.z0_m,
+    ] {
+        nest(q);
+    }
     out
+}
+
+/// The 95% interval holds the 68% one. On a profile that is not parabolic (a measured curve the
+/// model does not describe to its noise) the free fit's covariance, used at 68% where lambda is
+/// bounded, can reach beyond the fixed-lambda ones used at 95% where it is not: the 95%
+/// interval is then widened to hold the 68% one (an open end stays open).
+fn nest(q: &mut [Option<Interval>; 2]) {
+    let [Some(i68), Some(i95)] = q else { return };
+    let lo = match (i68[0], i95[0]) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        _ => None,
+    };
+    let hi = match (i68[1], i95[1]) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        _ => None,
+    };
+    *i95 = [lo, hi];
 }
 
 /// The intervals of a fit with lambda fixed by z0 (no profile): parabolic, from the covariance,
@@ -320,4 +346,22 @@ pub fn fixed_z0_intervals(d: &Prepared, md: &ModelFit) -> Intervals {
         out.lambda[k] = md.lambda.and_then(|l| log(l, var));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_95_interval_holds_the_68_one() {
+        let mut q = [Some([Some(1.0), Some(5.0)]), Some([Some(2.0), Some(4.0)])];
+        nest(&mut q);
+        assert_eq!(q[1], Some([Some(1.0), Some(5.0)]));
+        let mut q = [Some([Some(1.0), Some(5.0)]), Some([None, Some(4.0)])];
+        nest(&mut q);
+        assert_eq!(q[1], Some([None, Some(5.0)]));
+        let mut q = [Some([Some(2.0), Some(3.0)]), Some([Some(1.0), Some(6.0)])];
+        nest(&mut q);
+        assert_eq!(q[1], Some([Some(1.0), Some(6.0)]));
+    }
 }

@@ -13,6 +13,7 @@
 pub mod data;
 pub mod interval;
 pub mod path;
+pub mod segments;
 pub mod synthetic;
 
 pub use data::{read_curves, Curve, CurveSet, DataError};
