@@ -701,6 +701,9 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * q).round() as usize]
 }
 
+/// The longest run of consecutive points taken for a spike.
+const MAX_SPIKE_RUN: usize = 3;
+
 /// The points of one segment's forces (in time order) that are isolated spikes: outside the
 /// segment's robust range (its 2%..98% quantiles widened by half their span on each side),
 /// more than ten robust noise levels (the MAD of the second differences) from their
@@ -723,7 +726,22 @@ fn spikes(f: &[f64]) -> Vec<usize> {
     // Of white noise sigma the second differences have sigma sqrt 6; the median of their
     // absolute values is 0.6745 of that.
     let sigma = (quantile(&second, 0.5) / 0.6745 / 6f64.sqrt()).max(1e-4 * range);
-    let candidates: Vec<bool> = f.iter().map(|&v| out(v)).collect();
+    let mut candidates: Vec<bool> = f.iter().map(|&v| out(v)).collect();
+    // A spike is isolated: a run of more than MAX_SPIKE_RUN points beyond the range, or one at
+    // either end of the segment, is the curve itself (the contact at the end of an approach
+    // that is mostly baseline lies far beyond its quantiles), not a glitch.
+    let mut i = 0;
+    while i < n {
+        if !candidates[i] {
+            i += 1;
+            continue;
+        }
+        let end = (i..n).find(|&j| !candidates[j]).unwrap_or(n);
+        if end - i > MAX_SPIKE_RUN || i == 0 || end == n {
+            candidates[i..end].fill(false);
+        }
+        i = end;
+    }
     // The nearest points on each side that are not candidates.
     let left = |i: usize| (0..i).rev().find(|&j| !candidates[j]);
     let right = |i: usize| (i + 1..n).find(|&j| !candidates[j]);
@@ -2144,6 +2162,16 @@ fn adequate_by_test(
             3.841458820694124
         };
         let dchi = (rss(f) - rss(md)) / s2;
+        // A fit that stopped short of its minimum says nothing of the model: its misfit is
+        // only an upper bound, and a test on it would reject the model for the search's sake.
+        if f.status != FitStatus::Ok && dchi.is_finite() {
+            notes.push(format!(
+                "{}'s fit did not converge (Delta chi^2 = {:.3} is an upper bound), so it is not tested",
+                f.model.label(),
+                dchi
+            ));
+            continue;
+        }
         if !dchi.is_finite() {
             notes.push(format!("{} did not fit", f.model.label()));
             continue;
@@ -2206,7 +2234,7 @@ fn adequate_by_test(
     (
         Model::Md,
         format!(
-            "every closed form is significantly worse than Maugis-Dugdale at the noise {:.3e} N of the residual (95%): {}",
+            "no closed form is shown adequate: each is significantly worse than Maugis-Dugdale at the noise {:.3e} N of the residual (95%), or could not be tested: {}",
             s2.sqrt(),
             notes.join("; ")
         ),
@@ -2300,6 +2328,25 @@ fn adequate_by_tolerance(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_contact_at_the_end_of_a_mostly_flat_approach_is_not_a_spike() {
+        // 1000 baseline points with a little deterministic noise, then the contact: a ramp of
+        // 40 points far beyond the segment's quantiles, ending the segment.
+        let mut f: Vec<f64> = (0..1000).map(|i| 1e-3 * ((i * 7919) % 13) as f64 / 13.0).collect();
+        f.extend((1..=40).map(|k| k as f64 / 40.0));
+        assert_eq!(spikes(&f), Vec::<usize>::new());
+        // Isolated glitches inside it are spikes, one point or a run of up to three.
+        let mut g = f.clone();
+        g[300] = 5.0;
+        g[600] = -4.0;
+        g[601] = -4.0;
+        assert_eq!(spikes(&g), vec![300, 600, 601]);
+        // A run of four is a feature, kept.
+        let mut h = f.clone();
+        h[300..304].fill(5.0);
+        assert_eq!(spikes(&h), Vec::<usize>::new());
+    }
 
     #[test]
     fn the_analytic_jacobian_matches_differences() {

@@ -887,8 +887,17 @@ where
         .filter(|(hh, _)| v.x(*hh) <= v.xmax)
         .unzip();
     let pad = 0.06 * (v.fmax - v.fmin);
-    let mut chart = builder(&top, "")
-        .build_cartesian_2d(v.xmin..v.xmax, (v.fmin - pad) * 1e9..(v.fmax + pad) * 1e9)?;
+    // The force axis spans the data, and the fitted MD curve where it reaches beyond them (a
+    // model jump-out later than the measured one), so that no line runs along the frame.
+    let p = md.params();
+    let md_f = crate::fit::model_forces(md.model, &p, opt.radius, opt.spring, &hs, &dirs, None);
+    let (lo, hi) = md_f.map_or((v.fmin, v.fmax), |(f, _, _, _)| {
+        f.iter().filter(|x| x.is_finite()).fold((v.fmin, v.fmax), |(a, b), &x| {
+            (a.min(x + p.f0), b.max(x + p.f0))
+        })
+    });
+    let (lo, hi) = (lo.min(v.fmin - pad), hi.max(v.fmax + pad));
+    let mut chart = builder(&top, "").build_cartesian_2d(v.xmin..v.xmax, lo * 1e9..hi * 1e9)?;
     house_mesh(chart.configure_mesh(), "", "force F (nN)")
         .x_labels(6)
         .y_labels(6)
