@@ -563,6 +563,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         if isinstance(r.get("warnings"), list):
             r["warnings"] = [_tabor.python_names(w) if isinstance(w, str) else w
                              for w in r["warnings"]]
+        # Each interval a (low, high) tuple, None for an end the data leave open (as JSON's
+        # null), whether one end is open or both.
+        for k, v in r.items():
+            if k.endswith(("_interval_68", "_interval_95")) and v is not None:
+                r[k] = tuple(None if e is None or np.isnan(e) else float(e) for e in v)
     if labels is not None:
         for r in out:
             label = labels[int(r["curve"])]

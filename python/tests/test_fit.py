@@ -129,7 +129,8 @@ def test_every_afmformats_sample_fits_or_gets_its_own_status(tmp_path):
             for k in ("e_star_pa", "work_of_adhesion_j_m2", "lambda"):
                 v = r[k]
                 assert np.isfinite(v) and v > 0, (p.name, k, v)
-                # An open end is None or NaN.
+                # An open end is None.
+                assert all(e is None or np.isfinite(e) for e in r[f"{k}_interval_95"])
                 lo68, hi68 = (np.nan if e is None else e for e in r[f"{k}_interval_68"])
                 lo95, hi95 = (np.nan if e is None else e for e in r[f"{k}_interval_95"])
                 # The estimate inside its intervals, the 95% one holding the 68% one.
@@ -150,6 +151,11 @@ def test_every_afmformats_sample_fits_or_gets_its_own_status(tmp_path):
         afmformats.load_data(data / "fmt-jpk-cc_pr14-polymergel-2021.06.30.jpk-force"),
         radius_m=2.5e-6)
     assert any("a dwell, left out" in w for w in r["warnings"]), r["warnings"]
+    # A soft sample near JKR: lambda bounded from below only, the open end None.
+    (r,) = tabor.fit_afmformats(afmformats.load_data(data / "fmt-jpk-fd_spot3-0192.jpk-force"),
+                                radius_m=2.5e-6)
+    lo, hi = r["lambda_interval_95"]
+    assert hi is None and lo > 1 and r["lambda_determined"] is False, r["lambda_interval_95"]
 
 
 def test_real_jpk_curves_with_adhesion_are_fitted(tmp_path):
