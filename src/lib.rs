@@ -117,6 +117,7 @@ pub mod kernel;
 pub mod map;
 pub mod physics;
 pub mod profile;
+pub mod profile_two_zone;
 pub mod progress;
 #[cfg(feature = "render")]
 pub mod render;
