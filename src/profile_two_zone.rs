@@ -79,12 +79,22 @@ pub fn two_zone_profile(
         }
     }
     let r = sample_radii(&s, points);
-    let gap_at = |i: usize| if zones.lambda[i] > 0.0 { ctx.gap(&s, s.c[i]) } else { 0.0 };
+    let gap_at = |i: usize| {
+        if zones.lambda[i] > 0.0 {
+            ctx.gap(&s, s.c[i])
+        } else {
+            0.0
+        }
+    };
     // J = sum of stress_i h(c_i); w = pi stress_i h_i summed is 1 in these units.
     let j = 0.5 * PI * (zones.lambda[0] * gap_at(0) + zones.lambda[1] * gap_at(1));
     let c_out = s.c[0].max(s.c[1]);
     // Both stresses act out to the inner edge of the zones present.
-    let c_in = s.c.iter().copied().filter(|&c| c > s.a).fold(c_out, f64::min);
+    let c_in =
+        s.c.iter()
+            .copied()
+            .filter(|&c| c > s.a)
+            .fold(c_out, f64::min);
     let tz = ModelProfile {
         model: "two_zone",
         status: "ok",
@@ -99,7 +109,9 @@ pub fn two_zone_profile(
         max_tension_at: Some((s.a, c_in)),
         stress_intensity: Some(0.0),
         energy_release_rate_over_w: Some(j),
-        notes: vec!["the stress is bounded: each zone's Dugdale stress acts from a to its edge c_i".into()],
+        notes: vec![
+            "the stress is bounded: each zone's Dugdale stress acts from a to its edge c_i".into(),
+        ],
     };
     let [hertz, dmt, jkr] = closed_form_models(s.load, &r);
     Ok(TwoZoneProfile {

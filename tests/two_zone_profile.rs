@@ -11,7 +11,12 @@ use tabor::physics::fields::MdGeometry;
 use tabor::profile::{profile, Given};
 use tabor::profile_two_zone::{two_zone_profile, TwoZoneProfile};
 
-const CASES: [(f64, f64, f64); 4] = [(1.0, 0.5, 3.0), (0.5, 2.0, 0.3), (3.0, 0.2, 5.0), (0.2, 1.0, 2.0)];
+const CASES: [(f64, f64, f64); 4] = [
+    (1.0, 0.5, 3.0),
+    (0.5, 2.0, 0.3),
+    (3.0, 0.2, 5.0),
+    (0.2, 1.0, 2.0),
+];
 const GIVEN: [Given; 3] = [Given::Load(0.5), Given::Approach(0.8), Given::Radius(1.2)];
 
 /// Section 10's pressure inside the contact: Hertz plus, for each zone, -s_i over the disc c_i
@@ -21,7 +26,11 @@ fn pressure_inside(p: &TwoZoneProfile, a: f64, r: f64) -> f64 {
     for i in 0..2 {
         let (s, c) = (p.zone_stress[i], p.zone_edges[i]);
         if s > 0.0 && c > a {
-            q += -s + 2.0 * s / PI * (((a - r) * (a + r)).max(0.0) / ((c - a) * (c + a))).sqrt().atan();
+            q += -s
+                + 2.0 * s / PI
+                    * (((a - r) * (a + r)).max(0.0) / ((c - a) * (c + a)))
+                        .sqrt()
+                        .atan();
         }
     }
     q
@@ -113,7 +122,8 @@ fn the_gap_at_each_edge_is_its_range_and_j_is_the_total_work() {
         for g in GIVEN {
             let p = two_zone_profile(l, rho, eta, g, 400).unwrap();
             // The zones carry w1 + w2 = 1 (pi s_i h_i in these units), w2/w1 = rho eta.
-            let total = PI * (p.zone_stress[0] * p.zone_range[0] + p.zone_stress[1] * p.zone_range[1]);
+            let total =
+                PI * (p.zone_stress[0] * p.zone_range[0] + p.zone_stress[1] * p.zone_range[1]);
             assert!(rel(total, 1.0) < 1e-13, "{total}");
             assert!(rel(p.work_share[1], rho * eta / (1.0 + rho * eta)) < 1e-13);
             assert!(rel(p.zone_stress[1] / p.zone_stress[0], rho) < 1e-13);
@@ -187,7 +197,11 @@ fn md_distance(l: f64, rho: f64, g: Given, md: &tabor::profile::Profile) -> f64 
     for (k, &r) in m.r.iter().enumerate() {
         // Away from the contact edge (a square root) and the zones' edges (steps), where a
         // small shift of a or c_i is a large change of the fields.
-        if p.zone_edges.iter().chain([&c, &a]).any(|&ci| (r / ci - 1.0).abs() < 1e-3) {
+        if p.zone_edges
+            .iter()
+            .chain([&c, &a])
+            .any(|&ci| (r / ci - 1.0).abs() < 1e-3)
+        {
             continue;
         }
         e = e.max((m.pressure[k].unwrap() - geo.pressure(r)).abs() / (1.0 + l));
@@ -207,22 +221,47 @@ fn tabor(args: &[&str]) -> std::process::Output {
 #[test]
 fn the_command_line_prints_the_library_profile() {
     let o = tabor(&[
-        "profile", "--lambda", "1", "--stress-ratio", "0.5", "--range-ratio", "3", "--load", "0.5",
+        "profile",
+        "--lambda",
+        "1",
+        "--stress-ratio",
+        "0.5",
+        "--range-ratio",
+        "3",
+        "--load",
+        "0.5",
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let p = two_zone_profile(1.0, 0.5, 3.0, Given::Load(0.5), 400).unwrap();
     let want = serde_json::to_string_pretty(&p).unwrap() + "\n";
     assert!(String::from_utf8(o.stdout).unwrap() == want);
     let o = tabor(&[
-        "profile", "--lambda", "1", "--stress-ratio", "0.5", "--range-ratio", "3", "--radius-a",
-        "1", "--format", "csv",
+        "profile",
+        "--lambda",
+        "1",
+        "--stress-ratio",
+        "0.5",
+        "--range-ratio",
+        "3",
+        "--radius-a",
+        "1",
+        "--format",
+        "csv",
     ]);
     assert!(o.status.success());
     let text = String::from_utf8(o.stdout).unwrap();
     let p = two_zone_profile(1.0, 0.5, 3.0, Given::Radius(1.0), 400).unwrap();
-    let rows: Vec<_> = text.lines().skip(1).filter(|r| r.starts_with("two_zone,")).collect();
+    let rows: Vec<_> = text
+        .lines()
+        .skip(1)
+        .filter(|r| r.starts_with("two_zone,"))
+        .collect();
     assert_eq!(rows.len(), p.models[0].r.len());
-    let last: Vec<f64> = rows[rows.len() - 1].split(',').skip(1).map(|x| x.parse().unwrap()).collect();
+    let last: Vec<f64> = rows[rows.len() - 1]
+        .split(',')
+        .skip(1)
+        .map(|x| x.parse().unwrap())
+        .collect();
     let m = &p.models[0];
     let n = m.r.len() - 1;
     assert_eq!(last, [m.r[n], m.pressure[n].unwrap(), m.gap[n]]);
@@ -231,10 +270,29 @@ fn the_command_line_prints_the_library_profile() {
 #[test]
 fn bad_input_is_one_line() {
     for (args, word) in [
-        (vec!["--stress-ratio", "-1", "--range-ratio", "3", "--load", "0"], "stress ratio"),
-        (vec!["--stress-ratio", "1", "--range-ratio", "nan", "--load", "0"], "range ratio"),
-        (vec!["--stress-ratio", "1", "--range-ratio", "3", "--load", "-50"], "no_contact"),
-        (vec!["--stress-ratio", "1", "--range-ratio", "3", "--radius-a", "-1"], "--radius-a"),
+        (
+            vec!["--stress-ratio", "-1", "--range-ratio", "3", "--load", "0"],
+            "stress ratio",
+        ),
+        (
+            vec!["--stress-ratio", "1", "--range-ratio", "nan", "--load", "0"],
+            "range ratio",
+        ),
+        (
+            vec!["--stress-ratio", "1", "--range-ratio", "3", "--load", "-50"],
+            "no_contact",
+        ),
+        (
+            vec![
+                "--stress-ratio",
+                "1",
+                "--range-ratio",
+                "3",
+                "--radius-a",
+                "-1",
+            ],
+            "--radius-a",
+        ),
     ] {
         let mut a = vec!["profile", "--lambda", "1"];
         a.extend(args);
@@ -246,4 +304,3 @@ fn bad_input_is_one_line() {
     }
     assert!(two_zone_profile(1.0, 1.0, 3.0, Given::Load(0.0), 8).is_err());
 }
-
