@@ -304,3 +304,73 @@ fn bad_input_is_one_line() {
     }
     assert!(two_zone_profile(1.0, 1.0, 3.0, Given::Load(0.0), 8).is_err());
 }
+
+#[test]
+fn solve_gives_the_state_of_the_two_zone_context() {
+    use tabor::physics::two_zone::Zones;
+    use tabor::solver::two_zone::TwoZoneContext;
+    let ctx = TwoZoneContext::new(Zones::from_ratios(0.5, 2.0, 0.3).unwrap()).unwrap();
+    for (flag, v) in [
+        ("--load", "-0.4"),
+        ("--approach", "0.2"),
+        ("--radius-a", "0.9"),
+    ] {
+        let o = tabor(&[
+            "solve",
+            "--lambda",
+            "0.5",
+            "--stress-ratio",
+            "2",
+            "--range-ratio",
+            "0.3",
+            flag,
+            v,
+            "--format",
+            "csv",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = String::from_utf8(o.stdout).unwrap();
+        let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+        let x: f64 = v.parse().unwrap();
+        let s = match flag {
+            "--load" => ctx.state_at_load(x),
+            "--approach" => ctx.state_at_approach(x),
+            _ => ctx.state_at_radius(x),
+        };
+        let want = [s.load, s.a, s.approach, s.c[0], s.c[1]];
+        for (k, w) in want.iter().enumerate() {
+            assert_eq!(row[3 + k].parse::<f64>().unwrap(), *w, "{flag} column {k}");
+        }
+        assert_eq!(row[8], "ok");
+    }
+    // Below the pull-off: the status, not numbers.
+    let o = tabor(&[
+        "solve",
+        "--lambda",
+        "0.5",
+        "--stress-ratio",
+        "2",
+        "--range-ratio",
+        "0.3",
+        "--load",
+        "-5",
+        "--format",
+        "json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["status"], "no_contact");
+    assert!(v["A"].is_null());
+    let o = tabor(&[
+        "solve",
+        "--lambda",
+        "0.5",
+        "--stress-ratio",
+        "-2",
+        "--range-ratio",
+        "0.3",
+        "--load",
+        "0",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success() && err.trim().lines().count() == 1 && err.contains("stress ratio"));
+}
