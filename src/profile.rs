@@ -68,7 +68,7 @@ const EDGE_PER_DECADE: i32 = 12;
 
 /// The sampling radii: `n` uniform points to `r_max`, and clusters on both sides of every
 /// radius in `edges`, where the fields change fastest.
-fn radii(r_max: f64, n: usize, edges: &[f64]) -> Vec<f64> {
+pub(crate) fn radii(r_max: f64, n: usize, edges: &[f64]) -> Vec<f64> {
     let mut r: Vec<f64> = (0..n).map(|i| r_max * i as f64 / (n - 1) as f64).collect();
     for &e in edges
         .iter()
@@ -198,6 +198,25 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
         energy_release_rate_over_w: Some(j),
         notes: vec!["the stress is bounded: the Dugdale stress lambda/2 acts on a < r < c".into()],
     };
+    let [hertz, dmt, jkr] = closed_form_models(load, &r);
+    Ok(Profile {
+        lambda,
+        units: "normalised",
+        dugdale_range: h0,
+        dugdale_stress: 0.5 * lambda,
+        models: vec![md_profile, hertz, dmt, jkr],
+        warnings: Vec::new(),
+    })
+}
+
+/// Hertz, DMT and JKR at `load` (normalised), sampled at the radii `r`.
+pub(crate) fn closed_form_models(load: f64, r: &[f64]) -> [ModelProfile; 3] {
+    let nonzero = |a: Option<f64>| a.filter(|&a| a > 0.0);
+    let (ah, ad, aj) = (
+        nonzero(hertz_radius(load)),
+        nonzero(dmt_radius(load)),
+        nonzero(jkr_radius(load)),
+    );
     let hertz = match ah {
         Some(ah) => ModelProfile {
             model: "hertz",
@@ -208,7 +227,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
             approach: Some(ah * ah),
             pressure: r.iter().map(|&x| Some(hertz_pressure(ah, x))).collect(),
             gap: r.iter().map(|&x| hertz_gap(ah, x)).collect(),
-            r: r.clone(),
+            r: r.to_vec(),
             max_tension: Some(0.0),
             max_tension_at: None,
             stress_intensity: Some(0.0),
@@ -227,7 +246,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
             approach: Some(ad * ad),
             pressure: r.iter().map(|&x| Some(hertz_pressure(ad, x))).collect(),
             gap: r.iter().map(|&x| hertz_gap(ad, x)).collect(),
-            r: r.clone(),
+            r: r.to_vec(),
             max_tension: None,
             max_tension_at: None,
             stress_intensity: Some(0.0),
@@ -253,7 +272,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
                     .map(|&x| Some(jkr_pressure(aj, x)).filter(|p| p.is_finite()))
                     .collect(),
                 gap: r.iter().map(|&x| jkr_gap(aj, x)).collect(),
-                r: r.clone(),
+                r: r.to_vec(),
                 max_tension: None,
                 max_tension_at: Some((aj, aj)),
                 stress_intensity: Some(k),
@@ -265,14 +284,7 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
         }
         None => no_contact("jkr", load, "the load is below the JKR pull-off -3/2"),
     };
-    Ok(Profile {
-        lambda,
-        units: "normalised",
-        dugdale_range: h0,
-        dugdale_stress: 0.5 * lambda,
-        models: vec![md_profile, hertz, dmt, jkr],
-        warnings: Vec::new(),
-    })
+    [hertz, dmt, jkr]
 }
 
 impl Profile {

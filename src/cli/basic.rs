@@ -36,6 +36,14 @@ pub struct SolveArgs {
     /// Contact radius A of a single state (the curve point there, with its stability).
     #[arg(long, conflicts_with_all = ["input", "load", "approach"])]
     pub radius_a: Option<f64>,
+    /// A second Dugdale zone (e.g. a water meniscus) for a single state: its stress over the
+    /// solid's, s2/s1; --lambda is then the solid's, units on the total w (docs/PHYSICS.md
+    /// section 10).
+    #[arg(long, requires = "range_ratio", conflicts_with = "input")]
+    pub stress_ratio: Option<f64>,
+    /// The second zone's range over the solid's, h2/h1.
+    #[arg(long, requires = "stress_ratio")]
+    pub range_ratio: Option<f64>,
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
@@ -178,6 +186,9 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         (None, None, Some(r)) => (Given::Radius, r),
         _ => bail!("give one of --load, --approach or --radius-a with --lambda"),
     };
+    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+        return solve_two_zone(&a, lambda, (rho, eta), given, value);
+    }
     if let Some(c) = a.control.filter(|&c| c != given) {
         bail!(
             "--control {} does not match the value given ({}); give {} for {} control",
@@ -251,6 +262,79 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
             }
             Format::Text => state_text(ctx.as_ref(), &s, control),
         }
+    };
+    write_output(&a.output, text.as_bytes())
+}
+
+/// One state of the two-zone law (solid's lambda, stress and range ratios) on the CPU: the state
+/// at a load, approach or contact radius with both zone edges, or its status.
+fn solve_two_zone(
+    a: &SolveArgs,
+    lambda: f64,
+    (rho, eta): (f64, f64),
+    given: Given,
+    value: f64,
+) -> anyhow::Result<()> {
+    use crate::physics::two_zone::Zones;
+    use crate::solver::two_zone::TwoZoneContext;
+    if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
+        eprintln!("note: two zones are solved by the f64 CPU solver only");
+    }
+    let z = Zones::from_ratios(lambda, rho, eta)
+        .map_err(|e| anyhow::anyhow!("--lambda, --stress-ratio, --range-ratio: {e}"))?;
+    let ctx = TwoZoneContext::new(z).map_err(|st| {
+        anyhow::anyhow!(
+            "--lambda {lambda}: the two-zone curve could not be computed ({})",
+            st.name()
+        )
+    })?;
+    if !value.is_finite() || (given == Given::Radius && value <= 0.0) {
+        bail!(
+            "{} {value}: give a finite number (a contact radius > 0)",
+            given.flag()
+        );
+    }
+    let s = match given {
+        Given::Load => ctx.state_at_load(value),
+        Given::Displacement => ctx.state_at_approach(value),
+        Given::Radius => ctx.state_at_radius(value),
+    };
+    let cols = [
+        "lambda",
+        "stress_ratio",
+        "range_ratio",
+        "load",
+        "A",
+        "approach",
+        "c1",
+        "c2",
+    ];
+    let vals = [lambda, rho, eta, s.load, s.a, s.approach, s.c[0], s.c[1]];
+    let text = match a.format.unwrap_or(Format::Text) {
+        Format::Json => {
+            let mut m: serde_json::Map<_, _> = cols
+                .iter()
+                .zip(vals)
+                .map(|(k, v)| (k.to_string(), json_num(v)))
+                .collect();
+            m.insert("load_stable".into(), json!(s.load_stable));
+            m.insert("displacement_stable".into(), json!(s.displacement_stable));
+            m.insert("status".into(), json!(s.status.name()));
+            m.insert("control".into(), json!(given.name()));
+            serde_json::to_string_pretty(&serde_json::Value::Object(m))? + "\n"
+        }
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(cols.iter().chain(&["status"]))?;
+            let mut row: Vec<String> = vals.iter().map(|&v| fmt17(v)).collect();
+            row.push(s.status.name().to_string());
+            w.write_record(row)?;
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        Format::Text => format!(
+            "two zones (stress ratio {rho}, range ratio {eta}; units on w1 + w2): load {}, A {}, approach {}, c1 {}, c2 {}, status {}\n",
+            vals[3], vals[4], vals[5], vals[6], vals[7], s.status.name()
+        ),
     };
     write_output(&a.output, text.as_bytes())
 }

@@ -29,6 +29,13 @@ pub struct ProfileArgs {
     /// The load in N, with a scene.
     #[arg(long)]
     pub load_n: Option<f64>,
+    /// A second Dugdale zone (e.g. a water meniscus): its stress over the solid's, s2/s1; then
+    /// --lambda is the solid's and units are built on the total w (docs/PHYSICS.md section 10).
+    #[arg(long, requires = "range_ratio", conflicts_with_all = ["scene", "preset"])]
+    pub stress_ratio: Option<f64>,
+    /// The second zone's range over the solid's, h2/h1.
+    #[arg(long, requires = "stress_ratio")]
+    pub range_ratio: Option<f64>,
     /// Sampling points on the uniform part of the r grid (more are added near a and c).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
@@ -54,6 +61,9 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+        return run_two_zone(&a, rho, eta, &figure, &print);
+    }
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(crate::cli::scene::read_scene(f)?),
         (None, Some(p)) => Some(crate::cli::scene::preset_named(p)?),
@@ -121,6 +131,70 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         md.a.map_or("-".into(), crate::solver::domain::short),
         md.c.map_or("-".into(), crate::solver::domain::short),
         md.energy_release_rate_over_w.unwrap_or(f64::NAN)
+    );
+    Ok(())
+}
+
+/// The normalised state (--load, --approach or --radius-a) of the solid's lambda and a second
+/// zone: the same outputs as the MD profile.
+fn run_two_zone(
+    a: &ProfileArgs,
+    rho: f64,
+    eta: f64,
+    figure: &crate::render::Outputs,
+    print: &crate::render::Print,
+) -> anyhow::Result<()> {
+    use crate::profile_two_zone::{two_zone_profile, TwoZoneProfileError};
+    let l = a
+        .lambda
+        .context("give --lambda (the solid's Maugis parameter)")?;
+    if a.load_n.is_some() {
+        bail!("--load-n needs a scene (--scene or --preset)");
+    }
+    let (given, flag) = match (a.load, a.approach, a.radius_a) {
+        (Some(p), None, None) => (Given::Load(p), "--load"),
+        (None, Some(d), None) => (Given::Approach(d), "--approach"),
+        (None, None, Some(r)) => (Given::Radius(r), "--radius-a"),
+        _ => bail!("give one of --load, --approach or --radius-a"),
+    };
+    let p = match two_zone_profile(l, rho, eta, given, a.points) {
+        Ok(p) => p,
+        Err(e @ TwoZoneProfileError::Points(_)) => {
+            bail!(super::with_flags(&e.to_string(), &[("points", "--points")]))
+        }
+        Err(e @ TwoZoneProfileError::Zones(_)) => {
+            bail!("--lambda {l}, --stress-ratio {rho}, --range-ratio {eta}: {e}")
+        }
+        Err(e) => bail!("{flag}: {e}"),
+    };
+    // The plot and CSV take the models as an MD profile's.
+    let as_md = Profile {
+        lambda: l,
+        units: p.units,
+        dugdale_range: p.zone_range[0],
+        dugdale_stress: p.zone_stress[0] + p.zone_stress[1],
+        models: p.models.clone(),
+        warnings: p.warnings.clone(),
+    };
+    let text = match a.format {
+        Format::Csv => profile_csv(&as_md)?,
+        _ => serde_json::to_string_pretty(&p)? + "\n",
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Profile, print, figure, &|r| {
+            crate::render::plots::profile(r, &as_md)
+        })
+        .context("drawing the profile")?;
+    }
+    let m = &p.models[0];
+    eprintln!(
+        "lambda = {l} (solid), stress ratio {rho}, range ratio {eta}, load {}: a = {}, zone edges c1 = {}, c2 = {}, J/(w1 + w2) = {:.12}",
+        crate::solver::domain::short(m.load),
+        m.a.map_or("-".into(), crate::solver::domain::short),
+        crate::solver::domain::short(p.zone_edges[0]),
+        crate::solver::domain::short(p.zone_edges[1]),
+        p.energy_release_rate_over_w
     );
     Ok(())
 }

@@ -357,7 +357,7 @@ pub fn pressure(zones: &Zones, p: &TwoZonePoint, r: f64) -> f64 {
         if r < a {
             let w = ((a - r) * (a + r) / ((p.c[i] - a) * (p.c[i] + a))).sqrt();
             s += -0.5 * l + l / PI * w.atan();
-        } else if r < p.c[i] {
+        } else if r <= p.c[i] {
             s -= 0.5 * l;
         }
     }

@@ -752,13 +752,14 @@ where
         )
     };
     let colour = |m: &str| match m {
-        "md" => (BLACK, 4),
+        "md" | "two_zone" => (BLACK, 4),
         "hertz" => (GRAY_, 2),
         "dmt" => (BLUE_, 2),
         _ => (ORANGE_, 2),
     };
     let label = |m: &str| match m {
         "md" => "Maugis-Dugdale",
+        "two_zone" => "two Dugdale zones",
         "hertz" => "Hertz",
         "dmt" => "DMT",
         _ => "JKR",

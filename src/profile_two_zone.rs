@@ -1,0 +1,158 @@
+//! The pressure and gap of a two-zone state (the solid's Dugdale zone and a second one, e.g. a
+//! water meniscus; docs/PHYSICS.md section 10), beside Hertz, DMT and JKR of the total w at the
+//! same load. Units built on the total w, as in [`crate::solver::two_zone`].
+
+use crate::physics::two_zone::Zones;
+use crate::profile::{closed_form_models, radii, Given, ModelProfile, MAX_PROFILE_POINTS};
+use crate::solver::two_zone::{TwoZoneContext, TwoZoneState};
+use crate::solver::Status;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// The profile of one two-zone state, and the closed forms of the total w at its load.
+#[derive(Clone, Debug, Serialize)]
+pub struct TwoZoneProfile {
+    /// The solid's Maugis parameter (on its own w1), and the second zone's stress and range
+    /// over the solid's.
+    pub lambda: f64,
+    pub stress_ratio: f64,
+    pub range_ratio: f64,
+    pub units: &'static str,
+    /// Each zone's Dugdale stress (pressure unit) and range (gap unit): solid, second zone.
+    pub zone_stress: [f64; 2],
+    pub zone_range: [f64; 2],
+    /// w1/w and w2/w.
+    pub work_share: [f64; 2],
+    /// The zones' outer radii c1 (solid) and c2, where the gap equals each range.
+    pub zone_edges: [f64; 2],
+    pub load_stable: bool,
+    pub displacement_stable: bool,
+    /// The J-integral through both zones over w1 + w2, sum of stress times the gap at each
+    /// zone's edge: 1 at equilibrium.
+    pub energy_release_rate_over_w: f64,
+    /// `two_zone` (its c is the outer of c1, c2), then Hertz, DMT and JKR of the total w.
+    pub models: Vec<ModelProfile>,
+    pub warnings: Vec<String>,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum TwoZoneProfileError {
+    #[error("{0}")]
+    Zones(String),
+    #[error("the two-zone curve could not be computed (`{}`)", .0.name())]
+    Curve(Status),
+    #[error("the two-zone state is `{}`: no contact there, so no profile (give a load above the pull-off, an approach above the jump-out, or a radius > 0)", .0.name())]
+    NoState(Status),
+    #[error("points {0} is out of range: give 16..=100000 sampling radii")]
+    Points(usize),
+}
+
+/// The two-zone state fixed by `given` for the solid's `lambda` and the second zone's stress
+/// ratio `rho` and range ratio `eta`, sampled at about `points` radii.
+pub fn two_zone_profile(
+    lambda: f64,
+    rho: f64,
+    eta: f64,
+    given: Given,
+    points: usize,
+) -> Result<TwoZoneProfile, TwoZoneProfileError> {
+    if !(16..=MAX_PROFILE_POINTS).contains(&points) {
+        return Err(TwoZoneProfileError::Points(points));
+    }
+    let zones =
+        Zones::from_ratios(lambda, rho, eta).map_err(|e| TwoZoneProfileError::Zones(e.0))?;
+    let ctx = TwoZoneContext::new(zones).map_err(TwoZoneProfileError::Curve)?;
+    let mut s = match given {
+        Given::Load(p) => ctx.state_at_load(p),
+        Given::Approach(d) => ctx.state_at_approach(d),
+        Given::Radius(a) => ctx.state_at_radius(a),
+    };
+    if s.status != Status::Ok {
+        return Err(TwoZoneProfileError::NoState(s.status));
+    }
+    // Each edge from mu as the MD profile computes it (the same value to rounding), so that
+    // rho = 0 gives the MD profile's grid and numbers.
+    for i in 0..2 {
+        let mm = s.m_minus_1[i];
+        if mm > 0.0 {
+            s.c[i] = (1.0 + mm * (mm + 2.0)).sqrt() * s.a;
+        }
+    }
+    let r = sample_radii(&s, points);
+    let gap_at = |i: usize| {
+        if zones.lambda[i] > 0.0 {
+            ctx.gap(&s, s.c[i])
+        } else {
+            0.0
+        }
+    };
+    // J = sum of stress_i h(c_i); w = pi stress_i h_i summed is 1 in these units.
+    let j = 0.5 * PI * (zones.lambda[0] * gap_at(0) + zones.lambda[1] * gap_at(1));
+    let c_out = s.c[0].max(s.c[1]);
+    // Both stresses act out to the inner edge of the zones present.
+    let c_in =
+        s.c.iter()
+            .copied()
+            .filter(|&c| c > s.a)
+            .fold(c_out, f64::min);
+    let tz = ModelProfile {
+        model: "two_zone",
+        status: "ok",
+        a: Some(s.a),
+        c: Some(c_out),
+        load: s.load,
+        approach: Some(s.approach),
+        pressure: r.iter().map(|&x| Some(ctx.pressure(&s, x))).collect(),
+        gap: r.iter().map(|&x| ctx.gap(&s, x)).collect(),
+        r: r.clone(),
+        max_tension: Some(0.5 * (zones.lambda[0] + zones.lambda[1])),
+        max_tension_at: Some((s.a, c_in)),
+        stress_intensity: Some(0.0),
+        energy_release_rate_over_w: Some(j),
+        notes: vec![
+            "the stress is bounded: each zone's Dugdale stress acts from a to its edge c_i".into(),
+        ],
+    };
+    let [hertz, dmt, jkr] = closed_form_models(s.load, &r);
+    Ok(TwoZoneProfile {
+        lambda,
+        stress_ratio: rho,
+        range_ratio: eta,
+        units: "normalised",
+        zone_stress: zones.lambda.map(|l| 0.5 * l),
+        zone_range: zones.range,
+        work_share: [zones.work_share(0), zones.work_share(1)],
+        zone_edges: s.c,
+        load_stable: s.load_stable,
+        displacement_stable: s.displacement_stable,
+        energy_release_rate_over_w: j,
+        models: vec![tz, hertz, dmt, jkr],
+        warnings: Vec::new(),
+    })
+}
+
+/// The MD profile's grid, with both zone edges and the turn of each zone's stress inside the
+/// contact resolved.
+fn sample_radii(s: &TwoZoneState, points: usize) -> Vec<f64> {
+    use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
+    let a = s.a;
+    let closed = [hertz_radius(s.load), dmt_radius(s.load), jkr_radius(s.load)];
+    let mut edges = vec![a, s.c[0], s.c[1]];
+    edges.extend(closed.iter().flatten().filter(|&&x| x > 0.0));
+    let r_max = 1.5 * edges.iter().fold(0.0f64, |m, &x| m.max(x));
+    let mut r = radii(r_max, points, &edges);
+    for mm in s.m_minus_1 {
+        if mm > 0.0 {
+            let d0 = mm * (mm + 2.0) / 2.0;
+            r.extend((-160..=240).filter_map(|k| {
+                let d = d0 * 10f64.powf(k as f64 / 80.0);
+                (d > 1e-12 && d < 1.0).then_some(a * (1.0 - d))
+            }));
+        }
+    }
+    let n_in = 4 * points;
+    r.extend((0..n_in).map(|i| a * (0.5 * PI * i as f64 / n_in as f64).sin()));
+    r.sort_by(|a, b| a.total_cmp(b));
+    r.dedup();
+    r
+}
