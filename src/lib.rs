@@ -123,6 +123,7 @@ pub mod map;
 pub mod physics;
 #[allow(missing_docs)] // not yet documented item by item
 pub mod profile;
+#[allow(missing_docs)] // not yet documented item by item
 pub mod profile_two_zone;
 pub mod progress;
 #[cfg(feature = "render")]
