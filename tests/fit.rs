@@ -523,3 +523,66 @@ fn lambda_near_the_jkr_end_with_a_soft_spring_is_bounded_from_below_only() {
         assert!(l68[1].is_none() && l68[0].unwrap_or(0.0) >= l[0].unwrap_or(0.0));
     });
 }
+
+/// A file that numbers its segments its own way (a pause 0, the approach 1, a dwell 2, the
+/// retract 3, as JPK's stress-relaxation files do) is read with approach and retract from the
+/// heights and the pause and dwell left out: the same fit as the two segments alone.
+#[test]
+fn instrument_segment_numbers_with_a_pause_and_a_dwell_give_the_same_fit() {
+    let (s, opt) = case(Model::Md, 1.0, 2.0, 0.0, 1);
+    let c = synthetic(&s);
+    let fo = FitOptions {
+        segments: tabor::fit::Segments::Both,
+        ..opt
+    };
+    let mut rows = String::from("segment,height_m,force_n\n");
+    let (h0, f0) = (c.height[0], c.force[0]);
+    for _ in 0..5 {
+        rows += &format!("0,{h0:e},{f0:e}\n");
+    }
+    let turn = c
+        .segment
+        .iter()
+        .position(|&d| d == tabor::fit::Direction::Retract)
+        .unwrap();
+    for i in 0..c.len() {
+        if i == turn {
+            // The dwell: the base held at the turn while the force relaxes a little.
+            for k in 0..20 {
+                let f = c.force[turn - 1] * (1.0 - 0.01 * k as f64 / 20.0);
+                rows += &format!("2,{:e},{f:e}\n", c.height[turn - 1]);
+            }
+        }
+        let id = if i < turn { 1 } else { 3 };
+        rows += &format!("{id},{:e},{:e}\n", c.height[i], c.force[i]);
+    }
+    let read = tabor::fit::data::parse_csv("dwell.csv", rows.as_bytes()).unwrap();
+    assert_eq!(read.len(), 1);
+    let r = fit_curve(&read[0], &fo);
+    let want = fit_curve(&c, &fo);
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    let (a, b) = (r.md.as_ref().unwrap(), want.md.as_ref().unwrap());
+    for (x, y, what) in [
+        (a.e_star_pa, b.e_star_pa, "E*"),
+        (a.work_of_adhesion_j_m2, b.work_of_adhesion_j_m2, "w"),
+        (a.lambda.unwrap(), b.lambda.unwrap(), "lambda"),
+    ] {
+        assert!(rel(x, y) < 1e-10, "{what}: {x} against {y}");
+    }
+    let dropped = r
+        .warnings
+        .iter()
+        .filter(|w| w.contains("a dwell, left out"))
+        .count();
+    assert_eq!(dropped, 2, "{:?}", r.warnings);
+    // Ids other than 0/1 that cannot be told apart by the heights: that curve's own status.
+    let flat = "segment,height_m,force_n\n2,1e-8,0\n2,2e-8,0\n2,3e-8,0\n2,4e-8,0\n2,5e-8,0\n";
+    let read = tabor::fit::data::parse_csv("flat.csv", flat.as_bytes()).unwrap();
+    let r = fit_curve(&read[0], &fo);
+    assert_eq!(r.status, FitStatus::InvalidInput);
+    assert!(
+        r.message.contains("approach and retract are not separated"),
+        "{}",
+        r.message
+    );
+}

@@ -184,6 +184,7 @@ fn retract(lambda: f64, k: f64, n: usize) -> Curve {
         segment: vec![Direction::Retract; deltas.len()],
         height: deltas.iter().map(|d| ZC - d * du).collect(),
         force: load.iter().map(|p| p * fu).collect(),
+        ..Curve::default()
     }
 }
 

@@ -15,6 +15,11 @@ pub struct Curve {
     pub segment: Vec<Direction>,
     pub height: Vec<f64>,
     pub force: Vec<f64>,
+    /// What reading did to the curve (a dwell left out, one segment split): fit warnings.
+    pub notes: Vec<String>,
+    /// Why the curve cannot be fitted as read (approach and retract not separated), if so:
+    /// it gets the status invalid_input and the others go on.
+    pub refused: Option<String>,
 }
 
 impl Curve {
@@ -75,18 +80,62 @@ impl<T: std::io::Read + std::io::Seek> ReadSeek for T {}
 /// The zip local-file header: an NPZ, whatever its name.
 const ZIP_MAGIC: &[u8; 4] = b"PK\x03\x04";
 
-fn segment_of(s: &str) -> Option<Direction> {
+/// A segment cell as an id: 0 approach, 1 retract (or their names), or the instrument's own
+/// number (a pause, a dwell: resolved from the heights, see [`super::segments`]).
+fn segment_of(s: &str) -> Option<i64> {
     match s.trim().to_ascii_lowercase().as_str() {
-        "approach" | "0" | "extend" | "trace" => Some(Direction::Approach),
-        "retract" | "1" | "retrace" => Some(Direction::Retract),
-        _ => None,
+        "approach" | "extend" | "trace" => Some(0),
+        "retract" | "retrace" => Some(1),
+        v => v.parse::<i64>().ok().filter(|&i| (0..=1000).contains(&i)),
     }
+}
+
+/// Directions from the segment ids: 0 and 1 as they are; a curve with any other id has its
+/// approach and retract taken from its heights (dwells left out, with a note), or is refused
+/// with the reason where they cannot be told apart.
+fn resolve_segments(mut c: Curve, ids: &[i64]) -> Curve {
+    if ids.iter().all(|&i| i == 0 || i == 1) {
+        c.segment = ids
+            .iter()
+            .map(|&i| {
+                if i == 0 {
+                    Direction::Approach
+                } else {
+                    Direction::Retract
+                }
+            })
+            .collect();
+        return c;
+    }
+    match super::segments::plan_segments(&c.height, ids) {
+        Err(m) => {
+            c.segment = vec![Direction::Approach; ids.len()];
+            c.refused = Some(m);
+        }
+        Ok(plan) => {
+            let keep: Vec<bool> = plan.direction.iter().map(Option::is_some).collect();
+            let pick = |v: &[f64]| -> Vec<f64> {
+                v.iter()
+                    .zip(&keep)
+                    .filter(|(_, &k)| k)
+                    .map(|(x, _)| *x)
+                    .collect()
+            };
+            c.height = pick(&c.height);
+            c.force = pick(&c.force);
+            c.segment = plan.direction.into_iter().flatten().collect();
+            c.notes = plan.notes;
+        }
+    }
+    c
 }
 
 /// Groups rows into curves by id, in order of first appearance.
 #[derive(Default)]
 struct Grouper {
     curves: Vec<Curve>,
+    /// Each curve's segment ids, resolved into directions by `finish`.
+    ids: Vec<Vec<i64>>,
     index: HashMap<String, usize>,
     points: usize,
 }
@@ -97,7 +146,7 @@ impl Grouper {
         id: String,
         x: Option<i64>,
         y: Option<i64>,
-        seg: Direction,
+        seg: i64,
         h: f64,
         f: f64,
     ) -> Result<(), String> {
@@ -116,6 +165,7 @@ impl Grouper {
                     y,
                     ..Default::default()
                 });
+                self.ids.push(Vec::new());
                 self.index.insert(id, self.curves.len() - 1);
                 self.curves.len() - 1
             }
@@ -127,10 +177,19 @@ impl Grouper {
                 c.id
             ));
         }
-        c.segment.push(seg);
+        self.ids[k].push(seg);
         c.height.push(h);
         c.force.push(f);
         Ok(())
+    }
+
+    /// The curves, each with its directions.
+    fn finish(self) -> Vec<Curve> {
+        self.curves
+            .into_iter()
+            .zip(&self.ids)
+            .map(|(c, ids)| resolve_segments(c, ids))
+            .collect()
     }
 }
 
@@ -214,8 +273,13 @@ fn parse_csv_reader(path: &str, input: impl std::io::Read) -> Result<CurveSet, D
             value: value(c).to_string(),
             what,
         };
-        let seg = segment_of(value(cs))
-            .ok_or_else(|| err("segment", cs, "is not approach/retract or 0/1"))?;
+        let seg = segment_of(value(cs)).ok_or_else(|| {
+            err(
+                "segment",
+                cs,
+                "is not approach/retract, 0/1, or an instrument's segment number (0..1000)",
+            )
+        })?;
         // Non-finite numbers are kept: the curve gets a status, the others go on.
         let num = |column, c| {
             let v = value(c);
@@ -247,7 +311,7 @@ fn parse_csv_reader(path: &str, input: impl std::io::Read) -> Result<CurveSet, D
             path: path.to_string(),
         });
     }
-    Ok(g.curves)
+    Ok(g.finish())
 }
 
 fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataError> {
@@ -374,11 +438,10 @@ fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataE
     let mut g = Grouper::default();
     for i in 0..n {
         let s = match seg[i] {
-            0.0 => Direction::Approach,
-            1.0 => Direction::Retract,
+            v if v.fract() == 0.0 && (0.0..=1000.0).contains(&v) => v as i64,
             v => {
                 return Err(npz_err(format!(
-                    "segment[{i}] = {v}: use 0 for approach and 1 for retract"
+                    "segment[{i}] = {v}: use 0 for approach and 1 for retract (or the instrument's segment numbers, 0..1000)"
                 )))
             }
         };
@@ -396,5 +459,5 @@ fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataE
             path: path.to_string(),
         });
     }
-    Ok(g.curves)
+    Ok(g.finish())
 }

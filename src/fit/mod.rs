@@ -502,7 +502,10 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
             ));
         }
     }
-    let mut notes = Vec::new();
+    if let Some(m) = &curve.refused {
+        return bad(m.clone());
+    }
+    let mut notes = curve.notes.clone();
     if let Err(m) = check_cycles(curve) {
         return bad(m);
     }
@@ -2333,7 +2336,9 @@ mod tests {
     fn a_contact_at_the_end_of_a_mostly_flat_approach_is_not_a_spike() {
         // 1000 baseline points with a little deterministic noise, then the contact: a ramp of
         // 40 points far beyond the segment's quantiles, ending the segment.
-        let mut f: Vec<f64> = (0..1000).map(|i| 1e-3 * ((i * 7919) % 13) as f64 / 13.0).collect();
+        let mut f: Vec<f64> = (0..1000)
+            .map(|i| 1e-3 * ((i * 7919) % 13) as f64 / 13.0)
+            .collect();
         f.extend((1..=40).map(|k| k as f64 / 40.0));
         assert_eq!(spikes(&f), Vec::<usize>::new());
         // Isolated glitches inside it are spikes, one point or a run of up to three.

@@ -92,5 +92,6 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
         segment,
         height,
         force,
+        ..Curve::default()
     })
 }

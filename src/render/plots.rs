@@ -893,9 +893,11 @@ where
     let p = md.params();
     let md_f = crate::fit::model_forces(md.model, &p, opt.radius, opt.spring, &hs, &dirs, None);
     let (lo, hi) = md_f.map_or((v.fmin, v.fmax), |(f, _, _, _)| {
-        f.iter().filter(|x| x.is_finite()).fold((v.fmin, v.fmax), |(a, b), &x| {
-            (a.min(x + p.f0), b.max(x + p.f0))
-        })
+        f.iter()
+            .filter(|x| x.is_finite())
+            .fold((v.fmin, v.fmax), |(a, b), &x| {
+                (a.min(x + p.f0), b.max(x + p.f0))
+            })
     });
     let (lo, hi) = (lo.min(v.fmin - pad), hi.max(v.fmax + pad));
     let mut chart = builder(&top, "").build_cartesian_2d(v.xmin..v.xmax, lo * 1e9..hi * 1e9)?;
