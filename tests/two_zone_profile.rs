@@ -374,3 +374,37 @@ fn solve_gives_the_state_of_the_two_zone_context() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!o.status.success() && err.trim().lines().count() == 1 && err.contains("stress ratio"));
 }
+
+#[test]
+fn a_wet_scene_profile_is_the_scene_state_in_si() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("wet.json");
+    let mut scene: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/si_tip_40rh.json").unwrap())
+            .unwrap();
+    scene["loads_n"] = serde_json::json!([2e-9]);
+    std::fs::write(&path, scene.to_string()).unwrap();
+    let f = path.to_str().unwrap();
+    let o = tabor(&["scene", f, "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let want_a = v["loads"][0]["contact_radius_m"].as_f64().unwrap();
+    let o = tabor(&["profile", "--scene", f, "--load-n", "2e-9"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let p: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let m = &p["models"][0];
+    assert_eq!(m["model"], "two_zone");
+    assert_eq!(p["units"], "SI");
+    assert!(rel(m["load"].as_f64().unwrap(), 2e-9) < 1e-12);
+    assert!(
+        rel(m["a"].as_f64().unwrap(), want_a) < 1e-9,
+        "{m:?} {want_a}"
+    );
+    // In SI, J = sum of stress times the gap at each edge is w1 + w2 = 0.1 + 2 gamma cos(theta).
+    let w2 = 2.0 * 0.072 * (20f64).to_radians().cos();
+    let (s, h) = (&p["zone_stress"], &p["zone_range"]);
+    let w = s[0].as_f64().unwrap() * h[0].as_f64().unwrap()
+        + s[1].as_f64().unwrap() * h[1].as_f64().unwrap();
+    assert!(rel(w, 0.1 + w2) < 1e-9, "{w} {}", 0.1 + w2);
+    assert!(rel(s[0].as_f64().unwrap() * h[0].as_f64().unwrap(), 0.1) < 1e-9);
+}

@@ -96,6 +96,13 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
             (l, g)
         }
     };
+    if let (Some(s), Some(c)) = (&scene, &contact) {
+        if let Some(h) = &s.humidity {
+            if let Some(m) = h.meniscus(c)? {
+                return run_wet(&a, c, &m, given, &figure, &print);
+            }
+        }
+    }
     let p = profile(lambda, given, a.points);
     if let Err(e @ crate::profile::ProfileError::Points(_)) = &p {
         bail!(super::with_flags(&e.to_string(), &[("points", "--points")]));
@@ -167,26 +174,7 @@ fn run_two_zone(
         }
         Err(e) => bail!("{flag}: {e}"),
     };
-    // The plot and CSV take the models as an MD profile's.
-    let as_md = Profile {
-        lambda: l,
-        units: p.units,
-        dugdale_range: p.zone_range[0],
-        dugdale_stress: p.zone_stress[0] + p.zone_stress[1],
-        models: p.models.clone(),
-        warnings: p.warnings.clone(),
-    };
-    let text = match a.format {
-        Format::Csv => profile_csv(&as_md)?,
-        _ => serde_json::to_string_pretty(&p)? + "\n",
-    };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Profile, print, figure, &|r| {
-            crate::render::plots::profile(r, &as_md)
-        })
-        .context("drawing the profile")?;
-    }
+    write_two_zone(a, &p, figure, print)?;
     let m = &p.models[0];
     eprintln!(
         "lambda = {l} (solid), stress ratio {rho}, range ratio {eta}, load {}: a = {}, zone edges c1 = {}, c2 = {}, J/(w1 + w2) = {:.12}",
@@ -196,6 +184,64 @@ fn run_two_zone(
         crate::solver::domain::short(p.zone_edges[1]),
         p.energy_release_rate_over_w
     );
+    Ok(())
+}
+
+/// A scene with a meniscus: the two-zone profile of solid and meniscus in SI units.
+fn run_wet(
+    a: &ProfileArgs,
+    c: &crate::physics::params::Contact,
+    m: &crate::scene::humidity::Meniscus,
+    given: Given,
+    figure: &crate::render::Outputs,
+    print: &crate::render::Print,
+) -> anyhow::Result<()> {
+    let (_, u) = crate::scene::humidity::wet_context(c, m)?;
+    let (s1, h1) = (c.s0, c.work / c.s0);
+    let (rho, eta) = (m.laplace_pressure_pa / s1, m.range_m / h1);
+    // The load in the units of the total w.
+    let given = match given {
+        Given::Load(f) => Given::Load(f * c.force_scale() / u.load),
+        g => g,
+    };
+    let p = crate::profile_two_zone::two_zone_profile(c.lambda(), rho, eta, given, a.points)
+        .context("--load-n")?;
+    let mut p = p.to_si(&u);
+    p.warnings
+        .extend(crate::scene::humidity::meniscus_warnings(m, c));
+    write_two_zone(a, &p, figure, print)
+}
+
+/// JSON or CSV, and the plot, of a two-zone profile.
+fn write_two_zone(
+    a: &ProfileArgs,
+    p: &crate::profile_two_zone::TwoZoneProfile,
+    figure: &crate::render::Outputs,
+    print: &crate::render::Print,
+) -> anyhow::Result<()> {
+    // The plot and CSV take the models as an MD profile's.
+    let as_md = Profile {
+        lambda: p.lambda,
+        units: p.units,
+        dugdale_range: p.zone_range[0],
+        dugdale_stress: p.zone_stress[0] + p.zone_stress[1],
+        models: p.models.clone(),
+        warnings: p.warnings.clone(),
+    };
+    let text = match a.format {
+        Format::Csv => profile_csv(&as_md)?,
+        _ => serde_json::to_string_pretty(p)? + "\n",
+    };
+    write_output(&a.output, text.as_bytes())?;
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Profile, print, figure, &|r| {
+            crate::render::plots::profile(r, &as_md)
+        })
+        .context("drawing the profile")?;
+    }
+    for w in &p.warnings {
+        eprintln!("warning: {w}");
+    }
     Ok(())
 }
 
