@@ -579,15 +579,18 @@ fn fit_curves<'py>(
     })
 }
 
-/// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`).
+/// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`); with
+/// `stress_ratio` and `range_ratio`, of the solid plus a second zone (a meniscus).
 #[pyfunction]
-#[pyo3(signature = (lam, drive, stiffness, max_load))]
+#[pyo3(signature = (lam, drive, stiffness, max_load, stress_ratio=None, range_ratio=None))]
 fn cycle<'py>(
     py: Python<'py>,
     lam: f64,
     drive: &str,
     stiffness: Option<f64>,
     max_load: f64,
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use tabor::cycle::Drive;
     let drive = match (drive, stiffness) {
@@ -606,7 +609,15 @@ fn cycle<'py>(
             )))
         }
     };
-    run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?))
+    match (stress_ratio, range_ratio) {
+        (None, None) => run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?)),
+        (Some(rho), Some(eta)) => run_py(py, move || {
+            Ok(tabor::cycle::two_zone::cycle(lam, rho, eta, drive, max_load)?)
+        }),
+        _ => Err(PyValueError::new_err(
+            "give stress_ratio and range_ratio together (the second zone's stress and range over the solid's)",
+        )),
+    }
 }
 
 /// Pressure and gap profiles (JSON): `given` load|approach|radius.

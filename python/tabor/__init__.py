@@ -647,15 +647,19 @@ def _refused(message):
     return r
 
 
-def cycle(lam, drive="grips", stiffness=None, max_load=2.0):
+def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
+          range_ratio=None):
     """An approach-retract cycle (``tabor cycle``): ``drive`` ``"grips"``, ``"dead_load"`` or
     ``"spring"`` (normalised ``stiffness``). Returns a Result with the followed path as arrays
     ``phase``, ``branch``, ``approach``, ``load``, ``A``, ``C``, ``control``, ``jump`` and the
     metadata ``hysteresis`` (energy lost per cycle, normalised; None under dead load) and
-    ``jumps``."""
-    c = _tabor.cycle(_real(lam, "lam"), drive,
-                                None if stiffness is None else _real(stiffness, "stiffness"),
-                                _real(max_load, "max_load"))
+    ``jumps``. With ``stress_ratio`` and ``range_ratio`` (a second zone, a water meniscus:
+    its stress and range over the solid's; ``lam`` is the solid's) the cycle of both zones, in
+    the units of the total w (``tabor cycle --stress-ratio --range-ratio``)."""
+    opt = lambda v, n: None if v is None else _real(v, n)
+    c = _tabor.cycle(_real(lam, "lam"), drive, opt(stiffness, "stiffness"),
+                     _real(max_load, "max_load"), opt(stress_ratio, "stress_ratio"),
+                     opt(range_ratio, "range_ratio"))
     steps = c["steps"]
     out = {
         "phase": np.array([s["phase"] for s in steps]),

@@ -129,6 +129,8 @@ def cycle(
     drive: Literal["grips", "dead_load", "spring"] = "grips",
     stiffness: Optional[float] = None,
     max_load: float = 2.0,
+    stress_ratio: Optional[float] = None,
+    range_ratio: Optional[float] = None,
 ) -> Result: ...
 def profile(
     lam: float,

@@ -46,3 +46,25 @@ def test_bad_humidity_is_one_value_error():
     scene["humidity"] = {"relative_humidity": 1.5, "contact_angle_deg": 20.0}
     with pytest.raises(ValueError, match="relative_humidity"):
         tabor.Scene(scene)
+
+
+def test_wet_cycle_matches_the_command_line_and_its_md_limit():
+    args = ["cycle", "--lambda", "2", "--stress-ratio", "0.3", "--range-ratio", "3",
+            "--format", "json"]
+    cli = json.loads(subprocess.run([tabor_bin(), *args], capture_output=True, text=True,
+                                    check=True).stdout)
+    c = tabor.cycle(2.0, stress_ratio=0.3, range_ratio=3.0)
+    assert c.metadata["hysteresis"] == cli["hysteresis"]
+    assert list(c["load"]) == [s["point"]["load"] for s in cli["steps"]]
+    # No meniscus (stress ratio 0): the dry cycle, number for number.
+    dry, md = tabor.cycle(2.0, stress_ratio=0.0, range_ratio=3.0), tabor.cycle(2.0)
+    assert np.array_equal(dry["load"], md["load"]) and dry.metadata["hysteresis"] == md.metadata["hysteresis"]
+
+
+@pytest.mark.parametrize("kw", [{"stress_ratio": -0.1, "range_ratio": 2.0},
+                                {"stress_ratio": 0.1},
+                                {"stress_ratio": 0.1, "range_ratio": float("nan")}])
+def test_bad_wet_cycle_is_one_value_error(kw):
+    with pytest.raises(ValueError) as e:
+        tabor.cycle(1.0, **kw)
+    assert "\n" not in str(e.value) and ("ratio" in str(e.value))

@@ -404,6 +404,13 @@ pub struct CycleArgs {
     /// Largest load of the approach (normalised).
     #[arg(long, default_value_t = 2.0)]
     pub max_load: f64,
+    /// A second Dugdale zone (a water meniscus): its stress over the solid's, s2/s1 (with
+    /// --range-ratio; loads and approaches then in the units of the total w).
+    #[arg(long, requires = "range_ratio")]
+    pub stress_ratio: Option<f64>,
+    /// The second zone's range over the solid's, h2/h1 (with --stress-ratio).
+    #[arg(long, requires = "stress_ratio")]
+    pub range_ratio: Option<f64>,
     #[arg(long, short, default_value = "-")]
     pub output: String,
     #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
@@ -423,6 +430,27 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let contact = scene.as_ref().map(crate::scene::contact_of).transpose()?;
+    // A scene with a meniscus: the two-zone cycle, its ratios and total-w units from the scene.
+    let wet = match (&scene, &contact) {
+        (Some(s), Some(c)) => match s
+            .humidity
+            .as_ref()
+            .map(|h| h.meniscus(c))
+            .transpose()?
+            .flatten()
+        {
+            Some(m) => Some(crate::scene::humidity::wet_ratios(c, &m)?),
+            None => None,
+        },
+        _ => None,
+    };
+    if contact.is_some() && a.stress_ratio.is_some() {
+        bail!("--stress-ratio and --range-ratio go with --lambda; a scene takes its meniscus from its \"humidity\" key");
+    }
+    let scale = |c: &crate::physics::params::Contact| match &wet {
+        Some((_, _, u)) => (u.load, u.approach),
+        None => (c.force_scale(), c.approach_scale()),
+    };
     let lambda = match (a.lambda, &contact) {
         (Some(l), None) => l,
         (None, Some(c)) => c.lambda(),
@@ -456,7 +484,8 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         DriveKind::Spring => {
             let k = match (a.stiffness, a.spring_n_m, &contact) {
                 (Some(k), None, _) => k,
-                (None, Some(k), Some(c)) => normalised_stiffness(k, c),
+                (None, Some(k), Some(c)) if wet.is_none() => normalised_stiffness(k, c),
+                (None, Some(k), Some(c)) => k * scale(c).1 / scale(c).0,
                 (None, Some(_), None) => bail!("--spring-n-m needs a scene (--scene or --preset) to normalise it; or give --stiffness"),
                 _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
             };
@@ -464,7 +493,15 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             Drive::Spring(k)
         }
     };
-    let c = cycle(lambda, drive, a.max_load)?;
+    let ratios = match (&wet, a.stress_ratio, a.range_ratio) {
+        (Some((rho, eta, _)), _, _) => Some((*rho, *eta)),
+        (None, Some(rho), Some(eta)) => Some((rho, eta)),
+        _ => None,
+    };
+    let c = match ratios {
+        Some((rho, eta)) => crate::cycle::two_zone::cycle(lambda, rho, eta, drive, a.max_load)?,
+        None => cycle(lambda, drive, a.max_load)?,
+    };
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
@@ -489,7 +526,13 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         }
     };
     write_output(&a.output, text.as_bytes())?;
-    eprintln!("lambda = {lambda:.4}, {:?}", c.drive);
+    match ratios {
+        Some((rho, eta)) => eprintln!(
+            "lambda = {lambda:.4} (solid), stress ratio {rho:.4}, range ratio {eta:.4} (units of the total w), {:?}",
+            c.drive
+        ),
+        None => eprintln!("lambda = {lambda:.4}, {:?}", c.drive),
+    }
     for j in &c.jumps {
         match &j.to {
             Some(to) => eprintln!("  {} jump: from (approach {:.6}, load {:.6}, A {:.6}) to (approach {:.6}, load {:.6}, A {:.6})", j.phase, j.from.approach, j.from.load, j.from.a, to.approach, to.load, to.a),
@@ -499,7 +542,7 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     match (c.hysteresis, &contact) {
         (Some(w), Some(ct)) => eprintln!(
             "  energy lost per cycle: {w:.6} (normalised) = {}",
-            si(w * ct.force_scale() * ct.approach_scale(), "J")
+            si(w * scale(ct).0 * scale(ct).1, "J")
         ),
         (Some(w), None) => eprintln!(
             "  energy lost per cycle: {w:.6} (in units of pi w R times the approach unit)"

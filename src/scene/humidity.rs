@@ -155,6 +155,18 @@ pub fn wet_context(c: &Contact, m: &Meniscus) -> Result<(TwoZoneContext, Units),
     Ok((ctx, units))
 }
 
+/// The meniscus as the two-zone cycle takes it: the stress ratio `s2/s1`, the range ratio
+/// `h2/h1` (the solid's range `w/s0`), and the units of the total w (for a spring in N/m and the
+/// energy lost in joules).
+pub fn wet_ratios(c: &Contact, m: &Meniscus) -> Result<(f64, f64, Units), ParamError> {
+    let (_, units) = wet_context(c, m)?;
+    Ok((
+        m.laplace_pressure_pa / c.s0,
+        m.range_m * c.s0 / c.work,
+        units,
+    ))
+}
+
 /// One relative humidity of a sweep: the pull-offs (load control, N; tensile negative).
 #[derive(Clone, Debug, Serialize)]
 #[allow(non_snake_case)]

@@ -178,6 +178,47 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     }
 }
 
+/// The pull-off (normalised, total w) of solid and meniscus under a cantilever of `k` N/m: the
+/// retract's jump off the contact curve in the two-zone cycle (`no_jump`, the displacement-
+/// controlled pull-off, where the contact is lost at zero radius without one).
+fn wet_cantilever_pulloff(
+    c: &Contact,
+    m: &humidity::Meniscus,
+    k: f64,
+    no_jump: f64,
+) -> Result<f64, ParamError> {
+    if !(k > 0.0 && k.is_finite()) {
+        return Err(ParamError::OutOfRange {
+            field: "control.cantilever_n_m",
+            value: k,
+            allowed: "> 0 (N/m)",
+        });
+    }
+    let (rho, eta, u) = humidity::wet_ratios(c, m)?;
+    let kbar = k * u.approach / u.load;
+    let cyc = crate::cycle::two_zone::cycle(
+        c.lambda(),
+        rho,
+        eta,
+        crate::cycle::Drive::Spring(kbar),
+        1.0,
+    )
+    .map_err(|_| ParamError::OutOfRange {
+        field: "control.cantilever_n_m",
+        value: k,
+        allowed: "a stiffness the two-zone cycle can follow (normalised value positive and finite)",
+    })?;
+    // As for the dry scene: the load where the retract leaves the contact curve by a jump.
+    Ok(cyc
+        .jumps
+        .iter()
+        .find(|j| {
+            j.phase == crate::cycle::Phase::Retract
+                && j.from.branch == crate::cycle::Branch::Contact
+        })
+        .map_or(no_jump, |j| j.from.load))
+}
+
 /// The scene's results for the solid plus the meniscus (the two-zone law), the dry pull-offs
 /// kept for comparison.
 fn wet_scene(
@@ -234,10 +275,8 @@ fn wet_scene(
     let under = match &s.control {
         None | Some(SceneControl::Load) => ctx.load_pulloff.load * fs,
         Some(SceneControl::Displacement) => ctx.disp_pulloff.load * fs,
-        Some(SceneControl::CantileverNM(_)) => {
-            return Err(ParamError::Missing(
-                "humidity with a cantilever control is not available yet: use \"control\": \"load\" or \"displacement\"",
-            ))
+        Some(SceneControl::CantileverNM(k)) => {
+            wet_cantilever_pulloff(c, &m, *k, ctx.disp_pulloff.load)? * fs
         }
     };
     let zero = ctx.state_at_load(0.0);

@@ -18,6 +18,8 @@ use crate::solver::context::x_at_radius;
 use crate::solver::LambdaContext;
 use serde::Serialize;
 
+pub mod two_zone;
+
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Drive {
@@ -206,10 +208,8 @@ fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
     }
 }
 
-/// The cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the solver's
-/// domain.
-pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
-    crate::solver::domain::check_lambda(lambda)?;
+/// The checks every law's cycle shares: the final load and the spring.
+fn check_drive(drive: Drive, max_load: f64) -> Result<(), crate::solver::SolveError> {
     if !(max_load > 0.0 && max_load <= 1e12) {
         return Err(crate::solver::domain::DomainError {
             name: "the largest load of the approach",
@@ -230,13 +230,43 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             .into());
         }
     }
+    Ok(())
+}
+
+/// The cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the solver's
+/// domain.
+pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
+    crate::solver::domain::check_lambda(lambda)?;
+    check_drive(drive, max_load)?;
     let path = equilibrium_path(lambda, max_load, 400);
-    let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
+    let f = follow(&path, drive);
+    let mut jumps = f.jumps;
+    refine_jump_outs(lambda, drive, &mut jumps);
+    let (steps, hysteresis, stable) = (f.steps, f.hysteresis, f.stable);
+    Ok(Cycle {
+        lambda,
+        drive,
+        path,
+        stable,
+        steps,
+        jumps,
+        hysteresis,
+    })
+}
+
+/// What a drive makes of an equilibrium path (any contact law's): the steps followed, the jumps
+/// at the folds of the control, the loop's area and each point's stability.
+struct Followed {
+    steps: Vec<Step>,
+    jumps: Vec<Jump>,
+    hysteresis: Option<f64>,
+    stable: Vec<bool>,
+}
+
+/// The approach: follow the path while the control rises (flat counts, as on the free segment
+/// under dead load); at a fold, jump forward to where the control is reached again.
+fn follow_approach(path: &[PathPoint], u: &[f64], steps: &mut Vec<Step>, jumps: &mut Vec<Jump>) {
     let n = path.len();
-    let mut steps = Vec::new();
-    let mut jumps = Vec::new();
-    // Approach: follow the path while the control rises (flat counts, as on the free segment
-    // under dead load); at a fold, jump forward to where the control is reached again.
     let mut i = 0;
     let mut jumped = false;
     loop {
@@ -254,7 +284,7 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             i += 1;
             continue;
         }
-        match landing_forward(&u, i, u[i]) {
+        match landing_forward(u, i, u[i]) {
             Some((j, t)) => {
                 let to = lerp(&path[j], &path[j + 1], t);
                 jumps.push(Jump {
@@ -273,9 +303,18 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             None => break,
         }
     }
-    // Retract: back down the path while the control falls; at a fold, jump back.
-    let mut i = n - 1;
-    let mut separated = false;
+}
+
+/// The retract: back down the path while the control falls; at a fold, jump back. Returns
+/// whether the surfaces separated for good.
+fn follow_retract(
+    path: &[PathPoint],
+    u: &[f64],
+    steps: &mut Vec<Step>,
+    jumps: &mut Vec<Jump>,
+) -> bool {
+    let mut i = path.len() - 1;
+    let mut jumped = false;
     loop {
         steps.push(Step {
             phase: Phase::Retract,
@@ -285,13 +324,13 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
         });
         jumped = false;
         if i == 0 {
-            break;
+            return false;
         }
         if u[i - 1] <= u[i] {
             i -= 1;
             continue;
         }
-        match landing_backward(&u, i, u[i]) {
+        match landing_backward(u, i, u[i]) {
             Some((j, t)) => {
                 let to = lerp(&path[j], &path[j + 1], t);
                 jumps.push(Jump {
@@ -313,31 +352,40 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
                     from: path[i],
                     to: None,
                 });
-                separated = true;
-                break;
+                return true;
             }
         }
     }
-    // The loop area, integral of P dD along approach then retract (trapezoids).
-    // The stretches followed both ways cancel exactly, but at large loads their terms dwarf the
-    // loop (1e17 against 0.5 at a final load of 1e10): Neumaier's compensated sum keeps it.
-    let hysteresis = (!separated).then(|| {
-        let (mut sum, mut comp) = (0.0f64, 0.0f64);
-        for s in steps.windows(2) {
-            let t = 0.5
-                * (s[0].point.load + s[1].point.load)
-                * (s[1].point.approach - s[0].point.approach);
-            let next = sum + t;
-            comp += if sum.abs() >= t.abs() {
-                (sum - next) + t
-            } else {
-                (t - next) + sum
-            };
-            sum = next;
-        }
-        (sum + comp).max(0.0)
-    });
-    refine_jump_outs(lambda, drive, &mut jumps);
+}
+
+/// The loop area, integral of P dD along approach then retract (trapezoids).
+/// The stretches followed both ways cancel exactly, but at large loads their terms dwarf the
+/// loop (1e17 against 0.5 at a final load of 1e10): Neumaier's compensated sum keeps it.
+fn loop_area(steps: &[Step]) -> f64 {
+    let (mut sum, mut comp) = (0.0f64, 0.0f64);
+    for s in steps.windows(2) {
+        let t =
+            0.5 * (s[0].point.load + s[1].point.load) * (s[1].point.approach - s[0].point.approach);
+        let next = sum + t;
+        comp += if sum.abs() >= t.abs() {
+            (sum - next) + t
+        } else {
+            (t - next) + sum
+        };
+        sum = next;
+    }
+    (sum + comp).max(0.0)
+}
+
+/// The shared part of every law's cycle: the path followed under `drive`.
+fn follow(path: &[PathPoint], drive: Drive) -> Followed {
+    let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
+    let n = path.len();
+    let mut steps = Vec::new();
+    let mut jumps = Vec::new();
+    follow_approach(path, &u, &mut steps, &mut jumps);
+    let separated = follow_retract(path, &u, &mut steps, &mut jumps);
+    let hysteresis = (!separated).then(|| loop_area(&steps));
     let stable = (0..n)
         .map(|i| {
             if i + 1 < n {
@@ -347,15 +395,12 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::s
             }
         })
         .collect();
-    Ok(Cycle {
-        lambda,
-        drive,
-        path,
-        stable,
+    Followed {
         steps,
         jumps,
         hysteresis,
-    })
+        stable,
+    }
 }
 
 /// The retract's jump from the contact branch is a fold of the exact curve: under rigid grips

@@ -1,0 +1,252 @@
+//! The two-zone (solid + meniscus) approach-retract cycle: its MD limits, its pull-offs against
+//! the two-zone solver's, the branches meeting, bad input, the wet cantilever scene and the
+//! command line.
+
+use tabor::cycle::{self, Branch, Cycle, Drive, Phase};
+use tabor::physics::two_zone::{Shape, Zones};
+use tabor::solver::two_zone::TwoZoneContext;
+
+fn wet(l: f64, rho: f64, eta: f64, d: Drive) -> Cycle {
+    cycle::two_zone::cycle(l, rho, eta, d, 2.0).unwrap()
+}
+
+fn same(a: &Cycle, b: &Cycle, tol: f64) {
+    assert_eq!(a.steps.len(), b.steps.len());
+    for (s, t) in a.steps.iter().zip(&b.steps) {
+        assert_eq!(
+            (s.phase, s.point.branch, s.jump),
+            (t.phase, t.point.branch, t.jump)
+        );
+        for (x, y) in [
+            (s.point.load, t.point.load),
+            (s.point.approach, t.point.approach),
+            (s.point.a, t.point.a),
+        ] {
+            assert!((x - y).abs() <= tol * (1.0 + y.abs()), "{x} vs {y}");
+        }
+    }
+    assert_eq!(a.jumps.len(), b.jumps.len());
+    for (j, k) in a.jumps.iter().zip(&b.jumps) {
+        assert!(
+            (j.from.load - k.from.load).abs() <= tol
+                && (j.from.approach - k.from.approach).abs() <= tol
+        );
+    }
+    match (a.hysteresis, b.hysteresis) {
+        (Some(x), Some(y)) => assert!((x - y).abs() <= tol * y, "{x} vs {y}"),
+        (x, y) => assert_eq!(x, y),
+    }
+}
+
+#[test]
+fn no_meniscus_or_one_range_is_the_md_cycle() {
+    for d in [Drive::RigidGrips, Drive::DeadLoad, Drive::Spring(0.7)] {
+        for l in [0.3, 2.0] {
+            // rho = 0: the solid alone, in its own units.
+            same(
+                &wet(l, 0.0, 3.0, d),
+                &cycle::cycle(l, d, 2.0).unwrap(),
+                1e-9,
+            );
+            // eta = 1: one range, MD with lambda_1 + lambda_2 in the total-w units.
+            let rho = 0.5;
+            let z = Zones::from_ratios(l, rho, 1.0).unwrap();
+            let total = z.lambda[0] + z.lambda[1];
+            assert!((total - l * (1.0f64 + rho).powf(2.0 / 3.0)).abs() < 1e-12);
+            same(
+                &wet(l, rho, 1.0, d),
+                &cycle::cycle(total, d, 2.0).unwrap(),
+                1e-9,
+            );
+        }
+    }
+}
+
+#[test]
+fn a_faint_meniscus_approaches_the_md_cycle() {
+    // Two ranges, so the two-zone path (its own sampling) is used: rho = 1e-7 moves the
+    // physics by ~1e-7, the rest is the two samplings' difference.
+    let (l, d) = (2.0, Drive::RigidGrips);
+    let w = wet(l, 1e-7, 3.0, d);
+    let md = cycle::cycle(l, d, 2.0).unwrap();
+    let out = |c: &Cycle| {
+        c.jumps
+            .iter()
+            .find(|j| j.phase == Phase::Retract)
+            .unwrap()
+            .from
+    };
+    let (a, b) = (out(&w), out(&md));
+    assert!(
+        (a.load - b.load).abs() < 1e-5 && (a.approach - b.approach).abs() < 1e-5,
+        "{a:?} {b:?}"
+    );
+    let (hw, hm) = (w.hysteresis.unwrap(), md.hysteresis.unwrap());
+    eprintln!("hysteresis {hw} vs MD {hm}");
+    assert!((hw / hm - 1.0).abs() < 2e-3, "{hw} vs {hm}");
+}
+
+#[test]
+fn pulloffs_are_the_solvers() {
+    for (l, rho, eta) in [(2.0, 0.3, 3.0), (0.5, 0.1, 5.0), (5.0, 0.05, 4.0)] {
+        let z = Zones::from_ratios(l, rho, eta).unwrap();
+        assert!(matches!(z.shape(), Shape::Two { .. }));
+        let ctx = TwoZoneContext::new(z).unwrap();
+        for (d, exact) in [
+            (Drive::RigidGrips, ctx.disp_pulloff),
+            (Drive::DeadLoad, ctx.load_pulloff),
+        ] {
+            let c = wet(l, rho, eta, d);
+            let j = c.jumps.iter().find(|j| j.phase == Phase::Retract).unwrap();
+            if exact.at_zero_radius() {
+                continue;
+            }
+            assert_eq!(j.from.branch, Branch::Contact);
+            assert!(
+                (j.from.load - exact.load).abs() < 1e-9
+                    && (j.from.approach - exact.approach).abs() < 1e-9
+            );
+            // The sampled fold, before the jump was put at the solver's pull-off, is beside it:
+            // the last retract step before the jump (or before separating, under dead load).
+            let k = c
+                .steps
+                .iter()
+                .rposition(|s| s.phase == Phase::Retract && s.jump)
+                .unwrap_or(c.steps.len());
+            let last = c.steps[k - 1].point;
+            assert!(
+                (last.load - exact.load).abs() < 2e-2,
+                "{l} {rho} {eta} {d:?}: {} vs {}",
+                last.load,
+                exact.load
+            );
+            if d == Drive::DeadLoad {
+                assert!(j.to.is_none() && c.hysteresis.is_none());
+            }
+        }
+    }
+}
+
+#[test]
+fn non_contact_meets_contact() {
+    for (l, rho, eta) in [(2.0, 0.3, 3.0), (0.3, 1.0, 2.0), (1.0, 0.2, 0.5)] {
+        let c = wet(l, rho, eta, Drive::RigidGrips);
+        let k = c
+            .path
+            .iter()
+            .position(|p| p.branch == Branch::Contact)
+            .unwrap();
+        let (nc, ct) = (c.path[k - 1], c.path[k]);
+        // The first contact radius is ~1e-4 of the curve's scale: both within that.
+        assert!(
+            (nc.load - ct.load).abs() < 1e-3 && (nc.approach - ct.approach).abs() < 1e-3,
+            "{nc:?} {ct:?}"
+        );
+        assert!((nc.c - ct.c).abs() < 1e-3 * nc.c.max(1.0), "{nc:?} {ct:?}");
+        // The free segment ends where the longer zone first reaches the axis.
+        let z = Zones::from_ratios(l, rho, eta).unwrap();
+        let first = c
+            .path
+            .iter()
+            .find(|p| p.branch == Branch::NonContact)
+            .unwrap();
+        assert!((first.approach + z.range[0].max(z.range[1])).abs() < 1e-12 && first.load == 0.0);
+    }
+}
+
+#[test]
+fn bad_input_is_one_line() {
+    let g = Drive::RigidGrips;
+    for (l, rho, eta, d, word) in [
+        (1.0, -0.1, 2.0, g, "stress ratio"),
+        (1.0, 0.1, f64::NAN, g, "range ratio"),
+        (f64::NAN, 0.1, 2.0, g, "lambda"),
+        (1.0, 0.1, 2.0, Drive::Spring(0.0), "stiffness"),
+        (1.0, 0.1, 2.0, Drive::Spring(-1.0), "stiffness"),
+    ] {
+        let e = cycle::two_zone::cycle(l, rho, eta, d, 2.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(word) && !e.contains('\n'), "{e}");
+    }
+    let e = cycle::two_zone::cycle(1.0, 0.1, 2.0, g, -1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("largest load") && !e.contains('\n'), "{e}");
+}
+
+use tabor::scene::humidity::HumidityInput;
+use tabor::scene::{preset, solve_scene, SceneControl};
+
+#[test]
+fn wet_cantilever_scene_lies_between_the_two_controls() {
+    // A stiff cantilever pulls off as rigid grips do, a soft one as dead load (the wet pull-offs
+    // of the same scene under those controls; the silicon tip has a small lambda, so the two
+    // differ by 0.3% only).
+    let wet = |control| {
+        let mut s = preset("afm-si").unwrap();
+        s.humidity = Some(HumidityInput::water(0.4, 20.0));
+        s.control = Some(control);
+        solve_scene(&s).unwrap()
+    };
+    let r = wet(SceneControl::Load);
+    let (load, disp) = (
+        r.pulloff_force_load_control_N,
+        r.pulloff_force_displacement_control_N,
+    );
+    assert!(load < disp);
+    let stiff = wet(SceneControl::CantileverNM(1e7)).pulloff_force_under_control_N;
+    let soft = wet(SceneControl::CantileverNM(1e-4)).pulloff_force_under_control_N;
+    eprintln!("load {load} disp {disp} stiff {stiff} soft {soft}");
+    assert!(
+        (stiff - disp).abs() < 1e-3 * disp.abs(),
+        "{stiff} vs {disp}"
+    );
+    assert!((soft - load).abs() < 1e-3 * load.abs(), "{soft} vs {load}");
+}
+
+#[test]
+fn command_line_wet_cycle_is_the_librarys() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args([
+            "cycle",
+            "--lambda",
+            "2",
+            "--stress-ratio",
+            "0.3",
+            "--range-ratio",
+            "3",
+        ])
+        .args([
+            "--control",
+            "spring",
+            "--stiffness",
+            "0.7",
+            "--format",
+            "json",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = cycle::two_zone::cycle(2.0, 0.3, 3.0, Drive::Spring(0.7), 2.0).unwrap();
+    assert_eq!(v["hysteresis"].as_f64(), c.hysteresis);
+    assert_eq!(v["steps"].as_array().unwrap().len(), c.steps.len());
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args([
+            "cycle",
+            "--lambda",
+            "2",
+            "--stress-ratio",
+            "-1",
+            "--range-ratio",
+            "3",
+        ])
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && e.contains("stress ratio") && e.trim().lines().count() == 1,
+        "{e}"
+    );
+}
