@@ -13,18 +13,24 @@ mod silent {
     pub struct Progress;
 
     impl Progress {
+        /// A bar of `len` units.
         pub fn new(_what: &str, _len: u64, _unit: &str) -> Progress {
             Progress
         }
+        /// A spinner of unknown length.
         pub fn spinner(_what: &str) -> Progress {
             Progress
         }
+        /// A line on stderr.
         pub fn println(&self, line: &str) {
             use std::io::Write;
             let _ = writeln!(std::io::stderr(), "{line}");
         }
+        /// Advances by `n`.
         pub fn inc(&mut self, _n: u64) {}
+        /// Sets the position.
         pub fn set(&mut self, _pos: u64) {}
+        /// Ends the bar.
         pub fn finish(self) {}
     }
 }

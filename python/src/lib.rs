@@ -643,6 +643,68 @@ fn profile<'py>(
     run_py(py, move || Ok(tabor::profile::profile(lam, g, points)?))
 }
 
+/// The profile of a two-zone state (`tabor profile --stress-ratio --range-ratio`).
+#[pyfunction]
+fn profile_two_zone<'py>(
+    py: Python<'py>,
+    lam: f64,
+    stress_ratio: f64,
+    range_ratio: f64,
+    given: &str,
+    value: f64,
+    points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    use tabor::profile::Given;
+    let g = match given {
+        "load" => Given::Load(value),
+        "approach" => Given::Approach(value),
+        "radius" => Given::Radius(value),
+        _ => {
+            return Err(PyValueError::new_err(
+                "given must be load, approach or radius",
+            ))
+        }
+    };
+    run_py(py, move || {
+        Ok(tabor::profile_two_zone::two_zone_profile(
+            lam,
+            stress_ratio,
+            range_ratio,
+            g,
+            points,
+        )?)
+    })
+}
+
+/// Both pull-offs of the solid's lambda with a second zone (`tabor pulloff --stress-ratio
+/// --range-ratio`), in units built on the total w.
+#[pyfunction]
+fn pulloff_two_zone<'py>(
+    py: Python<'py>,
+    lam: f64,
+    stress_ratio: f64,
+    range_ratio: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tabor::physics::two_zone::Zones;
+    use tabor::solver::two_zone::TwoZoneContext;
+    let ctx = run(py, move || {
+        let z = Zones::from_ratios(lam, stress_ratio, range_ratio)
+            .map_err(|e| anyhow::anyhow!("{}", e.0))?;
+        TwoZoneContext::new(z)
+            .map_err(|s| anyhow::anyhow!("the two-zone pull-offs were not found: {}", s.name()))
+    })?;
+    let d = PyDict::new(py);
+    for (name, p) in [
+        ("load_control", &ctx.load_pulloff),
+        ("displacement_control", &ctx.disp_pulloff),
+    ] {
+        d.set_item(format!("{name}_load"), p.load)?;
+        d.set_item(format!("{name}_A"), p.a)?;
+        d.set_item(format!("{name}_approach"), p.approach)?;
+    }
+    Ok(d)
+}
+
 /// An adhesion map, kept on the Rust side for its arrays, figure, JSON and NPY files.
 #[pyclass(module = "tabor._tabor")]
 struct AdhesionMap {
@@ -819,6 +881,8 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
     m.add_function(wrap_pyfunction!(plan_segments, m)?)?;
+    m.add_function(wrap_pyfunction!(profile_two_zone, m)?)?;
+    m.add_function(wrap_pyfunction!(pulloff_two_zone, m)?)?;
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;
     m.add_function(wrap_pyfunction!(profile, m)?)?;

@@ -298,7 +298,7 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     return Result(out, meta)
 
 
-def pulloff(lam):
+def pulloff(lam, stress_ratio=None, range_ratio=None):
     """Pull-off (jump-out) under load and displacement control, as ``tabor pulloff``.
 
     Returns a Result of arrays of the shape of ``lam``: ``load_control_load`` (Pbar_c),
@@ -306,7 +306,17 @@ def pulloff(lam):
     ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero radius),
     ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
     Raises ValueError for a lambda outside 1e-26 .. 1e26.
+
+    With ``stress_ratio`` and ``range_ratio`` (a second Dugdale zone, such as a water meniscus:
+    its stress and range relative to the solid's; docs/PHYSICS.md section 10) ``lam`` is the
+    solid's Maugis parameter, one number, and the result is a dict of the two pull-offs'
+    ``*_load``, ``*_A`` and ``*_approach`` in units built on the total work of adhesion.
     """
+    if stress_ratio is not None or range_ratio is not None:
+        if stress_ratio is None or range_ratio is None:
+            raise ValueError("give both stress_ratio= and range_ratio= for a second zone")
+        return _tabor.pulloff_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),
+                                       _real(range_ratio, "range_ratio"))
     (lam_f,), shape = _flat(lam, names=["lam"])
     r = _tabor.pulloff(lam_f)
     return Result({k: np.asarray(v).reshape(shape) for k, v in r.items()}, {})
@@ -675,7 +685,8 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
                         "drive": c["drive"]})
 
 
-def profile(lam, load=None, approach=None, radius=None, points=400):
+def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio=None,
+            range_ratio=None):
     """Pressure and gap inside and around the contact (``tabor profile``) for the MD state
     given by exactly one of ``load``, ``approach``, ``radius``, and Hertz, DMT and JKR at the
     same load. Returns a dict with ``models``: one dict per model with arrays ``r``,
@@ -685,8 +696,17 @@ def profile(lam, load=None, approach=None, radius=None, points=400):
              if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of load=, approach= or radius=")
-    p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
-                                int(points))
+    if stress_ratio is not None or range_ratio is not None:
+        if stress_ratio is None or range_ratio is None:
+            raise ValueError("give both stress_ratio= and range_ratio= for a second zone")
+        # The two-zone state (``tabor profile --stress-ratio --range-ratio``): its model
+        # "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
+        p = _tabor.profile_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),
+                                    _real(range_ratio, "range_ratio"), given[0][0],
+                                    _real(given[0][1], given[0][0]), int(points))
+    else:
+        p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
+                           int(points))
     for m in p["models"]:
         m["r"] = np.array(m["r"], dtype=float)
         m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],

@@ -68,3 +68,27 @@ def test_bad_wet_cycle_is_one_value_error(kw):
     with pytest.raises(ValueError) as e:
         tabor.cycle(1.0, **kw)
     assert "\n" not in str(e.value) and ("ratio" in str(e.value))
+
+
+def test_two_zone_pulloff_and_profile_from_python_equal_the_command_line():
+    cli = lambda *a: json.loads(subprocess.run([tabor_bin(), *a, "--format", "json"],
+                                               capture_output=True, text=True, check=True).stdout)
+    p = tabor.pulloff(0.5, stress_ratio=0.3, range_ratio=3.0)
+    want = cli("pulloff", "--lambda", "0.5", "--stress-ratio", "0.3", "--range-ratio", "3")
+    for k in ("load_control_load", "load_control_A", "displacement_control_load"):
+        assert p[k] == want["results"][0][k], k
+    # A vanishing second zone is MD itself.
+    md = tabor.pulloff(0.5)
+    dry = tabor.pulloff(0.5, stress_ratio=0.0, range_ratio=3.0)
+    assert abs(dry["load_control_load"] - md["load_control_load"]) < 1e-12
+    prof = tabor.profile(0.5, load=0.2, stress_ratio=0.3, range_ratio=3.0, points=64)
+    want = cli("profile", "--lambda", "0.5", "--load", "0.2", "--stress-ratio", "0.3",
+               "--range-ratio", "3", "--points", "64")
+    got_m, want_m = prof["models"][0], want["models"][0]
+    assert got_m["model"] == want_m["model"]
+    np.testing.assert_array_equal(got_m["r"], np.array(want_m["r"], dtype=float))
+    np.testing.assert_array_equal(got_m["gap"], np.array(want_m["gap"], dtype=float))
+    with pytest.raises(ValueError, match="range_ratio"):
+        tabor.profile(0.5, load=0.2, stress_ratio=0.3)
+    with pytest.raises(ValueError):
+        tabor.pulloff(0.5, stress_ratio=-1.0, range_ratio=3.0)
