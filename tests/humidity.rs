@@ -620,3 +620,85 @@ fn pulloff_command_takes_the_second_zone_as_two_ratios() {
     let o = tabor_cli(&["pulloff", "--lambda", "1", "--stress-ratio", "0.5"]);
     assert_eq!(o.status.code(), Some(1));
 }
+
+/// A pull-off measured in humid air, made with a known solid w by the two-zone law, gives that
+/// w back with the meniscus taken out; where the meniscus alone pulls off harder than measured
+/// there is no solid w to report, and without a meniscus the wet inference refuses.
+#[test]
+fn infer_takes_the_meniscus_out_of_a_wet_pull_off() {
+    use tabor::physics::params::{Contact, ForceRange};
+    use tabor::scene::humidity::{wet_context, HumidityInput};
+    let (r, e_star, z0) = (20e-9, 91.1444e9, 0.3e-9);
+    let h = HumidityInput::water(0.4, 20.0);
+    for w1 in [0.02, 0.1, 0.5] {
+        let c = Contact::new(r, e_star, w1, ForceRange::LennardJones(z0)).unwrap();
+        let m = h.meniscus(&c).unwrap().unwrap();
+        let (ctx, u) = wet_context(&c, &m).unwrap();
+        let f = ctx.load_pulloff.load * u.load; // negative, as measured
+        let got = tabor::scene::infer_wet(f, r, e_star, z0, &h).unwrap();
+        let w = got.solid_work_of_adhesion_j_m2.unwrap();
+        assert!(rel(w, w1) < 1e-8, "w1 {w1}: got {w}");
+        // A dry analysis of the same force credits the solid with the meniscus' work.
+        let wm = got.meniscus.work_of_adhesion_j_m2;
+        assert!(
+            got.dry_md_work_of_adhesion_j_m2.unwrap() > w1 + 0.5 * wm,
+            "{got:?}"
+        );
+        assert!(got.meniscus_only_pulloff_n < f.abs());
+    }
+    let c = Contact::new(r, e_star, 0.1, ForceRange::LennardJones(z0)).unwrap();
+    let m = h.meniscus(&c).unwrap().unwrap();
+    let weak = 0.5 * 4.0 * PI * r * 0.072 * 20f64.to_radians().cos(); // half the rigid meniscus
+    let got = tabor::scene::infer_wet(weak, r, e_star, z0, &h).unwrap();
+    assert!(got.solid_work_of_adhesion_j_m2.is_none());
+    assert!(
+        got.verdict.contains("the meniscus alone pulls off"),
+        "{}",
+        got.verdict
+    );
+    assert_eq!(got.meniscus, m);
+    let e = tabor::scene::infer_wet(-20e-9, r, e_star, z0, &HumidityInput::water(0.0, 20.0))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no meniscus forms"), "{e}");
+}
+
+/// `tabor infer --relative-humidity`: the silicon tip of the README at 40% RH, whose wet scene
+/// pulls off at 28.8155 nN with w = 0.1 J/m^2, gives that w back; a bad RH is one line.
+#[test]
+fn infer_on_the_command_line_takes_the_meniscus_out() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "infer",
+            "--pulloff",
+            "-28.8155e-9",
+            "--radius",
+            "20e-9",
+            "--e-star",
+            "91.1444e9",
+            "--contact-angle-deg",
+            "20",
+            "--format",
+            "json",
+        ];
+        args.extend_from_slice(extra);
+        std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["--relative-humidity", "0.4"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let j: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let w = j["solid_work_of_adhesion_j_m2"].as_f64().unwrap();
+    assert!(rel(w, 0.1) < 1e-5, "{w}");
+    let out = run(&["--relative-humidity", "1.5"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("--relative-humidity = 1.5"), "{err}");
+}

@@ -276,8 +276,45 @@ pub struct InferArgs {
     /// Lennard-Jones range z0 (m).
     #[arg(long, default_value_t = 0.3e-9)]
     pub z0: f64,
+    /// Relative humidity (0..1) of the air the pull-off was measured in: the solid's w is
+    /// reported with the water meniscus taken out (with --pulloff).
+    #[arg(long, conflicts_with = "pairs")]
+    pub relative_humidity: Option<f64>,
+    /// Contact angle of water on the surfaces (degrees), with --relative-humidity.
+    #[arg(long, default_value_t = 0.0, requires = "relative_humidity")]
+    pub contact_angle_deg: f64,
     #[arg(long, value_parser = super::formats(&["text", "json"]), default_value_t = Format::Text)]
     pub format: Format,
+}
+
+/// `infer --pulloff` in humid air: the solid's w with the meniscus taken out.
+fn infer_wet_cmd(a: &InferArgs, pulloff: f64, e_star: f64, rh: f64) -> anyhow::Result<()> {
+    let h = crate::scene::humidity::HumidityInput::water(rh, a.contact_angle_deg);
+    let flags = [
+        ("humidity.relative_humidity", "--relative-humidity"),
+        ("humidity.contact_angle_deg", "--contact-angle-deg"),
+    ];
+    let r = crate::scene::infer_wet(pulloff, a.radius, e_star, a.z0, &h)
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &flags)))?;
+    if a.format == Format::Json {
+        return write_output("-", (serde_json::to_string_pretty(&r)? + "\n").as_bytes());
+    }
+    let m = &r.meniscus;
+    let t = format!(
+        "pull-off force {} with R = {}, E* = {}, z0 = {}, in air at RH = {:.1}% (water, contact angle {} deg)\n  water meniscus: Kelvin radius {}, height {}, w = {:.4e} J/m^2; alone it pulls off at {}\n  {}\n",
+        si(r.pulloff_force_n, "N"),
+        si(a.radius, "m"),
+        si(e_star, "Pa"),
+        si(a.z0, "m"),
+        100.0 * rh,
+        a.contact_angle_deg,
+        si(m.kelvin_radius_m, "m"),
+        si(m.range_m, "m"),
+        m.work_of_adhesion_j_m2,
+        si(r.meniscus_only_pulloff_n, "N"),
+        r.verdict
+    );
+    write_output("-", t.as_bytes())
 }
 
 pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
@@ -329,6 +366,9 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
         a.pulloff.context("give --pulloff")?,
         a.e_star.context("give --e-star")?,
     );
+    if let Some(rh) = a.relative_humidity {
+        return infer_wet_cmd(&a, pulloff, e_star, rh);
+    }
     let r = infer(pulloff, a.radius, e_star, a.z0)?;
     if a.format == Format::Json {
         return write_output("-", (serde_json::to_string_pretty(&r)? + "\n").as_bytes());

@@ -83,3 +83,83 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
         verdict,
     })
 }
+
+/// The solid's work of adhesion from a pull-off force measured in humid air.
+#[derive(Clone, Debug, Serialize)]
+pub struct WetInference {
+    /// The measured pull-off force (N, its magnitude).
+    pub pulloff_force_n: f64,
+    /// The solid's w with the meniscus taken out (J/m^2); None where the meniscus alone pulls
+    /// off harder than measured.
+    pub solid_work_of_adhesion_j_m2: Option<f64>,
+    /// The solid's Maugis parameter with that w.
+    pub solid_lambda: Option<f64>,
+    /// The meniscus of the humidity given.
+    pub meniscus: super::humidity::Meniscus,
+    /// The load-controlled pull-off of the meniscus alone (N, its magnitude).
+    pub meniscus_only_pulloff_n: f64,
+    /// The w a dry analysis (exact MD) would report for the same force (J/m^2).
+    pub dry_md_work_of_adhesion_j_m2: Option<f64>,
+    /// What to conclude, in one sentence.
+    pub verdict: String,
+}
+
+/// From a pull-off force (N) measured in humid air, R, E*, the Lennard-Jones range z0 of the
+/// solid and the humidity: the solid's w whose Dugdale zone, with the meniscus beside it (the
+/// two-zone law, docs/PHYSICS.md section 10, solved exactly), pulls off under load control at
+/// the measured force. The meniscus' own w, 2 gamma cos(theta), does not depend on the solid's;
+/// the pull-off grows with the solid's w, so the root is bracketed between a vanishing solid w
+/// and the JKR bound F / (1.5 pi R).
+pub fn infer_wet(
+    pulloff_n: f64,
+    radius: f64,
+    e_star: f64,
+    z0: f64,
+    humidity: &super::humidity::HumidityInput,
+) -> Result<WetInference, ParamError> {
+    use super::humidity::wet_context;
+    let f = pulloff_n.abs();
+    let dry = infer(pulloff_n, radius, e_star, z0)?;
+    let contact = |w: f64| Contact::new(radius, e_star, w, ForceRange::LennardJones(z0));
+    let w_hi = f / (1.5 * std::f64::consts::PI * radius);
+    let Some(meniscus) = humidity.meniscus(&contact(w_hi)?)? else {
+        return Err(ParamError::Missing(
+            "no meniscus forms at this humidity and contact angle (RH = 0 or an angle of 90 degrees or more): use the dry inference",
+        ));
+    };
+    let pulloff = |w: f64| -> Result<f64, ParamError> {
+        let c = contact(w)?;
+        let (ctx, units) = wet_context(&c, &meniscus)?;
+        Ok(-ctx.load_pulloff.load * units.load)
+    };
+    // A solid w a millionth of the JKR bound: the meniscus alone, to the solver's resolution.
+    let w_lo = 1e-6 * w_hi;
+    let alone = pulloff(w_lo)?;
+    let (w, lam, verdict) = if alone >= f {
+        let v = format!(
+            "the meniscus alone pulls off at {:.4e} N, more than the {f:.4e} N measured: no solid adhesion is left to infer (a smaller contact angle, a lower humidity, or a meniscus not in equilibrium)",
+            alone
+        );
+        (None, None, v)
+    } else {
+        let g = |lw: f64| pulloff(lw.exp()).map_or(f64::NAN, |p| p - f);
+        let w = crate::solver::root::bisect_sign(g, w_lo.ln(), w_hi.ln()).exp();
+        let ok = (pulloff(w)? - f).abs() <= 1e-9 * f;
+        let lam = contact(w)?.lambda();
+        let v = format!(
+            "solid w = {w:.4e} J/m^2 (lambda = {lam:.3}) with the meniscus (w = {:.4e} J/m^2) taken out; a dry analysis of the same force would report {}",
+            meniscus.work_of_adhesion_j_m2,
+            dry.w_md_j_m2.map_or("no MD value".into(), |d| format!("{d:.4e} J/m^2"))
+        );
+        (ok.then_some(w), ok.then_some(lam), v)
+    };
+    Ok(WetInference {
+        pulloff_force_n: f,
+        solid_work_of_adhesion_j_m2: w,
+        solid_lambda: lam,
+        meniscus,
+        meniscus_only_pulloff_n: alone,
+        dry_md_work_of_adhesion_j_m2: dry.w_md_j_m2,
+        verdict,
+    })
+}

@@ -11,7 +11,7 @@ mod input;
 mod presets;
 
 pub use fit::{fit_pairs, PairsFit};
-pub use infer::{infer, Inference};
+pub use infer::{infer, infer_wet, Inference, WetInference};
 pub use input::{contact_of, SceneControl, SceneInput};
 pub use presets::{preset, preset_names};
 
