@@ -459,6 +459,24 @@ fn infer_pulloff<'py>(
     })
 }
 
+/// `tabor infer --relative-humidity`: the solid's w with the water meniscus taken out.
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+fn infer_pulloff_wet<'py>(
+    py: Python<'py>,
+    force: f64,
+    radius: f64,
+    e_star: f64,
+    z0: f64,
+    relative_humidity: f64,
+    contact_angle_deg: f64,
+) -> PyResult<Bound<'py, PyAny>> {
+    let h = tabor::scene::humidity::HumidityInput::water(relative_humidity, contact_angle_deg);
+    run_py(py, move || {
+        Ok(tabor::scene::infer_wet(force, radius, e_star, z0, &h)?)
+    })
+}
+
 #[pyfunction]
 fn fit_pairs<'py>(
     py: Python<'py>,
@@ -882,6 +900,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
     m.add_function(wrap_pyfunction!(plan_segments, m)?)?;
     m.add_function(wrap_pyfunction!(profile_two_zone, m)?)?;
+    m.add_function(wrap_pyfunction!(infer_pulloff_wet, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff_two_zone, m)?)?;
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;
     m.add_function(wrap_pyfunction!(cycle, m)?)?;

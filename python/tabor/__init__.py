@@ -509,9 +509,20 @@ class Scene:
                 f"recommended model {self.recommended_model!r})")
 
 
-def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9):
+def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9, relative_humidity=None,
+                  contact_angle_deg=0.0):
     """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
-    the Tabor self-consistency verdict (``tabor infer``). Returns a dict."""
+    the Tabor self-consistency verdict (``tabor infer``). Returns a dict.
+
+    With ``relative_humidity`` (the force measured in air; water at ``contact_angle_deg``), the
+    dict is ``tabor infer --relative-humidity``'s: ``solid_work_of_adhesion_j_m2`` with the
+    meniscus taken out (None where the meniscus alone pulls off harder), ``meniscus``,
+    ``meniscus_only_pulloff_n``, ``dry_md_work_of_adhesion_j_m2`` and ``verdict``."""
+    if relative_humidity is not None:
+        return _tabor.infer_pulloff_wet(_finite(force_n, "force_n"), _finite(radius_m, "radius_m"),
+                                        _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"),
+                                        _real(relative_humidity, "relative_humidity"),
+                                        _real(contact_angle_deg, "contact_angle_deg"))
     return _tabor.infer_pulloff(_finite(force_n, "force_n"),
                                            _finite(radius_m, "radius_m"),
                                            _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"))

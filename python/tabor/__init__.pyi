@@ -106,7 +106,14 @@ class Scene:
     @classmethod
     def preset(cls, name: str) -> "Scene": ...
 
-def infer_pulloff(force_n: float, radius_m: float, e_star_pa: float, z0_m: float = 0.3e-9) -> Dict[str, Any]: ...
+def infer_pulloff(
+    force_n: float,
+    radius_m: float,
+    e_star_pa: float,
+    z0_m: float = 0.3e-9,
+    relative_humidity: Optional[float] = None,
+    contact_angle_deg: float = 0.0,
+) -> Dict[str, Any]: ...
 def fit_pairs(loads_n: ArrayLike, radii_m: ArrayLike, radius_m: float, z0_m: float = 0.3e-9) -> Dict[str, Any]: ...
 def fit_curves(
     height_m: ArrayLike,

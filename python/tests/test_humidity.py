@@ -92,3 +92,17 @@ def test_two_zone_pulloff_and_profile_from_python_equal_the_command_line():
         tabor.profile(0.5, load=0.2, stress_ratio=0.3)
     with pytest.raises(ValueError):
         tabor.pulloff(0.5, stress_ratio=-1.0, range_ratio=3.0)
+
+
+def test_infer_in_humid_air_equals_the_command_line():
+    r = tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=0.4,
+                            contact_angle_deg=20)
+    cli = json.loads(subprocess.run(
+        [tabor_bin(), "infer", "--pulloff", "-28.8155e-9", "--radius", "20e-9", "--e-star",
+         "91.1444e9", "--relative-humidity", "0.4", "--contact-angle-deg", "20",
+         "--format", "json"], capture_output=True, text=True, check=True).stdout)
+    assert r["solid_work_of_adhesion_j_m2"] == cli["solid_work_of_adhesion_j_m2"]
+    assert abs(r["solid_work_of_adhesion_j_m2"] - 0.1) < 1e-6
+    assert r["dry_md_work_of_adhesion_j_m2"] > 0.2
+    with pytest.raises(ValueError, match="relative_humidity"):
+        tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=1.5)
