@@ -50,6 +50,23 @@ pub struct ModelProfile {
     pub notes: Vec<String>,
 }
 
+impl ModelProfile {
+    /// Into SI units: lengths by `fr`, forces by `ff`, approaches and gaps by `fd`, stresses by
+    /// `fp` (the stress intensity by `fp sqrt(fr)`).
+    pub(crate) fn scale(&mut self, fr: f64, ff: f64, fd: f64, fp: f64) {
+        self.a = self.a.map(|x| x * fr);
+        self.c = self.c.map(|x| x * fr);
+        self.load *= ff;
+        self.approach = self.approach.map(|x| x * fd);
+        self.r.iter_mut().for_each(|x| *x *= fr);
+        self.pressure.iter_mut().flatten().for_each(|x| *x *= fp);
+        self.gap.iter_mut().for_each(|x| *x *= fd);
+        self.max_tension = self.max_tension.map(|x| x * fp);
+        self.max_tension_at = self.max_tension_at.map(|(a, b)| (a * fr, b * fr));
+        self.stress_intensity = self.stress_intensity.map(|x| x * fp * fr.sqrt());
+    }
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct Profile {
     pub lambda: f64,
@@ -305,16 +322,7 @@ impl Profile {
         p.dugdale_range *= fd;
         p.dugdale_stress *= fp;
         for m in &mut p.models {
-            m.a = m.a.map(|x| x * fr);
-            m.c = m.c.map(|x| x * fr);
-            m.load *= ff;
-            m.approach = m.approach.map(|x| x * fd);
-            m.r.iter_mut().for_each(|x| *x *= fr);
-            m.pressure.iter_mut().flatten().for_each(|x| *x *= fp);
-            m.gap.iter_mut().for_each(|x| *x *= fd);
-            m.max_tension = m.max_tension.map(|x| x * fp);
-            m.max_tension_at = m.max_tension_at.map(|(a, b)| (a * fr, b * fr));
-            m.stress_intensity = m.stress_intensity.map(|x| x * fp * fr.sqrt());
+            m.scale(fr, ff, fd, fp);
         }
         p
     }

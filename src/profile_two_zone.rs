@@ -169,16 +169,7 @@ impl TwoZoneProfile {
         p.zone_range = p.zone_range.map(|x| x * fd);
         p.zone_edges = p.zone_edges.map(|x| x * fr);
         for m in &mut p.models {
-            m.a = m.a.map(|x| x * fr);
-            m.c = m.c.map(|x| x * fr);
-            m.load *= ff;
-            m.approach = m.approach.map(|x| x * fd);
-            m.r.iter_mut().for_each(|x| *x *= fr);
-            m.pressure.iter_mut().flatten().for_each(|x| *x *= fp);
-            m.gap.iter_mut().for_each(|x| *x *= fd);
-            m.max_tension = m.max_tension.map(|x| x * fp);
-            m.max_tension_at = m.max_tension_at.map(|(a, b)| (a * fr, b * fr));
-            m.stress_intensity = m.stress_intensity.map(|x| x * fp * fr.sqrt());
+            m.scale(fr, ff, fd, fp);
         }
         p
     }

@@ -638,6 +638,19 @@ fn cycle<'py>(
     }
 }
 
+/// A profile's state: `given` load|approach|radius, with its value.
+fn given_of(given: &str, value: f64) -> PyResult<tabor::profile::Given> {
+    use tabor::profile::Given;
+    match given {
+        "load" => Ok(Given::Load(value)),
+        "approach" => Ok(Given::Approach(value)),
+        "radius" => Ok(Given::Radius(value)),
+        _ => Err(PyValueError::new_err(
+            "given must be load, approach or radius",
+        )),
+    }
+}
+
 /// Pressure and gap profiles (JSON): `given` load|approach|radius.
 #[pyfunction]
 fn profile<'py>(
@@ -647,17 +660,7 @@ fn profile<'py>(
     value: f64,
     points: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use tabor::profile::Given;
-    let g = match given {
-        "load" => Given::Load(value),
-        "approach" => Given::Approach(value),
-        "radius" => Given::Radius(value),
-        _ => {
-            return Err(PyValueError::new_err(
-                "given must be load, approach or radius",
-            ))
-        }
-    };
+    let g = given_of(given, value)?;
     run_py(py, move || Ok(tabor::profile::profile(lam, g, points)?))
 }
 
@@ -672,17 +675,7 @@ fn profile_two_zone<'py>(
     value: f64,
     points: usize,
 ) -> PyResult<Bound<'py, PyAny>> {
-    use tabor::profile::Given;
-    let g = match given {
-        "load" => Given::Load(value),
-        "approach" => Given::Approach(value),
-        "radius" => Given::Radius(value),
-        _ => {
-            return Err(PyValueError::new_err(
-                "given must be load, approach or radius",
-            ))
-        }
-    };
+    let g = given_of(given, value)?;
     run_py(py, move || {
         Ok(tabor::profile_two_zone::two_zone_profile(
             lam,

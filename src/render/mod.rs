@@ -361,12 +361,8 @@ pub(crate) fn house_mesh<
 ) -> plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
     mesh.max_light_lines(1)
         .light_line_style(plotters::style::RGBColor(245, 245, 245))
-        .bold_line_style(plotters::style::RGBColor(215, 215, 215))
-        .x_desc(x_desc)
-        .y_desc(y_desc)
-        .axis_desc_style(("sans-serif", AXIS))
-        .label_style(("sans-serif", TICK));
-    mesh
+        .bold_line_style(plotters::style::RGBColor(215, 215, 215));
+    house_labels(mesh, x_desc, y_desc)
 }
 
 /// The house style of a chart without a grid (maps: the pixels are the data).
@@ -381,8 +377,23 @@ pub(crate) fn house_axes<
     x_desc: impl Into<String>,
     y_desc: impl Into<String>,
 ) -> plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
-    mesh.disable_mesh()
-        .x_desc(x_desc)
+    mesh.disable_mesh();
+    house_labels(mesh, x_desc, y_desc)
+}
+
+/// The axis titles and tick labels in the figure's sizes.
+fn house_labels<
+    'a,
+    'b,
+    X: plotters::coord::ranged1d::Ranged,
+    Y: plotters::coord::ranged1d::Ranged,
+    DB: plotters::prelude::DrawingBackend,
+>(
+    mut mesh: plotters::chart::MeshStyle<'a, 'b, X, Y, DB>,
+    x_desc: impl Into<String>,
+    y_desc: impl Into<String>,
+) -> plotters::chart::MeshStyle<'a, 'b, X, Y, DB> {
+    mesh.x_desc(x_desc)
         .y_desc(y_desc)
         .axis_desc_style(("sans-serif", AXIS))
         .label_style(("sans-serif", TICK));
