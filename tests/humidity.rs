@@ -702,3 +702,62 @@ fn infer_on_the_command_line_takes_the_meniscus_out() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("--relative-humidity = 1.5"), "{err}");
 }
+
+/// `tabor scene --plot` of a wet scene: a PNG, drawn from the a(P) of solid and meniscus (each
+/// point's load found again from its radius by the dimensional two-zone solver) beside the dry
+/// MD curve from the dry pull-off.
+#[test]
+fn wet_scene_plot_draws_solid_and_meniscus_beside_the_dry_curve() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/si_tip_40rh.json");
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("wet.png");
+    let svg = dir.path().join("wet.svg");
+    let text = dir.path().join("wet.txt");
+    let o = tabor_cli(&[
+        "scene",
+        file,
+        "--plot",
+        png.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "-o",
+        text.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    assert!(bytes.len() > 20_000, "{} bytes", bytes.len());
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg.contains("solid + meniscus") && svg.contains("dry: Maugis-Dugdale"));
+    // The figure's numbers.
+    let s: tabor::scene::SceneInput =
+        serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+    let r = solve_scene(&s).unwrap();
+    let fig = tabor::figure_data::scene_data(&r).unwrap();
+    let wet = fig.wet.as_ref().unwrap();
+    let c = contact_of(&s).unwrap();
+    let m = r.meniscus.unwrap();
+    assert!(wet.len() > 250);
+    for &(p, a) in wet.iter().step_by(10) {
+        let st = state_at_radius_dimensional(
+            c.k(),
+            c.radius,
+            c.s0,
+            c.work / c.s0,
+            m.laplace_pressure_pa,
+            m.range_m,
+            a,
+        )
+        .unwrap();
+        assert!((st.load - p).abs() < 1e-9 * p.abs().max(1e-9), "{p} {a}");
+    }
+    // From the wet pull-off (the first point, or within the first step) and the dry pull-off.
+    let dry = r.dry_pulloff_force_load_control_N.unwrap();
+    let pc = r.pulloff_force_load_control_N;
+    assert!(
+        wet[0].0 < 0.99 * pc.abs() * -1.0 && wet[0].0 >= pc,
+        "{:?}",
+        wet[0]
+    );
+    assert!(fig.md[0].0 >= dry && fig.md[0].0 < 0.99 * dry);
+}
