@@ -180,7 +180,8 @@ pub struct TwoZoneState {
 }
 
 impl TwoZoneState {
-    fn failed(status: Status) -> TwoZoneState {
+    /// No state: every number NaN, with the status that says why.
+    pub fn failed(status: Status) -> TwoZoneState {
         TwoZoneState {
             a: f64::NAN,
             c: [f64::NAN; 2],
