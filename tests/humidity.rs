@@ -755,7 +755,7 @@ fn wet_scene_plot_draws_solid_and_meniscus_beside_the_dry_curve() {
     let dry = r.dry_pulloff_force_load_control_N.unwrap();
     let pc = r.pulloff_force_load_control_N;
     assert!(
-        wet[0].0 < 0.99 * pc.abs() * -1.0 && wet[0].0 >= pc,
+        wet[0].0 < 0.99 * pc && wet[0].0 >= pc,
         "{:?}",
         wet[0]
     );
