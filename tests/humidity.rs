@@ -754,11 +754,7 @@ fn wet_scene_plot_draws_solid_and_meniscus_beside_the_dry_curve() {
     // From the wet pull-off (the first point, or within the first step) and the dry pull-off.
     let dry = r.dry_pulloff_force_load_control_N.unwrap();
     let pc = r.pulloff_force_load_control_N;
-    assert!(
-        wet[0].0 < 0.99 * pc && wet[0].0 >= pc,
-        "{:?}",
-        wet[0]
-    );
+    assert!(wet[0].0 < 0.99 * pc && wet[0].0 >= pc, "{:?}", wet[0]);
     assert!(fig.md[0].0 >= dry && fig.md[0].0 < 0.99 * dry);
 }
 
