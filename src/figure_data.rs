@@ -62,10 +62,14 @@ pub fn curves_data(lambdas: &[f64]) -> Result<Vec<CurveSeries>, SolveError> {
 }
 
 /// The scene figure: its MD a(P) in SI units (from the pull-off to 1.1 times the largest load
-/// or twice the pull-off force) and the adhesion map it is placed on.
+/// or twice the pull-off force), in a wet scene also that of solid and meniscus, and the
+/// adhesion map it is placed on.
 pub struct SceneFigure {
-    /// The MD contact radius against the load (N, m).
+    /// The MD contact radius against the load (N, m): the dry contact's in a wet scene.
     pub md: Vec<(f64, f64)>,
+    /// In a wet scene, the contact radius of solid and meniscus together (the two-zone law)
+    /// against the load (N, m).
+    pub wet: Option<Vec<(f64, f64)>>,
     /// The adhesion map the scene is placed on.
     pub map: MapData,
     /// The force unit pi w R (N) and the radius unit (m) of the scene.
@@ -85,6 +89,9 @@ pub enum FigureError {
     #[error(transparent)]
     /// The map failed.
     Map(#[from] MapError),
+    #[error(transparent)]
+    /// The scene's contact could not be rebuilt (a wet scene's two zones).
+    Param(#[from] crate::physics::params::ParamError),
 }
 
 /// The scene figure's data.
@@ -92,6 +99,7 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
     let fs = std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m;
     let rs =
         (std::f64::consts::PI * r.work_of_adhesion_j_m2 * r.radius_m * r.radius_m / r.k_pa).cbrt();
+    // The load range from the pull-off (of solid and meniscus, in a wet scene) to the largest.
     let pc = r.pulloff_force_load_control_N;
     let pmax = r
         .loads
@@ -99,14 +107,33 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
         .map(|l| l.load_n)
         .fold(pc.abs() * 2.0, f64::max)
         * 1.1;
+    // A curve from its own pull-off `p0` to pmax, dense near the pull-off.
+    let from = |p0: f64, a_of: &dyn Fn(f64) -> f64| -> Vec<(f64, f64)> {
+        (0..=300)
+            .map(|i| {
+                let p = p0 + (pmax - p0) * (i as f64 / 300.0).powi(2);
+                (p, a_of(p))
+            })
+            .filter(|q| q.1.is_finite())
+            .collect()
+    };
     let ctx = LambdaContext::new(r.lambda)?;
-    let md = (0..=300)
-        .map(|i| {
-            let p = pc + (pmax - pc) * (i as f64 / 300.0).powi(2);
-            (p, ctx.solve_load(p / fs).a * rs)
-        })
-        .filter(|q| q.1.is_finite())
-        .collect();
+    // The MD curve: the dry contact's, from its own pull-off.
+    let dry_pc = r.dry_pulloff_force_load_control_N.unwrap_or(pc);
+    let md = from(dry_pc, &|p| ctx.solve_load(p / fs).a * rs);
+    let wet = match &r.meniscus {
+        None => None,
+        Some(m) => {
+            let c = crate::physics::params::Contact::new(
+                r.radius_m,
+                r.e_star_pa,
+                r.work_of_adhesion_j_m2,
+                crate::physics::params::ForceRange::DugdaleStress(r.s0_pa),
+            )?;
+            let (two, u) = crate::scene::humidity::wet_context(&c, m)?;
+            Some(from(pc, &|p| two.state_at_load(p / u.load).a * u.radius))
+        }
+    };
     let spec = MapSpec {
         lambda_min: 1e-3,
         lambda_max: 1e3,
@@ -121,6 +148,7 @@ pub fn scene_data(r: &SceneResult) -> Result<SceneFigure, FigureError> {
     let map = compute(&spec, &crate::engine::Engine::Cpu)?;
     Ok(SceneFigure {
         md,
+        wet,
         map,
         force_scale: fs,
         radius_scale: rs,

@@ -702,3 +702,175 @@ fn infer_on_the_command_line_takes_the_meniscus_out() {
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(err.contains("--relative-humidity = 1.5"), "{err}");
 }
+
+/// `tabor scene --plot` of a wet scene: a PNG, drawn from the a(P) of solid and meniscus (each
+/// point's load found again from its radius by the dimensional two-zone solver) beside the dry
+/// MD curve from the dry pull-off.
+#[test]
+fn wet_scene_plot_draws_solid_and_meniscus_beside_the_dry_curve() {
+    let file = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/si_tip_40rh.json");
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("wet.png");
+    let svg = dir.path().join("wet.svg");
+    let text = dir.path().join("wet.txt");
+    let o = tabor_cli(&[
+        "scene",
+        file,
+        "--plot",
+        png.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+        "-o",
+        text.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    assert!(bytes.len() > 20_000, "{} bytes", bytes.len());
+    let svg = std::fs::read_to_string(&svg).unwrap();
+    assert!(svg.contains("solid + meniscus") && svg.contains("dry: Maugis-Dugdale"));
+    // The figure's numbers.
+    let s: tabor::scene::SceneInput =
+        serde_json::from_str(&std::fs::read_to_string(file).unwrap()).unwrap();
+    let r = solve_scene(&s).unwrap();
+    let fig = tabor::figure_data::scene_data(&r).unwrap();
+    let wet = fig.wet.as_ref().unwrap();
+    let c = contact_of(&s).unwrap();
+    let m = r.meniscus.unwrap();
+    assert!(wet.len() > 250);
+    for &(p, a) in wet.iter().step_by(10) {
+        let st = state_at_radius_dimensional(
+            c.k(),
+            c.radius,
+            c.s0,
+            c.work / c.s0,
+            m.laplace_pressure_pa,
+            m.range_m,
+            a,
+        )
+        .unwrap();
+        assert!((st.load - p).abs() < 1e-9 * p.abs().max(1e-9), "{p} {a}");
+    }
+    // From the wet pull-off (the first point, or within the first step) and the dry pull-off.
+    let dry = r.dry_pulloff_force_load_control_N.unwrap();
+    let pc = r.pulloff_force_load_control_N;
+    assert!(wet[0].0 < 0.99 * pc && wet[0].0 >= pc, "{:?}", wet[0]);
+    assert!(fig.md[0].0 >= dry && fig.md[0].0 < 0.99 * dry);
+}
+
+/// `tabor solve --input FILE --stress-ratio --range-ratio`: each row of the table is the
+/// single-state form's row, byte for byte, under load, approach and radius; the JSON rows carry
+/// the same numbers; a row below the pull-off keeps its load and says no_contact.
+#[test]
+fn solve_table_of_two_zone_points_equals_the_single_state_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let rows: [(f64, f64); 7] = [
+        (0.5, 0.2),
+        (0.5, -5.0),
+        (2.0, 1.0),
+        (0.1, 0.0),
+        (0.5, 3.0),
+        (10.0, -1.0),
+        (0.03, 0.5),
+    ];
+    for (control, column, flag) in [
+        ("load", "load", "--load"),
+        ("displacement", "approach", "--approach"),
+        ("radius", "A", "--radius-a"),
+    ] {
+        let file = dir.path().join(format!("{control}.csv"));
+        let mut t = format!("lambda,{column}\n");
+        let pts: Vec<(f64, f64)> = rows
+            .iter()
+            .map(|&(l, v)| {
+                (
+                    l,
+                    if control == "radius" {
+                        v.abs() + 0.3
+                    } else {
+                        v
+                    },
+                )
+            })
+            .collect();
+        for (l, v) in &pts {
+            t += &format!("{l},{v}\n");
+        }
+        std::fs::write(&file, t).unwrap();
+        let table = |format: &str| {
+            let o = tabor_cli(&[
+                "solve",
+                "-i",
+                file.to_str().unwrap(),
+                "--control",
+                control,
+                "--stress-ratio",
+                "0.3",
+                "--range-ratio",
+                "3",
+                "--format",
+                format,
+            ]);
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            String::from_utf8(o.stdout).unwrap()
+        };
+        let csv = table("csv");
+        let json: serde_json::Value = serde_json::from_str(&table("json")).unwrap();
+        let lines: Vec<&str> = csv.lines().collect();
+        assert_eq!(lines.len(), pts.len() + 1);
+        for (k, (l, v)) in pts.iter().enumerate() {
+            let (ls, vs) = (l.to_string(), v.to_string());
+            let one = |format: &str| {
+                let o = tabor_cli(&[
+                    "solve",
+                    "--lambda",
+                    &ls,
+                    &format!("{flag}={vs}"),
+                    "--stress-ratio",
+                    "0.3",
+                    "--range-ratio",
+                    "3",
+                    "--format",
+                    format,
+                ]);
+                assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+                String::from_utf8(o.stdout).unwrap()
+            };
+            let single = one("csv");
+            assert_eq!(lines[0], single.lines().next().unwrap());
+            assert_eq!(
+                lines[k + 1],
+                single.lines().nth(1).unwrap(),
+                "{control} row {k}"
+            );
+            let want: serde_json::Value = serde_json::from_str(&one("json")).unwrap();
+            assert_eq!(json["results"][k], want, "{control} row {k}");
+        }
+        if control == "load" {
+            // Below the pull-off (Pbar_c in [-2, -3/2]): no contact, the load kept.
+            assert!(lines[2].ends_with("no_contact"), "{}", lines[2]);
+            assert_eq!(json["results"][1]["load"].as_f64(), Some(-5.0));
+            assert_eq!(json["metadata"]["points"].as_u64(), Some(pts.len() as u64));
+        }
+    }
+    // Bad ratios: one line before anything is written.
+    let out = dir.path().join("out.csv");
+    let o = tabor_cli(&[
+        "solve",
+        "-i",
+        dir.path().join("load.csv").to_str().unwrap(),
+        "--stress-ratio",
+        "-1",
+        "--range-ratio",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        err.contains("--stress-ratio") && err.contains("-1"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

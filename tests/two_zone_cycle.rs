@@ -250,3 +250,61 @@ fn command_line_wet_cycle_is_the_librarys() {
         "{e}"
     );
 }
+
+/// Under a spring the retract leaves the contact curve at its fold, where dPbar/dDbar = -kbar:
+/// found here independently, parametrised by the contact radius (the solver's states at a
+/// radius, central differences of load and approach, bisection on the sign of
+/// dPbar/dA + kbar dDbar/dA), it agrees with the cycle's jump-out to 1e-9; the sampled path
+/// alone was off by far more.
+#[test]
+fn spring_jump_out_is_the_fold_found_exactly() {
+    let (mut worst, mut folds) = (0.0f64, 0);
+    for (l, rho, eta) in [(0.5, 0.3, 3.0), (2.0, 0.5, 0.4), (1.0, 2.0, 5.0)] {
+        let ctx = TwoZoneContext::new(Zones::from_ratios(l, rho, eta).unwrap()).unwrap();
+        for k in [0.3, 1.0, 4.0] {
+            let c = wet(l, rho, eta, Drive::Spring(k));
+            let Some(j) = c
+                .jumps
+                .iter()
+                .find(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
+            else {
+                continue;
+            };
+            // d(Pbar + kbar Dbar)/dA by a central difference in A.
+            let f = |a: f64| {
+                let h = 1e-6 * a;
+                let (p, m) = (ctx.state_at_radius(a + h), ctx.state_at_radius(a - h));
+                (p.load - m.load) + k * (p.approach - m.approach)
+            };
+            // The stable side (large A): the control rises with A.
+            let (mut lo, mut hi) = (0.7 * j.from.a, 1.4 * j.from.a);
+            assert!(f(lo) < 0.0 && f(hi) > 0.0, "l {l} k {k}: no fold bracketed");
+            for _ in 0..100 {
+                let m = 0.5 * (lo + hi);
+                if f(m) < 0.0 {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            let fold = ctx.state_at_radius(0.5 * (lo + hi));
+            let d = (j.from.load - fold.load).abs();
+            assert!(
+                d < 1e-9,
+                "lambda {l}, rho {rho}, eta {eta}, k {k}: jump-out {} against the fold {}",
+                j.from.load,
+                fold.load
+            );
+            assert!((j.from.approach - fold.approach).abs() < 1e-9);
+            assert!((j.from.a - fold.a).abs() < 1e-6 * fold.a);
+            // The landing on the free branch is at the spring's base there.
+            if let Some(to) = j.to.as_ref().filter(|t| t.branch == Branch::Free) {
+                assert!((to.approach - (fold.approach + fold.load / k)).abs() < 1e-9);
+            }
+            worst = worst.max(d);
+            folds += 1;
+        }
+    }
+    eprintln!("spring jump-out against the independent fold: {folds} folds, worst {worst:.2e}");
+    assert!(folds >= 6, "{folds}");
+}

@@ -561,6 +561,15 @@ fn fit_curves<'py>(
             z0: num("z0"),
             tilt: o.get("tilt").and_then(|v| v.as_bool()).unwrap_or(false),
             tolerance: num("tolerance").unwrap_or(0.05),
+            humidity: o
+                .get("relative_humidity")
+                .map(|_| tabor::scene::humidity::HumidityInput {
+                    relative_humidity: num("relative_humidity").unwrap_or(f64::NAN),
+                    contact_angle_deg: num("contact_angle_deg").unwrap_or(0.0),
+                    surface_tension_n_m: num("surface_tension_n_m"),
+                    molar_volume_m3_mol: num("molar_volume_m3_mol"),
+                    temperature_k: num("temperature_k"),
+                }),
             ..FitOptions::default()
         };
         // The library's check, as the command line makes it.

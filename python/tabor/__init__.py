@@ -536,14 +536,23 @@ def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
 
 
 def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
-               fit_segment="retract", z0_m=None, tilt=False, tolerance=0.05):
+               fit_segment="retract", z0_m=None, tilt=False, tolerance=0.05,
+               relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
+               molar_volume_m3_mol=None, temperature_k=None):
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
     (``tabor fit``). ``height_m``: piezo height of the cantilever base (larger is farther from
     the sample); ``force_n``: force on the tip, positive when repulsive; ``segment``: 0 approach,
     1 retract (or the strings); ``curve``: an id per point where the arrays hold many curves.
     Returns a list of dicts, one per curve in order of first appearance, with the keys of
     ``tabor fit --format json`` (SI units, ``_stderr`` standard errors, ``status`` and
-    ``message``, ``adequate_model`` and ``why``, ``warnings``)."""
+    ``message``, ``adequate_model`` and ``why``, ``warnings``).
+
+    With ``relative_humidity`` (the curves measured in humid air; water, or the liquid of
+    ``surface_tension_n_m`` and ``molar_volume_m3_mol``, at ``contact_angle_deg`` and
+    ``temperature_k``), each fitted curve's dict has a ``humidity`` dict, as ``tabor fit
+    --relative-humidity`` gives: the ``meniscus``, the fitted model's load-controlled pull-off
+    and ``solid_work_of_adhesion_j_m2``, the solid's w with the meniscus taken out of it (None,
+    with the reason in ``note``, where the meniscus alone pulls off harder)."""
     h = np.ascontiguousarray(height_m, dtype=float).ravel()
     f = np.ascontiguousarray(force_n, dtype=float).ravel()
     seg = np.asarray(segment).ravel()
@@ -576,6 +585,13 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         options["poisson"] = num(poisson, "poisson")
     if z0_m is not None:
         options["z0"] = num(z0_m, "z0_m")
+    if relative_humidity is not None:
+        options["relative_humidity"] = num(relative_humidity, "relative_humidity")
+        options["contact_angle_deg"] = num(contact_angle_deg, "contact_angle_deg")
+        for k, v in (("surface_tension_n_m", surface_tension_n_m),
+                     ("molar_volume_m3_mol", molar_volume_m3_mol), ("temperature_k", temperature_k)):
+            if v is not None:
+                options[k] = num(v, k)
     out = _tabor.fit_curves(ids, seg, h, f, json.dumps(options))
     for r in out:  # the fit's advice names command-line flags: name the arguments instead
         for k in ("message", "why"):
@@ -584,6 +600,8 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         if isinstance(r.get("warnings"), list):
             r["warnings"] = [_tabor.python_names(w) if isinstance(w, str) else w
                              for w in r["warnings"]]
+        if isinstance(r.get("humidity"), dict) and isinstance(r["humidity"].get("note"), str):
+            r["humidity"]["note"] = _tabor.python_names(r["humidity"]["note"])
         # Each interval a (low, high) tuple, None for an end the data leave open (as JSON's
         # null), whether one end is open or both.
         for k, v in r.items():

@@ -128,6 +128,11 @@ def fit_curves(
     z0_m: Optional[float] = None,
     tilt: bool = False,
     tolerance: float = 0.05,
+    relative_humidity: Optional[float] = None,
+    contact_angle_deg: float = 0.0,
+    surface_tension_n_m: Optional[float] = None,
+    molar_volume_m3_mol: Optional[float] = None,
+    temperature_k: Optional[float] = None,
 ) -> List[Dict[str, Any]]: ...
 def fit_curve(height_m: ArrayLike, force_n: ArrayLike, segment: ArrayLike, **options: Any) -> Dict[str, Any]: ...
 def fit_afmformats(

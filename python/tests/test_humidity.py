@@ -106,3 +106,79 @@ def test_infer_in_humid_air_equals_the_command_line():
     assert r["dry_md_work_of_adhesion_j_m2"] > 0.2
     with pytest.raises(ValueError, match="relative_humidity"):
         tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=1.5)
+
+
+CURVE = ROOT / "gallery" / "fit_curve.csv"  # E* = 2 GPa, w = 0.04 J/m^2, lambda = 0.3, R = 20 nm
+
+
+def _fit_cli(*extra):
+    out = subprocess.run([tabor_bin(), "fit", "-i", str(CURVE), "--radius", "20e-9",
+                          "--spring-n-m", "40", *extra], capture_output=True, text=True)
+    return out
+
+
+def test_fit_in_humid_air_gives_the_solid_w_of_infer_on_the_fitted_pulloff():
+    rows = np.genfromtxt(CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    args = (rows["height_m"], rows["force_n"], rows["segment"])
+    r = tabor.fit_curve(*args, radius_m=20e-9, spring_n_m=40.0, relative_humidity=0.4,
+                        contact_angle_deg=80)
+    assert r["status"] == "ok"
+    assert abs(r["work_of_adhesion_j_m2"] / 0.04 - 1) < 0.1
+    h = r["humidity"]
+    # The same object as the command line's.
+    cli = json.loads(_fit_cli("--relative-humidity", "0.4", "--contact-angle-deg", "80").stdout)
+    want = cli["curves"][0]["humidity"]
+    for k in ("pulloff_force_load_control_n", "z0_m", "solid_work_of_adhesion_j_m2",
+              "solid_lambda", "meniscus_share", "meniscus_only_pulloff_n"):
+        assert h[k] == pytest.approx(want[k], rel=1e-12), k
+    assert h["meniscus"] == pytest.approx(want["meniscus"], rel=1e-12)
+    # The force: the fitted model's load-controlled pull-off, Pbar_c(lambda) pi w R.
+    pbar = tabor.pulloff(r["lambda"])["load_control_load"]
+    assert h["pulloff_force_load_control_n"] == pytest.approx(
+        -pbar * np.pi * r["work_of_adhesion_j_m2"] * 20e-9, rel=1e-12)
+    # The solid's w: `infer --relative-humidity` on that force with the fitted E* and z0.
+    inf = tabor.infer_pulloff(h["pulloff_force_load_control_n"], 20e-9, r["e_star_pa"],
+                              z0_m=h["z0_m"], relative_humidity=0.4, contact_angle_deg=80)
+    ws = h["solid_work_of_adhesion_j_m2"]
+    assert abs(ws / inf["solid_work_of_adhesion_j_m2"] - 1) < 1e-9
+    assert 0 < ws < r["work_of_adhesion_j_m2"]
+    assert h["meniscus"]["work_of_adhesion_j_m2"] == pytest.approx(
+        2 * 0.072 * np.cos(np.radians(80)), rel=1e-12)
+    # No meniscus at 90 degrees or more: the fitted w itself.
+    dry = tabor.fit_curve(*args, radius_m=20e-9, spring_n_m=40.0, relative_humidity=0.4,
+                          contact_angle_deg=95)["humidity"]
+    assert dry["meniscus"] is None and dry["meniscus_share"] == 0.0
+    assert dry["solid_work_of_adhesion_j_m2"] == r["work_of_adhesion_j_m2"]
+
+
+@pytest.mark.parametrize("kw,flags", [
+    ({"relative_humidity": 1.5}, ["--relative-humidity", "1.5"]),
+    ({"relative_humidity": -0.1}, ["--relative-humidity", "-0.1"]),
+    ({"relative_humidity": 0.0}, ["--relative-humidity", "0"]),
+    ({"relative_humidity": float("nan")}, ["--relative-humidity", "NaN"]),
+    ({"relative_humidity": 0.4, "contact_angle_deg": 200.0},
+     ["--relative-humidity", "0.4", "--contact-angle-deg", "200"]),
+    ({"relative_humidity": 0.4, "contact_angle_deg": -5.0},
+     ["--relative-humidity", "0.4", "--contact-angle-deg", "-5"]),
+    ({"relative_humidity": 0.4, "surface_tension_n_m": -0.07},
+     ["--relative-humidity", "0.4", "--surface-tension-n-m", "-0.07"]),
+    ({"relative_humidity": 0.4, "temperature_k": 0.0},
+     ["--relative-humidity", "0.4", "--temperature-k", "0"]),
+])
+def test_bad_humidity_in_a_fit_is_refused_with_the_command_lines_words(kw, flags, tmp_path):
+    rows = np.genfromtxt(CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    with pytest.raises(ValueError) as e:
+        tabor.fit_curve(rows["height_m"], rows["force_n"], rows["segment"], radius_m=20e-9,
+                        spring_n_m=40.0, **kw)
+    out = tmp_path / "fit.json"
+    cli = _fit_cli(*flags, "-o", str(out))
+    assert cli.returncode == 1 and not out.exists()
+    line = cli.stderr.strip()
+    assert "\n" not in line and "\n" not in str(e.value)
+    flag = flags[-2]
+    # "error: --flag: words" against "keyword: words", the keyword the flag's.
+    words = line.split(f"{flag}: ", 1)[1]
+    key = flag[2:].replace("-", "_")
+    assert str(e.value) == f"{key}: {words}"
+    if kw["relative_humidity"] == 0.0:
+        assert "no meniscus" in words

@@ -39,7 +39,9 @@ pub struct SolveArgs {
     /// A second Dugdale zone (e.g. a water meniscus) for a single state: its stress over the
     /// solid's, s2/s1; --lambda is then the solid's, units on the total w (docs/PHYSICS.md
     /// section 10).
-    #[arg(long, requires = "range_ratio", conflicts_with = "input")]
+    /// With --input, the same second zone for every row (each row's lambda the solid's), solved
+    /// on the CPU.
+    #[arg(long, requires = "range_ratio")]
     pub stress_ratio: Option<f64>,
     /// The second zone's range over the solid's, h2/h1.
     #[arg(long, requires = "stress_ratio")]
@@ -172,6 +174,9 @@ impl Given {
 
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     if let Some(input) = &a.input {
+        if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+            return solve_two_zone_file(&a, input, (rho, eta));
+        }
         return match a.control {
             Some(Given::Radius) => solve_radius_file(&a, input),
             _ => solve_file(&a, input),
@@ -294,41 +299,14 @@ fn solve_two_zone(
             given.flag()
         );
     }
-    let s = match given {
-        Given::Load => ctx.state_at_load(value),
-        Given::Displacement => ctx.state_at_approach(value),
-        Given::Radius => ctx.state_at_radius(value),
-    };
-    let cols = [
-        "lambda",
-        "stress_ratio",
-        "range_ratio",
-        "load",
-        "A",
-        "approach",
-        "c1",
-        "c2",
-    ];
-    let vals = [lambda, rho, eta, s.load, s.a, s.approach, s.c[0], s.c[1]];
+    let s = two_zone_state(&ctx, given, value);
+    let vals = two_zone_values(lambda, (rho, eta), given, value, &s);
     let text = match a.format.unwrap_or(Format::Text) {
-        Format::Json => {
-            let mut m: serde_json::Map<_, _> = cols
-                .iter()
-                .zip(vals)
-                .map(|(k, v)| (k.to_string(), json_num(v)))
-                .collect();
-            m.insert("load_stable".into(), json!(s.load_stable));
-            m.insert("displacement_stable".into(), json!(s.displacement_stable));
-            m.insert("status".into(), json!(s.status.name()));
-            m.insert("control".into(), json!(given.name()));
-            serde_json::to_string_pretty(&serde_json::Value::Object(m))? + "\n"
-        }
+        Format::Json => serde_json::to_string_pretty(&two_zone_json(&vals, &s, given))? + "\n",
         Format::Csv => {
             let mut w = crate::io::csv_writer();
-            w.write_record(cols.iter().chain(&["status"]))?;
-            let mut row: Vec<String> = vals.iter().map(|&v| fmt17(v)).collect();
-            row.push(s.status.name().to_string());
-            w.write_record(row)?;
+            w.write_record(TWO_ZONE_HEADER)?;
+            w.write_record(two_zone_fields(&vals, &s))?;
             String::from_utf8(crate::io::csv_finish(w)?)?
         }
         Format::Text => format!(
@@ -337,6 +315,151 @@ fn solve_two_zone(
         ),
     };
     write_output(&a.output, text.as_bytes())
+}
+
+/// The columns of a two-zone state (CSV, and the keys of its JSON object).
+const TWO_ZONE_HEADER: [&str; 9] = [
+    "lambda",
+    "stress_ratio",
+    "range_ratio",
+    "load",
+    "A",
+    "approach",
+    "c1",
+    "c2",
+    "status",
+];
+
+/// The two-zone state at the given load, approach or contact radius.
+fn two_zone_state(
+    ctx: &crate::solver::two_zone::TwoZoneContext,
+    given: Given,
+    value: f64,
+) -> crate::solver::two_zone::TwoZoneState {
+    match given {
+        Given::Load => ctx.state_at_load(value),
+        Given::Displacement => ctx.state_at_approach(value),
+        Given::Radius => ctx.state_at_radius(value),
+    }
+}
+
+/// The numbers of a two-zone state, in [`TWO_ZONE_HEADER`]'s order: where no state was found,
+/// the value given stays in its column and the rest are NaN (empty in CSV, null in JSON).
+fn two_zone_values(
+    lambda: f64,
+    (rho, eta): (f64, f64),
+    given: Given,
+    value: f64,
+    s: &crate::solver::two_zone::TwoZoneState,
+) -> [f64; 8] {
+    let mut v = [lambda, rho, eta, s.load, s.a, s.approach, s.c[0], s.c[1]];
+    let k = match given {
+        Given::Load => 3,
+        Given::Radius => 4,
+        Given::Displacement => 5,
+    };
+    if v[k].is_nan() {
+        v[k] = value;
+    }
+    v
+}
+
+fn two_zone_fields(vals: &[f64; 8], s: &crate::solver::two_zone::TwoZoneState) -> Vec<String> {
+    let mut row: Vec<String> = vals.iter().map(|&v| fmt17(v)).collect();
+    row.push(s.status.name().to_string());
+    row
+}
+
+fn two_zone_json(
+    vals: &[f64; 8],
+    s: &crate::solver::two_zone::TwoZoneState,
+    given: Given,
+) -> serde_json::Value {
+    let mut m: serde_json::Map<_, _> = TWO_ZONE_HEADER
+        .iter()
+        .zip(vals)
+        .map(|(k, &v)| (k.to_string(), json_num(v)))
+        .collect();
+    m.insert("load_stable".into(), json!(s.load_stable));
+    m.insert("displacement_stable".into(), json!(s.displacement_stable));
+    m.insert("status".into(), json!(s.status.name()));
+    m.insert("control".into(), json!(given.name()));
+    serde_json::Value::Object(m)
+}
+
+/// A table of points of the two-zone law (each row's lambda the solid's, the same stress and
+/// range ratios for all) on the CPU in f64, streamed in chunks: each distinct lambda's curve is
+/// computed once per chunk, and a row that cannot be solved gets its status.
+fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> anyhow::Result<()> {
+    use crate::physics::two_zone::Zones;
+    use crate::solver::two_zone::{TwoZoneContext, TwoZoneState};
+    use rayon::prelude::*;
+    let given = a.control.unwrap_or(Given::Load);
+    let format = match a.format.unwrap_or(Format::Csv) {
+        Format::Text => bail!("--format text is for a single state; use csv or json for --input"),
+        f => f,
+    };
+    // The ratios are checked once, with a lambda the solver takes, before anything is written.
+    Zones::from_ratios(1.0, rho, eta)
+        .map_err(|e| anyhow::anyhow!("--stress-ratio, --range-ratio: {e}"))?;
+    if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
+        eprintln!("note: two zones are solved by the f64 CPU solver only");
+    }
+    let column = match given {
+        Given::Load => "load",
+        Given::Displacement => "approach",
+        Given::Radius => "A",
+    };
+    let mut reader = crate::io::PointReader::open(input, column)?;
+    let mut table = StreamTable::start(Output::create(&a.output)?, format, &TWO_ZONE_HEADER)?;
+    eprintln!("backend: CPU f64 (two zones: stress ratio {rho}, range ratio {eta})");
+    let failed = TwoZoneState::failed;
+    loop {
+        let chunk = reader.next_chunk(CHUNK_ROWS)?;
+        if chunk.is_empty() {
+            break;
+        }
+        // Each distinct lambda's curve once.
+        let mut lambdas: Vec<f64> = chunk.iter().map(|p| p.0).collect();
+        lambdas.sort_by(f64::total_cmp);
+        lambdas.dedup_by(|x, y| x.to_bits() == y.to_bits());
+        let contexts: Vec<Result<TwoZoneContext, Status>> = lambdas
+            .par_iter()
+            .map(|&l| {
+                let z = Zones::from_ratios(l, rho, eta).map_err(|_| Status::InvalidInput)?;
+                TwoZoneContext::new(z)
+            })
+            .collect();
+        let rows: Vec<([f64; 8], TwoZoneState)> = chunk
+            .par_iter()
+            .map(|&(l, v)| {
+                let i = lambdas
+                    .binary_search_by(|x| x.total_cmp(&l))
+                    .expect("every lambda of the chunk is listed");
+                let s = match &contexts[i] {
+                    _ if !v.is_finite() || (given == Given::Radius && v <= 0.0) => {
+                        failed(Status::InvalidInput)
+                    }
+                    Ok(ctx) => two_zone_state(ctx, given, v),
+                    Err(st) => failed(*st),
+                };
+                (two_zone_values(l, (rho, eta), given, v, &s), s)
+            })
+            .collect();
+        table.rows(
+            &rows,
+            |(v, s)| two_zone_json(v, s, given),
+            |(v, s), buf| {
+                let mut w = crate::io::csv_writer();
+                if w.write_record(two_zone_fields(v, s)).is_ok() {
+                    buf.extend(crate::io::csv_finish(w).unwrap_or_default());
+                }
+            },
+        )?;
+    }
+    table.finish(|rows| {
+        Ok(json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": given.name(), "stress_ratio": rho, "range_ratio": eta, "points": rows}))
+    })
 }
 
 /// `{"results": [...], "metadata": ...}` as `solve` writes it.

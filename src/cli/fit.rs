@@ -61,6 +61,28 @@ pub struct FitArgs {
     /// The curve drawn by --plot [default: the first].
     #[arg(long)]
     pub curve: Option<String>,
+    /// Relative humidity (0..1) of the air the curves were measured in: each fit also reports
+    /// the solid's w with the water meniscus taken out of the fitted pull-off.
+    #[arg(long, allow_negative_numbers = true)]
+    pub relative_humidity: Option<f64>,
+    /// Contact angle of water on the surfaces (degrees), with --relative-humidity.
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        requires = "relative_humidity",
+        allow_negative_numbers = true
+    )]
+    pub contact_angle_deg: f64,
+    /// Surface tension of the liquid (N/m) [default: 0.072, water], with --relative-humidity.
+    #[arg(long, requires = "relative_humidity", allow_negative_numbers = true)]
+    pub surface_tension_n_m: Option<f64>,
+    /// Molar volume of the liquid (m^3/mol) [default: 1.8e-5, water], with
+    /// --relative-humidity.
+    #[arg(long, requires = "relative_humidity", allow_negative_numbers = true)]
+    pub molar_volume_m3_mol: Option<f64>,
+    /// Temperature (K) [default: 298.15], with --relative-humidity.
+    #[arg(long, requires = "relative_humidity", allow_negative_numbers = true)]
+    pub temperature_k: Option<f64>,
     #[command(flatten)]
     pub figure: super::FigureArgs,
 }
@@ -81,6 +103,15 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         z0: a.z0,
         tilt: a.tilt,
         tolerance: a.tolerance,
+        humidity: a
+            .relative_humidity
+            .map(|rh| crate::scene::humidity::HumidityInput {
+                relative_humidity: rh,
+                contact_angle_deg: a.contact_angle_deg,
+                surface_tension_n_m: a.surface_tension_n_m,
+                molar_volume_m3_mol: a.molar_volume_m3_mol,
+                temperature_k: a.temperature_k,
+            }),
         ..FitOptions::default()
     };
     // One check of the options, the library's, as Python's fit_curves makes it.
@@ -169,7 +200,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
                 curves: &results,
             })? + "\n"
         }
-        _ => csv_rows(&results)?,
+        _ => csv_rows(&results, opt.humidity.is_some())?,
     };
     write_output(&a.output, text.as_bytes())?;
     let ok = results.iter().filter(|r| r.status == FitStatus::Ok).count();
@@ -196,9 +227,24 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
             range(r.work_of_adhesion_j_m2_interval_95),
             r.adequate_model.map_or("-", |m| m.name())
         );
-        for w in &r.warnings {
+        if let Some(h) = &r.humidity {
+            eprintln!("  {}", humidity_line(h));
+        }
+        // The humidity's note is printed above.
+        let said = r.humidity.as_ref().map(|h| format!("humidity: {}", h.note));
+        for w in r.warnings.iter().filter(|w| Some(*w) != said.as_ref()) {
             eprintln!("  warning: {w}");
         }
+    } else if opt.humidity.is_some() {
+        let n = results
+            .iter()
+            .filter(|r| {
+                r.humidity
+                    .as_ref()
+                    .is_some_and(|h| h.solid_work_of_adhesion_j_m2.is_some())
+            })
+            .count();
+        eprintln!("  the solid's w with the meniscus taken out: {n} of {ok} fitted curves (the others have none: see each curve's humidity.note)");
     }
     if let Some(i) = plotted {
         let (c, r) = (&curves[i], &results[i]);
@@ -289,9 +335,72 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
+/// The humidity of a fitted curve in one line: the meniscus and the solid's w.
+fn humidity_line(h: &fit::humidity::FitHumidity) -> String {
+    let air = format!(
+        "RH = {:.1}%, contact angle {} deg",
+        100.0 * h.relative_humidity,
+        crate::physics::domain::short(h.contact_angle_deg)
+    );
+    match &h.meniscus {
+        Some(m) => format!(
+            "humid air ({air}): meniscus Kelvin radius {:.3e} m, Laplace pressure {:.3e} Pa, range {:.3e} m, w = {:.4e} J/m^2; fitted pull-off (load control) {:.4e} N; {}",
+            m.kelvin_radius_m,
+            m.laplace_pressure_pa,
+            m.range_m,
+            m.work_of_adhesion_j_m2,
+            h.pulloff_force_load_control_n,
+            h.note
+        ),
+        None => format!("humid air ({air}): {}", h.note),
+    }
+}
+
+/// The humidity columns of the CSV table.
+const HUMIDITY_COLUMNS: [&str; 14] = [
+    "relative_humidity",
+    "contact_angle_deg",
+    "kelvin_radius_m",
+    "laplace_pressure_pa",
+    "meniscus_range_m",
+    "meniscus_work_of_adhesion_j_m2",
+    "pulloff_force_load_control_n",
+    "meniscus_only_pulloff_n",
+    "solid_work_of_adhesion_j_m2",
+    "solid_lambda",
+    "meniscus_share",
+    "meniscus_range_over_fitted_range",
+    "fair_reading",
+    "humidity_note",
+];
+
+fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
+    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
+    let Some(h) = h else {
+        return vec![String::new(); HUMIDITY_COLUMNS.len()];
+    };
+    let m = h.meniscus.as_ref();
+    vec![
+        f(Some(h.relative_humidity)),
+        f(Some(h.contact_angle_deg)),
+        f(m.map(|m| m.kelvin_radius_m)),
+        f(m.map(|m| m.laplace_pressure_pa)),
+        f(m.map(|m| m.range_m)),
+        f(m.map(|m| m.work_of_adhesion_j_m2)),
+        f(Some(h.pulloff_force_load_control_n).filter(|v| v.is_finite())),
+        f(h.meniscus_only_pulloff_n),
+        f(h.solid_work_of_adhesion_j_m2),
+        f(h.solid_lambda),
+        f(h.meniscus_share),
+        f(h.meniscus_range_over_fitted_range),
+        h.fair_reading.to_string(),
+        h.note.clone(),
+    ]
+}
+
+fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
     let mut w = crate::io::csv_writer();
-    w.write_record([
+    let mut header = vec![
         "curve",
         "x",
         "y",
@@ -324,7 +433,11 @@ fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
         "iterations",
         "warnings",
         "message",
-    ])?;
+    ];
+    if humid {
+        header.extend(HUMIDITY_COLUMNS);
+    }
+    w.write_record(&header)?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
     for r in results {
         let rms = |m: fit::Model| {
@@ -333,7 +446,7 @@ fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
                 .find(|x| x.model == m)
                 .map(|x| x.rms_residual_n))
         };
-        w.write_record([
+        let mut row = vec![
             r.curve.clone(),
             r.x.map_or(String::new(), |v| v.to_string()),
             r.y.map_or(String::new(), |v| v.to_string()),
@@ -369,7 +482,11 @@ fn csv_rows(results: &[CurveFit]) -> anyhow::Result<String> {
             r.iterations.to_string(),
             r.warnings.join("; "),
             r.message.clone(),
-        ])?;
+        ];
+        if humid {
+            row.extend(humidity_cells(r.humidity.as_ref()));
+        }
+        w.write_record(&row)?;
     }
     Ok(String::from_utf8(crate::io::csv_finish(w)?)?)
 }

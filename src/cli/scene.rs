@@ -58,11 +58,6 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let r = solve_scene(&input)?;
-    if !figure.is_empty() && r.meniscus.is_some() {
-        bail!(
-            "--plot is not available yet for a scene with a meniscus: use `tabor humidity --plot`"
-        );
-    }
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         _ => scene_text(&r),

@@ -5,7 +5,9 @@
 //! is the shorter range, both discs until the axis gap closes, then the contact curve.
 //! A single zone, or two zones of one range, is MD itself and gives MD's cycle.
 
-use super::{check_drive, equilibrium_path, follow, refine_jump_outs, Branch, Cycle, Drive, Jump};
+use super::{
+    check_drive, control_of, equilibrium_path, follow, refine_jump_outs, Branch, Cycle, Drive, Jump,
+};
 use super::{PathPoint, Phase};
 use crate::physics::two_zone::Zones;
 use crate::physics::two_zone::{non_contact_both, non_contact_single, NonContactPoint, Shape};
@@ -177,22 +179,26 @@ fn two_zone_path(
     Ok(free.chain(path).collect())
 }
 
-/// Puts the retract's jump from the contact branch at the context's pull-off (rigid grips: the
-/// displacement-controlled one, dead load: the load-controlled one); the sampled path only
-/// brackets it. A spring's fold stays where the samples put it.
+/// Puts the retract's jump from the contact branch at the exact fold of the control (rigid
+/// grips: the displacement-controlled pull-off, dead load: the load-controlled one, a spring:
+/// where `dPbar/dDbar = -kbar`, [`TwoZoneContext::spring_fold`]); the sampled path only
+/// brackets it. A landing on the free branch moves with it, as in the MD cycle.
 fn refine_two_zone(ctx: &TwoZoneContext, long: usize, drive: Drive, jumps: &mut [Jump]) {
-    let exact = match drive {
-        Drive::RigidGrips => ctx.disp_pulloff,
-        Drive::DeadLoad => ctx.load_pulloff,
-        Drive::Spring(_) => return,
-    };
-    if exact.at_zero_radius() {
-        return;
-    }
     for j in jumps
         .iter_mut()
         .filter(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
     {
+        let exact = match drive {
+            Drive::RigidGrips => ctx.disp_pulloff,
+            Drive::DeadLoad => ctx.load_pulloff,
+            Drive::Spring(k) => match ctx.spring_fold(k, j.from.a) {
+                Some(f) => f,
+                None => continue,
+            },
+        };
+        if exact.at_zero_radius() {
+            continue;
+        }
         j.from = PathPoint {
             branch: Branch::Contact,
             approach: exact.approach,
@@ -200,8 +206,13 @@ fn refine_two_zone(ctx: &TwoZoneContext, long: usize, drive: Drive, jumps: &mut 
             a: exact.a,
             c: exact.c[long],
         };
+        // On the free branch (no load) at the control of the jump: a spring's base, else the
+        // approach.
         if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
-            to.approach = exact.approach;
+            to.approach = match drive {
+                Drive::Spring(_) => control_of(&j.from, drive),
+                _ => exact.approach,
+            };
         }
     }
 }

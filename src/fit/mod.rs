@@ -11,6 +11,7 @@
 //! crate) with finite-difference Jacobians that keep each point on its branch.
 
 pub mod data;
+pub mod humidity;
 pub mod interval;
 pub mod path;
 pub mod segments;
@@ -65,6 +66,9 @@ pub struct FitOptions {
     pub tolerance: f64,
     /// The far part of the approach used for the baseline (fraction of its points).
     pub baseline_fraction: f64,
+    /// The humid air the curves were measured in: each fit then reports the solid's w with the
+    /// water meniscus taken out of its pull-off ([`humidity::solid_work`]).
+    pub humidity: Option<crate::scene::humidity::HumidityInput>,
 }
 
 impl Default for FitOptions {
@@ -78,6 +82,7 @@ impl Default for FitOptions {
             tilt: false,
             tolerance: 0.05,
             baseline_fraction: 0.3,
+            humidity: None,
         }
     }
 }
@@ -145,6 +150,16 @@ impl FitOptions {
                 short(self.baseline_fraction)
             ),
             ));
+        }
+        if let Some(h) = &self.humidity {
+            // The library's checks of a humidity, named by its keys.
+            h.validate().map_err(|e| (e.key(), e.to_string()))?;
+            if h.relative_humidity == 0.0 {
+                return Err((
+                    "relative_humidity",
+                    "relative humidity 0 is dry air, where no meniscus forms: leave the humidity out for a dry fit, or give the humidity the curves were measured in, in (0, 1)".to_string(),
+                ));
+            }
         }
         Ok(())
     }
@@ -277,6 +292,9 @@ pub struct CurveFit {
     /// fitted E* and z0.
     pub verdict: Option<String>,
     pub warnings: Vec<String>,
+    /// With a humidity: the meniscus and the solid's w with it taken out.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub humidity: Option<humidity::FitHumidity>,
     #[serde(skip)]
     pub md: Option<ModelFit>,
 }
@@ -471,6 +489,7 @@ fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFit {
         why: String::new(),
         verdict: None,
         warnings: Vec::new(),
+        humidity: None,
         md: None,
     }
 }
@@ -2113,6 +2132,12 @@ fn summarize(
             "the sampling does not resolve the jump-out: the model's pull-off {:.3e} N exceeds the most tensile measured force {:.3e} N; sample more densely near the jump",
             md_pull, mp
         ));
+    }
+    if let Some(h) = &opt.humidity {
+        out.humidity = humidity::solid_work(&out, opt.radius, h);
+        if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
+            warn.push(format!("humidity: {}", fh.note));
+        }
     }
     out.warnings = warn;
     out.status = FitStatus::Ok;

@@ -415,7 +415,12 @@ where
     let (fs, rs) = (fig.force_scale, fig.radius_scale);
     let (pc, pmax) = fig.loads;
     let md = &fig.md;
-    let amax = md.iter().map(|q| q.1).fold(0.0, f64::max) * 1.1;
+    let amax = md
+        .iter()
+        .chain(fig.wet.iter().flatten())
+        .map(|q| q.1)
+        .fold(0.0, f64::max)
+        * if fig.wet.is_some() { 1.25 } else { 1.1 };
     // Display units: the prefix that keeps the ticks between 1 and 1000.
     let (fu, fp) = super::si_prefix(pmax.max(pc.abs() * 1.4));
     let (au, ap) = super::si_prefix(amax);
@@ -440,7 +445,9 @@ where
         ("dmt", "DMT", BLUE_, dmt_radius),
         ("jkr", "JKR", ORANGE_, jkr_radius),
     ];
-    for (key, name, col, f) in closed {
+    // A wet scene: the closed forms are the dry contact's, and the MD curve is drawn against
+    // the curve of solid and meniscus instead.
+    for (key, name, col, f) in closed.into_iter().filter(|_| fig.wet.is_none()) {
         let rec = r.recommended_model.name() == key;
         let st = if rec {
             ShapeStyle::from(&col).stroke_width(8)
@@ -465,13 +472,32 @@ where
             .legend(sample_dashed(st));
     }
     let st = ShapeStyle::from(&BLACK).stroke_width(6);
+    let (md_style, md_label) = match &fig.wet {
+        None => (st, "Maugis-Dugdale (exact)"),
+        Some(_) => (
+            ShapeStyle::from(&GRAY_).stroke_width(5),
+            "dry: Maugis-Dugdale (exact)",
+        ),
+    };
     chart
         .draw_series(LineSeries::new(
             md.iter().map(|&(p, a)| (p / fu, a / au)),
-            st,
+            md_style,
         ))?
-        .label("Maugis-Dugdale (exact)")
-        .legend(sample(st));
+        .label(md_label)
+        .legend(sample(md_style));
+    if let Some(wet) = &fig.wet {
+        chart
+            .draw_series(LineSeries::new(
+                wet.iter().map(|&(p, a)| (p / fu, a / au)),
+                st,
+            ))?
+            .label(format!(
+                "solid + meniscus, RH {:.0}% (exact)",
+                100.0 * r.relative_humidity.unwrap_or(f64::NAN)
+            ))
+            .legend(sample(st));
+    }
     for l in &r.loads {
         if let Some(a) = l.contact_radius_m {
             chart.draw_series(std::iter::once(Circle::new(
@@ -481,10 +507,32 @@ where
             )))?;
         }
     }
-    super::legend(&mut chart, SeriesLabelPosition::LowerRight, NOTE)?;
+    // A wet scene's legend above its curves, clear of the dry curve's pull-off.
+    let corner = if fig.wet.is_some() {
+        SeriesLabelPosition::UpperLeft
+    } else {
+        SeriesLabelPosition::LowerRight
+    };
+    super::legend(&mut chart, corner, NOTE)?;
 
-    // Where the scene sits on the map (normalised loads), drawn as `tabor map` draws.
-    scene_on_map(&right, r, &fig.map)
+    // Where the scene sits on the map (normalised loads), drawn as `tabor map` draws; a wet
+    // scene's dry contact (its loads in the solid's units), the map being single-zone MD.
+    let loads: Vec<f64> = match &fig.wet {
+        None => r.loads.iter().map(|l| l.load_normalised).collect(),
+        // Only where the dry contact holds: above its own pull-off.
+        Some(_) => r
+            .loads
+            .iter()
+            .map(|l| l.load_n / fs)
+            .filter(|&p| p >= r.dry_pulloff_force_load_control_N.unwrap_or(pc) / fs)
+            .collect(),
+    };
+    let title = if fig.wet.is_some() {
+        "the dry contact on the map"
+    } else {
+        "on the adhesion map"
+    };
+    scene_on_map(&right, r, &fig.map, &loads, title)
 }
 
 /// The scene's lambda and loads as crosses on an inset adhesion map.
@@ -492,14 +540,16 @@ fn scene_on_map<DB: DrawingBackend>(
     right: &DrawingArea<DB, Shift>,
     r: &crate::scene::SceneResult,
     d: &crate::map::MapData,
+    loads: &[f64],
+    title: &str,
 ) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
-    let mut ch = super::map::inset(right, d, "on the adhesion map")?;
+    let mut ch = super::map::inset(right, d, title)?;
     let l = r.lambda.clamp(d.spec.lambda_min, d.spec.lambda_max);
-    for ld in &r.loads {
-        let y = ld.load_normalised.clamp(d.spec.load_min, d.spec.load_max);
+    for &ld in loads {
+        let y = ld.clamp(d.spec.load_min, d.spec.load_max);
         ch.draw_series(std::iter::once(Cross::new(
             (l, y),
             16,

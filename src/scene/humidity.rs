@@ -48,6 +48,87 @@ fn bad(field: &'static str, value: f64, allowed: &'static str) -> ParamError {
     }
 }
 
+/// The values of a humidity: its key in a scene's `"humidity"` object, the quantity in words
+/// and what it must be.
+const VALUES: [(&str, &str, &str, &str); 5] = [
+    (
+        "relative_humidity",
+        "humidity.relative_humidity",
+        "relative humidity",
+        "in 0..1 (a fraction, below 1: at 1 the Kelvin radius is infinite)",
+    ),
+    (
+        "contact_angle_deg",
+        "humidity.contact_angle_deg",
+        "contact angle",
+        "in 0..180 (degrees)",
+    ),
+    (
+        "surface_tension_n_m",
+        "humidity.surface_tension_n_m",
+        "surface tension",
+        "> 0 (N/m; water 0.072)",
+    ),
+    (
+        "molar_volume_m3_mol",
+        "humidity.molar_volume_m3_mol",
+        "molar volume",
+        "> 0 (m^3/mol; water 1.8e-5)",
+    ),
+    (
+        "temperature_k",
+        "humidity.temperature_k",
+        "temperature",
+        "> 0 (K; 298.15 is 25 C)",
+    ),
+];
+
+/// A value of a humidity out of its range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HumidityRangeError {
+    which: usize,
+    /// The value given.
+    pub value: f64,
+}
+
+impl HumidityRangeError {
+    /// Its key in a scene's `"humidity"` object (`relative_humidity`, `contact_angle_deg`,
+    /// `surface_tension_n_m`, `molar_volume_m3_mol`, `temperature_k`).
+    pub fn key(&self) -> &'static str {
+        VALUES[self.which].0
+    }
+
+    /// The quantity in words ("relative humidity").
+    pub fn quantity(&self) -> &'static str {
+        VALUES[self.which].2
+    }
+
+    /// What the value must be, in words.
+    pub fn allowed(&self) -> &'static str {
+        VALUES[self.which].3
+    }
+}
+
+impl std::fmt::Display for HumidityRangeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} {} is out of range: it must be {}",
+            self.quantity(),
+            crate::physics::domain::short(self.value),
+            self.allowed()
+        )
+    }
+}
+
+impl std::error::Error for HumidityRangeError {}
+
+impl From<HumidityRangeError> for ParamError {
+    fn from(e: HumidityRangeError) -> ParamError {
+        bad(VALUES[e.which].1, e.value, e.allowed())
+    }
+}
+
 impl HumidityInput {
     /// A humidity for `rh` with water's defaults and the contact angle `theta_deg`.
     pub fn water(rh: f64, theta_deg: f64) -> HumidityInput {
@@ -60,37 +141,54 @@ impl HumidityInput {
         }
     }
 
-    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
-    /// contact angle of 90 degrees or more: water does not bridge the gap).
-    pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
+    /// The surface tension (N/m), its default water's 0.072.
+    pub fn surface_tension(&self) -> f64 {
+        self.surface_tension_n_m.unwrap_or(0.072)
+    }
+
+    /// The molar volume (m^3/mol), its default water's 1.8e-5.
+    pub fn molar_volume(&self) -> f64 {
+        self.molar_volume_m3_mol.unwrap_or(1.8e-5)
+    }
+
+    /// The temperature (K), its default 298.15.
+    pub fn temperature(&self) -> f64 {
+        self.temperature_k.unwrap_or(298.15)
+    }
+
+    /// Checks every value: the first out of its range, with its key and limit in words.
+    pub fn validate(&self) -> Result<(), HumidityRangeError> {
+        let err = |i: usize, value: f64| Err(HumidityRangeError { which: i, value });
         let rh = self.relative_humidity;
         if !(rh.is_finite() && (0.0..1.0).contains(&rh)) {
-            return Err(bad(
-                "humidity.relative_humidity",
-                rh,
-                "in 0..1 (a fraction, below 1: at 1 the Kelvin radius is infinite)",
-            ));
+            return err(0, rh);
         }
         let theta = self.contact_angle_deg;
         if !(theta.is_finite() && (0.0..=180.0).contains(&theta)) {
-            return Err(bad(
-                "humidity.contact_angle_deg",
-                theta,
-                "in 0..180 (degrees)",
-            ));
+            return err(1, theta);
         }
-        let gamma = self.surface_tension_n_m.unwrap_or(0.072);
-        if !(gamma.is_finite() && gamma > 0.0) {
-            return Err(bad("humidity.surface_tension_n_m", gamma, "> 0 (N/m)"));
+        for (i, v) in [
+            (2, self.surface_tension()),
+            (3, self.molar_volume()),
+            (4, self.temperature()),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return err(i, v);
+            }
         }
-        let vm = self.molar_volume_m3_mol.unwrap_or(1.8e-5);
-        if !(vm.is_finite() && vm > 0.0) {
-            return Err(bad("humidity.molar_volume_m3_mol", vm, "> 0 (m^3/mol)"));
-        }
-        let t = self.temperature_k.unwrap_or(298.15);
-        if !(t.is_finite() && t > 0.0) {
-            return Err(bad("humidity.temperature_k", t, "> 0 (K)"));
-        }
+        Ok(())
+    }
+
+    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
+    /// contact angle of 90 degrees or more: water does not bridge the gap).
+    pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
+        self.validate()?;
+        let (rh, theta) = (self.relative_humidity, self.contact_angle_deg);
+        let (gamma, vm, t) = (
+            self.surface_tension(),
+            self.molar_volume(),
+            self.temperature(),
+        );
         if rh == 0.0 || theta >= 90.0 {
             return Ok(None);
         }
@@ -329,5 +427,5 @@ pub fn sweep(
 }
 
 fn points_w(base: &HumidityInput) -> f64 {
-    2.0 * base.surface_tension_n_m.unwrap_or(0.072) * (base.contact_angle_deg * PI / 180.0).cos()
+    2.0 * base.surface_tension() * (base.contact_angle_deg * PI / 180.0).cos()
 }

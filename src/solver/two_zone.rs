@@ -180,7 +180,8 @@ pub struct TwoZoneState {
 }
 
 impl TwoZoneState {
-    fn failed(status: Status) -> TwoZoneState {
+    /// No state: every number NaN, with the status that says why.
+    pub fn failed(status: Status) -> TwoZoneState {
         TwoZoneState {
             a: f64::NAN,
             c: [f64::NAN; 2],
@@ -397,6 +398,37 @@ impl TwoZoneContext {
             displacement_stable: a_stable.1,
             status: Status::Ok,
         }
+    }
+
+    /// The fold of a spring of normalised stiffness `k` on the contact curve of two ranges:
+    /// where the control `Dbar + Pbar / k` stops falling as the contact shrinks, i.e. where
+    /// `dPbar/dDbar = -k`, the retract's jump-out under that spring. Searched between the
+    /// contact radii `0.8 a_near` and `1.25 a_near` (`a_near` the sampled fold), by bisection
+    /// in x on the sign of the control's central difference (step 1e-5 in x: its bias moves the
+    /// root by about 1e-11, rounding by less). `None` for one zone (MD's own), or where the
+    /// control's slope does not change sign in that range.
+    pub fn spring_fold(&self, k: f64, a_near: f64) -> Option<TwoZonePullOff> {
+        if self.md.is_some() || !(k > 0.0 && k.is_finite() && a_near > 0.0) {
+            return None;
+        }
+        let x_of = |a: f64| {
+            bisect_sign(
+                |x| a - point(&self.zones, x).map_or(f64::NAN, |p| p.a),
+                X_FAR,
+                X_END,
+            )
+        };
+        let control = |x: f64| point(&self.zones, x).map_or(f64::NAN, |p| p.approach + p.load / k);
+        const H: f64 = 1e-5;
+        // Negative on the stable side (the control falls as x grows and the contact shrinks).
+        let slope = |x: f64| control(x + H) - control(x - H);
+        let (lo, hi) = (x_of(1.25 * a_near), x_of(0.8 * a_near));
+        if !(slope(lo) < 0.0 && slope(hi) > 0.0) {
+            return None;
+        }
+        let x = bisect_sign(slope, lo, hi);
+        let p = point(&self.zones, x)?;
+        (p.load.is_finite() && p.approach.is_finite() && p.a > 0.0).then(|| pulloff_of(&p, x))
     }
 
     /// The state at contact radius `a > 0` (normalised).
