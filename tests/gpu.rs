@@ -676,3 +676,59 @@ fn chunked_and_concurrent_runs_give_the_same_results() {
         );
     }
 }
+
+/// The rough map with its summits' tables solved on the GPU (f32 kernel, then f64 steps) is the
+/// CPU map: every region, and the pull-offs within 1e-12 of max(|P|, 1e-3 |Pbar_c|); the
+/// tables' states agree with the f64 solver on the sample within its contract. The f32 tables
+/// alone stay within their cross-check's error (1e-5 of A) in the pull-offs.
+#[test]
+fn rough_map_tables_on_the_gpu_are_the_cpu_tables() {
+    use tabor::rough::map::{compute, compute_with, RoughMapSpec};
+    let Some(engine) = gpu_f64() else { return };
+    let spec = RoughMapSpec {
+        lambda_min: 0.05,
+        lambda_max: 50.0,
+        nx: 12,
+        sigma_min: 0.05,
+        sigma_max: 5.0,
+        ny: 6,
+        tolerance: 0.05,
+        press_sigmas: 3.0,
+    };
+    let cpu = compute(&spec, 0).unwrap();
+    let gpu = compute_with(&spec, 0, &engine).unwrap();
+    assert!(
+        gpu.table_backend.starts_with("gpu f64"),
+        "{}",
+        gpu.table_backend
+    );
+    let check = gpu
+        .table_check
+        .as_ref()
+        .expect("a GPU map checks its tables");
+    assert!(
+        check.checked > 500 && check.status_mismatches == 0,
+        "{check}"
+    );
+    assert!(check.max_rel_err_a < 1e-12, "{check}");
+    assert_eq!(cpu.regions, gpu.regions);
+    for (i, (a, b)) in cpu.pulloff.iter().zip(&gpu.pulloff).enumerate() {
+        let floor = 1e-3 * cpu.smooth_pulloff[i % spec.nx].abs();
+        assert!(
+            (a - b).abs() <= 1e-12 * a.abs().max(floor),
+            "point {i}: cpu {a}, gpu {b}"
+        );
+    }
+    let adapter = std::env::var("TABOR_ADAPTER").ok();
+    let mut f32_engine = Engine::select(Backend::Gpu, adapter.as_deref()).unwrap().0;
+    f32_engine.set_precision(Precision::F32).unwrap();
+    let g32 = compute_with(&spec, 0, &f32_engine).unwrap();
+    assert_eq!(g32.table_backend, "gpu f32");
+    for (i, (a, b)) in cpu.pulloff.iter().zip(&g32.pulloff).enumerate() {
+        let floor = 1e-3 * cpu.smooth_pulloff[i % spec.nx].abs();
+        assert!(
+            (a - b).abs() <= 1e-5 * a.abs().max(floor),
+            "point {i}: cpu {a}, f32 {b}"
+        );
+    }
+}

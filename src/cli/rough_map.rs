@@ -53,6 +53,20 @@ pub struct RoughMapArgs {
     /// Write PREFIX_lambda.npy, PREFIX_sigma.npy, PREFIX_relative_pulloff.npy, ... .
     #[arg(long)]
     pub npy: Option<String>,
+    /// Where the summits' tables are solved [default: auto, or the environment variable
+    /// TABOR_BACKEND]; the quadrature runs on the CPU.
+    #[arg(long, value_enum)]
+    pub backend: Option<super::BackendArg>,
+    /// Use the first adapter whose name contains this text (see `tabor info`) [default: the
+    /// environment variable TABOR_ADAPTER].
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// GPU arithmetic for the tables: the f32 kernels, or f64 (refined by Newton steps in f64 on
+    /// the GPU; needs SHADER_F64) [default: f64 where the adapter has it, else f32: f32 nodes
+    /// miss the table's 1e-6 near the fold, where the quadrature then solves exactly on the
+    /// CPU]. The CPU path is f64.
+    #[arg(long, value_enum)]
+    pub precision: Option<super::PrecisionArg>,
 }
 
 /// The NPY files of `--npy PREFIX`, each `PREFIX_<name>`.
@@ -103,7 +117,11 @@ pub fn json(m: &RoughMap, full: bool, timings: bool) -> serde_json::Value {
         "table_error": json_num(m.table_error_max()),
         "table_error_per_lambda": nums(&m.table_error),
         "quadrature_check": m.check,
+        "table_backend": m.table_backend,
     });
+    if let Some(c) = &m.table_check {
+        j["table_check"] = serde_json::json!(c);
+    }
     if timings {
         j["seconds"] = json_num(m.seconds);
     }
@@ -176,7 +194,16 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     let mut figure_out = [open(&figure.png)?, open(&figure.svg)?, open(&figure.pdf)?];
     let mut json_out = open(&a.json).context("--json")?;
     let mut npy = super::open_npy(a.npy.as_deref(), &NPY_FILES)?;
-    let m = crate::rough::map::compute(&spec, a.check)?;
+    let gpu = super::basic::GpuArgs {
+        adapter: a.adapter.clone(),
+        check: super::basic::CheckCount(0),
+        precision: a.precision.unwrap_or(super::PrecisionArg::F32),
+    };
+    let mut engine = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
+    if a.precision.is_none() && engine.set_precision(crate::engine::Precision::F64).is_err() {
+        eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
+    }
+    let m = crate::rough::map::compute_with(&spec, a.check, &engine)?;
     let want = crate::render::Formats {
         png: figure.png.is_some(),
         svg: figure.svg.is_some(),
@@ -233,6 +260,9 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
         m.check.max_relative_difference,
         a.out.display()
     );
+    if let Some(c) = &m.table_check {
+        eprintln!("tables on {}: {c}", m.table_backend);
+    }
     eprintln!("regions: {}", counts.join(", "));
     Ok(())
 }

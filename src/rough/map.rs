@@ -9,9 +9,11 @@
 //! column then only integrates the table against the Gaussian (piecewise Gauss-Legendre).
 
 use super::{Leg, Rough, RoughError, Summit};
+use crate::engine::{CheckReport, Engine};
 use crate::map::Region;
 use crate::physics::closed::{jkr_approach, jkr_load};
 use crate::physics::domain::short;
+use crate::solver::{Control, Status};
 use rayon::prelude::*;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -122,28 +124,50 @@ fn v_of_u(u: f64) -> f64 {
 impl BranchTable {
     /// Tabulates `load(delta)` for `delta` in `[delta0, delta_hi]`; `None` where it fails.
     pub fn new(delta0: f64, delta_hi: f64, load: impl Fn(f64) -> Option<f64>) -> Option<Self> {
+        let loads: Vec<f64> = Self::approaches(delta0, delta_hi)
+            .into_iter()
+            .map(&load)
+            .collect::<Option<_>>()?;
+        Self::from_loads(delta0, &loads)
+    }
+
+    /// The approaches a table of `[delta0, delta_hi]` is solved at: its nodes, then the
+    /// midpoints of its intervals (where its error is measured).
+    pub fn approaches(delta0: f64, delta_hi: f64) -> Vec<f64> {
         let v_max = v_of_u((delta_hi - delta0).max(1.0).sqrt());
         let n = (v_max / TABLE_H).ceil() as usize + 4;
         let at = |v: f64| {
             let u = u_of_v(v);
-            load(delta0 + u * u)
+            delta0 + u * u
         };
-        let vals: Vec<f64> = (0..n)
+        (0..n)
             .map(|k| at(k as f64 * TABLE_H))
-            .collect::<Option<_>>()?;
+            .chain((0..n - 1).map(|k| at((k as f64 + 0.5) * TABLE_H)))
+            .collect()
+    }
+
+    /// The table from the loads at [`BranchTable::approaches`] (solved by any backend); `None`
+    /// where one is not finite.
+    pub fn from_loads(delta0: f64, loads: &[f64]) -> Option<Self> {
+        if loads.iter().any(|l| !l.is_finite()) {
+            return None;
+        }
+        let n = loads.len().div_ceil(2);
+        let (vals, mids) = loads.split_at(n);
         let mut t = BranchTable {
             delta0,
-            coef: spline(&vals),
+            coef: spline(vals),
             error: 0.0,
             exact_below: 0.0,
         };
-        let errs: Vec<f64> = (0..n - 1)
-            .map(|k| {
+        let errs: Vec<f64> = mids
+            .iter()
+            .enumerate()
+            .map(|(k, &exact)| {
                 let v = (k as f64 + 0.5) * TABLE_H;
-                let exact = at(v)?;
-                Some((t.at_v(v) - exact).abs() / exact.abs().max(1.0))
+                (t.at_v(v) - exact).abs() / exact.abs().max(1.0)
             })
-            .collect::<Option<_>>()?;
+            .collect();
         // The intervals near the fold that miss the target are left to exact solves.
         let bad = (0..errs.len())
             .take_while(|&k| (k as f64) * TABLE_H < EXACT_V_MAX)
@@ -214,7 +238,11 @@ fn spline(y: &[f64]) -> Vec<[f64; 4]> {
             if j == inner - 1 {
                 rhs -= m[n - 2];
             }
-            let (cp, dp) = if j == 0 { (0.0, 0.0) } else { (c[j - 1], d[j - 1]) };
+            let (cp, dp) = if j == 0 {
+                (0.0, 0.0)
+            } else {
+                (c[j - 1], d[j - 1])
+            };
             let den = 4.0 - cp;
             c[j] = 1.0 / den;
             d[j] = (rhs - dp) / den;
@@ -536,7 +564,8 @@ fn refined(
         // Gaussian's width): an abscissa to 1e-6 sigma gives it to about 1e-12. Where the
         // smallest sample lies inside, Brent starts from it and its neighbours.
         let tol = 1e-6 * sigma.min((b - a).abs());
-        let start = (lo < i && i < hi).then(|| [(seps[i], curve[i]), (a, curve[lo]), (b, curve[hi])]);
+        let start =
+            (lo < i && i < hi).then(|| [(seps[i], curve[i]), (a, curve[lo]), (b, curve[hi])]);
         let (x, f) = brent_min(&load, a, b, start, tol);
         if f < best {
             (best_d, best) = (x, f);
@@ -662,6 +691,10 @@ pub struct RoughMap {
     pub model_error: Vec<[f64; 4]>,
     /// The map's pull-offs against the adaptive quadrature of `tabor rough` at sample points.
     pub check: Check,
+    /// Which backend solved the tables (`cpu f64`, `gpu f32`, `gpu f64`).
+    pub table_backend: String,
+    /// A GPU's table states against the CPU f64 solver on a sample (None on the CPU).
+    pub table_check: Option<CheckReport>,
     pub seconds: f64,
 }
 
@@ -679,6 +712,90 @@ pub const MODEL_REGIONS: [Region; 4] = [Region::Hertz, Region::Rigid, Region::Dm
 
 /// Computes the map on all cores: per lambda one table, then every sigma.
 pub fn compute(spec: &RoughMapSpec, checks: usize) -> Result<RoughMap, RoughError> {
+    compute_with(spec, checks, &Engine::Cpu)
+}
+
+/// States of the tables solved on a GPU at once, at most (a chunk of columns).
+const GPU_TABLE_CHUNK: usize = 1 << 20;
+/// Table states of a GPU map re-solved by the CPU f64 solver for its cross-check.
+const GPU_TABLE_CHECKS: usize = 1000;
+
+/// The summits' contact-branch tables: on the CPU by the exact solver, summit by summit; on a
+/// GPU every column's nodes and midpoints at once in chunks (the f32 kernels, refined in f64
+/// with `Precision::F64`), with a sample re-solved by the CPU f64 solver.
+fn tables(
+    summits: &[Summit],
+    delta_hi: f64,
+    engine: &Engine,
+) -> Result<(Vec<BranchTable>, Option<CheckReport>), RoughError> {
+    let failed = |s: &Summit| RoughError::Failed(f64::NAN, s.lambda);
+    if matches!(engine, Engine::Cpu) {
+        let t = summits
+            .par_iter()
+            .map(|s| {
+                BranchTable::new(s.delta_out, delta_hi, |d| s.contact(d).map(|c| c.0))
+                    .ok_or_else(|| failed(s))
+            })
+            .collect::<Result<_, _>>()?;
+        return Ok((t, None));
+    }
+    let per: Vec<Vec<f64>> = summits
+        .iter()
+        .map(|s| BranchTable::approaches(s.delta_out, delta_hi))
+        .collect();
+    let total: usize = per.iter().map(Vec::len).sum();
+    let every = (total / GPU_TABLE_CHECKS).max(1);
+    let mut check = CheckReport::empty(crate::engine::GPU_TOLERANCE);
+    let mut out = Vec::with_capacity(summits.len());
+    let mut first = 0;
+    while first < summits.len() {
+        let (mut last, mut len) = (first, 0);
+        while last < summits.len() && (last == first || len + per[last].len() <= GPU_TABLE_CHUNK) {
+            len += per[last].len();
+            last += 1;
+        }
+        let points: Vec<(f64, f64)> = (first..last)
+            .flat_map(|i| per[i].iter().map(move |&d| (summits[i].lambda, d)))
+            .collect();
+        let states = engine
+            .solve_points(&points, Control::Displacement)
+            .map_err(|e| RoughError::Scene(e.to_string()))?;
+        let sample: Vec<usize> = (0..points.len()).step_by(every).collect();
+        check.merge(crate::engine::cross_check(
+            &sample.iter().map(|&i| points[i]).collect::<Vec<_>>(),
+            &sample.iter().map(|&i| states[i]).collect::<Vec<_>>(),
+            Control::Displacement,
+            sample.len(),
+            crate::engine::GPU_TOLERANCE,
+        ));
+        let mut at = 0;
+        for i in first..last {
+            let loads: Vec<f64> = states[at..at + per[i].len()]
+                .iter()
+                .map(|st| {
+                    if st.status == Status::Ok {
+                        st.load
+                    } else {
+                        f64::NAN
+                    }
+                })
+                .collect();
+            at += per[i].len();
+            let s = &summits[i];
+            out.push(BranchTable::from_loads(s.delta_out, &loads).ok_or_else(|| failed(s))?);
+        }
+        first = last;
+    }
+    Ok((out, Some(check)))
+}
+
+/// As [`compute`], the summits' tables solved on `engine` (a GPU's states are cross-checked
+/// against the CPU f64 solver on a sample: [`RoughMap::table_check`]).
+pub fn compute_with(
+    spec: &RoughMapSpec,
+    checks: usize,
+    engine: &Engine,
+) -> Result<RoughMap, RoughError> {
     spec.validate()?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
@@ -690,15 +807,18 @@ pub fn compute(spec: &RoughMapSpec, checks: usize) -> Result<RoughMap, RoughErro
     let delta_hi = (Z_MAP + p.max(0.0)) * spec.sigma_max + 1.0;
     let jkr = jkr_table(delta_hi);
     let quad = Quad::new();
-    type Column = (f64, f64, Vec<(f64, f64, Region, [f64; 4])>);
-    let columns: Vec<Column> = lambdas
+    let summits: Vec<Summit> = lambdas
         .par_iter()
-        .map(|&lambda| -> Result<Column, RoughError> {
-            let s = Summit::new(lambda)?;
+        .map(|&l| Summit::new(l))
+        .collect::<Result<_, _>>()?;
+    let (tables, table_check) = tables(&summits, delta_hi, engine)?;
+    type Column = (f64, f64, Vec<(f64, f64, Region, [f64; 4])>);
+    let columns: Vec<Column> = summits
+        .par_iter()
+        .zip(&tables)
+        .map(|(s, table)| -> Result<Column, RoughError> {
             let smooth = s.ctx.load_pulloff.load;
-            let table = BranchTable::new(s.delta_out, delta_hi, |d| s.contact(d).map(|c| c.0))
-                .ok_or(RoughError::Failed(f64::NAN, lambda))?;
-            let ms = models(&s, &table, &jkr);
+            let ms = models(s, table, &jkr);
             let reach = [s.h0, -s.delta_out, -s.delta_nc.unwrap_or(0.0)]
                 .into_iter()
                 .fold(0.0, f64::max);
@@ -773,6 +893,8 @@ pub fn compute(spec: &RoughMapSpec, checks: usize) -> Result<RoughMap, RoughErro
         lambdas,
         sigmas,
         check: Check::default(),
+        table_backend: format!("{} {}", engine.name(), engine.precision()),
+        table_check,
         seconds: 0.0,
     };
     for (ix, (smooth, _, col)) in columns.iter().enumerate() {
