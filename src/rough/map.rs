@@ -824,58 +824,7 @@ pub fn compute_with(
                 .fold(0.0, f64::max);
             let col = sigmas
                 .par_iter()
-                .map(|&sigma| {
-                    let d_min = -p * sigma;
-                    let d_max = 6.0 * sigma + reach;
-                    let seps: Vec<f64> = (0..CURVE_SAMPLES)
-                        .map(|k| d_min + (d_max - d_min) * k as f64 / (CURVE_SAMPLES - 1) as f64)
-                        .collect();
-                    let md = retract(&quad, &ms.list[4], sigma, d_min, &seps, true);
-                    let scale = md.curve.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                    let scale = scale.max(f64::MIN_POSITIVE);
-                    let order = sample_order(&md.curve);
-                    let mut errs = [f64::NAN; 4];
-                    let mut region = Region::Md;
-                    for (k, m) in ms.list[..4].iter().enumerate() {
-                        // Hertz's pull-off is zero: where that alone misses, its curve is not
-                        // needed.
-                        let hertz_miss = md.pulloff.abs() / smooth.abs();
-                        if k == 0 && hertz_miss > spec.tolerance {
-                            errs[k] = hertz_miss;
-                            continue;
-                        }
-                        let curve = match curve_within(
-                            &quad,
-                            m,
-                            (sigma, d_min),
-                            &seps,
-                            &md.curve,
-                            &order,
-                            spec.tolerance * scale,
-                        ) {
-                            Ok(c) => c,
-                            Err(worst) => {
-                                errs[k] = worst / scale;
-                                continue;
-                            }
-                        };
-                        let curve_err = curve
-                            .iter()
-                            .zip(&md.curve)
-                            .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()))
-                            / scale;
-                        // The pull-off is refined only where the curve passes (Hertz's is zero,
-                        // no refinement needed).
-                        let r = refined(&quad, m, sigma, d_min, &seps, curve, k > 0);
-                        let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
-                        errs[k] = curve_err.max(pull_err);
-                        if errs[k] <= spec.tolerance {
-                            region = MODEL_REGIONS[k];
-                            break;
-                        }
-                    }
-                    (md.pulloff, md.separation, region, errs)
-                })
+                .map(|&sigma| point(&quad, &ms, smooth, reach, sigma, spec))
                 .collect();
             Ok((smooth, table.error.max(jkr.error), col))
         })
@@ -915,6 +864,59 @@ pub fn compute_with(
     m.check = check(&m, checks)?;
     m.seconds = t0.elapsed().as_secs_f64();
     Ok(m)
+}
+
+/// One point of the map: the exact summits' pull-off and its separation, the region (the first
+/// simpler model within the tolerance, else MD) and each model's error (NaN after the adequate
+/// one; a lower bound for a rejected model).
+fn point(
+    quad: &Quad,
+    ms: &Models,
+    smooth: f64,
+    reach: f64,
+    sigma: f64,
+    spec: &RoughMapSpec,
+) -> (f64, f64, Region, [f64; 4]) {
+    let d_min = -spec.press_sigmas * sigma;
+    let d_max = 6.0 * sigma + reach;
+    let seps: Vec<f64> = (0..CURVE_SAMPLES)
+        .map(|k| d_min + (d_max - d_min) * k as f64 / (CURVE_SAMPLES - 1) as f64)
+        .collect();
+    let md = retract(quad, &ms.list[4], sigma, d_min, &seps, true);
+    let scale = md.curve.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = scale.max(f64::MIN_POSITIVE);
+    let order = sample_order(&md.curve);
+    let mut errs = [f64::NAN; 4];
+    for (k, m) in ms.list[..4].iter().enumerate() {
+        // Hertz's pull-off is zero: where that alone misses, its curve is not needed.
+        let hertz_miss = md.pulloff.abs() / smooth.abs();
+        if k == 0 && hertz_miss > spec.tolerance {
+            errs[k] = hertz_miss;
+            continue;
+        }
+        let limit = spec.tolerance * scale;
+        let curve = match curve_within(quad, m, (sigma, d_min), &seps, &md.curve, &order, limit) {
+            Ok(c) => c,
+            Err(worst) => {
+                errs[k] = worst / scale;
+                continue;
+            }
+        };
+        let curve_err = curve
+            .iter()
+            .zip(&md.curve)
+            .fold(0.0f64, |e, (a, b)| e.max((a - b).abs()))
+            / scale;
+        // The pull-off is refined only where the curve passes (Hertz's is zero, no refinement
+        // needed).
+        let r = refined(quad, m, sigma, d_min, &seps, curve, k > 0);
+        let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
+        errs[k] = curve_err.max(pull_err);
+        if errs[k] <= spec.tolerance {
+            return (md.pulloff, md.separation, MODEL_REGIONS[k], errs);
+        }
+    }
+    (md.pulloff, md.separation, Region::Md, errs)
 }
 
 /// Recomputes the load at the map's pull-off separation at `count` evenly spread points with
