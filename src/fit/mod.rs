@@ -1987,6 +1987,55 @@ fn summarize(
         .filter(|s| s.piece == Piece::Contact)
         .map(|s| s.load)
         .collect();
+    let z0 = put_parameters(&mut out, opt, d, &p, &md, amax, in_contact, &loads);
+    put_intervals(&mut out, iv);
+    let l95 = iv.lambda[1];
+    let m = d.force.len() as f64;
+    let n_md = if opt.z0.is_some() { 4.0 } else { 5.0 };
+    let fmax = d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let s2 = (md.rms_residual_n.powi(2) * m / (m - n_md).max(1.0)).max((1e-13 * fmax).powi(2));
+    out.noise_from_residual_n = Some(s2.sqrt());
+    // A noise-free curve (the residual at rounding): no statistics, the tolerance decides.
+    let adequate = if s2.sqrt() <= 1e-9 * fmax {
+        adequate_by_tolerance(opt, d, &p, &md, &models, &a_md, &states, in_contact)
+    } else {
+        adequate_by_test(opt, &md, &models, s2, m, n_md, l95)
+    };
+    out.adequate_model = Some(adequate.0);
+    out.why = adequate.1;
+    let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
+    if pull > 0.0 {
+        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
+            .ok()
+            .map(|i| i.verdict);
+    }
+    let mut warn = warnings(&out, d, opt, &p, &md, amax, in_contact);
+    if let Some(h) = &opt.humidity {
+        out.humidity = humidity::solid_work(&out, opt.radius, h);
+        if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
+            warn.push(format!("humidity: {}", fh.note));
+        }
+    }
+    out.warnings = warn;
+    out.status = FitStatus::Ok;
+    out.message = "ok".into();
+    out.models = models;
+    out.md = Some(md);
+    out
+}
+
+/// The fitted values and their standard errors into `out`; returns z0 from lambda.
+#[allow(clippy::too_many_arguments)]
+fn put_parameters(
+    out: &mut CurveFit,
+    opt: &FitOptions,
+    d: &Prepared,
+    p: &Params,
+    md: &ModelFit,
+    amax: f64,
+    in_contact: usize,
+    loads: &[f64],
+) -> f64 {
     out.e_star_pa = Some(p.e_star);
     out.e_star_pa_stderr = Some(md.e_star_pa_stderr);
     out.youngs_modulus_pa = opt.poisson.map(|nu| p.e_star * (1.0 - nu * nu));
@@ -2031,7 +2080,11 @@ fn summarize(
         let hi = loads.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         out.load_range_normalised = Some([lo, hi]);
     }
-    // Intervals and what they say of lambda.
+    z0
+}
+
+/// The profile intervals into `out`, and what they say of lambda.
+fn put_intervals(out: &mut CurveFit, iv: &interval::Intervals) {
     let [e68, e95] = iv.e_star_pa;
     let [w68, w95] = iv.work_of_adhesion_j_m2;
     let [l68, l95] = iv.lambda;
@@ -2056,26 +2109,20 @@ fn summarize(
             (None, None) => "lambda is not bounded at 95% (0.01..1000 fit equally well)".to_string(),
         });
     }
-    let m = d.force.len() as f64;
-    let n_md = if opt.z0.is_some() { 4.0 } else { 5.0 };
-    let fmax = d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
-    let s2 = (md.rms_residual_n.powi(2) * m / (m - n_md).max(1.0)).max((1e-13 * fmax).powi(2));
-    out.noise_from_residual_n = Some(s2.sqrt());
-    // A noise-free curve (the residual at rounding): no statistics, the tolerance decides.
-    let adequate = if s2.sqrt() <= 1e-9 * fmax {
-        adequate_by_tolerance(opt, d, &p, &md, &models, &a_md, &states, in_contact)
-    } else {
-        adequate_by_test(opt, &md, &models, s2, m, n_md, l95)
-    };
-    out.adequate_model = Some(adequate.0);
-    out.why = adequate.1;
-    let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
-    if pull > 0.0 {
-        out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
-            .ok()
-            .map(|i| i.verdict);
-    }
-    // Warnings.
+}
+
+/// The warnings of a converged fit: the data's notes, implausible options, a residual far above
+/// the noise, a stretched theory, too few points in contact, lambda undetermined, an unresolved
+/// jump-out.
+fn warnings(
+    out: &CurveFit,
+    d: &Prepared,
+    opt: &FitOptions,
+    p: &Params,
+    md: &ModelFit,
+    amax: f64,
+    in_contact: usize,
+) -> Vec<String> {
     let mut warn = d.notes.clone();
     // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
     // on that value.
@@ -2133,18 +2180,7 @@ fn summarize(
             md_pull, mp
         ));
     }
-    if let Some(h) = &opt.humidity {
-        out.humidity = humidity::solid_work(&out, opt.radius, h);
-        if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
-            warn.push(format!("humidity: {}", fh.note));
-        }
-    }
-    out.warnings = warn;
-    out.status = FitStatus::Ok;
-    out.message = "ok".into();
-    out.models = models;
-    out.md = Some(md);
-    out
+    warn
 }
 
 /// Three significant figures, as a bound is written.
