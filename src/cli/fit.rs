@@ -91,63 +91,9 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
         bail!("--format text is not available for fit: use json or csv (a summary goes to stderr)");
     }
-    let opt = FitOptions {
-        radius: a.radius,
-        spring: a.spring_n_m,
-        poisson: a.poisson,
-        segments: match a.segment {
-            SegmentArg::Retract => Segments::Retract,
-            SegmentArg::Approach => Segments::Approach,
-            SegmentArg::Both => Segments::Both,
-        },
-        z0: a.z0,
-        tilt: a.tilt,
-        tolerance: a.tolerance,
-        humidity: a
-            .relative_humidity
-            .map(|rh| crate::scene::humidity::HumidityInput {
-                relative_humidity: rh,
-                contact_angle_deg: a.contact_angle_deg,
-                surface_tension_n_m: a.surface_tension_n_m,
-                molar_volume_m3_mol: a.molar_volume_m3_mol,
-                temperature_k: a.temperature_k,
-            }),
-        ..FitOptions::default()
-    };
-    // One check of the options, the library's, as Python's fit_curves makes it.
-    if let Err(e) = opt.validate() {
-        bail!("--{}: {}", e.option.replace('_', "-"), e.message);
-    }
+    let opt = options(&a)?;
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
-    let mut more = vec![("--output".to_string(), std::path::PathBuf::from(&a.output))];
-    if let Some(prefix) = &a.maps {
-        for n in fit::MAP_QUANTITIES
-            .iter()
-            .map(|q| q.name)
-            .chain(["adequate_model"])
-        {
-            for ext in ["npy", "png"] {
-                more.push(("--maps".to_string(), format!("{prefix}_{n}.{ext}").into()));
-            }
-        }
-    }
-    more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
-    if a.plot.is_none() && (a.figure.svg.is_some() || a.figure.pdf.is_some()) {
-        bail!("--svg and --pdf add formats to --plot's figure of one curve: give --plot too (the --on-map figure takes its format from its own name)");
-    }
-    let mut every: Vec<(String, std::path::PathBuf)> = more.clone();
-    every.extend(
-        [&figure.png, &figure.svg, &figure.pdf]
-            .into_iter()
-            .flatten()
-            .map(|p| ("--plot".to_string(), p.clone())),
-    );
-    a.figure.check_distinct(a.plot.as_deref(), "--plot", more)?;
-    // Every output can be written, checked before the fits (which can take minutes): a
-    // temporary file is made beside each and removed again.
-    for (flag, path) in every.iter().filter(|(_, p)| p.as_os_str() != "-") {
-        drop(crate::io::output::Output::create(path).with_context(|| flag.clone())?);
-    }
+    check_outputs(&a, &figure)?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     if a.maps.is_some() {
@@ -203,6 +149,108 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         _ => csv_rows(&results, opt.humidity.is_some())?,
     };
     write_output(&a.output, text.as_bytes())?;
+    let ok = print_summary(&results, &opt);
+    if let Some(i) = plotted {
+        let (c, r) = (&curves[i], &results[i]);
+        if r.status != FitStatus::Ok {
+            bail!("--plot: curve {} was not fitted ({})", c.id, r.message);
+        }
+        crate::render::plots::save(crate::render::Kind::Fit, &print, &figure, &|root| {
+            crate::render::plots::fit(root, c, r, &opt)
+        })
+        .context("drawing the fit")?;
+        eprintln!("wrote the figure of curve {}", c.id);
+    }
+    if let Some(prefix) = &a.maps {
+        write_maps(prefix, &results, &print)?;
+    }
+    if let Some(path) = &a.on_map {
+        let d = crate::figure_data::fit_map_data(&results, a.tolerance)?;
+        let out =
+            crate::render::Outputs::from_path(path).map_err(|e| anyhow::anyhow!("--on-map {e}"))?;
+        crate::render::plots::save(crate::render::Kind::Map, &print, &out, &|root| {
+            crate::render::plots::fits_on_map(root, &d, &results)
+        })
+        .context("drawing the curves on the adhesion map")?;
+        eprintln!("wrote {}", path.display());
+    }
+    if ok == 0 {
+        bail!(
+            "no curve could be fitted ({}): see the status and message of each",
+            results.first().map_or("no curves", |r| r.message.as_str())
+        );
+    }
+    Ok(())
+}
+
+/// The library's options from the flags, checked by the library.
+fn options(a: &FitArgs) -> anyhow::Result<FitOptions> {
+    let opt = FitOptions {
+        radius: a.radius,
+        spring: a.spring_n_m,
+        poisson: a.poisson,
+        segments: match a.segment {
+            SegmentArg::Retract => Segments::Retract,
+            SegmentArg::Approach => Segments::Approach,
+            SegmentArg::Both => Segments::Both,
+        },
+        z0: a.z0,
+        tilt: a.tilt,
+        tolerance: a.tolerance,
+        humidity: a
+            .relative_humidity
+            .map(|rh| crate::scene::humidity::HumidityInput {
+                relative_humidity: rh,
+                contact_angle_deg: a.contact_angle_deg,
+                surface_tension_n_m: a.surface_tension_n_m,
+                molar_volume_m3_mol: a.molar_volume_m3_mol,
+                temperature_k: a.temperature_k,
+            }),
+        ..FitOptions::default()
+    };
+    // One check of the options, the library's, as Python's fit_curves makes it.
+    if let Err(e) = opt.validate() {
+        bail!("--{}: {}", e.option.replace('_', "-"), e.message);
+    }
+    Ok(opt)
+}
+
+/// Every output is distinct and can be written: checked before the fits (which can take
+/// minutes), a temporary file made beside each and removed again.
+fn check_outputs(a: &FitArgs, figure: &crate::render::Outputs) -> anyhow::Result<()> {
+    let mut more = vec![("--output".to_string(), std::path::PathBuf::from(&a.output))];
+    if let Some(prefix) = &a.maps {
+        for n in fit::MAP_QUANTITIES
+            .iter()
+            .map(|q| q.name)
+            .chain(["adequate_model"])
+        {
+            for ext in ["npy", "png"] {
+                more.push(("--maps".to_string(), format!("{prefix}_{n}.{ext}").into()));
+            }
+        }
+    }
+    more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
+    if a.plot.is_none() && (a.figure.svg.is_some() || a.figure.pdf.is_some()) {
+        bail!("--svg and --pdf add formats to --plot's figure of one curve: give --plot too (the --on-map figure takes its format from its own name)");
+    }
+    let mut every: Vec<(String, std::path::PathBuf)> = more.clone();
+    every.extend(
+        [&figure.png, &figure.svg, &figure.pdf]
+            .into_iter()
+            .flatten()
+            .map(|p| ("--plot".to_string(), p.clone())),
+    );
+    a.figure.check_distinct(a.plot.as_deref(), "--plot", more)?;
+    for (flag, path) in every.iter().filter(|(_, p)| p.as_os_str() != "-") {
+        drop(crate::io::output::Output::create(path).with_context(|| flag.clone())?);
+    }
+    Ok(())
+}
+
+/// The summary on stderr: how many curves were fitted, the failures, and for one curve its
+/// values; returns how many were fitted.
+fn print_summary(results: &[CurveFit], opt: &FitOptions) -> usize {
     let ok = results.iter().filter(|r| r.status == FitStatus::Ok).count();
     eprintln!("fitted {ok} of {} curves", results.len());
     for r in results.iter().filter(|r| r.status != FitStatus::Ok).take(5) {
@@ -246,92 +294,71 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
             .count();
         eprintln!("  the solid's w with the meniscus taken out: {n} of {ok} fitted curves (the others have none: see each curve's humidity.note)");
     }
-    if let Some(i) = plotted {
-        let (c, r) = (&curves[i], &results[i]);
-        if r.status != FitStatus::Ok {
-            bail!("--plot: curve {} was not fitted ({})", c.id, r.message);
-        }
-        crate::render::plots::save(crate::render::Kind::Fit, &print, &figure, &|root| {
-            crate::render::plots::fit(root, c, r, &opt)
-        })
-        .context("drawing the fit")?;
-        eprintln!("wrote the figure of curve {}", c.id);
-    }
-    if let Some(prefix) = &a.maps {
-        let (nx, ny, grid) = fit::map_grid(&results)
-            .map_err(anyhow::Error::msg)
-            .context("--maps")?;
-        let names = crate::export::write_fit_npy(prefix, &results, nx, ny, &grid)?;
-        let ok_at =
-            |i: &Option<usize>| i.map(|i| &results[i]).filter(|r| r.status == FitStatus::Ok);
-        for q in &fit::MAP_QUANTITIES {
-            let values: Vec<f64> = grid
-                .iter()
-                .map(|i| {
-                    ok_at(i)
-                        .filter(|r| !q.needs_lambda || r.lambda_determined())
-                        .and_then(q.value)
-                        .unwrap_or(f64::NAN)
-                })
-                .collect();
-            let largest = values
-                .iter()
-                .filter(|v| v.is_finite())
-                .fold(0.0f64, |m, v| m.max(v.abs()));
-            let (scale, si) = if q.prefixed {
-                crate::render::si_prefix(largest)
-            } else {
-                (1.0, "")
-            };
-            let values: Vec<f64> = values.iter().map(|v| v / scale).collect();
-            let title = if q.unit.is_empty() {
-                q.label.to_string()
-            } else {
-                format!("{} ({si}{})", q.label, q.unit)
-            };
-            let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-                "{prefix}_{}.png",
-                q.name
-            )))
-            .map_err(anyhow::Error::msg)?;
-            crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
-                crate::render::plots::force_map(root, &values, nx, ny, &title, q.log)
-            })
-            .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
-        }
-        let models: Vec<Option<fit::Model>> = grid
+    ok
+}
+
+/// The force maps of `--maps PREFIX`: NPY tables and their PNGs.
+fn write_maps(
+    prefix: &str,
+    results: &[CurveFit],
+    print: &crate::render::Print,
+) -> anyhow::Result<()> {
+    let (nx, ny, grid) = fit::map_grid(&results)
+        .map_err(anyhow::Error::msg)
+        .context("--maps")?;
+    let names = crate::export::write_fit_npy(prefix, &results, nx, ny, &grid)?;
+    let ok_at = |i: &Option<usize>| i.map(|i| &results[i]).filter(|r| r.status == FitStatus::Ok);
+    for q in &fit::MAP_QUANTITIES {
+        let values: Vec<f64> = grid
             .iter()
-            .map(|i| ok_at(i).and_then(|r| r.adequate_model))
+            .map(|i| {
+                ok_at(i)
+                    .filter(|r| !q.needs_lambda || r.lambda_determined())
+                    .and_then(q.value)
+                    .unwrap_or(f64::NAN)
+            })
             .collect();
+        let largest = values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, |m, v| m.max(v.abs()));
+        let (scale, si) = if q.prefixed {
+            crate::render::si_prefix(largest)
+        } else {
+            (1.0, "")
+        };
+        let values: Vec<f64> = values.iter().map(|v| v / scale).collect();
+        let title = if q.unit.is_empty() {
+            q.label.to_string()
+        } else {
+            format!("{} ({si}{})", q.label, q.unit)
+        };
         let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-            "{prefix}_adequate_model.png"
+            "{prefix}_{}.png",
+            q.name
         )))
         .map_err(anyhow::Error::msg)?;
         crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
-            crate::render::plots::model_map(root, &models, nx, ny)
+            crate::render::plots::force_map(root, &values, nx, ny, &title, q.log)
         })
-        .context("drawing the adequate-model map")?;
-        eprintln!(
-            "wrote the {nx} x {ny} force maps: {} and their PNGs",
-            names.join(", ")
-        );
+        .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
     }
-    if let Some(path) = &a.on_map {
-        let d = crate::figure_data::fit_map_data(&results, a.tolerance)?;
-        let out =
-            crate::render::Outputs::from_path(path).map_err(|e| anyhow::anyhow!("--on-map {e}"))?;
-        crate::render::plots::save(crate::render::Kind::Map, &print, &out, &|root| {
-            crate::render::plots::fits_on_map(root, &d, &results)
-        })
-        .context("drawing the curves on the adhesion map")?;
-        eprintln!("wrote {}", path.display());
-    }
-    if ok == 0 {
-        bail!(
-            "no curve could be fitted ({}): see the status and message of each",
-            results.first().map_or("no curves", |r| r.message.as_str())
-        );
-    }
+    let models: Vec<Option<fit::Model>> = grid
+        .iter()
+        .map(|i| ok_at(i).and_then(|r| r.adequate_model))
+        .collect();
+    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
+        "{prefix}_adequate_model.png"
+    )))
+    .map_err(anyhow::Error::msg)?;
+    crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
+        crate::render::plots::model_map(root, &models, nx, ny)
+    })
+    .context("drawing the adequate-model map")?;
+    eprintln!(
+        "wrote the {nx} x {ny} force maps: {} and their PNGs",
+        names.join(", ")
+    );
     Ok(())
 }
 
