@@ -10,6 +10,12 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 type Err = Box<dyn std::error::Error + Send + Sync>;
+/// A chart with linear axes.
+type Chart2d<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
 
 use super::map::{MARGIN, X_AREA, Y_AREA};
 pub use super::DrawSvg;
@@ -676,7 +682,26 @@ where
             }
         }
     }
-    // Jumps: dashed lines with an arrowhead drawn in pixel space.
+    cycle_jumps(root, &mut chart, c, ymax)?;
+    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, NOTE)?;
+    let energy = match c.hysteresis {
+        Some(w) => format!("energy lost: {w:.4}"),
+        None => "no closed cycle".into(),
+    };
+    cycle_energy(root, &chart, c, energy)?;
+    cycle_radius(&right, c, (ymin, ymax), faint)
+}
+
+/// A cycle's jumps: dashed lines with an arrowhead drawn in pixel space.
+fn cycle_jumps<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &mut Chart2d<'_, DB>,
+    c: &crate::cycle::Cycle,
+    ymax: f64,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
     for j in &c.jumps {
         let col = if j.phase == crate::cycle::Phase::Approach {
             BLUE_
@@ -711,12 +736,19 @@ where
             col.filled(),
         ))?;
     }
-    super::legend(&mut chart, SeriesLabelPosition::UpperLeft, NOTE)?;
-    let energy = match c.hysteresis {
-        Some(w) => format!("energy lost: {w:.4}"),
-        None => "no closed cycle".into(),
-    };
-    // In a corner that no curve crosses (the legend holds the upper left).
+    Ok(())
+}
+
+/// The energy lost, in a corner that no curve crosses (the legend holds the upper left).
+fn cycle_energy<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    chart: &Chart2d<'_, DB>,
+    c: &crate::cycle::Cycle,
+    energy: String,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
     let (px, py) = chart.plotting_area().get_pixel_range();
     let mut placer = super::Placer::default();
     placer.lines.push(
@@ -750,14 +782,30 @@ where
             .color(&BLACK)
             .pos(Pos::new(HPos::Left, VPos::Top)),
     ))?;
+    Ok(())
+}
 
+/// The right panel of a cycle: contact radius against load, the steps as dots.
+fn cycle_radius<DB: DrawingBackend>(
+    right: &DrawingArea<DB, Shift>,
+    c: &crate::cycle::Cycle,
+    (ymin, ymax): (f64, f64),
+    faint: ShapeStyle,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    use crate::cycle::Phase;
+    let steps = |ph: Phase| -> Vec<&crate::cycle::Step> {
+        c.steps.iter().filter(|s| s.phase == ph).collect()
+    };
     let contact: Vec<&crate::cycle::PathPoint> = c
         .path
         .iter()
         .filter(|p| p.branch == crate::cycle::Branch::Contact)
         .collect();
     let amax = contact.iter().map(|p| p.a).fold(0.0, f64::max) * 1.05;
-    let mut ch = builder(&right, "contact radius against load")
+    let mut ch = builder(right, "contact radius against load")
         .build_cartesian_2d(ymin * 1.15 - 0.05..ymax * 1.05 + 0.05, 0.0..amax)?;
     house_mesh(ch.configure_mesh(), "load  \\bar{P}", "contact radius  A")
         .x_label_formatter(&|v| super::linear_label(*v))
