@@ -122,6 +122,101 @@ fn moments(
     (val.is_finite() && var.is_finite() && var >= 0.0).then_some((val, var))
 }
 
+/// What the search for one end of lambda's interval needs: the data, the options, the free
+/// fit's ln lambda and its parabolic standard error, the range of the profile, and Delta chi^2
+/// of a fit.
+struct Search<'a> {
+    d: &'a Prepared,
+    opt: &'a FitOptions,
+    w_ref: f64,
+    x_md: f64,
+    sd_x: f64,
+    range: (f64, f64),
+    chi: &'a dyn Fn(&ModelFit) -> f64,
+}
+
+impl Search<'_> {
+    /// Lambda where the profile crosses `level` on the side `sign` (-1 below the free fit's,
+    /// +1 above): bracketed by the fits so far, refined by at most three more fits at fixed
+    /// lambda (added to `pts`); None where the profile stays within the level to the range's
+    /// edge (an open end).
+    fn crossing(
+        &self,
+        pts: &mut Vec<Point>,
+        level: f64,
+        sign: f64,
+        extra: &mut usize,
+    ) -> Option<f64> {
+        // The outermost fit within the level on this side, and the next one out.
+        for iter in 0..4 {
+            let outward = |x: f64| sign * (x - self.x_md);
+            let inside = pts
+                .iter()
+                .filter(|p| p.chi <= level && outward(p.x) >= 0.0)
+                .max_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
+                .map(|p| (p.x, p.chi));
+            let Some((xi, ci)) = inside else {
+                return None;
+            };
+            let outside = pts
+                .iter()
+                .filter(|p| outward(p.x) > outward(xi))
+                .min_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
+                .map(|p| (p.x, p.chi));
+            let Some((xo, co)) = outside else {
+                // No fit beyond: the profile is flat to the edge of the range.
+                return None;
+            };
+            // Delta chi^2 is near quadratic in ln lambda about the minimum: its square root
+            // is near linear, and interpolated.
+            let (ri, ro) = (ci.sqrt(), co.min(1e12).sqrt());
+            let t = if ro > ri {
+                ((level.sqrt() - ri) / (ro - ri)).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
+            let mut x = xi + t * (xo - xi);
+            if iter == 3 || (xo - xi).abs() < 0.005 {
+                return Some(x.exp());
+            }
+            if iter == 0 {
+                // The parabola's crossing, where it lies inside the bracket.
+                let guess = self.x_md + sign * level.sqrt() * self.sd_x;
+                if outward(guess) > outward(xi) && outward(guess) < outward(xo) {
+                    x = guess;
+                }
+            }
+            let x = x.clamp(self.range.0, self.range.1);
+            // A fit at this lambda, warm from the nearest fit.
+            let near = pts
+                .iter()
+                .min_by(|a, b| (a.x - x).abs().total_cmp(&(b.x - x).abs()))
+                .unwrap();
+            let mut start = near.fit.params();
+            start.lambda = x.exp();
+            let f = fit_model(
+                Model::Md,
+                self.d,
+                self.opt,
+                start,
+                self.w_ref,
+                Some(x.exp()),
+            );
+            *extra += 1;
+            if !f.rms_residual_n.is_finite() {
+                return Some(x.exp());
+            }
+            pts.push(Point {
+                x,
+                chi: (self.chi)(&f),
+                fit: f,
+                free: false,
+            });
+        }
+        None
+    }
+}
+
 /// The profile-likelihood intervals of the free fit `md`, from the fixed-lambda fits of its
 /// `profile` (0.01..1000) and a few more near each crossing of the levels.
 pub fn profile_intervals(
@@ -177,71 +272,21 @@ pub fn profile_intervals(
         .map(|i| (i[(2, 2)] * s2 / (f_scale * f_scale)).max(0.0).sqrt())
         .filter(|v| v.is_finite() && *v > 0.0)
         .unwrap_or(0.1);
+    let search = Search {
+        d,
+        opt,
+        w_ref,
+        x_md,
+        sd_x,
+        range: (x_min.min(x_md), x_max.max(x_md)),
+        chi: &chi,
+    };
     let mut extra = 0;
     let mut lambda = [None, None];
     for (k, &level) in LEVELS.iter().enumerate().rev() {
         let mut ends = [None, None];
         for (e, sign) in [(0usize, -1.0f64), (1, 1.0)] {
-            // The outermost fit within the level on this side, and the next one out.
-            for iter in 0..4 {
-                let outward = |x: f64| sign * (x - x_md);
-                let inside = pts
-                    .iter()
-                    .filter(|p| p.chi <= level && outward(p.x) >= 0.0)
-                    .max_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
-                    .map(|p| (p.x, p.chi));
-                let Some((xi, ci)) = inside else { break };
-                let outside = pts
-                    .iter()
-                    .filter(|p| outward(p.x) > outward(xi))
-                    .min_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
-                    .map(|p| (p.x, p.chi));
-                let Some((xo, co)) = outside else {
-                    // No fit beyond: the profile is flat to the edge of the range.
-                    ends[e] = None;
-                    break;
-                };
-                // Delta chi^2 is near quadratic in ln lambda about the minimum: its square root
-                // is near linear, and interpolated.
-                let (ri, ro) = (ci.sqrt(), co.min(1e12).sqrt());
-                let t = if ro > ri {
-                    ((level.sqrt() - ri) / (ro - ri)).clamp(0.0, 1.0)
-                } else {
-                    0.5
-                };
-                let mut x = xi + t * (xo - xi);
-                if iter == 3 || (xo - xi).abs() < 0.005 {
-                    ends[e] = Some(x.exp());
-                    break;
-                }
-                if iter == 0 {
-                    // The parabola's crossing, where it lies inside the bracket.
-                    let guess = x_md + sign * level.sqrt() * sd_x;
-                    if outward(guess) > outward(xi) && outward(guess) < outward(xo) {
-                        x = guess;
-                    }
-                }
-                let x = x.clamp(x_min.min(x_md), x_max.max(x_md));
-                // A fit at this lambda, warm from the nearest fit.
-                let near = pts
-                    .iter()
-                    .min_by(|a, b| (a.x - x).abs().total_cmp(&(b.x - x).abs()))
-                    .unwrap();
-                let mut start = near.fit.params();
-                start.lambda = x.exp();
-                let f = fit_model(Model::Md, d, opt, start, w_ref, Some(x.exp()));
-                extra += 1;
-                if !f.rms_residual_n.is_finite() {
-                    ends[e] = Some(x.exp());
-                    break;
-                }
-                pts.push(Point {
-                    x,
-                    chi: chi(&f),
-                    fit: f,
-                    free: false,
-                });
-            }
+            ends[e] = search.crossing(&mut pts, level, sign, &mut extra);
         }
         lambda[k] = Some(ends);
     }
