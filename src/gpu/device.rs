@@ -592,6 +592,12 @@ impl Gpu {
         self.check()?;
         let mut result: Vec<T> = Vec::with_capacity(total);
         let mut start = 0usize;
+        let bufs = Buffers {
+            lambdas: &lam_buf,
+            input: &in_buf,
+            out: &out_buf,
+            staging: &staging,
+        };
         while start < total {
             let n = chunk.min(total - start);
             let p = Params {
@@ -600,89 +606,111 @@ impl Gpu {
                 count: n as u32,
                 max_iter,
             };
-            // A buffer per dispatch, not one shared by the Gpu: threads sharing a Gpu would
-            // otherwise overwrite each other's parameters between write and submit.
-            let params = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("params"),
-                contents: bytemuck::bytes_of(&p),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            // The point kernel sees only this chunk's input; the grid kernel reads its rows whole.
-            let input_binding = if input_stride > 0 {
-                wgpu::BufferBinding {
-                    buffer: &in_buf,
-                    offset: (start * input_stride) as u64,
-                    size: wgpu::BufferSize::new((n * input_stride) as u64),
-                }
-            } else {
-                wgpu::BufferBinding {
-                    buffer: &in_buf,
-                    offset: 0,
-                    size: None,
-                }
-            };
-            let bind = d.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("md"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: params.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: lam_buf.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::Buffer(input_binding),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: out_buf.as_entire_binding(),
-                    },
-                ],
-            });
-            let mut enc =
-                d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("md") });
-            {
-                let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                    label: Some("md"),
-                    timestamp_writes: None,
-                });
-                pass.set_pipeline(&pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups(n.div_ceil(WORKGROUP) as u32, 1, 1);
-            }
-            let bytes = (n * out_bytes) as u64;
-            enc.copy_buffer_to_buffer(&out_buf, 0, &staging, 0, bytes);
-            self.queue.submit([enc.finish()]);
-            let slice = staging.slice(..bytes);
-            let (tx, rx) = std::sync::mpsc::channel();
-            slice.map_async(wgpu::MapMode::Read, move |r| {
-                let _ = tx.send(r);
-            });
-            d.poll(wgpu::PollType::wait_indefinitely())
-                .map_err(|e| GpuError::Runtime(e.to_string()))?;
-            match rx.recv() {
-                Ok(Ok(())) => {}
-                Ok(Err(e)) => return Err(GpuError::Runtime(format!("reading results back: {e}"))),
-                Err(_) => {
-                    return Err(GpuError::Runtime(
-                        "reading results back: no answer from the device".into(),
-                    ))
-                }
-            }
-            {
-                let view = slice
-                    .get_mapped_range()
-                    .map_err(|e| GpuError::Runtime(format!("reading results back: {e}")))?;
-                result.extend_from_slice(bytemuck::cast_slice(&view));
-            }
-            staging.unmap();
-            self.check()?;
+            self.dispatch(&pipeline, &bufs, p, input_stride, &mut result)?;
             start += n;
         }
         Ok(result)
     }
+
+    /// One dispatch of `p.count` points from `p.offset`, its results appended to `result`.
+    fn dispatch<T: bytemuck::Pod>(
+        &self,
+        pipeline: &wgpu::ComputePipeline,
+        bufs: &Buffers,
+        p: Params,
+        input_stride: usize,
+        result: &mut Vec<T>,
+    ) -> Result<(), GpuError> {
+        let d = &self.device;
+        let out_bytes = std::mem::size_of::<T>();
+        // A buffer per dispatch, not one shared by the Gpu: threads sharing a Gpu would
+        // otherwise overwrite each other's parameters between write and submit.
+        let params = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("params"),
+            contents: bytemuck::bytes_of(&p),
+            usage: wgpu::BufferUsages::UNIFORM,
+        });
+        // The point kernel sees only this chunk's input; the grid kernel reads its rows whole.
+        let input_binding = if input_stride > 0 {
+            wgpu::BufferBinding {
+                buffer: bufs.input,
+                offset: (p.offset as usize * input_stride) as u64,
+                size: wgpu::BufferSize::new((p.count as usize * input_stride) as u64),
+            }
+        } else {
+            wgpu::BufferBinding {
+                buffer: bufs.input,
+                offset: 0,
+                size: None,
+            }
+        };
+        let bind = d.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("md"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: bufs.lambdas.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::Buffer(input_binding),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: bufs.out.as_entire_binding(),
+                },
+            ],
+        });
+        let mut enc =
+            d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("md") });
+        {
+            let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("md"),
+                timestamp_writes: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, &bind, &[]);
+            pass.dispatch_workgroups((p.count as usize).div_ceil(WORKGROUP) as u32, 1, 1);
+        }
+        let bytes = (p.count as usize * out_bytes) as u64;
+        enc.copy_buffer_to_buffer(bufs.out, 0, bufs.staging, 0, bytes);
+        self.queue.submit([enc.finish()]);
+        let slice = bufs.staging.slice(..bytes);
+        let (tx, rx) = std::sync::mpsc::channel();
+        slice.map_async(wgpu::MapMode::Read, move |r| {
+            let _ = tx.send(r);
+        });
+        d.poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        match rx.recv() {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => return Err(GpuError::Runtime(format!("reading results back: {e}"))),
+            Err(_) => {
+                return Err(GpuError::Runtime(
+                    "reading results back: no answer from the device".into(),
+                ))
+            }
+        }
+        {
+            let view = slice
+                .get_mapped_range()
+                .map_err(|e| GpuError::Runtime(format!("reading results back: {e}")))?;
+            result.extend_from_slice(bytemuck::cast_slice(&view));
+        }
+        bufs.staging.unmap();
+        self.check()
+    }
+}
+
+/// The buffers of one run: the lambdas, the input, the output and its staging copy.
+struct Buffers<'a> {
+    lambdas: &'a wgpu::Buffer,
+    input: &'a wgpu::Buffer,
+    out: &'a wgpu::Buffer,
+    staging: &'a wgpu::Buffer,
 }
