@@ -314,6 +314,82 @@ fn parse_csv_reader(path: &str, input: impl std::io::Read) -> Result<CurveSet, D
     Ok(g.finish())
 }
 
+/// One column of an NPZ file, `name.npy`, as f64 (None where the file has no such member):
+/// its declared and read sizes bounded, its CRC checked, 1-D (or a vector stored as 2-D).
+fn npz_column(
+    ar: &mut zip::ZipArchive<Box<dyn ReadSeek>>,
+    path: &str,
+    name: &str,
+) -> Result<Option<Vec<f64>>, DataError> {
+    use std::io::Read as _;
+    let npz_err = |what: String| DataError::Npz {
+        path: path.to_string(),
+        what,
+    };
+    let mut member = match ar.by_name(&format!("{name}.npy")) {
+        Ok(m) => m,
+        Err(zip::result::ZipError::FileNotFound) => return Ok(None),
+        Err(e) => return Err(npz_err(format!("array {name}: {e}"))),
+    };
+    // The declared size first (a zip bomb declares its size), then at most that much read:
+    // reading to the end checks the member's CRC.
+    let cap = 8 * POINTS_MAX as u64 + 4096;
+    if member.size() > cap {
+        return Err(DataError::TooLarge {
+            path: path.to_string(),
+            what: format!(
+                "array {name} unpacks to {} bytes: at most {POINTS_MAX} points are read",
+                member.size()
+            ),
+        });
+    }
+    let mut bytes = Vec::new();
+    (&mut member)
+        .take(cap + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| {
+            npz_err(format!(
+                "array {name} is damaged ({e}): the file is corrupt"
+            ))
+        })?;
+    if bytes.len() as u64 > cap {
+        return Err(DataError::TooLarge {
+            path: path.to_string(),
+            what: format!("array {name} unpacks to more than {cap} bytes"),
+        });
+    }
+    let arr = npyz::NpyFile::new(&bytes[..]).map_err(|e| npz_err(format!("array {name}: {e}")))?;
+    // One column of values: 1-D, or a vector stored as 2-D; any order reads the same then.
+    let shape = arr.shape().to_vec();
+    if shape.iter().filter(|&&d| d > 1).count() > 1 {
+        return Err(npz_err(format!(
+            "array {name} has shape {shape:?}: give each column as a 1-D array"
+        )));
+    }
+    let dtype = arr.dtype();
+    let descr = match &dtype {
+        npyz::DType::Plain(ts) => ts.to_string(),
+        other => other.descr(),
+    };
+    let v: Result<Vec<f64>, std::io::Error> = match descr.as_str() {
+        "<f8" => arr.into_vec::<f64>(),
+        "<f4" => arr.into_vec::<f32>().map(|v| v.into_iter().map(f64::from).collect()),
+        "<i8" => arr.into_vec::<i64>().map(|v| v.into_iter().map(|x| x as f64).collect()),
+        "<i4" => arr.into_vec::<i32>().map(|v| v.into_iter().map(f64::from).collect()),
+        "|u1" => arr.into_vec::<u8>().map(|v| v.into_iter().map(f64::from).collect()),
+        "|b1" => arr
+            .into_vec::<bool>()
+            .map(|v| v.into_iter().map(|b| f64::from(u8::from(b))).collect()),
+        d => {
+            return Err(npz_err(format!(
+                "array {name} has dtype {d}: use float64, float32, int64, int32 or bool (segment: 0 approach, 1 retract)"
+            )))
+        }
+    };
+    v.map(Some)
+        .map_err(|e| npz_err(format!("array {name}: {e}")))
+}
+
 fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataError> {
     use std::io::Read as _;
     let npz_err = |what: String| DataError::Npz {
@@ -343,71 +419,7 @@ fn read_npz(path: &str, mut input: impl std::io::Read) -> Result<CurveSet, DataE
         .file_names()
         .map(|n| n.trim_end_matches(".npy").to_string())
         .collect();
-    let mut get = |name: &'static str| -> Result<Option<Vec<f64>>, DataError> {
-        let mut member = match ar.by_name(&format!("{name}.npy")) {
-            Ok(m) => m,
-            Err(zip::result::ZipError::FileNotFound) => return Ok(None),
-            Err(e) => return Err(npz_err(format!("array {name}: {e}"))),
-        };
-        // The declared size first (a zip bomb declares its size), then at most that much read:
-        // reading to the end checks the member's CRC.
-        let cap = 8 * POINTS_MAX as u64 + 4096;
-        if member.size() > cap {
-            return Err(DataError::TooLarge {
-                path: path.to_string(),
-                what: format!(
-                    "array {name} unpacks to {} bytes: at most {POINTS_MAX} points are read",
-                    member.size()
-                ),
-            });
-        }
-        let mut bytes = Vec::new();
-        (&mut member)
-            .take(cap + 1)
-            .read_to_end(&mut bytes)
-            .map_err(|e| {
-                npz_err(format!(
-                    "array {name} is damaged ({e}): the file is corrupt"
-                ))
-            })?;
-        if bytes.len() as u64 > cap {
-            return Err(DataError::TooLarge {
-                path: path.to_string(),
-                what: format!("array {name} unpacks to more than {cap} bytes"),
-            });
-        }
-        let arr =
-            npyz::NpyFile::new(&bytes[..]).map_err(|e| npz_err(format!("array {name}: {e}")))?;
-        // One column of values: 1-D, or a vector stored as 2-D; any order reads the same then.
-        let shape = arr.shape().to_vec();
-        if shape.iter().filter(|&&d| d > 1).count() > 1 {
-            return Err(npz_err(format!(
-                "array {name} has shape {shape:?}: give each column as a 1-D array"
-            )));
-        }
-        let dtype = arr.dtype();
-        let descr = match &dtype {
-            npyz::DType::Plain(ts) => ts.to_string(),
-            other => other.descr(),
-        };
-        let v: Result<Vec<f64>, std::io::Error> = match descr.as_str() {
-            "<f8" => arr.into_vec::<f64>(),
-            "<f4" => arr.into_vec::<f32>().map(|v| v.into_iter().map(f64::from).collect()),
-            "<i8" => arr.into_vec::<i64>().map(|v| v.into_iter().map(|x| x as f64).collect()),
-            "<i4" => arr.into_vec::<i32>().map(|v| v.into_iter().map(f64::from).collect()),
-            "|u1" => arr.into_vec::<u8>().map(|v| v.into_iter().map(f64::from).collect()),
-            "|b1" => arr
-                .into_vec::<bool>()
-                .map(|v| v.into_iter().map(|b| f64::from(u8::from(b))).collect()),
-            d => {
-                return Err(npz_err(format!(
-                    "array {name} has dtype {d}: use float64, float32, int64, int32 or bool (segment: 0 approach, 1 retract)"
-                )))
-            }
-        };
-        v.map(Some)
-            .map_err(|e| npz_err(format!("array {name}: {e}")))
-    };
+    let mut get = |name: &'static str| npz_column(&mut ar, path, name);
     let need = |v: Option<Vec<f64>>, name: &'static str| {
         v.ok_or_else(|| DataError::MissingColumn {
             path: path.to_string(),
