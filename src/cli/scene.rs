@@ -537,7 +537,22 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         Some((rho, eta)) => crate::cycle::two_zone::cycle(lambda, rho, eta, drive, a.max_load)?,
         None => cycle(lambda, drive, a.max_load)?,
     };
-    let text = match a.format {
+    let text = cycle_text(&c, a.format)?;
+    write_output(&a.output, text.as_bytes())?;
+    cycle_summary(&c, lambda, ratios, contact.as_ref().map(scale));
+    if !figure.is_empty() {
+        crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
+            crate::render::plots::cycle(r, &c)
+        })
+        .context("drawing the cycle")?;
+        eprintln!("wrote the figure");
+    }
+    Ok(())
+}
+
+/// A cycle as JSON, or as CSV with one row per step.
+fn cycle_text(c: &crate::cycle::Cycle, format: Format) -> anyhow::Result<String> {
+    Ok(match format {
         Format::Json => serde_json::to_string_pretty(&c)? + "\n",
         _ => {
             let mut w = crate::io::csv_writer();
@@ -559,8 +574,17 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             }
             String::from_utf8(crate::io::csv_finish(w)?)?
         }
-    };
-    write_output(&a.output, text.as_bytes())?;
+    })
+}
+
+/// The summary of a cycle on stderr: its parameters, its jumps, the energy lost (in J for a
+/// scene, whose force and approach units are `units`).
+fn cycle_summary(
+    c: &crate::cycle::Cycle,
+    lambda: f64,
+    ratios: Option<(f64, f64)>,
+    units: Option<(f64, f64)>,
+) {
     match ratios {
         Some((rho, eta)) => eprintln!(
             "lambda = {lambda:.4} (solid), stress ratio {rho:.4}, range ratio {eta:.4} (units of the total w), {:?}",
@@ -574,10 +598,10 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             None => eprintln!("  {} jump: from (approach {:.6}, load {:.6}, A {:.6}): the surfaces separate", j.phase, j.from.approach, j.from.load, j.from.a),
         }
     }
-    match (c.hysteresis, &contact) {
-        (Some(w), Some(ct)) => eprintln!(
+    match (c.hysteresis, units) {
+        (Some(w), Some((force, approach))) => eprintln!(
             "  energy lost per cycle: {w:.6} (normalised) = {}",
-            si(w * scale(ct).0 * scale(ct).1, "J")
+            si(w * force * approach, "J")
         ),
         (Some(w), None) => eprintln!(
             "  energy lost per cycle: {w:.6} (in units of pi w R times the approach unit)"
@@ -590,14 +614,6 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             }
         ),
     }
-    if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
-            crate::render::plots::cycle(r, &c)
-        })
-        .context("drawing the cycle")?;
-        eprintln!("wrote the figure");
-    }
-    Ok(())
 }
 
 #[derive(Args, Debug)]
