@@ -849,12 +849,7 @@ where
             "gap  h/(π²w²R/K²)^{1/3}",
         )
     };
-    let colour = |m: &str| match m {
-        "md" | "two_zone" => (BLACK, 4),
-        "hertz" => (GRAY_, 2),
-        "dmt" => (BLUE_, 2),
-        _ => (ORANGE_, 2),
-    };
+    let colour = profile_style;
     let label = |m: &str| match m {
         "md" => "Maugis-Dugdale",
         "two_zone" => "two Dugdale zones",
@@ -918,13 +913,40 @@ where
     }
     super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
 
+    profile_gaps(&bottom, p, r_max, (ru, gu))
+}
+
+/// The line of a model in the profile figure: MD (or two zones) bold black, the closed forms
+/// thin in colour.
+fn profile_style(m: &str) -> (RGBColor, u32) {
+    match m {
+        "md" | "two_zone" => (BLACK, 4),
+        "hertz" => (GRAY_, 2),
+        "dmt" => (BLUE_, 2),
+        _ => (ORANGE_, 2),
+    }
+}
+
+/// The profile figure's lower panel: the gap of each model against r, the Dugdale range and the
+/// MD zone's edge c dashed.
+fn profile_gaps<DB: DrawingBackend>(
+    bottom: &DrawingArea<DB, Shift>,
+    p: &crate::profile::Profile,
+    r_max: f64,
+    (ru, gu): (&str, &str),
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let md = &p.models[0];
+    let colour = profile_style;
     let g_hi = p
         .models
         .iter()
         .flat_map(|m| m.gap.iter().copied())
         .fold(p.dugdale_range * 1.5, f64::max)
         * 1.05;
-    let mut chart = builder(&bottom, "").build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
+    let mut chart = builder(bottom, "").build_cartesian_2d(0.0..r_max, 0.0..g_hi)?;
     house_mesh(chart.configure_mesh(), ru, gu)
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
