@@ -418,7 +418,7 @@ where
 {
     root.fill(&WHITE)?;
     let (left, right) = two_panels(root);
-    let (fs, rs) = (fig.force_scale, fig.radius_scale);
+    let fs = fig.force_scale;
     let (pc, pmax) = fig.loads;
     let md = &fig.md;
     let amax = md
@@ -441,42 +441,7 @@ where
     .x_label_formatter(&|v| super::linear_label(*v))
     .y_label_formatter(&|v| super::linear_label(*v))
     .draw()?;
-    let closed = [
-        (
-            "hertz",
-            "Hertz",
-            GRAY_,
-            hertz_radius as fn(f64) -> Option<f64>,
-        ),
-        ("dmt", "DMT", BLUE_, dmt_radius),
-        ("jkr", "JKR", ORANGE_, jkr_radius),
-    ];
-    // A wet scene: the closed forms are the dry contact's, and the MD curve is drawn against
-    // the curve of solid and meniscus instead.
-    for (key, name, col, f) in closed.into_iter().filter(|_| fig.wet.is_none()) {
-        let rec = r.recommended_model.name() == key;
-        let st = if rec {
-            ShapeStyle::from(&col).stroke_width(8)
-        } else {
-            ShapeStyle::from(&col.mix(0.35)).stroke_width(4)
-        };
-        let pts: Vec<(f64, f64)> = (0..=300)
-            .filter_map(|i| {
-                let p = p_lo + (pmax - p_lo) * i as f64 / 300.0;
-                f(p / fs)
-                    .map(|a| (p / fu, a * rs / au))
-                    .filter(|q| q.1 <= amax / au)
-            })
-            .collect();
-        chart
-            .draw_series(DashedLineSeries::new(pts, 16, 12, st))?
-            .label(if rec {
-                format!("{name} (recommended)")
-            } else {
-                name.to_string()
-            })
-            .legend(sample_dashed(st));
-    }
+    scene_closed_forms(&mut chart, r, fig, (p_lo, pmax), (fu, au), amax)?;
     let st = ShapeStyle::from(&BLACK).stroke_width(6);
     let (md_style, md_label) = match &fig.wet {
         None => (st, "Maugis-Dugdale (exact)"),
@@ -539,6 +504,58 @@ where
         "on the adhesion map"
     };
     scene_on_map(&right, r, &fig.map, &loads, title)
+}
+
+/// The closed forms' a(P) of a dry scene, dashed: the recommended one bold, the others faint.
+fn scene_closed_forms<DB: DrawingBackend>(
+    chart: &mut Chart2d<'_, DB>,
+    r: &crate::scene::SceneResult,
+    fig: &crate::figure_data::SceneFigure,
+    (p_lo, pmax): (f64, f64),
+    (fu, au): (f64, f64),
+    amax: f64,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let (fs, rs) = (fig.force_scale, fig.radius_scale);
+    let closed = [
+        (
+            "hertz",
+            "Hertz",
+            GRAY_,
+            hertz_radius as fn(f64) -> Option<f64>,
+        ),
+        ("dmt", "DMT", BLUE_, dmt_radius),
+        ("jkr", "JKR", ORANGE_, jkr_radius),
+    ];
+    // A wet scene: the closed forms are the dry contact's, and the MD curve is drawn against
+    // the curve of solid and meniscus instead.
+    for (key, name, col, f) in closed.into_iter().filter(|_| fig.wet.is_none()) {
+        let rec = r.recommended_model.name() == key;
+        let st = if rec {
+            ShapeStyle::from(&col).stroke_width(8)
+        } else {
+            ShapeStyle::from(&col.mix(0.35)).stroke_width(4)
+        };
+        let pts: Vec<(f64, f64)> = (0..=300)
+            .filter_map(|i| {
+                let p = p_lo + (pmax - p_lo) * i as f64 / 300.0;
+                f(p / fs)
+                    .map(|a| (p / fu, a * rs / au))
+                    .filter(|q| q.1 <= amax / au)
+            })
+            .collect();
+        chart
+            .draw_series(DashedLineSeries::new(pts, 16, 12, st))?
+            .label(if rec {
+                format!("{name} (recommended)")
+            } else {
+                name.to_string()
+            })
+            .legend(sample_dashed(st));
+    }
+    Ok(())
 }
 
 /// The scene's lambda and loads as crosses on an inset adhesion map.
