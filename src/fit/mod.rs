@@ -1950,36 +1950,8 @@ fn summarize(
         r.md = Some(md.clone());
         r
     };
-    // A modulus or adhesion above physical sense first: that is the cause to name (forces in
-    // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
-    // no point in contact is a curve that does not press (no contact).
-    let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
-    let beyond = !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX);
-    let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
-    if beyond && (above || in_contact > 0) {
-        return refused(
-            FitStatus::NotConverged,
-            format!(
-                "the fit ended outside physical sense: E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2){}",
-                short(p.e_star),
-                short(E_STAR_RANGE.0),
-                short(E_STAR_RANGE.1),
-                short(p.w),
-                short(W_MAX),
-                unit_hints(d, opt)
-            ),
-        );
-    }
-    if in_contact == 0 {
-        return refused(
-            FitStatus::NoContact,
-            format!(
-                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
-                short(p.e_star),
-                short(p.w),
-                unit_hints(d, opt)
-            ),
-        );
+    if let Some((status, message)) = implausible(&p, in_contact, d, opt) {
+        return refused(status, message);
     }
     let amax = a_md.iter().cloned().fold(0.0, f64::max);
     let loads: Vec<f64> = states
@@ -2022,6 +1994,49 @@ fn summarize(
     out.models = models;
     out.md = Some(md);
     out
+}
+
+/// A fit that ended outside physical sense, or with no point in contact: its status and
+/// message (None for a fit to report).
+fn implausible(
+    p: &Params,
+    in_contact: usize,
+    d: &Prepared,
+    opt: &FitOptions,
+) -> Option<(FitStatus, String)> {
+    let short = crate::physics::domain::short;
+    // A modulus or adhesion above physical sense first: that is the cause to name (forces in
+    // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
+    // no point in contact is a curve that does not press (no contact).
+    let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
+    let beyond = !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX);
+    let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
+    if beyond && (above || in_contact > 0) {
+        return Some((
+            FitStatus::NotConverged,
+            format!(
+                "the fit ended outside physical sense: E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2){}",
+                short(p.e_star),
+                short(E_STAR_RANGE.0),
+                short(E_STAR_RANGE.1),
+                short(p.w),
+                short(W_MAX),
+                unit_hints(d, opt)
+            ),
+        ));
+    }
+    if in_contact == 0 {
+        return Some((
+            FitStatus::NoContact,
+            format!(
+                "no contact: no fitted point is in contact on the fitted Maugis-Dugdale path (E* = {} Pa, w = {} J/m^2), so the curve does not determine E*{}",
+                short(p.e_star),
+                short(p.w),
+                unit_hints(d, opt)
+            ),
+        ));
+    }
+    None
 }
 
 /// The fitted values and their standard errors into `out`; returns z0 from lambda.
