@@ -1477,6 +1477,41 @@ fn fit_model_for(
         }
         _ => (FitStatus::NotConverged, f64::NAN, None, None),
     };
+    let (e_err, w_err, lambda_err, zc_err) = standard_errors(&prob, &cov, &p, fixed_lambda);
+    let pulloff = evaluated
+        .as_ref()
+        .filter(|_| !scout)
+        .map_or(f64::NAN, |_| model_pulloff(model, &p, d, opt));
+    ModelFit {
+        model,
+        status,
+        e_star_pa: p.e_star,
+        e_star_pa_stderr: e_err,
+        work_of_adhesion_j_m2: if model == Model::Hertz { 0.0 } else { p.w },
+        work_of_adhesion_j_m2_stderr: w_err,
+        lambda: (model == Model::Md).then_some(p.lambda),
+        lambda_stderr: lambda_err,
+        contact_point_m: p.zc,
+        contact_point_m_stderr: zc_err,
+        force_offset_n: p.f0,
+        rms_residual_n: rms,
+        pulloff_force_model_n: pulloff,
+        iterations,
+        stop: stop_text(&report.termination),
+        cov,
+        jtj_inv,
+    }
+}
+
+/// The standard errors of E*, w, lambda (None where it is not a parameter or a function of
+/// them) and the contact point from a fit's covariance in its internal variables.
+fn standard_errors(
+    prob: &Problem,
+    cov: &Option<DMatrix<f64>>,
+    p: &Params,
+    fixed_lambda: Option<f64>,
+) -> (f64, f64, Option<f64>, f64) {
+    let model = prob.model;
     let var = |i: usize| cov.as_ref().map_or(f64::NAN, |c| c[(i, i)].max(0.0).sqrt());
     let mut i = 1;
     let e_err = p.e_star * var(0);
@@ -1501,43 +1536,27 @@ fn fit_model_for(
         None
     };
     let zc_err = var(i) * prob.z_scale;
-    // The path alone (the states at the points are not needed): its most tensile load.
-    let pulloff = evaluated.as_ref().filter(|_| !scout).map_or(f64::NAN, |_| {
-        let u = units(&p, opt.radius, opt.spring);
-        let top = d
-            .height
-            .iter()
-            .map(|h| (p.zc - h) / u.approach)
-            .fold(1.0, f64::max);
-        let dir = if opt.segments == Segments::Approach {
-            Direction::Approach
-        } else {
-            Direction::Retract
-        };
-        -SpringPath::new(model, p.lambda, u.kbar, top)
-            .min_load(dir)
-            .0
-            * u.force
-    });
-    ModelFit {
-        model,
-        status,
-        e_star_pa: p.e_star,
-        e_star_pa_stderr: e_err,
-        work_of_adhesion_j_m2: if model == Model::Hertz { 0.0 } else { p.w },
-        work_of_adhesion_j_m2_stderr: w_err,
-        lambda: (model == Model::Md).then_some(p.lambda),
-        lambda_stderr: lambda_err,
-        contact_point_m: p.zc,
-        contact_point_m_stderr: zc_err,
-        force_offset_n: p.f0,
-        rms_residual_n: rms,
-        pulloff_force_model_n: pulloff,
-        iterations,
-        stop: stop_text(&report.termination),
-        cov,
-        jtj_inv,
-    }
+    (e_err, w_err, lambda_err, zc_err)
+}
+
+/// The most tensile load of a model's path under the cantilever (N, positive), along the
+/// fitted segment's direction: the path alone, not the states at the points.
+fn model_pulloff(model: Model, p: &Params, d: &Prepared, opt: &FitOptions) -> f64 {
+    let u = units(p, opt.radius, opt.spring);
+    let top = d
+        .height
+        .iter()
+        .map(|h| (p.zc - h) / u.approach)
+        .fold(1.0, f64::max);
+    let dir = if opt.segments == Segments::Approach {
+        Direction::Approach
+    } else {
+        Direction::Retract
+    };
+    -SpringPath::new(model, p.lambda, u.kbar, top)
+        .min_load(dir)
+        .0
+        * u.force
 }
 
 impl ModelFit {
