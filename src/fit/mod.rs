@@ -562,7 +562,41 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
             fitted.len()
         ));
     }
-    // Baseline from the far part of the approach (of the retract where there is none).
+    let ((b0, b1), noise) = baseline(curve, opt);
+    let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
+    let force: Vec<f64> = fitted
+        .iter()
+        .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
+        .collect();
+    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
+    if !(fmax > 5.0 * noise && fmax > 1e-3 * (fmax - fmin).abs() && fmax > 0.0) {
+        return Err((
+            FitStatus::NoContact,
+            format!(
+                "no contact: the force never rises above the baseline (largest {:.3e} N, noise {:.2e} N); check the segment and the sign of force_n (positive is repulsive)",
+                fmax, noise
+            ),
+        ));
+    }
+    let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
+    let side = measured_sides(&force, &dir, noise);
+    let at_jump = last_before_jump(&side, &dir);
+    Ok(Prepared {
+        side,
+        at_jump,
+        dir,
+        height,
+        force,
+        baseline: (b0, b1),
+        noise,
+        notes,
+    })
+}
+
+/// The baseline: a line (flat without `opt.tilt`) through the far part of the approach (of the
+/// retract where the approach has fewer than 5 points), and the rms of the points about it.
+fn baseline(curve: &Curve, opt: &FitOptions) -> ((f64, f64), f64) {
     let far_of = |d: Direction| -> Vec<usize> {
         let mut idx: Vec<usize> = (0..curve.len())
             .filter(|&i| curve.segment[i] == d)
@@ -594,35 +628,7 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
     } else {
         0.0
     };
-    let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
-    let force: Vec<f64> = fitted
-        .iter()
-        .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
-        .collect();
-    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-    let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
-    if !(fmax > 5.0 * noise && fmax > 1e-3 * (fmax - fmin).abs() && fmax > 0.0) {
-        return Err((
-            FitStatus::NoContact,
-            format!(
-                "no contact: the force never rises above the baseline (largest {:.3e} N, noise {:.2e} N); check the segment and the sign of force_n (positive is repulsive)",
-                fmax, noise
-            ),
-        ));
-    }
-    let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
-    let side = measured_sides(&force, &dir, noise);
-    let at_jump = last_before_jump(&side, &dir);
-    Ok(Prepared {
-        side,
-        at_jump,
-        dir,
-        height,
-        force,
-        baseline: (b0, b1),
-        noise,
-        notes,
-    })
+    ((b0, b1), noise)
 }
 
 /// The indices of a curve's points in one segment, in time order.
