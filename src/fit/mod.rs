@@ -1796,30 +1796,10 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
     // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let (md, iv) = match opt.z0 {
-        Some(z0) => {
-            let best = better(dmt.clone(), jkr.clone());
-            let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
-            let mut s = from(&best, 1.0, pc, pc);
-            s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
-            if crate::solver::domain::check_lambda(s.lambda).is_err() {
-                let mut out = fail(
-                    curve,
-                    FitStatus::InvalidInput,
-                    format!(
-                        "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-26..1e26: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
-                        crate::physics::domain::short(z0),
-                        crate::physics::domain::short(s.lambda),
-                        crate::physics::domain::short(s.e_star),
-                        crate::physics::domain::short(s.w)
-                    ),
-                );
-                out.warnings = d.notes.clone();
-                return out;
-            }
-            let md = fit_model(Model::Md, &d, opt, s, w_ref, None);
-            let iv = interval::fixed_z0_intervals(&d, &md);
-            (md, iv)
-        }
+        Some(z0) => match fixed_z0_fit(curve, &d, opt, z0, (&dmt, &jkr), &from, w_ref) {
+            Ok(r) => r,
+            Err(out) => return out,
+        },
         None => {
             let profile: Vec<ModelFit> = profile_lambdas()
                 .map(|l| {
@@ -1842,30 +1822,71 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
         }
     };
     // A fit that ended where it started found nothing to follow (the misfit was flat there).
-    let unmoved = md.status == FitStatus::Ok
+    let stuck = md.status == FitStatus::Ok
         && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
         && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
     let mut out = summarize(curve, opt, &d, md, vec![hertz, dmt, jkr], &iv);
-    if unmoved && out.status == FitStatus::Ok {
-        let mut r = fail(
-            curve,
-            FitStatus::NotConverged,
-            format!(
-                "the fit did not move from its start (the misfit does not change with E* and the contact point there){}",
-                unit_hints(&d, opt)
-            ),
-        );
-        r.points_fitted = out.points_fitted;
-        r.pulloff_force_measured_n = out.pulloff_force_measured_n;
-        r.max_load_n = out.max_load_n;
-        r.iterations = out.iterations;
-        r.stop = out.stop;
-        r.warnings = d.notes.clone();
-        r.models = out.models;
-        r.md = out.md;
-        out = r;
+    if stuck && out.status == FitStatus::Ok {
+        out = unmoved(out, curve, &d, opt);
     }
     out
+}
+
+/// A fit that ended where it started: `not_converged`, with the likely causes, keeping what
+/// was measured and the models' fits.
+fn unmoved(out: CurveFit, curve: &Curve, d: &Prepared, opt: &FitOptions) -> CurveFit {
+    let mut r = fail(
+        curve,
+        FitStatus::NotConverged,
+        format!(
+            "the fit did not move from its start (the misfit does not change with E* and the contact point there){}",
+            unit_hints(d, opt)
+        ),
+    );
+    r.points_fitted = out.points_fitted;
+    r.pulloff_force_measured_n = out.pulloff_force_measured_n;
+    r.max_load_n = out.max_load_n;
+    r.iterations = out.iterations;
+    r.stop = out.stop;
+    r.warnings = d.notes.clone();
+    r.models = out.models;
+    r.md = out.md;
+    r
+}
+
+/// Maugis-Dugdale with lambda tied to E* and w by a given z0, started from the better closed
+/// form; Err with the curve's result where z0 puts lambda outside the domain.
+fn fixed_z0_fit(
+    curve: &Curve,
+    d: &Prepared,
+    opt: &FitOptions,
+    z0: f64,
+    (dmt, jkr): (&ModelFit, &ModelFit),
+    from: &dyn Fn(&ModelFit, f64, f64, f64) -> Params,
+    w_ref: f64,
+) -> Result<(ModelFit, interval::Intervals), CurveFit> {
+    let best = better(dmt.clone(), jkr.clone());
+    let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
+    let mut s = from(&best, 1.0, pc, pc);
+    s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
+    if crate::solver::domain::check_lambda(s.lambda).is_err() {
+        let mut out = fail(
+            curve,
+            FitStatus::InvalidInput,
+            format!(
+                "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-26..1e26: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
+                crate::physics::domain::short(z0),
+                crate::physics::domain::short(s.lambda),
+                crate::physics::domain::short(s.e_star),
+                crate::physics::domain::short(s.w)
+            ),
+        );
+        out.warnings = d.notes.clone();
+        return Err(out);
+    }
+    let md = fit_model(Model::Md, d, opt, s, w_ref, None);
+    let iv = interval::fixed_z0_intervals(d, &md);
+    Ok((md, iv))
 }
 
 /// The likely causes of an absurd fit, from the scales of the data and options: units off by
