@@ -295,27 +295,8 @@ pub fn profile_intervals(
         .iter()
         .map(|l| matches!(l, Some([Some(_), Some(_)])))
         .collect();
-    let quantity = |q: usize, k: usize| -> Option<Interval> {
-        let level = LEVELS[k];
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for p in pts.iter().filter(|p| p.chi <= level) {
-            let free = p.free.then_some(determined[k]);
-            let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, opt.radius) else {
-                continue;
-            };
-            let half = ((level - p.chi) * var).sqrt();
-            lo = lo.min(v - half);
-            hi = hi.max(v + half);
-        }
-        if !(lo.is_finite() && hi.is_finite()) {
-            return None;
-        }
-        Some(if q == 2 {
-            [Some(lo), Some(hi)]
-        } else {
-            [Some(lo.exp()), Some(hi.exp())]
-        })
+    let quantity = |q: usize, k: usize| {
+        quantity_interval(&pts, &determined, q, k, s2, (f_scale, z_scale), opt.radius)
     };
     let mut out = Intervals {
         extra_fits: extra,
@@ -342,6 +323,41 @@ pub fn profile_intervals(
         nest(q);
     }
     out
+}
+
+/// The interval of quantity `q` (0 E*, 1 w, 2 the contact point, 3 z0) at level `k`: the
+/// minimum over the profile's fits within the level of Delta chi^2 plus the quantity's own
+/// quadratic term at that fit, from its moments.
+#[allow(clippy::too_many_arguments)]
+fn quantity_interval(
+    pts: &[Point],
+    determined: &[bool],
+    q: usize,
+    k: usize,
+    s2: f64,
+    (f_scale, z_scale): (f64, f64),
+    radius: f64,
+) -> Option<Interval> {
+    let level = LEVELS[k];
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    for p in pts.iter().filter(|p| p.chi <= level) {
+        let free = p.free.then_some(determined[k]);
+        let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, radius) else {
+            continue;
+        };
+        let half = ((level - p.chi) * var).sqrt();
+        lo = lo.min(v - half);
+        hi = hi.max(v + half);
+    }
+    if !(lo.is_finite() && hi.is_finite()) {
+        return None;
+    }
+    Some(if q == 2 {
+        [Some(lo), Some(hi)]
+    } else {
+        [Some(lo.exp()), Some(hi.exp())]
+    })
 }
 
 /// The 95% interval holds the 68% one. On a profile that is not parabolic (a measured curve the
