@@ -1984,20 +1984,12 @@ fn summarize(
         return out;
     };
     let in_contact = states.iter().filter(|s| s.piece == Piece::Contact).count();
-    let refused = |status: FitStatus, message: String| {
+    if let Some((status, message)) = implausible(&p, in_contact, d, opt) {
         let mut r = fail(curve, status, message);
         r.points_fitted = out.points_fitted;
         r.pulloff_force_measured_n = out.pulloff_force_measured_n;
         r.max_load_n = out.max_load_n;
-        r.iterations = md.iterations;
-        r.stop = md.stop.clone();
-        r.warnings = d.notes.clone();
-        r.models = models.clone();
-        r.md = Some(md.clone());
-        r
-    };
-    if let Some((status, message)) = implausible(&p, in_contact, d, opt) {
-        return refused(status, message);
+        return with_fits(r, d, md, models);
     }
     let amax = a_md.iter().cloned().fold(0.0, f64::max);
     let loads: Vec<f64> = states
@@ -2034,12 +2026,22 @@ fn summarize(
             warn.push(format!("humidity: {}", fh.note));
         }
     }
-    out.warnings = warn;
     out.status = FitStatus::Ok;
     out.message = "ok".into();
-    out.models = models;
-    out.md = Some(md);
+    let mut out = with_fits(out, d, md, models);
+    out.warnings = warn;
     out
+}
+
+/// A curve's result with its Maugis-Dugdale fit (its iterations and stop) and the closed
+/// forms' fits, and the data's notes as warnings.
+fn with_fits(mut r: CurveFit, d: &Prepared, md: ModelFit, models: Vec<ModelFit>) -> CurveFit {
+    r.iterations = md.iterations;
+    r.stop = md.stop.clone();
+    r.warnings = d.notes.clone();
+    r.models = models;
+    r.md = Some(md);
+    r
 }
 
 /// A fit that ended outside physical sense, or with no point in contact: its status and
