@@ -2311,42 +2311,8 @@ fn adequate_by_test(
                 _ => true,
             };
         if dchi <= crit && consistent {
-            let w_note = if f.model == Model::Hertz {
-                String::new()
-            } else {
-                format!(
-                    "; its w is {:+.1}% from Maugis-Dugdale's",
-                    100.0 * (f.work_of_adhesion_j_m2 / md.work_of_adhesion_j_m2 - 1.0)
-                )
-            };
-            let lam = match (f.model, l95) {
-                (Model::Jkr, Some([Some(lo), None])) => format!(
-                    ", and lambda's 95% interval is open towards JKR (lambda > {})",
-                    sig(lo)
-                ),
-                (Model::Dmt, Some([None, Some(hi)])) => format!(
-                    ", and lambda's 95% interval is open towards DMT (lambda < {})",
-                    sig(hi)
-                ),
-                _ => String::new(),
-            };
-            let before = if notes.is_empty() {
-                String::new()
-            } else {
-                format!(" ({})", notes.join("; "))
-            };
-            return (
-                f.model,
-                format!(
-                    "{} is not significantly worse than Maugis-Dugdale: Delta chi^2 = {:.2} against {:.2} (95%, {} fewer parameter{}) at the noise {:.3e} N of the residual{lam}{w_note}{before}",
-                    f.model.label(),
-                    dchi,
-                    crit,
-                    q,
-                    if q >= 2.0 { "s" } else { "" },
-                    s2.sqrt()
-                ),
-            );
+            let why = adequate_why(f, md, (dchi, crit, q, s2), l95, &notes);
+            return (f.model, why);
         }
         notes.push(if dchi > crit {
             format!("{} Delta chi^2 = {:.3} > {:.2}", f.model.label(), dchi, crit)
@@ -2365,6 +2331,50 @@ fn adequate_by_test(
             s2.sqrt(),
             notes.join("; ")
         ),
+    )
+}
+
+/// Why a closed form is adequate: its Delta chi^2 against the critical value, what lambda's
+/// interval says, how far its w is from Maugis-Dugdale's, and the notes on the models before.
+fn adequate_why(
+    f: &ModelFit,
+    md: &ModelFit,
+    (dchi, crit, q, s2): (f64, f64, f64, f64),
+    l95: Option<interval::Interval>,
+    notes: &[String],
+) -> String {
+    let w_note = if f.model == Model::Hertz {
+        String::new()
+    } else {
+        format!(
+            "; its w is {:+.1}% from Maugis-Dugdale's",
+            100.0 * (f.work_of_adhesion_j_m2 / md.work_of_adhesion_j_m2 - 1.0)
+        )
+    };
+    let lam = match (f.model, l95) {
+        (Model::Jkr, Some([Some(lo), None])) => format!(
+            ", and lambda's 95% interval is open towards JKR (lambda > {})",
+            sig(lo)
+        ),
+        (Model::Dmt, Some([None, Some(hi)])) => format!(
+            ", and lambda's 95% interval is open towards DMT (lambda < {})",
+            sig(hi)
+        ),
+        _ => String::new(),
+    };
+    let before = if notes.is_empty() {
+        String::new()
+    } else {
+        format!(" ({})", notes.join("; "))
+    };
+    format!(
+        "{} is not significantly worse than Maugis-Dugdale: Delta chi^2 = {:.2} against {:.2} (95%, {} fewer parameter{}) at the noise {:.3e} N of the residual{lam}{w_note}{before}",
+        f.model.label(),
+        dchi,
+        crit,
+        q,
+        if q >= 2.0 { "s" } else { "" },
+        s2.sqrt()
     )
 }
 
