@@ -1646,6 +1646,19 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
     if md.status != FitStatus::Ok {
         return md;
     }
+    let others: Vec<&ModelFit> = scouts.iter().chain(&fulls).collect();
+    widen_by_region(md, d, &profile, &others)
+}
+
+/// The free fit's standard errors widened by the 3-sigma region of the profile and of the
+/// other minima found (`others`): where the misfit is flat in lambda the covariance's local
+/// picture understates the spread, while the profile sees it.
+fn widen_by_region(
+    mut md: ModelFit,
+    d: &Prepared,
+    profile: &[ModelFit],
+    others: &[&ModelFit],
+) -> ModelFit {
     // The 3-sigma region of the profile and of the minima found: Delta chi^2 = (RSS - RSS_min) / s^2 <= 9, its edges
     // interpolated in ln lambda between profile points.
     let m = d.force.len() as f64;
@@ -1682,7 +1695,7 @@ fn free_fit(d: &Prepared, opt: &FitOptions, w_ref: f64, profile: Vec<ModelFit>) 
     }
     // Other minima the free fits found within the same region are as plausible: their
     // lambda, E* and w count too.
-    for f in scouts.iter().chain(&fulls) {
+    for &f in others {
         let c = (rss(f) - rss(&md)) / s2;
         if c <= 9.0 {
             let l = f.lambda.unwrap_or(lam);
