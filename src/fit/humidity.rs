@@ -115,20 +115,7 @@ pub fn solid_work(r: &CurveFit, radius: f64, h: &HumidityInput) -> Option<FitHum
     out.meniscus_range_over_fitted_range = Some(ratio);
     let small = m.work_of_adhesion_j_m2 <= SMALL_MENISCUS * w;
     out.fair_reading = ratio <= 1.0 || small;
-    let fairness = if ratio <= 1.0 {
-        format!(
-            "a fair reading: the meniscus reaches {ratio:.2} of the fitted zone's range, so one Dugdale zone describes the curve's shape with the meniscus in it"
-        )
-    } else if small {
-        format!(
-            "a fair reading: the meniscus reaches {ratio:.2} times the fitted zone's range, but its work is at most a tenth of the fitted w"
-        )
-    } else {
-        format!(
-            "a doubtful reading: the meniscus reaches {ratio:.2} times the fitted zone's range with a work {:.2} times the fitted w, so the curve's shape is not one Dugdale zone's and the fitted lambda (and the z0 held here) mixes solid and meniscus",
-            m.work_of_adhesion_j_m2 / w
-        )
-    };
+    let fairness = fairness(ratio, small, m.work_of_adhesion_j_m2, w);
     let inf = match crate::scene::infer_wet(f, radius, e_star, z0, h) {
         Ok(i) => i,
         Err(e) => return fail(out, e.to_string()),
@@ -160,4 +147,23 @@ pub fn solid_work(r: &CurveFit, radius: f64, h: &HumidityInput) -> Option<FitHum
         }
     }
     Some(out)
+}
+
+/// Whether one Dugdale zone fairly describes a curve with this meniscus, in words: its range
+/// against the fitted zone's (`ratio`), or its work small against the fitted w.
+fn fairness(ratio: f64, small: bool, meniscus_w: f64, w: f64) -> String {
+    if ratio <= 1.0 {
+        format!(
+            "a fair reading: the meniscus reaches {ratio:.2} of the fitted zone's range, so one Dugdale zone describes the curve's shape with the meniscus in it"
+        )
+    } else if small {
+        format!(
+            "a fair reading: the meniscus reaches {ratio:.2} times the fitted zone's range, but its work is at most a tenth of the fitted w"
+        )
+    } else {
+        format!(
+            "a doubtful reading: the meniscus reaches {ratio:.2} times the fitted zone's range with a work {:.2} times the fitted w, so the curve's shape is not one Dugdale zone's and the fitted lambda (and the z0 held here) mixes solid and meniscus",
+            meniscus_w / w
+        )
+    }
 }
