@@ -392,6 +392,28 @@ impl MapSpec {
     }
 }
 
+/// Per lambda, the load-controlled pull-off; and the large-deformation lines of the spec's
+/// strength ratios.
+fn per_lambda_lines(
+    spec: &MapSpec,
+    lambdas: &[f64],
+    ctx: &[Option<crate::solver::LambdaContext>],
+) -> (Vec<f64>, Vec<LargeDeformationLine>) {
+    let pulloff = ctx
+        .iter()
+        .map(|c| c.as_ref().map_or(f64::NAN, |c| c.load_pulloff.load))
+        .collect();
+    let lines = spec
+        .strength_ratios
+        .iter()
+        .map(|&q| LargeDeformationLine {
+            strength_ratio: q,
+            points: large_deformation_line(spec, lambdas, ctx, q),
+        })
+        .collect();
+    (pulloff, lines)
+}
+
 /// Solves and classifies a map on the given engine, keeping the f64 values and checking a GPU
 /// map on 1000 points (see [`compute_with`]).
 pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
@@ -472,18 +494,7 @@ pub fn compute_with(
         )
     });
     let t1 = std::time::Instant::now();
-    let pulloff: Vec<f64> = ctx
-        .iter()
-        .map(|c| c.as_ref().map_or(f64::NAN, |c| c.load_pulloff.load))
-        .collect();
-    let large_deformation = spec
-        .strength_ratios
-        .iter()
-        .map(|&q| LargeDeformationLine {
-            strength_ratio: q,
-            points: large_deformation_line(spec, &lambdas, &ctx, q),
-        })
-        .collect();
+    let (pulloff, large_deformation) = per_lambda_lines(spec, &lambdas, &ctx);
     classify_s += t1.elapsed().as_secs_f64();
     Ok(MapData {
         spec: spec.clone(),
