@@ -217,6 +217,22 @@ impl Search<'_> {
     }
 }
 
+/// The fits of the lambda profile that have a misfit, as points of the profile.
+fn profile_points(profile: &[ModelFit], chi: &dyn Fn(&ModelFit) -> f64) -> Vec<Point> {
+    profile
+        .iter()
+        .filter_map(|f| {
+            let l = f.lambda.filter(|_| f.rms_residual_n.is_finite())?;
+            Some(Point {
+                x: l.ln(),
+                chi: chi(f),
+                fit: f.clone(),
+                free: false,
+            })
+        })
+        .collect()
+}
+
 /// The profile-likelihood intervals of the free fit `md`, from the fixed-lambda fits of its
 /// `profile` (0.01..1000) and a few more near each crossing of the levels.
 pub fn profile_intervals(
@@ -242,16 +258,7 @@ pub fn profile_intervals(
     let (Some(lam_md), true) = (md.lambda, md.rms_residual_n.is_finite()) else {
         return Intervals::default();
     };
-    let mut pts: Vec<Point> = profile
-        .iter()
-        .filter(|f| f.lambda.is_some() && f.rms_residual_n.is_finite())
-        .map(|f| Point {
-            x: f.lambda.unwrap().ln(),
-            chi: chi(f),
-            fit: f.clone(),
-            free: false,
-        })
-        .collect();
+    let mut pts = profile_points(profile, &chi);
     let (x_min, x_max) = pts
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {

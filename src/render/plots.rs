@@ -617,31 +617,8 @@ where
     let steps = |ph: crate::cycle::Phase| -> Vec<&crate::cycle::Step> {
         c.steps.iter().filter(|s| s.phase == ph).collect()
     };
-    let xs: Vec<f64> = c
-        .path
-        .iter()
-        .filter(|p| p.branch != crate::cycle::Branch::Free)
-        .map(|p| p.approach)
-        .collect();
-    // The range holds every jump's landing too, so that each arrow ends inside the axes.
-    let landings = c
-        .jumps
-        .iter()
-        .filter_map(|j| j.to.as_ref().map(|t| t.approach));
-    let (xmin, xmax) = xs
-        .iter()
-        .cloned()
-        .chain(landings)
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-            (lo.min(x), hi.max(x))
-        });
+    let ((xmin, xmax), (ymin, ymax)) = cycle_ranges(c);
     let pad = 0.08 * (xmax - xmin);
-    let (ymin, ymax) = c
-        .path
-        .iter()
-        .map(|p| p.load)
-        .chain(c.jumps.iter().filter_map(|j| j.to.as_ref().map(|t| t.load)))
-        .fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
     let drive = match c.drive {
         crate::cycle::Drive::RigidGrips => "rigid grips".to_string(),
         crate::cycle::Drive::DeadLoad => "dead load".to_string(),
@@ -707,6 +684,35 @@ where
     };
     cycle_energy(root, &chart, c, energy)?;
     cycle_radius(&right, c, (ymin, ymax), faint)
+}
+
+/// The ranges of a cycle's approach (its states off the free branch) and load (from 0), each
+/// holding every jump's landing too, so that each arrow ends inside the axes.
+fn cycle_ranges(c: &crate::cycle::Cycle) -> ((f64, f64), (f64, f64)) {
+    let xs: Vec<f64> = c
+        .path
+        .iter()
+        .filter(|p| p.branch != crate::cycle::Branch::Free)
+        .map(|p| p.approach)
+        .collect();
+    let landings = c
+        .jumps
+        .iter()
+        .filter_map(|j| j.to.as_ref().map(|t| t.approach));
+    let (xmin, xmax) = xs
+        .iter()
+        .cloned()
+        .chain(landings)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            (lo.min(x), hi.max(x))
+        });
+    let (ymin, ymax) = c
+        .path
+        .iter()
+        .map(|p| p.load)
+        .chain(c.jumps.iter().filter_map(|j| j.to.as_ref().map(|t| t.load)))
+        .fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
+    ((xmin, xmax), (ymin, ymax))
 }
 
 /// A cycle's jumps: dashed lines with an arrowhead drawn in pixel space.
