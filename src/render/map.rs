@@ -490,7 +490,19 @@ where
     if q.is_none() {
         region_labels(chart, d, &mut placer, panel)?;
     }
-    // Each a/R line's strength ratio beside it, where the label crosses no line and no label.
+    strength_labels(chart, &lines, &mut placer)
+}
+
+/// Each a/R line's strength ratio beside it, where the label crosses no line and no label.
+fn strength_labels<'a, DB: DrawingBackend + 'a, Y>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<plotters::coord::combinators::LogCoord<f64>, Y>>,
+    lines: &[&crate::map::LargeDeformationLine],
+    placer: &mut Placer,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+    Y: Ranged<ValueType = f64> + plotters::coord::ranged1d::ValueFormatter<f64>,
+{
     let frame = {
         let (x, y) = chart.plotting_area().get_pixel_range();
         (x.start + 4, y.start + 4, x.end - 4, y.end - 4)
