@@ -376,113 +376,122 @@ impl SpringPath {
 
     /// The segments followed in one direction.
     fn follow(&self, dir: Direction) -> Vec<Segment> {
-        let mut segs = Vec::new();
         match dir {
-            Direction::Retract => {
-                // From the top of the contact piece down.
-                let mut k = self.pieces.len() - 1;
-                let mut t_hi = self.pieces[k].1.last().unwrap().t;
-                let mut delta_hi = f64::INFINITY;
-                loop {
-                    let (piece, nodes) = (&self.pieces[k].0, &self.pieces[k].1);
-                    // The highest unstable node below t_hi.
-                    let unstable = nodes.iter().rposition(|n| n.t < t_hi && !(n.slope > 0.0));
-                    let t_lo = match unstable {
-                        Some(j) => {
-                            let above = nodes.get(j + 1).map_or(t_hi, |n| n.t.min(t_hi));
-                            self.fold(*piece, nodes[j].t, above)
-                        }
-                        None => nodes[0].t,
-                    };
-                    let delta_lo = self.delta(*piece, t_lo);
-                    segs.push(Segment {
-                        piece: *piece,
-                        t_lo,
-                        t_hi,
-                        delta_lo,
-                        delta_hi,
-                    });
-                    // Land below: the highest stable crossing of delta_lo under t_lo.
-                    match self.land(delta_lo, k, t_lo, Direction::Retract) {
-                        Some((kk, t)) => {
-                            k = kk;
-                            t_hi = t;
-                            delta_hi = delta_lo;
-                        }
-                        None => {
-                            segs.push(Segment {
-                                piece: Piece::Free,
-                                t_lo: f64::NEG_INFINITY,
-                                t_hi: delta_lo.min(self.free_end),
-                                delta_lo: f64::NEG_INFINITY,
-                                delta_hi: delta_lo,
-                            });
-                            return segs;
-                        }
-                    }
+            Direction::Retract => self.follow_retract(),
+            Direction::Approach => self.follow_approach(),
+        }
+    }
+
+    /// The retract: from the top of the contact piece down, each stable stretch to its fold or
+    /// its piece's end, a jump at constant Delta to the highest stable crossing below, and the
+    /// free piece last.
+    fn follow_retract(&self) -> Vec<Segment> {
+        let mut segs = Vec::new();
+        // From the top of the contact piece down.
+        let mut k = self.pieces.len() - 1;
+        let mut t_hi = self.pieces[k].1.last().unwrap().t;
+        let mut delta_hi = f64::INFINITY;
+        loop {
+            let (piece, nodes) = (&self.pieces[k].0, &self.pieces[k].1);
+            // The highest unstable node below t_hi.
+            let unstable = nodes.iter().rposition(|n| n.t < t_hi && !(n.slope > 0.0));
+            let t_lo = match unstable {
+                Some(j) => {
+                    let above = nodes.get(j + 1).map_or(t_hi, |n| n.t.min(t_hi));
+                    self.fold(*piece, nodes[j].t, above)
                 }
-            }
-            Direction::Approach => {
-                // Free up to its end, then jump up.
-                let mut delta_lo = self.free_end;
-                segs.push(Segment {
-                    piece: Piece::Free,
-                    t_lo: f64::NEG_INFINITY,
-                    t_hi: self.free_end,
-                    delta_lo: f64::NEG_INFINITY,
-                    delta_hi: self.free_end,
-                });
-                let (mut k, mut t_from) = (0usize, f64::NEG_INFINITY);
-                loop {
-                    let Some((kk, t_lo)) = self.land(delta_lo, k, t_from, Direction::Approach)
-                    else {
-                        // No stable state at this Delta above: follow the last piece (cannot
-                        // happen for these models; kept so the path always reaches the top).
-                        let (piece, nodes) = self.pieces.last().unwrap();
-                        let t_lo = nodes[0].t;
-                        segs.push(Segment {
-                            piece: *piece,
-                            t_lo,
-                            t_hi: nodes.last().unwrap().t,
-                            delta_lo: self.delta(*piece, t_lo),
-                            delta_hi: f64::INFINITY,
-                        });
-                        return segs;
-                    };
-                    let (piece, nodes) = (&self.pieces[kk].0, &self.pieces[kk].1);
-                    let unstable = nodes.iter().position(|n| n.t > t_lo && !(n.slope > 0.0));
-                    let t_hi = match unstable {
-                        Some(j) => {
-                            let below = if j > 0 {
-                                nodes[j - 1].t.max(t_lo)
-                            } else {
-                                t_lo
-                            };
-                            self.fold(*piece, below, nodes[j].t)
-                        }
-                        None => nodes.last().unwrap().t,
-                    };
-                    let top = kk == self.pieces.len() - 1 && unstable.is_none();
-                    let delta_hi = if top {
-                        f64::INFINITY
-                    } else {
-                        self.delta(*piece, t_hi)
-                    };
-                    segs.push(Segment {
-                        piece: *piece,
-                        t_lo,
-                        t_hi,
-                        delta_lo,
-                        delta_hi,
-                    });
-                    if top {
-                        return segs;
-                    }
-                    delta_lo = delta_hi;
+                None => nodes[0].t,
+            };
+            let delta_lo = self.delta(*piece, t_lo);
+            segs.push(Segment {
+                piece: *piece,
+                t_lo,
+                t_hi,
+                delta_lo,
+                delta_hi,
+            });
+            // Land below: the highest stable crossing of delta_lo under t_lo.
+            match self.land(delta_lo, k, t_lo, Direction::Retract) {
+                Some((kk, t)) => {
                     k = kk;
-                    t_from = t_hi;
+                    t_hi = t;
+                    delta_hi = delta_lo;
+                }
+                None => {
+                    segs.push(Segment {
+                        piece: Piece::Free,
+                        t_lo: f64::NEG_INFINITY,
+                        t_hi: delta_lo.min(self.free_end),
+                        delta_lo: f64::NEG_INFINITY,
+                        delta_hi: delta_lo,
+                    });
+                    return segs;
                 }
             }
+        }
+    }
+
+    /// The approach: free up to its end, then each jump up to the nearest stable crossing above
+    /// and along it to its fold, up to the top of the contact piece.
+    fn follow_approach(&self) -> Vec<Segment> {
+        let mut segs = Vec::new();
+        // Free up to its end, then jump up.
+        let mut delta_lo = self.free_end;
+        segs.push(Segment {
+            piece: Piece::Free,
+            t_lo: f64::NEG_INFINITY,
+            t_hi: self.free_end,
+            delta_lo: f64::NEG_INFINITY,
+            delta_hi: self.free_end,
+        });
+        let (mut k, mut t_from) = (0usize, f64::NEG_INFINITY);
+        loop {
+            let Some((kk, t_lo)) = self.land(delta_lo, k, t_from, Direction::Approach) else {
+                // No stable state at this Delta above: follow the last piece (cannot
+                // happen for these models; kept so the path always reaches the top).
+                let (piece, nodes) = self.pieces.last().unwrap();
+                let t_lo = nodes[0].t;
+                segs.push(Segment {
+                    piece: *piece,
+                    t_lo,
+                    t_hi: nodes.last().unwrap().t,
+                    delta_lo: self.delta(*piece, t_lo),
+                    delta_hi: f64::INFINITY,
+                });
+                return segs;
+            };
+            let (piece, nodes) = (&self.pieces[kk].0, &self.pieces[kk].1);
+            let unstable = nodes.iter().position(|n| n.t > t_lo && !(n.slope > 0.0));
+            let t_hi = match unstable {
+                Some(j) => {
+                    let below = if j > 0 {
+                        nodes[j - 1].t.max(t_lo)
+                    } else {
+                        t_lo
+                    };
+                    self.fold(*piece, below, nodes[j].t)
+                }
+                None => nodes.last().unwrap().t,
+            };
+            let top = kk == self.pieces.len() - 1 && unstable.is_none();
+            let delta_hi = if top {
+                f64::INFINITY
+            } else {
+                self.delta(*piece, t_hi)
+            };
+            segs.push(Segment {
+                piece: *piece,
+                t_lo,
+                t_hi,
+                delta_lo,
+                delta_hi,
+            });
+            if top {
+                return segs;
+            }
+            delta_lo = delta_hi;
+            k = kk;
+            t_from = t_hi;
         }
     }
 
