@@ -1030,19 +1030,7 @@ where
         .into_iter()
         .filter(|(hh, _)| v.x(*hh) <= v.xmax)
         .unzip();
-    let pad = 0.06 * (v.fmax - v.fmin);
-    // The force axis spans the data, and the fitted MD curve where it reaches beyond them (a
-    // model jump-out later than the measured one), so that no line runs along the frame.
-    let p = md.params();
-    let md_f = crate::fit::model_forces(md.model, &p, opt.radius, opt.spring, &hs, &dirs, None);
-    let (lo, hi) = md_f.map_or((v.fmin, v.fmax), |(f, _, _, _)| {
-        f.iter()
-            .filter(|x| x.is_finite())
-            .fold((v.fmin, v.fmax), |(a, b), &x| {
-                (a.min(x + p.f0), b.max(x + p.f0))
-            })
-    });
-    let (lo, hi) = (lo.min(v.fmin - pad), hi.max(v.fmax + pad));
+    let (lo, hi) = fit_force_range(md, opt, (&hs, &dirs), &v);
     let mut chart = builder(&top, "").build_cartesian_2d(v.xmin..v.xmax, lo * 1e9..hi * 1e9)?;
     house_mesh(chart.configure_mesh(), "", "force F (nN)")
         .x_labels(6)
@@ -1117,6 +1105,28 @@ where
     }
     super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
     fit_residuals(&bottom, &v, &residuals, md.rms_residual_n)
+}
+
+/// The force axis of a fit's figure (N): the data, padded, and the fitted MD curve where it
+/// reaches beyond them (a model jump-out later than the measured one), so that no line runs
+/// along the frame.
+fn fit_force_range(
+    md: &crate::fit::ModelFit,
+    opt: &crate::fit::FitOptions,
+    (hs, dirs): (&[f64], &[crate::fit::Direction]),
+    v: &FitView,
+) -> (f64, f64) {
+    let pad = 0.06 * (v.fmax - v.fmin);
+    let p = md.params();
+    let md_f = crate::fit::model_forces(md.model, &p, opt.radius, opt.spring, hs, dirs, None);
+    let (lo, hi) = md_f.map_or((v.fmin, v.fmax), |(f, _, _, _)| {
+        f.iter()
+            .filter(|x| x.is_finite())
+            .fold((v.fmin, v.fmax), |(a, b), &x| {
+                (a.min(x + p.f0), b.max(x + p.f0))
+            })
+    });
+    (lo.min(v.fmin - pad), hi.max(v.fmax + pad))
 }
 
 /// The plotted window of a fitted curve: heights relative to the fitted contact point in nm,
