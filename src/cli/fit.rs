@@ -303,10 +303,10 @@ fn write_maps(
     results: &[CurveFit],
     print: &crate::render::Print,
 ) -> anyhow::Result<()> {
-    let (nx, ny, grid) = fit::map_grid(&results)
+    let (nx, ny, grid) = fit::map_grid(results)
         .map_err(anyhow::Error::msg)
         .context("--maps")?;
-    let names = crate::export::write_fit_npy(prefix, &results, nx, ny, &grid)?;
+    let names = crate::export::write_fit_npy(prefix, results, nx, ny, &grid)?;
     let ok_at = |i: &Option<usize>| i.map(|i| &results[i]).filter(|r| r.status == FitStatus::Ok);
     for q in &fit::MAP_QUANTITIES {
         let values: Vec<f64> = grid
@@ -338,7 +338,7 @@ fn write_maps(
             q.name
         )))
         .map_err(anyhow::Error::msg)?;
-        crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
+        crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
             crate::render::plots::force_map(root, &values, nx, ny, &title, q.log)
         })
         .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
@@ -351,7 +351,7 @@ fn write_maps(
         "{prefix}_adequate_model.png"
     )))
     .map_err(anyhow::Error::msg)?;
-    crate::render::plots::save(crate::render::Kind::ForceMap, &print, &out, &|root| {
+    crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
         crate::render::plots::model_map(root, &models, nx, ny)
     })
     .context("drawing the adequate-model map")?;

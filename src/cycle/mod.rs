@@ -437,7 +437,7 @@ fn refine_jump_outs(lambda: f64, drive: Drive, jumps: &mut [Jump]) {
                     p.dapproach_dmu + p.dload_dmu / k
                 };
                 let (mut lo, mut hi) = (0.8 * j.from.a, 1.25 * j.from.a + 1e-300);
-                if !(slope(lo) > 0.0) == !(slope(hi) > 0.0) {
+                if (slope(lo) > 0.0) == (slope(hi) > 0.0) {
                     continue;
                 }
                 for _ in 0..200 {

@@ -155,9 +155,7 @@ impl Search<'_> {
                 .filter(|p| p.chi <= level && outward(p.x) >= 0.0)
                 .max_by(|a, b| outward(a.x).total_cmp(&outward(b.x)))
                 .map(|p| (p.x, p.chi));
-            let Some((xi, ci)) = inside else {
-                return None;
-            };
+            let (xi, ci) = inside?;
             let outside = pts
                 .iter()
                 .filter(|p| outward(p.x) > outward(xi))

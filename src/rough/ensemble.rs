@@ -277,7 +277,7 @@ pub fn summits_of_topography(
             "give the height map's pixel spacing in m",
         ));
     }
-    if nx < 3 || z.len() < 3 * nx || z.len() % nx != 0 {
+    if nx < 3 || z.len() < 3 * nx || !z.len().is_multiple_of(nx) {
         return Err(bad(
             "the height map's size",
             z.len() as f64,

@@ -552,7 +552,8 @@ impl Rough {
         let clip = |t: f64| t.clamp(-Z_CUT, Z_CUT);
         let mut total = 0.0;
         // (heights from, to, the loop's lower end, its loop area)
-        let regions: [(f64, f64, f64, &dyn Fn(f64) -> f64); 2] = [
+        type HistoryClass<'a> = (f64, f64, f64, &'a dyn Fn(f64) -> f64);
+        let regions: [HistoryClass; 2] = [
             (d_min + sm.delta_in, f64::INFINITY, lo_touch, &touched),
             (
                 d_min - sm.h0,

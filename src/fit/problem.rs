@@ -1,0 +1,667 @@
+//! The least-squares problem of one model on one curve (Levenberg-Marquardt), its Jacobian,
+//! and a fit's parameters, standard errors and pull-off.
+
+use super::*;
+
+/// Physical parameters of a model.
+#[derive(Clone, Copy, Debug)]
+pub struct Params {
+    pub e_star: f64,
+    pub w: f64,
+    pub lambda: f64,
+    pub zc: f64,
+    pub f0: f64,
+}
+
+/// The unit conversions of one parameter set: force and approach units and kbar.
+#[derive(Clone, Copy, Debug)]
+pub struct Units {
+    pub force: f64,
+    pub approach: f64,
+    pub radius: f64,
+    pub kbar: f64,
+}
+
+pub fn units(p: &Params, radius: f64, spring: f64) -> Units {
+    let k = 4.0 / 3.0 * p.e_star;
+    let force = PI * p.w * radius;
+    let approach = (PI * PI * p.w * p.w * radius / (k * k)).cbrt();
+    Units {
+        force,
+        approach,
+        radius: (PI * p.w * radius * radius / k).cbrt(),
+        kbar: spring * approach / force,
+    }
+}
+
+/// lambda from the Lennard-Jones range z0 (Dugdale stress matched to it).
+pub fn lambda_from_z0(e_star: f64, w: f64, radius: f64, z0: f64) -> f64 {
+    let k = 4.0 / 3.0 * e_star;
+    2.0 * (LJ_STRESS * w / z0) * (radius / (PI * w * k * k)).cbrt()
+}
+
+/// The Lennard-Jones range z0 whose matched Dugdale stress gives lambda.
+pub fn z0_from_lambda(e_star: f64, w: f64, radius: f64, lambda: f64) -> f64 {
+    let k = 4.0 / 3.0 * e_star;
+    2.0 * LJ_STRESS * w * (radius / (PI * w * k * k)).cbrt() / lambda
+}
+
+/// Model forces (N), contact radii (m), the states and the path they lie on.
+pub type Evaluated = (Vec<f64>, Vec<f64>, Vec<PathState>, SpringPath);
+
+/// The model force (N, without offset) and contact radius (m) at each height, and the state.
+pub fn model_forces(
+    model: Model,
+    p: &Params,
+    radius: f64,
+    spring: f64,
+    height: &[f64],
+    dir: &[Direction],
+    side: Option<&[Side]>,
+) -> Option<Evaluated> {
+    model_forces_from(model, p, radius, spring, height, dir, side, None)
+}
+
+/// [`model_forces`], each point's search started from its state in `hints` (nearby parameters).
+#[allow(clippy::too_many_arguments)]
+pub fn model_forces_from(
+    model: Model,
+    p: &Params,
+    radius: f64,
+    spring: f64,
+    height: &[f64],
+    dir: &[Direction],
+    side: Option<&[Side]>,
+    hints: Option<&[PathState]>,
+) -> Option<Evaluated> {
+    let u = units(p, radius, spring);
+    if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
+        return None;
+    }
+    if model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        return None;
+    }
+    let deltas: Vec<f64> = height.iter().map(|h| (p.zc - h) / u.approach).collect();
+    let top = deltas.iter().cloned().fold(1.0, f64::max);
+    let path = SpringPath::new(model, p.lambda, u.kbar, top);
+    let states: Vec<PathState> = deltas
+        .iter()
+        .zip(dir)
+        .enumerate()
+        .map(|(i, (&d, &dir))| {
+            path.at_side_from(
+                d,
+                dir,
+                side.map_or(Side::Any, |s| s[i]),
+                hints.map(|h| &h[i]),
+            )
+        })
+        .collect();
+    let f = states.iter().map(|s| s.load * u.force).collect();
+    let a = states.iter().map(|s| s.a * u.radius).collect();
+    Some((f, a, states, path))
+}
+
+/// The least-squares problem of one model on one prepared curve.
+pub(super) struct Problem<'a> {
+    pub(super) model: Model,
+    pub(super) data: &'a Prepared,
+    pub(super) radius: f64,
+    pub(super) spring: f64,
+    pub(super) z0: Option<f64>,
+    /// Maugis-Dugdale at a fixed lambda (the profile that picks the start).
+    pub(super) fixed_lambda: Option<f64>,
+    /// Hertz has no w: its units use this one (it cancels).
+    pub(super) w_ref: f64,
+    pub(super) z_scale: f64,
+    pub(super) f_scale: f64,
+    pub(super) x: DVector<f64>,
+    /// The states at the current parameters (the Jacobian keeps each point on its piece).
+    pub(super) states: RefCell<Option<Vec<PathState>>>,
+    /// The last states evaluated: each point's search starts there at the next parameters.
+    pub(super) hints: RefCell<Option<Vec<PathState>>>,
+    pub(super) jacobians: RefCell<usize>,
+}
+
+impl Problem<'_> {
+    pub(super) fn has_w(&self) -> bool {
+        self.model != Model::Hertz
+    }
+    pub(super) fn has_lambda(&self) -> bool {
+        self.model == Model::Md && self.z0.is_none() && self.fixed_lambda.is_none()
+    }
+    pub(super) fn n(&self) -> usize {
+        2 + self.has_w() as usize + 1 + self.has_lambda() as usize
+    }
+
+    pub(super) fn params(&self, x: &DVector<f64>) -> Params {
+        let mut i = 0;
+        let mut next = || {
+            i += 1;
+            x[i - 1]
+        };
+        let e_star = next().exp();
+        let w = if self.has_w() {
+            next().exp()
+        } else {
+            self.w_ref
+        };
+        let lambda = if self.has_lambda() {
+            next().exp()
+        } else if let Some(l) = self.fixed_lambda {
+            l
+        } else if let (Model::Md, Some(z0)) = (self.model, self.z0) {
+            lambda_from_z0(e_star, w, self.radius, z0)
+        } else {
+            1.0
+        };
+        let zc = next() * self.z_scale;
+        let f0 = next() * self.f_scale;
+        Params {
+            e_star,
+            w,
+            lambda,
+            zc,
+            f0,
+        }
+    }
+
+    pub(super) fn internal(&self, p: &Params) -> DVector<f64> {
+        let mut v = vec![p.e_star.ln()];
+        if self.has_w() {
+            v.push(p.w.ln());
+        }
+        if self.has_lambda() {
+            v.push(p.lambda.ln());
+        }
+        v.push(p.zc / self.z_scale);
+        v.push(p.f0 / self.f_scale);
+        DVector::from_vec(v)
+    }
+
+    /// Residuals at parameters x; with `near`, each point stays on the piece it had.
+    pub(super) fn eval(
+        &self,
+        x: &DVector<f64>,
+        near: Option<&[PathState]>,
+    ) -> Option<(DVector<f64>, Vec<PathState>)> {
+        let p = self.params(x);
+        let d = self.data;
+        let u = units(&p, self.radius, self.spring);
+        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
+            return None;
+        }
+        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+            return None;
+        }
+        let states: Vec<PathState> = match near {
+            Some(base) => {
+                // Where Newton from the base state fails (a point at a fold, or at the A = 0
+                // end of DMT), the point is located on the path itself.
+                let mut full: Option<SpringPath> = None;
+                let top = d
+                    .height
+                    .iter()
+                    .map(|h| (p.zc - h) / u.approach)
+                    .fold(1.0, f64::max);
+                let mut out = Vec::with_capacity(base.len());
+                for (i, s) in base.iter().enumerate() {
+                    let delta = (p.zc - d.height[i]) / u.approach;
+                    let newton = (!s.clamped)
+                        .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
+                        .flatten();
+                    out.push(match newton {
+                        Some(s) => s,
+                        None => full
+                            .get_or_insert_with(|| {
+                                SpringPath::new(self.model, p.lambda, u.kbar, top)
+                            })
+                            .at_side(delta, d.dir[i], d.side[i]),
+                    });
+                }
+                out
+            }
+            None => {
+                let hints = self.hints.borrow();
+                model_forces_from(
+                    self.model,
+                    &p,
+                    self.radius,
+                    self.spring,
+                    &d.height,
+                    &d.dir,
+                    Some(&d.side),
+                    hints.as_deref(),
+                )?
+                .2
+            }
+        };
+        let r = DVector::from_iterator(
+            states.len(),
+            states.iter().enumerate().map(|(i, s)| {
+                self.fold_residual(&p, &u, i, s)
+                    .unwrap_or_else(|| (s.load * u.force + p.f0 - d.force[i]) / self.f_scale)
+            }),
+        );
+        r.iter().all(|v| v.is_finite()).then_some((r, states))
+    }
+
+    /// A point before a measured jump: its distance to the model's curve near its state (in
+    /// the plane of load and FOLD_SCALE kbar Delta, so that away from the fold, where the slope
+    /// dP/dDelta is at most about kbar, it is the force residual within 0.5%).
+    pub(super) fn fold_residual(
+        &self,
+        p: &Params,
+        u: &Units,
+        i: usize,
+        s: &PathState,
+    ) -> Option<f64> {
+        if !self.data.at_jump[i] || s.piece == Piece::Free {
+            return None;
+        }
+        let delta = (p.zc - self.data.height[i]) / u.approach;
+        let load = (self.data.force[i] - p.f0) / u.force;
+        path::fold_distance(
+            self.model,
+            p.lambda,
+            u.kbar,
+            FOLD_SCALE * u.kbar,
+            s.piece,
+            s.t,
+            delta,
+            load,
+        )
+        .map(|(r, _)| r * u.force / self.f_scale)
+    }
+
+    /// The rows of the points before a jump by central differences (the analytic slopes are the
+    /// force residual's).
+    pub(super) fn fold_rows(&self, j: &mut DMatrix<f64>, base: &[PathState]) {
+        for (i, s) in base.iter().enumerate() {
+            if !self.data.at_jump[i] || s.piece == Piece::Free {
+                continue;
+            }
+            for k in 0..self.n() {
+                let h = 1e-6 * self.x[k].abs().max(1.0);
+                let at = |dx: f64| {
+                    let mut x = self.x.clone();
+                    x[k] += dx;
+                    let p = self.params(&x);
+                    let u = units(&p, self.radius, self.spring);
+                    self.fold_residual(&p, &u, i, s)
+                };
+                if let (Some(a), Some(b)) = (at(h), at(-h)) {
+                    j[(i, k)] = (a - b) / (2.0 * h);
+                }
+            }
+        }
+    }
+}
+
+/// The weight of Delta against the load in the distance of a point before a jump, in units of
+/// kbar (the largest slope of a stable stretch away from its fold).
+pub(super) const FOLD_SCALE: f64 = 10.0;
+
+impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
+    type ResidualStorage = Owned<f64, Dyn>;
+    type JacobianStorage = Owned<f64, Dyn, Dyn>;
+    type ParameterStorage = Owned<f64, Dyn>;
+
+    fn set_params(&mut self, x: &DVector<f64>) {
+        self.x.copy_from(x);
+        *self.states.borrow_mut() = None;
+    }
+
+    fn params(&self) -> DVector<f64> {
+        self.x.clone()
+    }
+
+    fn residuals(&self) -> Option<DVector<f64>> {
+        // Outside the domain: a large residual, so the step is refused and shortened (a None
+        // would end the whole minimisation).
+        match self.eval(&self.x, None) {
+            Some((r, s)) => {
+                *self.hints.borrow_mut() = Some(s.clone());
+                *self.states.borrow_mut() = Some(s);
+                Some(r)
+            }
+            None => Some(DVector::from_element(self.data.force.len(), 1e6)),
+        }
+    }
+
+    fn jacobian(&self) -> Option<DMatrix<f64>> {
+        *self.jacobians.borrow_mut() += 1;
+        let base = match self.states.borrow().clone() {
+            Some(s) => s,
+            None => self.eval(&self.x, None)?.1,
+        };
+        if self.model == Model::Md && self.z0.is_some() {
+            // lambda moves with E* and w: every column by differences.
+            return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
+        }
+        let mut j = self.analytic_jacobian(&base);
+        if self.has_lambda() {
+            let k = 1 + self.has_w() as usize;
+            let c = self.numeric_jacobian(&base, &[k])?;
+            j.set_column(k, &c.column(k));
+        }
+        self.fold_rows(&mut j, &base);
+        Some(j)
+    }
+}
+
+impl Problem<'_> {
+    /// The Jacobian from the state's slopes. With u = (ln E*, ln w), the force is
+    /// `F = Fs(w) P(Delta, kbar)` with `Delta = (z_c - h) / Ds`, `Ds ~ w^(2/3) E*^(-2/3)` and
+    /// `kbar = k Ds / Fs ~ w^(-1/3) E*^(-2/3)`; along the branch `dP/dDelta = P'/g` and
+    /// `dP/dkbar = P' P / (kbar^2 g)`, with `g = dDelta/dt = D' + P'/kbar`. Points on the free
+    /// piece, or held at the end of their stretch (where the data put them past the model's
+    /// jump), move with the offset only: for held points an approximation, which the iteration
+    /// tolerates and which a converged fit rarely needs. The lambda column is left to
+    /// differences.
+    pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> DMatrix<f64> {
+        let p = self.params(&self.x);
+        let u = units(&p, self.radius, self.spring);
+        let (m, n) = (base.len(), self.n());
+        let mut j = DMatrix::zeros(m, n);
+        for (i, s) in base.iter().enumerate() {
+            let (dp_dd, dp_dk) = if s.piece == Piece::Free || s.clamped {
+                (0.0, 0.0)
+            } else {
+                // The state's slopes at s.t, as stored with it (the same numbers as
+                // `path::state` gives there).
+                let g = s.dapproach + s.dload / u.kbar;
+                if g.abs() > 0.0 {
+                    (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
+                } else {
+                    (0.0, 0.0)
+                }
+            };
+            let delta = (p.zc - self.data.height[i]) / u.approach;
+            let col = |dln_fs: f64, dln_ds: f64, dln_k: f64| {
+                u.force * (s.load * dln_fs - dp_dd * delta * dln_ds + dp_dk * u.kbar * dln_k)
+                    / self.f_scale
+            };
+            let mut k = 0;
+            j[(i, k)] = col(0.0, -2.0 / 3.0, -2.0 / 3.0);
+            k += 1;
+            if self.has_w() {
+                j[(i, k)] = col(1.0, 2.0 / 3.0, -1.0 / 3.0);
+                k += 1;
+            }
+            if self.has_lambda() {
+                k += 1;
+            }
+            j[(i, k)] = u.force * dp_dd * (self.z_scale / u.approach) / self.f_scale;
+            j[(i, k + 1)] = 1.0;
+        }
+        j
+    }
+
+    /// Central differences in the given columns (others zero), each point kept on its piece.
+    pub(super) fn numeric_jacobian(
+        &self,
+        base: &[PathState],
+        cols: &[usize],
+    ) -> Option<DMatrix<f64>> {
+        let m = base.len();
+        let mut j = DMatrix::zeros(m, self.n());
+        for &k in cols {
+            let h = 1e-6 * self.x[k].abs().max(1.0);
+            let mut xp = self.x.clone();
+            xp[k] += h;
+            let mut xm = self.x.clone();
+            xm[k] -= h;
+            let (rp, rm) = (self.eval(&xp, Some(base)), self.eval(&xm, Some(base)));
+            match (rp, rm) {
+                (Some((rp, _)), Some((rm, _))) => {
+                    j.set_column(k, &((rp - rm) / (2.0 * h)));
+                }
+                _ => {
+                    // One side left the domain or a branch: a one-sided difference.
+                    let r0 = self.eval(&self.x, Some(base))?.0;
+                    let (rp, _) = self
+                        .eval(&xp, Some(base))
+                        .or_else(|| self.eval(&xm, Some(base)).map(|(r, s)| (2.0 * &r0 - r, s)))?;
+                    j.set_column(k, &((rp - r0) / h));
+                }
+            }
+        }
+        Some(j)
+    }
+}
+
+/// The starting point of a fit: closed-form estimates from the measured curve.
+#[derive(Clone, Copy, Debug)]
+pub struct Estimates {
+    pub e_star: f64,
+    /// The measured pull-off force (positive, N).
+    pub pulloff: f64,
+    pub zc: f64,
+}
+
+pub fn estimates(d: &Prepared, radius: f64, spring: f64) -> Estimates {
+    let n = d.force.len();
+    let (imin, fmin) = d
+        .force
+        .iter()
+        .cloned()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .unwrap_or((0, 0.0));
+    let fmax = d.force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let tip = |i: usize| d.height[i] + d.force[i] / spring;
+    let pulloff = (-fmin).max(0.0);
+    // DMT: the pull-off at zero indentation; without adhesion, where the force leaves zero.
+    let zc = if pulloff > 3.0 * d.noise {
+        tip(imin)
+    } else {
+        let thr = 3.0 * d.noise + 0.02 * fmax;
+        (0..n)
+            .filter(|&i| d.force[i] > thr)
+            .map(tip)
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let base = fmin.min(0.0);
+    let mut k: Vec<f64> = (0..n)
+        .filter(|&i| d.force[i] - base > 0.5 * (fmax - base))
+        .filter_map(|i| {
+            let delta = zc - tip(i);
+            (delta > 0.0).then(|| (d.force[i] - base) / (radius.sqrt() * delta.powf(1.5)))
+        })
+        .collect();
+    k.sort_by(f64::total_cmp);
+    let kk = k.get(k.len() / 2).cloned().unwrap_or(1e9);
+    Estimates {
+        e_star: 0.75 * kk,
+        pulloff,
+        zc,
+    }
+}
+
+pub(super) fn stop_text(t: &TerminationReason) -> String {
+    match t {
+        TerminationReason::ResidualsZero => "residuals zero".into(),
+        TerminationReason::Orthogonal => "gradient orthogonal to the residuals (converged)".into(),
+        TerminationReason::Converged { ftol, xtol } => match (ftol, xtol) {
+            (true, true) => "converged (relative change of the residual and the parameters)".into(),
+            (true, false) => "converged (relative change of the residual)".into(),
+            _ => "converged (relative change of the parameters)".into(),
+        },
+        TerminationReason::LostPatience => "iteration limit reached".into(),
+        TerminationReason::NoImprovementPossible(w) => {
+            format!("no further improvement possible ({w})")
+        }
+        TerminationReason::Numerical(w) => format!("numerical failure ({w})"),
+        TerminationReason::User(w) => format!("model evaluation failed ({w})"),
+        other => format!("{other:?}"),
+    }
+}
+
+/// Fits one model from a start.
+pub(super) fn fit_model(
+    model: Model,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+) -> ModelFit {
+    fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE)
+}
+
+/// The iteration budget of a fit (MINPACK's: this many evaluations per parameter and one), and
+/// the shorter one of a scouting free fit.
+pub(super) const PATIENCE: usize = 150;
+pub(super) const SCOUT_PATIENCE: usize = 4;
+
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fit_model_for(
+    model: Model,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+    patience: usize,
+) -> ModelFit {
+    let fscale = d
+        .force
+        .iter()
+        .fold(0.0f64, |m, f| m.max(f.abs()))
+        .max(1e-30);
+    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mut prob = Problem {
+        model,
+        data: d,
+        radius: opt.radius,
+        spring: opt.spring,
+        z0: opt.z0,
+        fixed_lambda,
+        w_ref,
+        z_scale: hspan.max(1e-30),
+        f_scale: fscale,
+        x: DVector::zeros(0),
+        states: RefCell::new(None),
+        hints: RefCell::new(None),
+        jacobians: RefCell::new(0),
+    };
+    prob.x = prob.internal(&start);
+    let scout = patience == SCOUT_PATIENCE;
+    let lm = LevenbergMarquardt::new().with_patience(patience);
+    let (prob, report) = lm.minimize(prob);
+    let x = prob.x.clone();
+    let p = prob.params(&x);
+    let iterations = *prob.jacobians.borrow();
+    let evaluated = prob.eval(&x, None);
+    let ok = report.termination.was_successful()
+        || matches!(
+            report.termination,
+            TerminationReason::NoImprovementPossible(_)
+        );
+    let (status, rms, cov, jtj_inv) = match &evaluated {
+        Some((r, _)) if ok || matches!(report.termination, TerminationReason::LostPatience) => {
+            let m = r.len();
+            let n = prob.n();
+            let rss = r.norm_squared();
+            let rms = (rss / m as f64).sqrt() * prob.f_scale;
+            // A scout's covariance is never read (only its misfit and parameters): its final
+            // Jacobian, two path evaluations per column of lambda, is skipped.
+            let inv = (!scout)
+                .then(|| prob.jacobian())
+                .flatten()
+                .and_then(|j| (j.transpose() * &j).try_inverse());
+            let cov = inv
+                .as_ref()
+                .map(|inv| inv * (rss / (m.saturating_sub(n).max(1)) as f64));
+            let status = if ok {
+                FitStatus::Ok
+            } else {
+                FitStatus::NotConverged
+            };
+            (status, rms, cov, inv)
+        }
+        _ => (FitStatus::NotConverged, f64::NAN, None, None),
+    };
+    let (e_err, w_err, lambda_err, zc_err) = standard_errors(&prob, &cov, &p, fixed_lambda);
+    let pulloff = evaluated
+        .as_ref()
+        .filter(|_| !scout)
+        .map_or(f64::NAN, |_| model_pulloff(model, &p, d, opt));
+    ModelFit {
+        model,
+        status,
+        e_star_pa: p.e_star,
+        e_star_pa_stderr: e_err,
+        work_of_adhesion_j_m2: if model == Model::Hertz { 0.0 } else { p.w },
+        work_of_adhesion_j_m2_stderr: w_err,
+        lambda: (model == Model::Md).then_some(p.lambda),
+        lambda_stderr: lambda_err,
+        contact_point_m: p.zc,
+        contact_point_m_stderr: zc_err,
+        force_offset_n: p.f0,
+        rms_residual_n: rms,
+        pulloff_force_model_n: pulloff,
+        iterations,
+        stop: stop_text(&report.termination),
+        cov,
+        jtj_inv,
+    }
+}
+
+/// The standard errors of E*, w, lambda (None where it is not a parameter or a function of
+/// them) and the contact point from a fit's covariance in its internal variables.
+pub(super) fn standard_errors(
+    prob: &Problem,
+    cov: &Option<DMatrix<f64>>,
+    p: &Params,
+    fixed_lambda: Option<f64>,
+) -> (f64, f64, Option<f64>, f64) {
+    let model = prob.model;
+    let var = |i: usize| cov.as_ref().map_or(f64::NAN, |c| c[(i, i)].max(0.0).sqrt());
+    let mut i = 1;
+    let e_err = p.e_star * var(0);
+    let w_err = if prob.has_w() {
+        i += 1;
+        p.w * var(1)
+    } else {
+        0.0
+    };
+    let lambda_err = if prob.has_lambda() {
+        i += 1;
+        Some(p.lambda * var(i - 1))
+    } else if model == Model::Md && fixed_lambda.is_some() {
+        Some(0.0)
+    } else if model == Model::Md {
+        // Fixed z0: lambda follows E* and w, ln lambda = (2/3)(ln w - ln E*) + const.
+        cov.as_ref().map(|c| {
+            let v = (4.0 / 9.0) * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);
+            p.lambda * v.max(0.0).sqrt()
+        })
+    } else {
+        None
+    };
+    let zc_err = var(i) * prob.z_scale;
+    (e_err, w_err, lambda_err, zc_err)
+}
+
+/// The most tensile load of a model's path under the cantilever (N, positive), along the
+/// fitted segment's direction: the path alone, not the states at the points.
+pub(super) fn model_pulloff(model: Model, p: &Params, d: &Prepared, opt: &FitOptions) -> f64 {
+    let u = units(p, opt.radius, opt.spring);
+    let top = d
+        .height
+        .iter()
+        .map(|h| (p.zc - h) / u.approach)
+        .fold(1.0, f64::max);
+    let dir = if opt.segments == Segments::Approach {
+        Direction::Approach
+    } else {
+        Direction::Retract
+    };
+    -SpringPath::new(model, p.lambda, u.kbar, top)
+        .min_load(dir)
+        .0
+        * u.force
+}
