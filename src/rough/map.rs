@@ -214,7 +214,11 @@ fn spline(y: &[f64]) -> Vec<[f64; 4]> {
             if j == inner - 1 {
                 rhs -= m[n - 2];
             }
-            let (cp, dp) = if j == 0 { (0.0, 0.0) } else { (c[j - 1], d[j - 1]) };
+            let (cp, dp) = if j == 0 {
+                (0.0, 0.0)
+            } else {
+                (c[j - 1], d[j - 1])
+            };
             let den = 4.0 - cp;
             c[j] = 1.0 / den;
             d[j] = (rhs - dp) / den;
@@ -536,7 +540,8 @@ fn refined(
         // Gaussian's width): an abscissa to 1e-6 sigma gives it to about 1e-12. Where the
         // smallest sample lies inside, Brent starts from it and its neighbours.
         let tol = 1e-6 * sigma.min((b - a).abs());
-        let start = (lo < i && i < hi).then(|| [(seps[i], curve[i]), (a, curve[lo]), (b, curve[hi])]);
+        let start =
+            (lo < i && i < hi).then(|| [(seps[i], curve[i]), (a, curve[lo]), (b, curve[hi])]);
         let (x, f) = brent_min(&load, a, b, start, tol);
         if f < best {
             (best_d, best) = (x, f);
