@@ -48,10 +48,10 @@ pub struct RoughArgs {
 
     /// A water meniscus on every summit (docs/PHYSICS.md section 10.1): its tensile stress over
     /// the solid's (rho = s2/s1); needs --range-ratio. 0: the dry model.
-    #[arg(long, requires = "range_ratio", conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
+    #[arg(long, conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
     pub stress_ratio: Option<f64>,
     /// The meniscus's range over the solid's Dugdale range (eta = h2/h1); needs --stress-ratio.
-    #[arg(long, requires = "stress_ratio", conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
+    #[arg(long, conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
     pub range_ratio: Option<f64>,
 
     /// Where the approach starts and the retract ends [default: where no summit feels the flat].
@@ -140,6 +140,9 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     let (Some(lambda), Some(sigma), Some(d_min)) = (a.lambda, a.sigma, a.min_separation) else {
         anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
     };
+    if a.stress_ratio.is_some() != a.range_ratio.is_some() {
+        anyhow::bail!("a meniscus needs both --stress-ratio and --range-ratio (its stress and range over the solid's); give both, or neither for dry summits");
+    }
     let wet = a.stress_ratio.zip(a.range_ratio);
     let c = match wet {
         None => Rough::new(lambda, sigma)?
