@@ -343,3 +343,79 @@ fn bad_wet_input_is_refused_in_one_line() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+fn humid_scene(dir: &std::path::Path, name: &str, humidity: &str) -> std::path::PathBuf {
+    let p = dir.join(name);
+    std::fs::write(
+        &p,
+        format!(
+            r#"{{"e_star_pa": 8.4e10, "work_of_adhesion_j_m2": 0.05, "z0_m": 0.3e-9,
+ "summit_radius_m": 0.5e-6, "summit_density_m2": 2e12, "sigma_m": 1e-9, "nominal_area_m2": 2e-9
+ {humidity}}}"#
+        ),
+    )
+    .unwrap();
+    p
+}
+
+#[test]
+fn a_humid_si_scene_reports_the_wet_and_the_dry_pulloff() {
+    use tabor::rough::scene::RoughScene;
+    let dir = std::env::temp_dir().join(format!("tabor-rough-wet-si-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let dry_path = humid_scene(&dir, "dry.json", "");
+    let dry: RoughScene =
+        serde_json::from_str(&std::fs::read_to_string(&dry_path).unwrap()).unwrap();
+    let d = dry.solve(40).unwrap();
+    let mut last = d.pulloff_force_n;
+    for rh in [0.3, 0.6, 0.9] {
+        let p = humid_scene(
+            &dir,
+            "wet.json",
+            &format!(r#", "humidity": {{"relative_humidity": {rh}, "contact_angle_deg": 20}}"#),
+        );
+        let s: RoughScene = serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+        let r = s.solve(40).unwrap();
+        // The dry comparison is the dry scene's own pull-off (same press: -3 sigma).
+        let dry_f = r.dry_pulloff_force_n.unwrap();
+        assert!(
+            rel(dry_f, d.pulloff_force_n) < 1e-6,
+            "{dry_f} {}",
+            d.pulloff_force_n
+        );
+        // The wet pull-off, from the library's units: N * Pbar * pi w R with the total w.
+        let m = r.meniscus.unwrap();
+        let w = 0.05 + m.work_of_adhesion_j_m2;
+        let f = r.normalised.pulloff_load * std::f64::consts::PI * w * 0.5e-6 * r.summits;
+        assert!(rel(r.pulloff_force_n, f) < 1e-12);
+        println!("RH {rh}: pull-off {} N (dry {dry_f} N)", r.pulloff_force_n);
+        assert!(
+            r.pulloff_force_n < last,
+            "RH {rh}: {} vs {last}",
+            r.pulloff_force_n
+        );
+        last = r.pulloff_force_n;
+    }
+    // A bad humidity is refused in one line naming it, nothing written.
+    let bad = humid_scene(
+        &dir,
+        "bad.json",
+        r#", "humidity": {"relative_humidity": 1.5, "contact_angle_deg": 20}"#,
+    );
+    let out = dir.join("out.json");
+    let r = tabor(&[
+        "rough",
+        "--scene",
+        bad.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("relative_humidity") && err.trim().lines().count() == 1,
+        "{err}"
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

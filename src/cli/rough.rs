@@ -424,6 +424,15 @@ fn run_scene(
         short(r.smooth_pulloff_force_n),
         short(r.hysteresis_j)
     );
+    if let (Some(m), Some(dry)) = (&r.meniscus, r.dry_pulloff_force_n) {
+        eprintln!(
+            "  with a meniscus on every summit (Kelvin radius {} m, height {} m, Laplace pressure {} Pa); the dry surface after the same press: pull-off {} N",
+            short(m.kelvin_radius_m),
+            short(m.range_m),
+            short(m.laplace_pressure_pa),
+            short(dry)
+        );
+    }
     for w in &r.warnings {
         eprintln!("  warning: {w}");
     }

@@ -125,8 +125,8 @@ impl ContactTable {
         ok.then_some(ContactTable { a, d, p })
     }
 
-    /// The load at approach `delta`, None outside the table.
-    fn load(&self, delta: f64) -> Option<f64> {
+    /// The load and the contact radius at approach `delta`, None outside the table.
+    fn state(&self, delta: f64) -> Option<(f64, f64)> {
         let n = self.d.len();
         if !(delta >= self.d[0] && delta <= self.d[n - 1]) {
             return None;
@@ -151,7 +151,8 @@ impl ContactTable {
                 break;
             }
         }
-        Some(lagrange(xa, xp, 0.5 * (lo + hi)))
+        let a = 0.5 * (lo + hi);
+        Some((lagrange(xa, xp, a), a))
     }
 }
 
@@ -324,6 +325,16 @@ impl WetSummit {
         (s.status == Status::Ok).then_some(s.load)
     }
 
+    /// The contact radius on the stable contact curve at approach `delta` (at least its fold's).
+    pub fn contact_radius(&self, delta: f64) -> Option<f64> {
+        let delta = delta.max(self.ctx.disp_pulloff.approach);
+        if let Some((_, a)) = self.table.as_ref().and_then(|t| t.state(delta)) {
+            return Some(a);
+        }
+        let s = self.ctx.state_at_approach(delta);
+        (s.status == Status::Ok).then_some(s.a)
+    }
+
     /// The load on stretch `k` at approach `delta` (clamped into the stretch); None where the
     /// solver failed.
     pub fn load(&self, k: usize, delta: f64) -> Option<f64> {
@@ -333,7 +344,7 @@ impl WetSummit {
         let (p0, p1) = match st.part {
             Part::Free => return Some(0.0),
             Part::Contact => {
-                if let Some(p) = self.table.as_ref().and_then(|t| t.load(delta)) {
+                if let Some((p, _)) = self.table.as_ref().and_then(|t| t.state(delta)) {
                     return Some(p);
                 }
                 let s = self.ctx.state_at_approach(delta);
@@ -383,6 +394,21 @@ impl WetSummit {
             _ => non_contact_both(z, p)?.load,
         };
         load.is_finite().then_some(load)
+    }
+
+    /// The approach where a summit coming from far away enters contact.
+    pub fn approach_enter(&self) -> f64 {
+        let last = self.stretches.len() - 1;
+        // The upper end of the stretch from which the approach jumps (or runs) into contact.
+        let mut k = 0;
+        loop {
+            let level = self.stretches[k].hi;
+            match (k + 1..self.stretches.len()).find(|&j| self.holds(j, level)) {
+                Some(j) if j == last => return level,
+                Some(j) => k = j,
+                None => return level,
+            }
+        }
     }
 
     /// The approaches where a summit's load jumps, folds or changes stretch.
@@ -506,6 +532,46 @@ impl WetRough {
             noncontact_fraction: noncontact,
             quadrature_error: error,
         })
+    }
+
+    /// The mean of A^2 over all summits (those not in contact count 0) at separation `d`.
+    pub fn mean_area(&self, leg: Leg, d: f64) -> Result<f64, RoughError> {
+        let (summit, s) = match self {
+            WetRough::Dry(r) => return r.mean_area(leg, d),
+            WetRough::Wet { summit, sigma } => (summit, *sigma),
+        };
+        let last = summit.stretches.len() - 1;
+        let lo = summit.stretches[last].lo;
+        // Summits in contact: on the approach above the jump into it, on the retract those whose
+        // deepest approach reached it and that have not left it.
+        let t_in = (d + summit.approach_enter()) / s;
+        let t0 = match leg {
+            Leg::Approach => t_in,
+            Leg::Retract { d_min } => {
+                // Heights whose deepest approach z - d_min reached contact, still above lo.
+                ((d_min + summit.approach_enter()) / s).max((d + lo) / s)
+            }
+        }
+        .max(-Z_CUT);
+        if t0 >= Z_CUT {
+            return Ok(0.0);
+        }
+        let failed = Cell::new(false);
+        let f = |t: f64| {
+            let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
+            match summit.contact_radius(t * s - d) {
+                Some(a) => g * a * a,
+                None => {
+                    failed.set(true);
+                    0.0
+                }
+            }
+        };
+        let v = integrate(&f, t0, Z_CUT).0;
+        if failed.get() {
+            return Err(RoughError::Failed(d, summit.ctx.zones.lambda[0]));
+        }
+        Ok(v)
     }
 
     /// The separation beyond which no summit within the kept range feels the flat.
