@@ -419,3 +419,30 @@ fn a_humid_si_scene_reports_the_wet_and_the_dry_pulloff() {
     assert!(!out.exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_contact_table_matches_the_solver() {
+    // The stable contact curve is interpolated from 3000 radii: against the solver's state at
+    // the approach, from the grips fold to 9 beyond it.
+    let mut worst: f64 = 0.0;
+    for (lambda, rho, eta) in [
+        (1.0, 0.5, 3.0),
+        (0.3, 0.2, 5.0),
+        (2.0, 1.0, 2.0),
+        (1.0, 0.05, 10.0),
+    ] {
+        let w = WetRough::new(lambda, rho, eta, 0.3).unwrap();
+        let WetRough::Wet { summit, .. } = &w else {
+            panic!("two ranges")
+        };
+        let k = summit.stretches.len() - 1;
+        let lo = summit.stretches[k].lo;
+        for i in 0..400 {
+            let d = lo + 9.0 * ((i as f64 + 0.37) / 400.0).powi(3);
+            let e = (summit.load(k, d).unwrap() - summit.contact_exact(d).unwrap()).abs();
+            worst = worst.max(e);
+        }
+    }
+    println!("contact table: largest load error {worst:e}");
+    assert!(worst < 1e-11, "{worst}");
+}
