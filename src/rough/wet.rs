@@ -438,8 +438,8 @@ impl WetRough {
     pub fn new(lambda_s: f64, rho: f64, eta: f64, sigma: f64) -> Result<WetRough, RoughError> {
         crate::physics::domain::check_lambda(lambda_s)?;
         for (name, v) in [
-            ("the stress ratio (--stress-ratio)", rho),
-            ("the range ratio (--range-ratio)", eta),
+            ("the stress ratio rho = s2/s1", rho),
+            ("the range ratio eta = h2/h1", eta),
         ] {
             if !(v.is_finite() && (0.0..=1e6).contains(&v)) {
                 return Err(domain(
