@@ -60,5 +60,7 @@ rm -f "$curves"
 $T rough --lambda 0.2 --sigma 0.3 --min-separation -1 --plot $G/rough_cycle_0.2.png -o $G/rough_cycle_0.2.json
 $T rough --lambda 2 --sigma 0.5 --min-separation -1 --plot $G/rough_cycle_2.png -o $G/rough_cycle_2.json
 $T rough-pulloff --plot $G/rough_pulloff.png -o $G/rough_pulloff.json
+# A meniscus on every summit (rho = 0.2, eta = 5; sigma 1 in the solid's approach unit, pressed 3 sigma).
+$T rough --lambda 1 --sigma 0.6299605249474366 --min-separation -1.8898815748423097 --stress-ratio 0.2 --range-ratio 5 --plot $G/rough_cycle_wet.png -o $G/rough_cycle_wet.json
 # The rough adhesion map: pull-off relative to the smooth summit's, and the adequate summit model.
 $T rough-map --out $G/rough_map.png --json $G/rough_map.json

@@ -25,7 +25,8 @@ fn leg<'py>(py: Python<'py>, v: &[Mean]) -> PyResult<Bound<'py, PyDict>> {
 
 /// A rough surface's approach-retract cycle, as `tabor rough` computes it.
 #[pyfunction]
-#[pyo3(signature = (lam, sigma, min_separation, max_separation, points))]
+#[pyo3(signature = (lam, sigma, min_separation, max_separation, points, stress_ratio=None, range_ratio=None))]
+#[allow(clippy::too_many_arguments)]
 pub fn rough<'py>(
     py: Python<'py>,
     lam: f64,
@@ -33,9 +34,18 @@ pub fn rough<'py>(
     min_separation: f64,
     max_separation: Option<f64>,
     points: usize,
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = run(py, move || {
-        Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?)
+        match (stress_ratio, range_ratio) {
+        (None, None) => Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?),
+        (Some(rho), Some(eta)) => Ok(tabor::rough::wet::WetRough::new(lam, rho, eta, sigma)?
+            .cycle(lam, min_separation, max_separation, points)?),
+        _ => anyhow::bail!(
+            "a meniscus needs both stress_ratio and range_ratio (its stress and range over the solid's); give both, or neither for dry summits"
+        ),
+    }
     })?;
     let d = PyDict::new(py);
     d.set_item("lambda", c.lambda)?;

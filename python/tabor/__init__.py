@@ -744,7 +744,8 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
     return p
 
 
-def rough(lam, sigma, min_separation, max_separation=None, points=400):
+def rough(lam, sigma, min_separation, max_separation=None, points=400, stress_ratio=None,
+          range_ratio=None):
     """A rough surface of Maugis-Dugdale summits (Greenwood-Williamson, Gaussian heights of
     standard deviation ``sigma``) through an approach from ``max_separation`` (default: where no
     summit feels the flat) to ``min_separation`` and back, as ``tabor rough`` computes it.
@@ -752,9 +753,14 @@ def rough(lam, sigma, min_separation, max_separation=None, points=400):
     dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
     ``noncontact_fraction``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
     ``smooth_pulloff``, ``fuller_tabor_parameter``, ``quadrature_error`` (the largest error
-    estimate of the quadrature over the loads given)."""
+    estimate of the quadrature over the loads given). With ``stress_ratio`` and ``range_ratio``
+    (both), a water meniscus on every summit (``tabor rough --stress-ratio --range-ratio``): the
+    two-zone law, units built on the total w."""
+    rho = None if stress_ratio is None else float(stress_ratio)
+    eta = None if range_ratio is None else float(range_ratio)
     return _tabor.rough(float(lam), float(sigma), float(min_separation),
-                        None if max_separation is None else float(max_separation), int(points))
+                        None if max_separation is None else float(max_separation), int(points),
+                        rho, eta)
 
 
 def rough_ensemble(lam, heights, separations, min_separation=None):

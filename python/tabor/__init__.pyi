@@ -161,6 +161,8 @@ def rough(
     min_separation: float,
     max_separation: Optional[float] = None,
     points: int = 400,
+    stress_ratio: Optional[float] = None,
+    range_ratio: Optional[float] = None,
 ) -> Dict[str, Any]: ...
 def rough_ensemble(
     lam: float,

@@ -108,3 +108,27 @@ def test_rough_pulloff_equals_the_command_line_and_refuses_as_it_does():
     cli = subprocess.run([str(TABOR), "rough-pulloff", "--sigma-min", "0"],
                          capture_output=True, text=True)
     assert cli.returncode == 1 and "--sigma-min 0 and --sigma-max 10" in cli.stderr
+
+
+def test_wet_rough_equals_the_command_line_and_refuses_as_it_does():
+    args = ["--lambda", "1", "--sigma", "0.6299605249474366", "--min-separation",
+            "-1.8898815748423097", "--stress-ratio", "0.2", "--range-ratio", "5",
+            "--points", "40"]
+    got = tabor.rough(1.0, 0.6299605249474366, -1.8898815748423097, points=40,
+                      stress_ratio=0.2, range_ratio=5.0)
+    out = subprocess.run([str(TABOR), "rough", *args], capture_output=True, text=True, check=True)
+    want = json.loads(out.stdout)
+    for k in ["pulloff_load", "pulloff_separation", "hysteresis", "smooth_pulloff",
+              "fuller_tabor_parameter"]:
+        assert got[k] == want[k], k
+    for leg in ["approach", "retract"]:
+        for k in ["separation", "load", "contact_fraction", "noncontact_fraction"]:
+            np.testing.assert_array_equal(got[leg][k], np.array(want[leg][k]))
+    # rho = 0 is the dry surface.
+    dry = tabor.rough(1.0, 0.5, -1.0, points=20)
+    zero = tabor.rough(1.0, 0.5, -1.0, points=20, stress_ratio=0.0, range_ratio=3.0)
+    np.testing.assert_array_equal(dry["retract"]["load"], zero["retract"]["load"])
+    with pytest.raises(ValueError, match="range_ratio"):
+        tabor.rough(1.0, 0.5, -1.0, stress_ratio=0.2)
+    with pytest.raises(ValueError, match="stress ratio"):
+        tabor.rough(1.0, 0.5, -1.0, stress_ratio=-0.2, range_ratio=2.0)

@@ -46,6 +46,14 @@ pub struct RoughArgs {
     #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation"])]
     pub preset: Option<String>,
 
+    /// A water meniscus on every summit (docs/PHYSICS.md section 10.1): its tensile stress over
+    /// the solid's (rho = s2/s1); needs --range-ratio. 0: the dry model.
+    #[arg(long, conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
+    pub stress_ratio: Option<f64>,
+    /// The meniscus's range over the solid's Dugdale range (eta = h2/h1); needs --stress-ratio.
+    #[arg(long, conflicts_with_all = ["scene", "preset", "asperities", "topography"])]
+    pub range_ratio: Option<f64>,
+
     /// Where the approach starts and the retract ends [default: where no summit feels the flat].
     #[arg(long)]
     pub max_separation: Option<f64>,
@@ -89,6 +97,10 @@ impl Leg {
 struct Json<'a> {
     lambda: f64,
     sigma: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    stress_ratio: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    range_ratio: Option<f64>,
     approach: Leg,
     retract: Leg,
     pulloff_load: f64,
@@ -101,6 +113,8 @@ struct Json<'a> {
 }
 
 const MODEL: &str = "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd (a real contact area beyond about 10% of the nominal), when sigma is comparable to the summit radius, or for few summits";
+
+const MODEL_WET: &str = "Greenwood-Williamson with a water meniscus on every summit: identical spherical summits, Gaussian heights, each an exact two-zone (solid Dugdale zone plus meniscus) sphere under rigid grips with its own history; loads in pi w R with w the total work of adhesion; the summits and their menisci do not interact, which fails where the meniscus range approaches the summit spacing or sigma (menisci merge), as for the dry model where contact spots crowd; the meniscus is in equilibrium (no film dynamics) and its Kelvin radius small against the summit radius";
 
 pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     if a.format == Format::Text {
@@ -126,16 +140,26 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     let (Some(lambda), Some(sigma), Some(d_min)) = (a.lambda, a.sigma, a.min_separation) else {
         anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
     };
-    let rough = Rough::new(lambda, sigma)?;
-    let c = rough
-        .cycle(d_min, a.max_separation, a.points)
-        .context("the separations (--min-separation, --max-separation, --points)")?;
+    if a.stress_ratio.is_some() != a.range_ratio.is_some() {
+        anyhow::bail!("a meniscus needs both --stress-ratio and --range-ratio (its stress and range over the solid's); give both, or neither for dry summits");
+    }
+    let wet = a.stress_ratio.zip(a.range_ratio);
+    let c = match wet {
+        None => Rough::new(lambda, sigma)?
+            .cycle(d_min, a.max_separation, a.points)
+            .context("the separations (--min-separation, --max-separation, --points)")?,
+        Some((rho, eta)) => crate::rough::wet::WetRough::new(lambda, rho, eta, sigma)?
+            .cycle(lambda, d_min, a.max_separation, a.points)
+            .context("the separations (--min-separation, --max-separation, --points)")?,
+    };
     let text = match a.format {
         Format::Csv => csv(&c)?,
         _ => {
             let j = Json {
                 lambda: c.lambda,
                 sigma: c.sigma,
+                stress_ratio: wet.map(|w| w.0),
+                range_ratio: wet.map(|w| w.1),
                 approach: Leg::of(&c.approach),
                 retract: Leg::of(&c.retract),
                 pulloff_load: c.pulloff_load,
@@ -144,7 +168,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
                 smooth_pulloff: c.smooth_pulloff,
                 fuller_tabor_parameter: c.fuller_tabor_parameter,
                 quadrature_error: c.quadrature_error,
-                model: MODEL,
+                model: if wet.is_some() { MODEL_WET } else { MODEL },
             };
             serde_json::to_string_pretty(&j)? + "\n"
         }
@@ -400,6 +424,15 @@ fn run_scene(
         short(r.smooth_pulloff_force_n),
         short(r.hysteresis_j)
     );
+    if let (Some(m), Some(dry)) = (&r.meniscus, r.dry_pulloff_force_n) {
+        eprintln!(
+            "  with a meniscus on every summit (Kelvin radius {} m, height {} m, Laplace pressure {} Pa); the dry surface after the same press: pull-off {} N",
+            short(m.kelvin_radius_m),
+            short(m.range_m),
+            short(m.laplace_pressure_pa),
+            short(dry)
+        );
+    }
     for w in &r.warnings {
         eprintln!("  warning: {w}");
     }

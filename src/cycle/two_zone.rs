@@ -114,6 +114,26 @@ fn contact_point(s: &TwoZoneState, long: usize) -> PathPoint {
     }
 }
 
+/// The ends of the non-contact branch's two stretches: the longer zone's disc radius where the
+/// axis gap falls to the shorter range, and the shorter zone's disc radius where the axis gap
+/// closes (the A -> 0 end of the contact curve).
+pub(crate) fn non_contact_ends(ctx: &TwoZoneContext) -> Result<(f64, f64), ZonesError> {
+    let z = &ctx.zones;
+    let Shape::Two { long } = z.shape() else {
+        return Err(ZonesError(
+            "one zone: no two-disc non-contact branch".into(),
+        ));
+    };
+    let h_short = z.range[1 - long];
+    let scale = z.range[long].sqrt();
+    let c1 = crossing(|c| non_contact_single(z, c).axis_gap < h_short, scale)
+        .ok_or_else(|| failed("the longer zone's disc", Status::NotConverged))?;
+    let both_gap = |c: f64| non_contact_both(z, c).map_or(f64::NAN, |p| p.axis_gap);
+    let c2 = crossing(|c| !(both_gap(c) >= 0.0), c1.max(scale))
+        .ok_or_else(|| failed("the two discs", Status::NotConverged))?;
+    Ok((c1, c2))
+}
+
 /// The non-contact branch: the longer zone's disc alone, then both discs.
 fn non_contact_path(ctx: &TwoZoneContext, long: usize) -> Result<Vec<PathPoint>, ZonesError> {
     let z = &ctx.zones;

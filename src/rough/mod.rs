@@ -8,6 +8,7 @@
 pub mod ensemble;
 pub mod map;
 pub mod scene;
+pub mod wet;
 
 use crate::physics::domain::{short, DomainError};
 use crate::physics::md::{zero_radius_end, LAMBDA_D};
@@ -17,10 +18,10 @@ use std::cell::Cell;
 use std::f64::consts::PI;
 
 /// The Gaussian's mass beyond this many sigma (4e-33) is dropped.
-const Z_CUT: f64 = 12.0;
+pub(crate) const Z_CUT: f64 = 12.0;
 /// The default largest separation: beyond `Z_FREE` sigma above the Dugdale range the summits
 /// that still feel the flat carry a fraction 1e-17 of them.
-const Z_FREE: f64 = 8.5;
+pub(crate) const Z_FREE: f64 = 8.5;
 /// Relative error each quadrature piece must reach (its estimate).
 const QUAD_TOL: f64 = 1e-13;
 /// Most points of a separation sweep.
@@ -124,6 +125,11 @@ impl Summit {
         }
     }
 
+    /// The single summit's load-controlled pull-off (Pbar_c).
+    pub fn smooth_pulloff(&self) -> f64 {
+        self.ctx.load_pulloff.load
+    }
+
     /// The approaches where a summit's load jumps or has a fold.
     fn marks(&self) -> Vec<f64> {
         let mut m = vec![-self.h0, self.delta_in, self.delta_out, self.delta_a0];
@@ -133,7 +139,7 @@ impl Summit {
 }
 
 /// Standard normal upper tail, to full relative precision far out.
-fn upper_tail(x: f64) -> f64 {
+pub(crate) fn upper_tail(x: f64) -> f64 {
     0.5 * libm::erfc(x / std::f64::consts::SQRT_2)
 }
 
@@ -178,7 +184,12 @@ pub enum RoughError {
     Failed(f64, f64),
 }
 
-fn domain(name: &'static str, value: f64, range: &'static str, hint: &'static str) -> DomainError {
+pub(crate) fn domain(
+    name: &'static str,
+    value: f64,
+    range: &'static str,
+    hint: &'static str,
+) -> DomainError {
     DomainError {
         name,
         value,
@@ -332,7 +343,7 @@ impl Rough {
 /// Integral of `f` over `[a, b]` by double-exponential quadrature, halving the interval (at most
 /// six times) where the error estimate is above [`QUAD_TOL`] of the integrand's scale; returns the
 /// integral and the sum of the error estimates of its parts.
-fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     fn go(f: &dyn Fn(f64) -> f64, a: f64, b: f64, scale: f64, depth: u32) -> (f64, f64) {
         let o = quadrature::double_exponential::integrate(f, a, b, QUAD_TOL * scale);
         if o.error_estimate <= QUAD_TOL * scale || depth == 0 {

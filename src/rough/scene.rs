@@ -29,6 +29,9 @@ pub struct RoughScene {
     pub nominal_area_m2: f64,
     /// The smallest separation of the flat from the mean summit plane (m) [default: -3 sigma].
     pub min_separation_m: Option<f64>,
+    /// Ambient humidity: a water meniscus on every summit (docs/PHYSICS.md section 10.1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub humidity: Option<crate::scene::humidity::HumidityInput>,
     /// Source of the values, for the record.
     pub source: Option<String>,
 }
@@ -55,6 +58,7 @@ pub fn preset(name: &str) -> Option<RoughScene> {
             sigma_m: 0.6e-9,
             nominal_area_m2: 100e-6 * 20e-6,
             min_separation_m: None,
+            humidity: None,
             source: Some("polysilicon E = 160 GPa, nu = 0.22; w = 0.1 J/m^2 (hydrophilic, dry); summits of radius 0.5 um, 2 per um^2, rms height 0.6 nm: representative of CMP-polished polysilicon, not a measured sample".into()),
         }),
         "pdms-rough-glass" => Some(RoughScene {
@@ -71,6 +75,7 @@ pub fn preset(name: &str) -> Option<RoughScene> {
             sigma_m: 0.2e-6,
             nominal_area_m2: 1e-4,
             min_separation_m: None,
+            humidity: None,
             source: Some("PDMS on glass E* = 2.4 MPa, w = 44 mJ/m^2 (as the pdms-glass scene); summits of radius 10 um, 1000 per mm^2, rms height 0.2 um: representative, not a measured sample".into()),
         }),
         _ => None,
@@ -113,10 +118,18 @@ pub struct RoughSceneResult {
     pub hysteresis_j: f64,
     pub warnings: Vec<String>,
     pub model: &'static str,
+    /// With humidity: the meniscus on every summit, and the dry surface's pull-off after the same
+    /// press, for comparison. The loads above are then those of the solid and the meniscus.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub meniscus: Option<crate::scene::humidity::Meniscus>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dry_pulloff_force_n: Option<f64>,
     /// The same cycle in the summit's units (for the figure).
     #[serde(skip)]
     pub normalised: super::RoughCycle,
 }
+
+pub const MODEL_WET: &str = "Greenwood-Williamson with a water meniscus on every summit: identical spherical summits, Gaussian heights, each an exact two-zone (solid Dugdale zone plus a Kelvin meniscus) sphere under rigid grips with its own history; the summits and their menisci do not interact, which fails where the wetted annuli reach the summit spacing or the meniscus height is comparable with sigma (the menisci merge into one film), as for the dry model where contact spots crowd; the meniscus is in equilibrium with the vapour (slow cycles) and its Kelvin radius small against the summit radius";
 
 pub const MODEL: &str = "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd (a real contact area beyond about 10% of the nominal), when sigma is comparable to the summit radius, or for few summits";
 
@@ -156,22 +169,45 @@ impl RoughScene {
         Contact::new(r, e_star, self.work_of_adhesion_j_m2, range).map_err(scene_err)
     }
 
-    /// The cycle in SI units, `points` separations each way.
+    /// The cycle in SI units, `points` separations each way; with humidity, the wet summits of
+    /// section 10.1 and the dry pull-off beside them.
     pub fn solve(&self, points: usize) -> Result<RoughSceneResult, RoughError> {
+        use super::wet::WetRough;
         let c = self.summit()?;
         let density = positive("summit_density_m2", self.summit_density_m2)?;
         let area = positive("nominal_area_m2", self.nominal_area_m2)?;
         let sigma_m = positive("sigma_m", self.sigma_m)?;
-        let unit = c.approach_scale();
-        let rough = Rough::new(c.lambda(), sigma_m / unit)?;
+        let meniscus = match &self.humidity {
+            Some(h) => h.meniscus(&c).map_err(scene_err)?,
+            None => None,
+        };
+        // The units: the solid's, or those of the total w with a meniscus.
+        let (unit, f, radius_unit, rough) = match &meniscus {
+            None => (
+                c.approach_scale(),
+                c.force_scale(),
+                c.radius_scale(),
+                WetRough::Dry(Rough::new(c.lambda(), sigma_m / c.approach_scale())?),
+            ),
+            Some(m) => {
+                let (rho, eta, u) = crate::scene::humidity::wet_ratios(&c, m).map_err(scene_err)?;
+                (
+                    u.approach,
+                    u.load,
+                    u.radius,
+                    WetRough::new(c.lambda(), rho, eta, sigma_m / u.approach)?,
+                )
+            }
+        };
+        let sigma_n = sigma_m / unit;
         let d_min = match self.min_separation_m {
             Some(d) if d.is_finite() => d / unit,
             Some(d) => return Err(positive("min_separation_m", d).unwrap_err()),
-            None => -3.0 * rough.sigma,
+            None => -3.0 * sigma_n,
         };
-        let cyc = rough.cycle(d_min, None, points)?;
+        let cyc = rough.cycle(c.lambda(), d_min, None, points)?;
         let n = density * area;
-        let (f, a2) = (c.force_scale(), c.radius_scale().powi(2));
+        let a2 = radius_unit.powi(2);
         let leg = |v: &[Mean], l: Leg| -> Result<SiLeg, RoughError> {
             let areas = v
                 .iter()
@@ -213,6 +249,25 @@ impl RoughScene {
                 short(densest)
             ));
         }
+        let mut dry_pulloff_force_n = None;
+        if let Some(m) = &meniscus {
+            warnings.extend(crate::scene::humidity::meniscus_warnings(m, &c));
+            let wetted = (2.0 * self.summit_radius_m * m.range_m).sqrt();
+            let spacing = 1.0 / density.sqrt();
+            if wetted > 0.3 * spacing || m.range_m > 0.3 * sigma_m {
+                warnings.push(format!(
+                    "the meniscus (height {} m, wetted radius about {} m) is comparable with sigma ({} m) or the summit spacing ({} m): neighbouring menisci merge into one film, which the model does not describe",
+                    short(m.range_m),
+                    short(wetted),
+                    short(sigma_m),
+                    short(spacing)
+                ));
+            }
+            let dry_unit = c.approach_scale();
+            let dry = Rough::new(c.lambda(), sigma_m / dry_unit)?;
+            let (_, p) = dry.pulloff_after(d_min * unit / dry_unit, 48)?;
+            dry_pulloff_force_n = Some(p * c.force_scale() * n);
+        }
         Ok(RoughSceneResult {
             name: self.name.clone(),
             source: self.source.clone(),
@@ -220,7 +275,7 @@ impl RoughScene {
             work_of_adhesion_j_m2: c.work,
             lambda: c.lambda(),
             tabor_parameter: c.tabor(),
-            sigma_normalised: rough.sigma,
+            sigma_normalised: sigma_n,
             fuller_tabor_parameter: cyc.fuller_tabor_parameter,
             summits: n,
             approach,
@@ -231,7 +286,9 @@ impl RoughScene {
             smooth_pulloff_force_n: cyc.smooth_pulloff * f * n,
             hysteresis_j: cyc.hysteresis * f * unit * n,
             warnings,
-            model: MODEL,
+            model: if meniscus.is_some() { MODEL_WET } else { MODEL },
+            meniscus,
+            dry_pulloff_force_n,
             normalised: cyc,
         })
     }
