@@ -224,45 +224,17 @@ impl RoughScene {
         };
         let approach = leg(&cyc.approach, Leg::Approach)?;
         let retract = leg(&cyc.retract, Leg::Retract { d_min })?;
-        let mut warnings = Vec::new();
-        if sigma_m > 0.1 * self.summit_radius_m {
-            warnings.push(format!(
-                "sigma is {} of the summit radius: the paraboloid summit is stretched",
-                short(sigma_m / self.summit_radius_m)
-            ));
-        }
-        if n < 100.0 {
-            warnings.push(format!(
-                "only {} summits in the nominal area: the Gaussian statistics are stretched (use an explicit ensemble)",
-                short(n)
-            ));
-        }
         let densest = retract
             .real_contact_area_m2
             .iter()
             .chain(&approach.real_contact_area_m2)
             .fold(0.0f64, |m, a| m.max(*a))
             / area;
-        if densest > 0.1 {
-            warnings.push(format!(
-                "the real contact area reaches {} of the nominal: the summits crowd and their elastic interaction, which the model ignores, matters",
-                short(densest)
-            ));
-        }
+        let mut warnings = stretched(sigma_m, self.summit_radius_m, n, densest);
         let mut dry_pulloff_force_n = None;
         if let Some(m) = &meniscus {
             warnings.extend(crate::scene::humidity::meniscus_warnings(m, &c));
-            let wetted = (2.0 * self.summit_radius_m * m.range_m).sqrt();
-            let spacing = 1.0 / density.sqrt();
-            if wetted > 0.3 * spacing || m.range_m > 0.3 * sigma_m {
-                warnings.push(format!(
-                    "the meniscus (height {} m, wetted radius about {} m) is comparable with sigma ({} m) or the summit spacing ({} m): neighbouring menisci merge into one film, which the model does not describe",
-                    short(m.range_m),
-                    short(wetted),
-                    short(sigma_m),
-                    short(spacing)
-                ));
-            }
+            warnings.extend(merging(m.range_m, self.summit_radius_m, density, sigma_m));
             let dry_unit = c.approach_scale();
             let dry = Rough::new(c.lambda(), sigma_m / dry_unit)?;
             let (_, p) = dry.pulloff_after(d_min * unit / dry_unit, 48)?;
@@ -292,6 +264,47 @@ impl RoughScene {
             normalised: cyc,
         })
     }
+}
+
+/// Where a rough scene stretches the model: sigma against the summit radius, few summits, and
+/// crowded contact spots (the real contact area `densest` of the nominal).
+fn stretched(sigma_m: f64, radius_m: f64, n: f64, densest: f64) -> Vec<String> {
+    let mut warnings = Vec::new();
+    if sigma_m > 0.1 * radius_m {
+        warnings.push(format!(
+            "sigma is {} of the summit radius: the paraboloid summit is stretched",
+            short(sigma_m / radius_m)
+        ));
+    }
+    if n < 100.0 {
+        warnings.push(format!(
+            "only {} summits in the nominal area: the Gaussian statistics are stretched (use an explicit ensemble)",
+            short(n)
+        ));
+    }
+    if densest > 0.1 {
+        warnings.push(format!(
+            "the real contact area reaches {} of the nominal: the summits crowd and their elastic interaction, which the model ignores, matters",
+            short(densest)
+        ));
+    }
+    warnings
+}
+
+/// Where neighbouring menisci merge into one film (the meniscus height `range_m` comparable
+/// with sigma, or its wetted radius with the summit spacing), which the model does not describe.
+fn merging(range_m: f64, radius_m: f64, density: f64, sigma_m: f64) -> Option<String> {
+    let wetted = (2.0 * radius_m * range_m).sqrt();
+    let spacing = 1.0 / density.sqrt();
+    (wetted > 0.3 * spacing || range_m > 0.3 * sigma_m).then(|| {
+        format!(
+            "the meniscus (height {} m, wetted radius about {} m) is comparable with sigma ({} m) or the summit spacing ({} m): neighbouring menisci merge into one film, which the model does not describe",
+            short(range_m),
+            short(wetted),
+            short(sigma_m),
+            short(spacing)
+        )
+    })
 }
 
 fn scene_err(e: impl std::fmt::Display) -> RoughError {
