@@ -175,8 +175,12 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     };
     write_output(&a.output, text.as_bytes())?;
     if !figure.is_empty() {
+        let short = crate::physics::domain::short;
+        let title_note = wet.map_or(String::new(), |(rho, eta)| {
+            format!(", meniscus ρ = {}, η = {}", short(rho), short(eta))
+        });
         crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
-            crate::render::rough::cycle(r, &c)
+            crate::render::rough::cycle(r, &c, &title_note)
         })
         .context("drawing the rough cycle")?;
     }
@@ -402,8 +406,13 @@ fn run_scene(
     write_output(&a.output, text.as_bytes())?;
     if !figure.is_empty() {
         let c = &r.normalised;
+        let note = if r.meniscus.is_some() {
+            ", with a meniscus"
+        } else {
+            ""
+        };
         crate::render::plots::save(crate::render::Kind::Cycle, print, figure, &|d| {
-            crate::render::rough::cycle(d, c)
+            crate::render::rough::cycle(d, c, note)
         })
         .context("drawing the rough cycle")?;
     }

@@ -16,7 +16,14 @@ fn range(v: impl Iterator<Item = f64>) -> (f64, f64) {
     })
 }
 
-pub fn cycle<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &RoughCycle) -> Result<(), Err>
+/// A rough surface's cycle: the load per summit on the approach and the retract, and the
+/// fractions of summits in contact and with a cohesive zone only; `wet` is added to the title
+/// (the meniscus, where the summits carry one).
+pub fn cycle<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    c: &RoughCycle,
+    wet: &str,
+) -> Result<(), Err>
 where
     DB::ErrorType: 'static,
 {
@@ -27,7 +34,7 @@ where
     let (ymin, ymax) = range(all().map(|m| m.load).chain([0.0]));
     let pad = 0.06 * (ymax - ymin).max(1e-12);
     let title = format!(
-        "Rough surface, λ = {}, σ = {}",
+        "Rough surface, λ = {}, σ = {}{wet}",
         crate::physics::domain::short(c.lambda),
         crate::physics::domain::short(c.sigma)
     );
