@@ -109,7 +109,6 @@ pub mod bench;
 #[cfg(feature = "cli")]
 #[allow(missing_docs)] // not yet documented item by item
 pub mod cli;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod cycle;
 pub mod engine;
 pub mod export;
@@ -121,9 +120,7 @@ pub mod io;
 pub mod kernel;
 pub mod map;
 pub mod physics;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod profile;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod profile_two_zone;
 pub mod progress;
 #[cfg(feature = "render")]

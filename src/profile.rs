@@ -25,6 +25,7 @@ pub enum Given {
 /// The profile of one model.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModelProfile {
+    /// The model: `md`, `two_zone`, `hertz`, `dmt` or `jkr`.
     pub model: &'static str,
     /// `ok`, or `no_contact` where the load is below this model's pull-off (empty arrays).
     pub status: &'static str,
@@ -33,20 +34,26 @@ pub struct ModelProfile {
     /// Outer radius of the zone where the surface forces act (MD: the Dugdale zone; Hertz and
     /// JKR: the contact radius; DMT: unbounded, null).
     pub c: Option<f64>,
+    /// The load of the state.
     pub load: f64,
+    /// The approach of the state (null where the model has none at that load).
     pub approach: Option<f64>,
+    /// The sampling radii (clustered at the edges).
     pub r: Vec<f64>,
     /// Compressive positive; null where the stress is singular (JKR at r = a).
     pub pressure: Vec<Option<f64>>,
+    /// The surface gap at each radius (0 inside the contact).
     pub gap: Vec<f64>,
     /// The largest tensile stress and the radii where it acts; null where it is unbounded.
     pub max_tension: Option<f64>,
+    /// The radii (inner, outer) of the largest tension.
     pub max_tension_at: Option<(f64, f64)>,
     /// Stress intensity factor at r = a (0 where the stress is bounded, as in MD).
     pub stress_intensity: Option<f64>,
     /// Energy release rate at the contact edge over w (JKR: from K_I; MD: the J-integral through
     /// the Dugdale zone, Dugdale stress times the gap at r = c). 1 at equilibrium.
     pub energy_release_rate_over_w: Option<f64>,
+    /// Where the model is stretched at this state.
     pub notes: Vec<String>,
 }
 
@@ -68,7 +75,9 @@ impl ModelProfile {
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// A state's pressure and gap for Maugis-Dugdale beside Hertz, DMT and JKR at the same load.
 pub struct Profile {
+    /// The Maugis parameter.
     pub lambda: f64,
     /// `normalised` (Johnson-Greenwood units) or `SI` (m, Pa, N).
     pub units: &'static str,
@@ -76,6 +85,7 @@ pub struct Profile {
     pub dugdale_range: f64,
     /// Dugdale stress lambda/2 in the pressure's unit.
     pub dugdale_stress: f64,
+    /// The models' profiles, Maugis-Dugdale first.
     pub models: Vec<ModelProfile>,
     /// Where the state is outside what the models assume (SI profiles: a/R above 0.1).
     pub warnings: Vec<String>,
@@ -329,15 +339,21 @@ impl Profile {
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a profile could not be made.
 pub enum ProfileError {
     #[error(transparent)]
+    /// The solver refused the state.
     Solve(#[from] SolveError),
     #[error(transparent)]
+    /// An input outside its domain.
     Domain(#[from] crate::physics::domain::DomainError),
     #[error("the Maugis-Dugdale state is `{}`: no contact there, so no profile (give a load above the pull-off, an approach above the jump-out)", .0.name())]
+    /// No contact at the given state.
     NoState(Status),
     #[error("the Maugis-Dugdale state at contact radius A = {0:e} could not be computed (`not_converged`): f64 resolves the curve down to about A = 1e-150; give a larger radius")]
+    /// The state at a contact radius was not found.
     RadiusNotFound(f64),
     #[error("points {0} is out of range: give 16..=100000 sampling radii")]
+    /// A sampling count out of range.
     Points(usize),
 }

@@ -15,35 +15,47 @@ pub struct TwoZoneProfile {
     /// The solid's Maugis parameter (on its own w1), and the second zone's stress and range
     /// over the solid's.
     pub lambda: f64,
+    /// The second zone's Dugdale stress over the solid's.
     pub stress_ratio: f64,
+    /// The second zone's range over the solid's.
     pub range_ratio: f64,
+    /// `normalised` (units of the total w) or `SI`.
     pub units: &'static str,
     /// Each zone's Dugdale stress (pressure unit) and range (gap unit): solid, second zone.
     pub zone_stress: [f64; 2],
+    /// Each zone's range (gap unit): solid, second zone.
     pub zone_range: [f64; 2],
     /// w1/w and w2/w.
     pub work_share: [f64; 2],
     /// The zones' outer radii c1 (solid) and c2, where the gap equals each range.
     pub zone_edges: [f64; 2],
+    /// Whether the state is stable under load control.
     pub load_stable: bool,
+    /// Whether the state is stable under displacement control.
     pub displacement_stable: bool,
     /// The J-integral through both zones over w1 + w2, sum of stress times the gap at each
     /// zone's edge: 1 at equilibrium.
     pub energy_release_rate_over_w: f64,
     /// `two_zone` (its c is the outer of c1, c2), then Hertz, DMT and JKR of the total w.
     pub models: Vec<ModelProfile>,
+    /// Where the model is stretched at this state.
     pub warnings: Vec<String>,
 }
 
 #[derive(Debug, thiserror::Error)]
+/// Why a two-zone profile could not be made.
 pub enum TwoZoneProfileError {
     #[error("{0}")]
+    /// The zones' parameters are refused.
     Zones(String),
     #[error("the two-zone curve could not be computed (`{}`)", .0.name())]
+    /// The two-zone curve could not be computed.
     Curve(Status),
     #[error("the two-zone state is `{}`: no contact there, so no profile (give a load above the pull-off, an approach above the jump-out, or a radius > 0)", .0.name())]
+    /// No contact at the given state.
     NoState(Status),
     #[error("points {0} is out of range: give 16..=100000 sampling radii")]
+    /// A sampling count out of range.
     Points(usize),
 }
 

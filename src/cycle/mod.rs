@@ -22,6 +22,7 @@ pub mod two_zone;
 
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
+/// How the cycle is driven: the base held by rigid grips, a dead load, or a spring between them.
 pub enum Drive {
     /// Displacement control.
     RigidGrips,
@@ -44,6 +45,7 @@ pub enum Branch {
 }
 
 impl Branch {
+    /// The branch's name in tables and JSON (`free`, `non_contact`, `contact`).
     pub fn name(self) -> &'static str {
         match self {
             Branch::Free => "free",
@@ -57,7 +59,9 @@ impl Branch {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Phase {
+    /// The surfaces move together.
     Approach,
+    /// The surfaces move apart.
     Retract,
 }
 
@@ -71,18 +75,26 @@ impl std::fmt::Display for Phase {
 }
 
 #[derive(Clone, Copy, Debug, Serialize)]
+/// One equilibrium state on the path (normalised units).
 pub struct PathPoint {
+    /// The branch it is on.
     pub branch: Branch,
+    /// The approach (normalised).
     pub approach: f64,
+    /// The load (normalised, compressive positive).
     pub load: f64,
+    /// The contact radius (0 off contact).
     pub a: f64,
     /// Normalised radius of the cohesive zone: C on the non-contact branch, m A in contact.
     pub c: f64,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// One step of the cycle: the state the drive holds at one value of its control.
 pub struct Step {
+    /// Approach or retract.
     pub phase: Phase,
+    /// The state.
     pub point: PathPoint,
     /// The controlled variable (Delta, or the load under dead load).
     pub control: f64,
@@ -91,22 +103,30 @@ pub struct Step {
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// A jump: where the followed branch ends and the state the drive lands on.
 pub struct Jump {
+    /// Approach or retract.
     pub phase: Phase,
+    /// The state at the end of the branch left.
     pub from: PathPoint,
     /// None: under dead load the surfaces separate for good.
     pub to: Option<PathPoint>,
 }
 
 #[derive(Clone, Debug, Serialize)]
+/// An approach-retract cycle: the equilibrium path, the steps the drive takes on it, its jumps and the energy lost.
 pub struct Cycle {
+    /// The Maugis parameter (the solid's, for two zones).
     pub lambda: f64,
+    /// The drive.
     pub drive: Drive,
     /// The complete equilibrium path, stable and unstable parts.
     pub path: Vec<PathPoint>,
     /// For each path point: stable under this drive (the control rises along the path there).
     pub stable: Vec<bool>,
+    /// The steps, approach then retract.
     pub steps: Vec<Step>,
+    /// The jumps, in the order met.
     pub jumps: Vec<Jump>,
     /// Energy lost per cycle (normalised); None where the loop does not close (dead load).
     pub hysteresis: Option<f64>,
