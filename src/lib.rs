@@ -126,7 +126,6 @@ pub mod progress;
 #[cfg(feature = "render")]
 #[allow(missing_docs)] // not yet documented item by item
 pub mod render;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod rough;
 #[allow(missing_docs)] // not yet documented item by item
 pub mod scene;

@@ -74,8 +74,8 @@ impl ModelProfile {
     }
 }
 
-#[derive(Clone, Debug, Serialize)]
 /// A state's pressure and gap for Maugis-Dugdale beside Hertz, DMT and JKR at the same load.
+#[derive(Clone, Debug, Serialize)]
 pub struct Profile {
     /// The Maugis parameter.
     pub lambda: f64,
@@ -338,8 +338,8 @@ impl Profile {
     }
 }
 
-#[derive(Debug, thiserror::Error)]
 /// Why a profile could not be made.
+#[derive(Debug, thiserror::Error)]
 pub enum ProfileError {
     #[error(transparent)]
     /// The solver refused the state.

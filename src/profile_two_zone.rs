@@ -42,8 +42,8 @@ pub struct TwoZoneProfile {
     pub warnings: Vec<String>,
 }
 
-#[derive(Debug, thiserror::Error)]
 /// Why a two-zone profile could not be made.
+#[derive(Debug, thiserror::Error)]
 pub enum TwoZoneProfileError {
     #[error("{0}")]
     /// The zones' parameters are refused.

@@ -20,9 +20,9 @@ use serde::Serialize;
 
 pub mod two_zone;
 
+/// How the cycle is driven: the base held by rigid grips, a dead load, or a spring between them.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
-/// How the cycle is driven: the base held by rigid grips, a dead load, or a spring between them.
 pub enum Drive {
     /// Displacement control.
     RigidGrips,
@@ -74,8 +74,8 @@ impl std::fmt::Display for Phase {
     }
 }
 
-#[derive(Clone, Copy, Debug, Serialize)]
 /// One equilibrium state on the path (normalised units).
+#[derive(Clone, Copy, Debug, Serialize)]
 pub struct PathPoint {
     /// The branch it is on.
     pub branch: Branch,
@@ -89,8 +89,8 @@ pub struct PathPoint {
     pub c: f64,
 }
 
-#[derive(Clone, Debug, Serialize)]
 /// One step of the cycle: the state the drive holds at one value of its control.
+#[derive(Clone, Debug, Serialize)]
 pub struct Step {
     /// Approach or retract.
     pub phase: Phase,
@@ -102,8 +102,8 @@ pub struct Step {
     pub jump: bool,
 }
 
-#[derive(Clone, Debug, Serialize)]
 /// A jump: where the followed branch ends and the state the drive lands on.
+#[derive(Clone, Debug, Serialize)]
 pub struct Jump {
     /// Approach or retract.
     pub phase: Phase,
@@ -113,8 +113,8 @@ pub struct Jump {
     pub to: Option<PathPoint>,
 }
 
-#[derive(Clone, Debug, Serialize)]
 /// An approach-retract cycle: the equilibrium path, the steps the drive takes on it, its jumps and the energy lost.
+#[derive(Clone, Debug, Serialize)]
 pub struct Cycle {
     /// The Maugis parameter (the solid's, for two zones).
     pub lambda: f64,

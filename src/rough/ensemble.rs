@@ -20,39 +20,55 @@ pub const POINTS_MAX: usize = 10_000;
 /// One summit: its height above the reference plane and its radius (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Asperity {
+    /// Height above the reference plane (m).
     pub height_m: f64,
+    /// Radius of curvature (m).
     pub radius_m: f64,
 }
 
 /// The materials every summit shares.
 #[derive(Clone, Copy, Debug)]
 pub struct Materials {
+    /// Effective modulus (Pa).
     pub e_star_pa: f64,
+    /// Work of adhesion (J/m^2).
     pub work_of_adhesion_j_m2: f64,
+    /// The range of the surface force (z0, s0 or h0).
     pub range: ForceRange,
 }
 
 /// One half of an ensemble's cycle, one entry per separation.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct EnsembleLeg {
+    /// Separation of the flat from the reference plane (m).
     pub separation_m: Vec<f64>,
+    /// Total force (N, compressive positive).
     pub force_n: Vec<f64>,
+    /// Real contact area, pi a^2 summed over the summits in contact (m^2).
     pub real_contact_area_m2: Vec<f64>,
+    /// Fraction of the summits in contact.
     pub contact_fraction: Vec<f64>,
+    /// Fraction of the summits with a Dugdale zone only.
     pub noncontact_fraction: Vec<f64>,
 }
 
+/// An explicit ensemble's approach-retract cycle.
 #[derive(Clone, Debug, Serialize)]
 pub struct EnsembleCycle {
+    /// The number of summits.
     pub summits: usize,
+    /// The approach, from the largest separation down.
     pub approach: EnsembleLeg,
+    /// The retract, back up.
     pub retract: EnsembleLeg,
     /// The most tensile retract force among the separations (a sample: the ensemble's force
     /// jumps wherever one summit does).
     pub pulloff_force_n: f64,
+    /// The separation of that pull-off (m).
     pub pulloff_separation_m: f64,
     /// Summit states evaluated (summits times separations times two), and the seconds it took.
     pub summit_states: u64,
+    /// Seconds the cycle took.
     pub seconds: f64,
 }
 

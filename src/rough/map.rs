@@ -45,11 +45,17 @@ pub const CONTOURS: [f64; 3] = [0.5, 0.1, 0.01];
 /// What `tabor rough-map` computes.
 #[derive(Clone, Debug, Serialize)]
 pub struct RoughMapSpec {
+    /// The smallest lambda (log axis).
     pub lambda_min: f64,
+    /// The largest lambda.
     pub lambda_max: f64,
+    /// Columns (lambda).
     pub nx: usize,
+    /// The smallest roughness sigma (approach units, log axis).
     pub sigma_min: f64,
+    /// The largest roughness.
     pub sigma_max: f64,
+    /// Rows (sigma).
     pub ny: usize,
     /// Largest pull-off error (relative to the smooth summit's pull-off) and retract-curve error
     /// (relative to the curve's largest |load|) a simpler summit model may have.
@@ -672,11 +678,15 @@ fn brent_min(
 /// The result of the map.
 #[derive(Clone, Debug)]
 pub struct RoughMap {
+    /// What was computed.
     pub spec: RoughMapSpec,
+    /// The lambda axis.
     pub lambdas: Vec<f64>,
+    /// The sigma axis.
     pub sigmas: Vec<f64>,
     /// Per column: the smooth summit's pull-off (Pbar_c) and the table's interpolation error.
     pub smooth_pulloff: Vec<f64>,
+    /// Per column: the table's interpolation error (relative to max(1, |load|)).
     pub table_error: Vec<f64>,
     /// Per point (row-major, row = sigma): pull-off per summit, its separation, relative to the
     /// smooth summit's, the region, and each simpler model's error (the larger of its pull-off
@@ -685,9 +695,13 @@ pub struct RoughMap {
     /// beyond the tolerance (Hertz on its pull-off alone where that misses), so a rejected
     /// model's error is a lower bound, above the tolerance.
     pub pulloff: Vec<f64>,
+    /// Per point: the separation of the pull-off.
     pub pulloff_separation: Vec<f64>,
+    /// Per point: the pull-off over the smooth summit's.
     pub relative_pulloff: Vec<f64>,
+    /// Per point: the simplest adequate summit model.
     pub regions: Vec<Region>,
+    /// Per point: the errors of Hertz, Bradley, DMT and JKR.
     pub model_error: Vec<[f64; 4]>,
     /// The map's pull-offs against the adaptive quadrature of `tabor rough` at sample points.
     pub check: Check,
@@ -695,6 +709,7 @@ pub struct RoughMap {
     pub table_backend: String,
     /// A GPU's table states against the CPU f64 solver on a sample (None on the CPU).
     pub table_check: Option<CheckReport>,
+    /// Seconds the map took.
     pub seconds: f64,
 }
 
@@ -702,6 +717,7 @@ pub struct RoughMap {
 /// solver at every node) at the separation the map found.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Check {
+    /// Points checked.
     pub points: usize,
     /// Largest |map - exact| / max(|exact|, 1e-3 |Pbar_c|).
     pub max_relative_difference: f64,
@@ -949,6 +965,7 @@ fn check(m: &RoughMap, count: usize) -> Result<Check, RoughError> {
 }
 
 impl RoughMap {
+    /// How many points each region holds (the regions present).
     pub fn region_counts(&self) -> Vec<(Region, usize)> {
         Region::ALL
             .iter()
@@ -957,6 +974,7 @@ impl RoughMap {
             .collect()
     }
 
+    /// The largest table error over the columns.
     pub fn table_error_max(&self) -> f64 {
         self.table_error.iter().fold(0.0, |a, &b| a.max(b))
     }

@@ -31,14 +31,18 @@ pub const POINTS_MAX: usize = 100_000;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SummitBranch {
+    /// Not touching, out of the force's reach.
     Free,
+    /// The Dugdale zone alone (A = 0).
     NonContact,
+    /// In contact.
     Contact,
 }
 
 /// One summit's branches and the approaches where it jumps between them (section 9).
 #[derive(Debug)]
 pub struct Summit {
+    /// The summit's Maugis parameter.
     pub lambda: f64,
     ctx: LambdaContext,
     /// The Dugdale range, 2 / (pi lambda).
@@ -57,6 +61,7 @@ pub struct Summit {
 }
 
 impl Summit {
+    /// The summit of Maugis parameter `lambda`: its context and the approaches where it jumps.
     pub fn new(lambda: f64) -> Result<Summit, SolveError> {
         let ctx = LambdaContext::new(lambda)?;
         let end = zero_radius_end(lambda);
@@ -145,20 +150,28 @@ pub(crate) fn upper_tail(x: f64) -> f64 {
 
 /// A rough surface: one lambda for every summit, summit heights N(0, sigma^2).
 pub struct Rough {
+    /// Every summit's law and branches.
     pub summit: Summit,
+    /// The heights' standard deviation (approach units).
     pub sigma: f64,
 }
 
 /// Which half of a cycle a load is asked for: the approach, or the retract after `d_min`.
 #[derive(Clone, Copy, Debug)]
 pub enum Leg {
+    /// The approach from far away.
     Approach,
-    Retract { d_min: f64 },
+    /// The retract after pressing to the separation `d_min`.
+    Retract {
+        /// The smallest separation reached.
+        d_min: f64,
+    },
 }
 
 /// The mean state of the summits at one separation.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Mean {
+    /// The separation of the flat from the mean summit plane (approach units).
     pub separation: f64,
     /// Load per summit.
     pub load: f64,
@@ -175,12 +188,16 @@ pub struct Mean {
 #[derive(Debug, thiserror::Error)]
 pub enum RoughError {
     #[error(transparent)]
+    /// An input outside its domain.
     Domain(#[from] DomainError),
     #[error(transparent)]
+    /// The solver refused a summit.
     Solve(#[from] SolveError),
     #[error("{0}")]
+    /// A scene or an option refused, in words.
     Scene(String),
     #[error("the summit solver failed at separation {} (lambda = {}): no number is reported", short(*.0), short(*.1))]
+    /// A summit's state that could not be solved (separation, lambda).
     Failed(f64, f64),
 }
 
@@ -367,12 +384,17 @@ pub(crate) fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
 /// An approach from `d_max` down to `d_min` and the retract back (`tabor rough`).
 #[derive(Clone, Debug, Serialize)]
 pub struct RoughCycle {
+    /// The summits' Maugis parameter.
     pub lambda: f64,
+    /// The heights' standard deviation (approach units).
     pub sigma: f64,
+    /// The approach, from the largest separation down.
     pub approach: Vec<Mean>,
+    /// The retract, back up.
     pub retract: Vec<Mean>,
     /// The most tensile retract load per summit, to full precision, and its separation.
     pub pulloff_load: f64,
+    /// The separation of the pull-off.
     pub pulloff_separation: f64,
     /// Energy lost per summit per cycle, integral of (P_approach - P_retract) over the
     /// separation (pi w R times the approach unit).
@@ -598,13 +620,17 @@ impl Rough {
 /// Pull-off against roughness for one lambda (Fuller and Tabor's figure).
 #[derive(Clone, Debug, Serialize)]
 pub struct PulloffCurve {
+    /// The summits' Maugis parameter.
     pub lambda: f64,
     /// The single summit's pull-off (Pbar_c).
     pub smooth_pulloff: f64,
+    /// The roughnesses (approach units).
     pub sigma: Vec<f64>,
+    /// Fuller and Tabor's adhesion parameter at each roughness.
     pub fuller_tabor_parameter: Vec<f64>,
     /// Pull-off per summit, and relative to the smooth summit's.
     pub pulloff: Vec<f64>,
+    /// The pull-off per summit over the smooth summit's.
     pub relative_pulloff: Vec<f64>,
 }
 

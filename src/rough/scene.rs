@@ -10,14 +10,21 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RoughScene {
+    /// The scene's name.
     pub name: Option<String>,
     /// The two bodies' materials (their radii are not used: the summits' is), or `e_star_pa`.
     pub body1: Option<Body>,
+    /// The second body.
     pub body2: Option<Body>,
+    /// The effective modulus (Pa), instead of the bodies.
     pub e_star_pa: Option<f64>,
+    /// The work of adhesion (J/m^2).
     pub work_of_adhesion_j_m2: f64,
+    /// The Lennard-Jones range (m); one of z0, s0 and h0 sets the force's range.
     pub z0_m: Option<f64>,
+    /// The Dugdale stress (Pa).
     pub s0_pa: Option<f64>,
+    /// The Dugdale range (m).
     pub h0_m: Option<f64>,
     /// Radius of every summit (m).
     pub summit_radius_m: f64,
@@ -82,55 +89,81 @@ pub fn preset(name: &str) -> Option<RoughScene> {
     }
 }
 
+/// The built-in rough scenes.
 pub const PRESETS: [&str; 2] = ["mems-polysilicon", "pdms-rough-glass"];
 
 /// One half of the cycle in SI units, one entry per separation.
 #[derive(Clone, Debug, Serialize)]
 pub struct SiLeg {
+    /// Separation of the flat from the mean summit plane (m).
     pub separation_m: Vec<f64>,
+    /// Total force (N, compressive positive).
     pub force_n: Vec<f64>,
+    /// Force over the nominal area (Pa).
     pub nominal_pressure_pa: Vec<f64>,
+    /// Real contact area (m^2).
     pub real_contact_area_m2: Vec<f64>,
+    /// Fraction of the summits in contact.
     pub contact_fraction: Vec<f64>,
+    /// Fraction of the summits with a cohesive zone only.
     pub noncontact_fraction: Vec<f64>,
 }
 
+/// A rough scene's cycle in SI units.
 #[derive(Clone, Debug, Serialize)]
 pub struct RoughSceneResult {
+    /// The scene's name.
     pub name: Option<String>,
+    /// Where the scene came from (file or preset).
     pub source: Option<String>,
+    /// Effective modulus (Pa).
     pub e_star_pa: f64,
+    /// Work of adhesion (J/m^2).
     pub work_of_adhesion_j_m2: f64,
     /// Each summit's Maugis parameter and Tabor parameter.
     pub lambda: f64,
+    /// Each summit's Tabor parameter.
     pub tabor_parameter: f64,
     /// sigma in the summit's approach unit, and Fuller and Tabor's adhesion parameter.
     pub sigma_normalised: f64,
+    /// Fuller and Tabor's adhesion parameter.
     pub fuller_tabor_parameter: f64,
+    /// Summits in the nominal area.
     pub summits: f64,
+    /// The approach.
     pub approach: SiLeg,
+    /// The retract.
     pub retract: SiLeg,
+    /// The pull-off force (N, the most tensile retract force).
     pub pulloff_force_n: f64,
+    /// The pull-off over the nominal area (Pa).
     pub pulloff_stress_pa: f64,
+    /// The separation of the pull-off (m).
     pub pulloff_separation_m: f64,
     /// Every summit pulling as a smooth one (sigma -> 0): N times the summit's Pbar_c pi w R.
     pub smooth_pulloff_force_n: f64,
+    /// Energy lost per cycle (J).
     pub hysteresis_j: f64,
+    /// Where the model is stretched.
     pub warnings: Vec<String>,
+    /// The model and its assumptions, in words.
     pub model: &'static str,
     /// With humidity: the meniscus on every summit, and the dry surface's pull-off after the same
     /// press, for comparison. The loads above are then those of the solid and the meniscus.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub meniscus: Option<crate::scene::humidity::Meniscus>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    /// The dry surface's pull-off after the same press (N).
     pub dry_pulloff_force_n: Option<f64>,
     /// The same cycle in the summit's units (for the figure).
     #[serde(skip)]
     pub normalised: super::RoughCycle,
 }
 
+/// The model of a wet rough scene, in words.
 pub const MODEL_WET: &str = "Greenwood-Williamson with a water meniscus on every summit: identical spherical summits, Gaussian heights, each an exact two-zone (solid Dugdale zone plus a Kelvin meniscus) sphere under rigid grips with its own history; the summits and their menisci do not interact, which fails where the wetted annuli reach the summit spacing or the meniscus height is comparable with sigma (the menisci merge into one film), as for the dry model where contact spots crowd; the meniscus is in equilibrium with the vapour (slow cycles) and its Kelvin radius small against the summit radius";
 
+/// The model of a dry rough scene, in words.
 pub const MODEL: &str = "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd (a real contact area beyond about 10% of the nominal), when sigma is comparable to the summit radius, or for few summits";
 
 fn positive(name: &'static str, v: f64) -> Result<f64, RoughError> {

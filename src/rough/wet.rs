@@ -43,10 +43,12 @@ pub struct Stretch {
     part: Part,
     /// The lowest and highest approach of the stretch (-inf, +inf at the path's ends).
     pub lo: f64,
+    /// The highest approach of the stretch.
     pub hi: f64,
 }
 
 impl Stretch {
+    /// The branch a summit on this stretch is on.
     pub fn branch(&self) -> SummitBranch {
         match self.part {
             Part::Free => SummitBranch::Free,
@@ -58,6 +60,7 @@ impl Stretch {
 
 /// One wet summit (two zones of different ranges) and its stable stretches under rigid grips.
 pub struct WetSummit {
+    /// The summit's two-zone law.
     pub ctx: TwoZoneContext,
     /// The stretches in the order of the path (free first, contact last).
     pub stretches: Vec<Stretch>,
@@ -428,8 +431,15 @@ impl WetSummit {
 /// A rough surface of wet summits, or (one range: `rho = 0`, `eta = 0` or `eta = 1`) the dry
 /// model of section 9 with the single zone's lambda.
 pub enum WetRough {
+    /// One zone: the dry model.
     Dry(Rough),
-    Wet { summit: WetSummit, sigma: f64 },
+    /// Two zones of different ranges.
+    Wet {
+        /// Every summit's law and stretches.
+        summit: WetSummit,
+        /// The heights' standard deviation (approach units of the total w).
+        sigma: f64,
+    },
 }
 
 impl WetRough {
