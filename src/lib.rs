@@ -127,6 +127,5 @@ pub mod progress;
 #[allow(missing_docs)] // not yet documented item by item
 pub mod render;
 pub mod rough;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod scene;
 pub mod solver;

@@ -34,12 +34,17 @@ fn nelder_mead(f: &dyn Fn(&[f64]) -> f64, start: [f64; 2]) -> Option<(f64, f64)>
 /// A fit of w and E* to measured (load, contact radius) pairs with the exact MD model.
 #[derive(Clone, Debug, Serialize)]
 pub struct PairsFit {
+    /// The fitted work of adhesion (J/m^2).
     pub work_of_adhesion_j_m2: f64,
+    /// The fitted effective modulus (Pa).
     pub e_star_pa: f64,
+    /// The Maugis parameter of the fit.
     pub lambda: f64,
+    /// The Tabor parameter of the fit.
     pub tabor_parameter: f64,
     /// (a_model - a_measured) / a_measured for each pair.
     pub relative_residuals: Vec<f64>,
+    /// The rms of the relative residuals.
     pub rms_relative_residual: f64,
 }
 

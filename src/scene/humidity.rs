@@ -29,6 +29,7 @@ pub struct HumidityInput {
 /// The meniscus as a Dugdale zone, as the scene's JSON reports it.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct Meniscus {
+    /// The Kelvin radius r_K (m).
     pub kelvin_radius_m: f64,
     /// gamma / r_K: the meniscus' tensile stress (Pa).
     pub laplace_pressure_pa: f64,
@@ -269,9 +270,13 @@ pub fn wet_ratios(c: &Contact, m: &Meniscus) -> Result<(f64, f64, Units), ParamE
 #[derive(Clone, Debug, Serialize)]
 #[allow(non_snake_case)]
 pub struct HumidityPoint {
+    /// The relative humidity, 0..1.
     pub relative_humidity: f64,
+    /// The Kelvin radius there (m).
     pub kelvin_radius_m: f64,
+    /// The meniscus height 2 r_K cos(theta) (m).
     pub meniscus_range_m: f64,
+    /// The meniscus zone's own Maugis parameter.
     pub meniscus_lambda: f64,
     /// The dry contact (solid adhesion alone).
     pub pulloff_solid_N: f64,
@@ -286,14 +291,20 @@ pub struct HumidityPoint {
 /// Pull-off against relative humidity for one scene.
 #[derive(Clone, Debug, Serialize)]
 pub struct HumiditySweep {
+    /// The scene's name.
     pub name: String,
+    /// The contact angle (degrees).
     pub contact_angle_deg: f64,
+    /// The solid's work of adhesion (J/m^2).
     pub work_of_adhesion_solid_j_m2: f64,
+    /// The meniscus' work of adhesion, 2 gamma cos(theta) (J/m^2).
     pub work_of_adhesion_meniscus_j_m2: f64,
+    /// The pull-offs at each humidity.
     pub points: Vec<HumidityPoint>,
     /// The relative humidity above which the meniscus adds more than half of the pull-off
     /// (None where it never does in the range; the range's start where it always does).
     pub meniscus_dominates_above_rh: Option<f64>,
+    /// The same, in words.
     pub meniscus_dominates: String,
 }
 

@@ -4,15 +4,24 @@ use crate::physics::params::{Contact, ForceRange, ParamError};
 use crate::solver::LambdaContext;
 use serde::Serialize;
 
+/// What a measured pull-off says of w under each model.
 #[derive(Clone, Debug, Serialize)]
 pub struct Inference {
+    /// The measured pull-off force (N, positive).
     pub pulloff_force_n: f64,
+    /// w if the contact is JKR's (J/m^2).
     pub w_jkr_j_m2: f64,
+    /// The Tabor parameter with that w.
     pub tabor_if_jkr: f64,
+    /// w if the contact is DMT's (J/m^2).
     pub w_dmt_j_m2: f64,
+    /// The Tabor parameter with that w.
     pub tabor_if_dmt: f64,
+    /// w from the exact MD pull-off with the given range (J/m^2).
     pub w_md_j_m2: Option<f64>,
+    /// The Maugis parameter with that w.
     pub lambda_md: Option<f64>,
+    /// Which model the data support, in words.
     pub verdict: String,
 }
 

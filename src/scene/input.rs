@@ -10,21 +10,31 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneInput {
+    /// The scene's name.
     pub name: Option<String>,
+    /// The first body (sphere).
     pub body1: Option<Body>,
+    /// The second body (a sphere or a flat).
     pub body2: Option<Body>,
     /// The reduced modulus and effective radius, instead of two bodies.
     pub e_star_pa: Option<f64>,
+    /// The effective radius (m).
     pub radius_m: Option<f64>,
+    /// The work of adhesion (J/m^2), or the surface energies.
     pub work_of_adhesion_j_m2: Option<f64>,
     /// Dupre: w = g1 + g2 - g12 (J/m^2).
     pub surface_energies_j_m2: Option<[f64; 3]>,
+    /// The Lennard-Jones range (m); one of z0, s0 and h0 sets the force's range.
     pub z0_m: Option<f64>,
+    /// The Dugdale stress (Pa).
     pub s0_pa: Option<f64>,
+    /// The Dugdale range (m).
     pub h0_m: Option<f64>,
+    /// The loads (N) at which the state is reported.
     pub loads_n: Option<Vec<f64>>,
     /// [min, max, count], linear.
     pub load_range_n: Option<(f64, f64, usize)>,
+    /// The tolerance a simpler model must meet.
     pub tolerance: Option<f64>,
     /// Lattice spacing for the continuum check (default 0.25 nm).
     pub atomic_spacing_m: Option<f64>,
@@ -38,15 +48,19 @@ pub struct SceneInput {
     pub humidity: Option<super::humidity::HumidityInput>,
 }
 
+/// The control of a scene's experiment.
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SceneControl {
+    /// Load control (a dead load).
     Load,
+    /// Displacement control (rigid grips).
     Displacement,
     /// An AFM cantilever (a spring in series) of stiffness k (N/m).
     CantileverNM(f64),
 }
 
+/// The contact of a scene: its materials, radius, w and force range, checked.
 pub fn contact_of(s: &SceneInput) -> Result<Contact, ParamError> {
     if (s.body1.is_some() || s.body2.is_some()) && (s.e_star_pa.is_some() || s.radius_m.is_some()) {
         return Err(ParamError::Missing(

@@ -21,62 +21,99 @@ use crate::physics::params::{Contact, ParamError};
 use crate::solver::{LambdaContext, Status};
 use serde::Serialize;
 
+/// The state of a scene at one load.
 #[derive(Clone, Debug, Serialize)]
 pub struct LoadResult {
+    /// The load (N, compressive positive).
     pub load_n: f64,
+    /// The load in units of pi w R.
     pub load_normalised: f64,
+    /// Whether the state was found.
     pub status: Status,
+    /// The contact radius (m).
     pub contact_radius_m: Option<f64>,
+    /// The approach (m).
     pub approach_m: Option<f64>,
     /// Hertz peak pressure for this contact radius, 2 E* a / (pi R) (Pa): the pressure scale.
     pub pressure_scale_pa: Option<f64>,
+    /// The contact radius over the sphere's radius.
     pub a_over_r: Option<f64>,
+    /// Hertz's contact radius error relative to MD's.
     pub err_hertz: Option<f64>,
+    /// DMT's contact radius error relative to MD's.
     pub err_dmt: Option<f64>,
+    /// JKR's contact radius error relative to MD's.
     pub err_jkr: Option<f64>,
+    /// The deformation over the force's range (small: rigid spheres, Bradley).
     pub rigid_measure: Option<f64>,
+    /// The simplest adequate model at this load.
     pub model: &'static str,
+    /// Why, in words.
     pub why: String,
+    /// The friction estimate tau0 pi a^2 (N), with a shear strength.
     pub friction_n: Option<f64>,
+    /// Where the model is stretched at this load.
     pub warnings: Vec<String>,
 }
 
+/// A scene solved: its parameters, pull-offs, the recommended model and each load's state.
 #[derive(Clone, Debug, Serialize)]
 #[allow(non_snake_case)] // the JSON keys name their unit: ..._N
 pub struct SceneResult {
+    /// The scene's name.
     pub name: String,
+    /// Effective modulus E* (Pa).
     pub e_star_pa: f64,
+    /// K = 4 E* / 3 (Pa).
     pub k_pa: f64,
+    /// Effective radius (m).
     pub radius_m: f64,
+    /// Work of adhesion (J/m^2).
     pub work_of_adhesion_j_m2: f64,
+    /// Dugdale stress (Pa).
     pub s0_pa: f64,
+    /// Maugis parameter.
     pub lambda: f64,
+    /// Tabor parameter.
     pub tabor_parameter: f64,
+    /// The tolerance a simpler model must meet.
     pub tolerance: f64,
+    /// Pull-off force under load control (N, tensile negative).
     pub pulloff_force_load_control_N: f64,
+    /// Pull-off force under displacement control (N).
     pub pulloff_force_displacement_control_N: f64,
+    /// Contact radius at the load-controlled pull-off (m).
     pub pulloff_contact_radius_load_control_m: f64,
+    /// Contact radius at zero load (m).
     pub zero_load_contact_radius_m: f64,
+    /// The simplest model adequate over the scene's loads.
     pub recommended_model: ContactModel,
+    /// Why, in words.
     pub recommendation: String,
     /// The pull-off (jump-out) force under the scene's control (N); with a cantilever, where its
     /// stiffness equals the contact's force gradient (see `tabor cycle`).
     pub pulloff_force_under_control_N: f64,
+    /// The control of the experiment, in words.
     pub control: String,
+    /// The state at each load.
     pub loads: Vec<LoadResult>,
+    /// Where the values came from.
     pub source: Option<String>,
     /// With humidity: the meniscus, and every force, radius and approach above is for the solid
     /// plus the meniscus.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub meniscus: Option<humidity::Meniscus>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    /// The relative humidity, where there is a meniscus.
     pub relative_humidity: Option<f64>,
     /// The dry contact's pull-offs (N), for comparison, where there is a meniscus.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dry_pulloff_force_load_control_N: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    /// The dry contact's displacement-controlled pull-off (N).
     pub dry_pulloff_force_displacement_control_N: Option<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
+    /// Where the meniscus model is stretched.
     pub meniscus_warnings: Vec<String>,
 }
 
@@ -122,6 +159,7 @@ fn why(region: Region, c: &crate::map::Criteria, tol: f64) -> String {
 /// Most loads one scene solves (its report is kept in memory).
 pub const MAX_SCENE_LOADS: usize = 100_000;
 
+/// Solves a scene: its contact, pull-offs, the state at each load and the recommended model.
 pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let c = contact_of(s)?;
     let tol = checked_tolerance(s)?;
