@@ -201,6 +201,60 @@ pub enum RoughError {
     Failed(f64, f64),
 }
 
+/// The separations of a cycle, from `d_max` down to `d_min` (approach units), checked.
+pub(crate) fn separations(d_min: f64, d_max: f64, points: usize) -> Result<Vec<f64>, RoughError> {
+    if !d_min.is_finite() || d_min.abs() > 1e6 {
+        return Err(domain(
+            "the smallest separation",
+            d_min,
+            "-1e6..1e6 approach units",
+            "give a finite separation",
+        )
+        .into());
+    }
+    if !(d_max.is_finite() && d_max > d_min && d_max <= 1e6) {
+        return Err(domain(
+            "the largest separation",
+            d_max,
+            "above the smallest separation, at most 1e6 approach units",
+            "give a largest separation above the smallest",
+        )
+        .into());
+    }
+    if !(2..=POINTS_MAX).contains(&points) {
+        return Err(domain(
+            "the number of separations",
+            points as f64,
+            "2..100000",
+            "give at least 2 points",
+        )
+        .into());
+    }
+    Ok((0..points)
+        .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
+        .collect())
+}
+
+/// The mean state at every separation on the approach (down) and on the retract after `d_min`
+/// (back up), on all cores.
+pub(crate) fn legs(
+    seps: &[f64],
+    d_min: f64,
+    mean: impl Fn(Leg, f64) -> Result<Mean, RoughError> + Sync,
+) -> Result<(Vec<Mean>, Vec<Mean>), RoughError> {
+    use rayon::prelude::*;
+    let approach = seps
+        .par_iter()
+        .map(|&d| mean(Leg::Approach, d))
+        .collect::<Result<_, _>>()?;
+    let retract = seps
+        .par_iter()
+        .rev()
+        .map(|&d| mean(Leg::Retract { d_min }, d))
+        .collect::<Result<_, _>>()?;
+    Ok((approach, retract))
+}
+
 pub(crate) fn domain(
     name: &'static str,
     value: f64,
@@ -430,47 +484,9 @@ impl Rough {
         points: usize,
     ) -> Result<RoughCycle, RoughError> {
         let d_max = d_max.unwrap_or_else(|| self.free_separation());
-        if !d_min.is_finite() || d_min.abs() > 1e6 {
-            return Err(domain(
-                "the smallest separation",
-                d_min,
-                "-1e6..1e6 approach units",
-                "give a finite separation",
-            )
-            .into());
-        }
-        if !(d_max.is_finite() && d_max > d_min && d_max <= 1e6) {
-            return Err(domain(
-                "the largest separation",
-                d_max,
-                "above the smallest separation, at most 1e6 approach units",
-                "give a largest separation above the smallest",
-            )
-            .into());
-        }
-        if !(2..=POINTS_MAX).contains(&points) {
-            return Err(domain(
-                "the number of separations",
-                points as f64,
-                "2..100000",
-                "give at least 2 points",
-            )
-            .into());
-        }
-        let seps: Vec<f64> = (0..points)
-            .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
-            .collect();
-        use rayon::prelude::*;
-        let approach: Vec<Mean> = seps
-            .par_iter()
-            .map(|&d| self.mean(Leg::Approach, d))
-            .collect::<Result<_, _>>()?;
+        let seps = separations(d_min, d_max, points)?;
+        let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
-        let retract: Vec<Mean> = seps
-            .par_iter()
-            .rev()
-            .map(|&d| self.mean(leg, d))
-            .collect::<Result<_, _>>()?;
         let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
         let hysteresis = self.hysteresis(d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;

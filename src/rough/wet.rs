@@ -15,7 +15,7 @@
 //! in `pi w R`, separations and sigma in `(pi^2 w^2 R / K^2)^(1/3)`.
 
 use super::{domain, integrate, upper_tail, Leg, Mean, Rough, RoughCycle, RoughError};
-use super::{SummitBranch, POINTS_MAX, Z_CUT, Z_FREE};
+use super::{legs, separations, SummitBranch, Z_CUT, Z_FREE};
 use crate::physics::two_zone::{non_contact_both, non_contact_single, Shape, Zones};
 use crate::solver::two_zone::TwoZoneContext;
 use crate::solver::Status;
@@ -637,47 +637,9 @@ impl WetRough {
             WetRough::Wet { summit, sigma } => (summit, *sigma),
         };
         let d_max = d_max.unwrap_or_else(|| self.free_separation());
-        if !d_min.is_finite() || d_min.abs() > 1e6 {
-            return Err(domain(
-                "the smallest separation",
-                d_min,
-                "-1e6..1e6 approach units",
-                "give a finite separation",
-            )
-            .into());
-        }
-        if !(d_max.is_finite() && d_max > d_min && d_max <= 1e6) {
-            return Err(domain(
-                "the largest separation",
-                d_max,
-                "above the smallest separation, at most 1e6 approach units",
-                "give a largest separation above the smallest",
-            )
-            .into());
-        }
-        if !(2..=POINTS_MAX).contains(&points) {
-            return Err(domain(
-                "the number of separations",
-                points as f64,
-                "2..100000",
-                "give at least 2 points",
-            )
-            .into());
-        }
-        let seps: Vec<f64> = (0..points)
-            .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
-            .collect();
-        use rayon::prelude::*;
-        let approach: Vec<Mean> = seps
-            .par_iter()
-            .map(|&d| self.mean(Leg::Approach, d))
-            .collect::<Result<_, _>>()?;
+        let seps = separations(d_min, d_max, points)?;
+        let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
-        let retract: Vec<Mean> = seps
-            .par_iter()
-            .rev()
-            .map(|&d| self.mean(leg, d))
-            .collect::<Result<_, _>>()?;
         let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
         // Trapezoids: the approach runs down in d, the retract up.
         let n = seps.len();
