@@ -732,3 +732,45 @@ fn rough_map_tables_on_the_gpu_are_the_cpu_tables() {
         );
     }
 }
+
+/// An explicit ensemble's summit tables solved on the GPU (f32 kernel, then f64 steps) give
+/// the CPU tables' cycle: forces within 1e-12 of the largest, the same branch counts, and the
+/// tables' states within the f64 contract on the sample.
+#[test]
+fn ensemble_tables_on_the_gpu_are_the_cpu_tables() {
+    use tabor::physics::params::ForceRange;
+    use tabor::rough::ensemble::{cycle_with, Asperity, Materials, SummitSolver};
+    let Some(engine) = gpu_f64() else { return };
+    let m = Materials {
+        e_star_pa: 2.4e6,
+        work_of_adhesion_j_m2: 0.044,
+        range: ForceRange::LennardJones(0.3e-9),
+    };
+    let asp: Vec<Asperity> = (0..500)
+        .map(|i| Asperity {
+            height_m: ((i as f64 * 0.754878) % 1.0 - 0.5) * 0.4e-6,
+            radius_m: 2e-6 * 10f64.powf((i as f64 * 0.618034) % 1.0),
+        })
+        .collect();
+    let run =
+        |e: &Engine| cycle_with(&asp, &m, -0.2e-6, None, 50, SummitSolver::Tables, e).unwrap();
+    let (cpu, gpu) = (run(&Engine::Cpu), run(&engine));
+    assert!(
+        gpu.summit_solver.contains("gpu f64"),
+        "{}",
+        gpu.summit_solver
+    );
+    let check = gpu.table_check.as_ref().expect("GPU tables are checked");
+    assert!(
+        check.checked > 500 && check.status_mismatches == 0,
+        "{check}"
+    );
+    assert!(check.max_rel_err_a < 1e-12, "{check}");
+    let top = cpu.retract.force_n.iter().fold(0f64, |a, f| a.max(f.abs()));
+    for (a, b) in [(&cpu.approach, &gpu.approach), (&cpu.retract, &gpu.retract)] {
+        assert_eq!(a.contact_fraction, b.contact_fraction);
+        for (x, y) in a.force_n.iter().zip(&b.force_n) {
+            assert!((x - y).abs() <= 1e-12 * top, "cpu {x}, gpu {y}");
+        }
+    }
+}

@@ -619,3 +619,84 @@ fn explicit_summits_each_follow_their_own_branch() {
     let o = tabor(&["rough", "--asperities", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
 }
+
+/// An ensemble whose summits span lambda 0.31..3.1 (across lambda_D): each summit's states from
+/// the tables over lambda are its exact states within the tables' stated error. The bound per
+/// separation is the sum over the summits of 2 x TARGET x max(pi w R, |force|): the error is
+/// measured at the grid's worst points, and the interpolations in v and in lambda add.
+#[test]
+fn tabulated_summits_are_the_exact_ones_within_the_stated_error() {
+    use std::f64::consts::PI;
+    use tabor::engine::Engine;
+    use tabor::physics::params::{Contact, ForceRange};
+    use tabor::rough::ensemble::{cycle, cycle_with, Asperity, Materials, SummitSolver};
+    use tabor::rough::lambda_table::TARGET;
+    let (e, w) = (1e9, 0.05);
+    let k = 4.0 / 3.0 * e;
+    // lambda = 1 at R = 1 um; lambda grows as R^(1/3).
+    let s0 = 0.5 / (1e-6 / (PI * w * k * k)).cbrt();
+    let m = Materials {
+        e_star_pa: e,
+        work_of_adhesion_j_m2: w,
+        range: ForceRange::DugdaleStress(s0),
+    };
+    let asp: Vec<Asperity> = (0..300)
+        .map(|i| {
+            let (f, g) = ((i as f64 * 0.618034) % 1.0, (i as f64 * 0.754878) % 1.0);
+            Asperity {
+                height_m: (g - 0.5) * 40e-9,
+                radius_m: 3e-8 * 1000f64.powf(f),
+            }
+        })
+        .collect();
+    let (d_min, d_max, n) = (-20e-9, 40e-9, 60);
+    let t = cycle_with(
+        &asp,
+        &m,
+        d_min,
+        Some(d_max),
+        n,
+        SummitSolver::Tables,
+        &Engine::Cpu,
+    )
+    .unwrap();
+    let x = cycle(&asp, &m, d_min, Some(d_max), n).unwrap();
+    let err = t.table_error.unwrap();
+    assert!(err <= TARGET, "measured table error {err}");
+    assert!(t.summit_solver.starts_with("tables") && x.summit_solver == "exact");
+    // Each summit alone, exactly: its force at every separation, for the bound.
+    let mut bound = vec![[0.0f64; 2]; n];
+    for a in &asp {
+        let one = cycle(std::slice::from_ref(a), &m, d_min, Some(d_max), n).unwrap();
+        let scale = Contact::new(a.radius_m, e, w, m.range)
+            .unwrap()
+            .force_scale();
+        for (k, b) in bound.iter_mut().enumerate() {
+            b[0] += 2.0 * TARGET * one.approach.force_n[k].abs().max(scale);
+            b[1] += 2.0 * TARGET * one.retract.force_n[k].abs().max(scale);
+        }
+    }
+    let mut in_contact = 0;
+    for (k, bound) in bound.iter().enumerate() {
+        for (leg, (a, b)) in [(&t.approach, &x.approach), (&t.retract, &x.retract)]
+            .into_iter()
+            .enumerate()
+        {
+            assert_eq!(a.contact_fraction[k], b.contact_fraction[k]);
+            assert_eq!(a.noncontact_fraction[k], b.noncontact_fraction[k]);
+            let d = (a.force_n[k] - b.force_n[k]).abs();
+            assert!(
+                d <= bound[leg],
+                "separation {k}, leg {leg}: {d} over {}",
+                bound[leg]
+            );
+            let da = (a.real_contact_area_m2[k] - b.real_contact_area_m2[k]).abs();
+            assert!(da <= 1e-5 * b.real_contact_area_m2[k], "area at {k}: {da}");
+            in_contact += usize::from(b.contact_fraction[k] > 0.0);
+        }
+    }
+    assert!(
+        in_contact > n,
+        "the cycle reaches contact on most of its separations"
+    );
+}

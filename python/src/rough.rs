@@ -160,6 +160,82 @@ pub fn rough_ensemble<'py>(
     leg(py, &v)
 }
 
+fn ensemble_leg<'py>(
+    py: Python<'py>,
+    l: &tabor::rough::ensemble::EnsembleLeg,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("separation_m", arr(py, l.separation_m.clone()))?;
+    d.set_item("force_n", arr(py, l.force_n.clone()))?;
+    d.set_item("real_contact_area_m2", arr(py, l.real_contact_area_m2.clone()))?;
+    d.set_item("contact_fraction", arr(py, l.contact_fraction.clone()))?;
+    d.set_item("noncontact_fraction", arr(py, l.noncontact_fraction.clone()))?;
+    Ok(d)
+}
+
+/// An explicit ensemble of summits in SI (heights and radii in m) with a rough scene's
+/// materials, as `tabor rough --asperities` computes it (tables or exact, on the CPU).
+#[pyfunction]
+#[pyo3(signature = (heights_m, radii_m, scene_json, preset, min_separation_m, points, summits))]
+#[allow(clippy::too_many_arguments)]
+pub fn rough_asperities<'py>(
+    py: Python<'py>,
+    heights_m: Vec<f64>,
+    radii_m: Vec<f64>,
+    scene_json: Option<String>,
+    preset: Option<String>,
+    min_separation_m: Option<f64>,
+    points: usize,
+    summits: String,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tabor::rough::ensemble::{scene_cycle, Asperity};
+    let c = run(py, move || {
+        let scene: tabor::rough::scene::RoughScene = match (scene_json, preset) {
+            (Some(j), None) => serde_json::from_str(&j)
+                .map_err(|e| anyhow::anyhow!("not a valid rough scene: {e}"))?,
+            (None, Some(p)) => tabor::rough::scene::preset(&p).ok_or_else(|| {
+                anyhow::anyhow!(
+                    "no rough preset {p:?}; the presets are {}",
+                    tabor::rough::scene::PRESETS.join(", ")
+                )
+            })?,
+            _ => anyhow::bail!("give a rough scene (JSON text) or a preset name, one of them"),
+        };
+        if heights_m.len() != radii_m.len() {
+            anyhow::bail!(
+                "{} heights and {} radii: give one radius per summit",
+                heights_m.len(),
+                radii_m.len()
+            );
+        }
+        let asp: Vec<Asperity> = heights_m
+            .iter()
+            .zip(&radii_m)
+            .map(|(&height_m, &radius_m)| Asperity { height_m, radius_m })
+            .collect();
+        let solver = summits.parse()?;
+        Ok(scene_cycle(
+            &scene,
+            &asp,
+            min_separation_m,
+            points,
+            solver,
+            &tabor::engine::Engine::Cpu,
+        )?)
+    })?;
+    let d = PyDict::new(py);
+    d.set_item("summits", c.summits)?;
+    d.set_item("approach", ensemble_leg(py, &c.approach)?)?;
+    d.set_item("retract", ensemble_leg(py, &c.retract)?)?;
+    d.set_item("pulloff_force_n", c.pulloff_force_n)?;
+    d.set_item("pulloff_separation_m", c.pulloff_separation_m)?;
+    d.set_item("summit_solver", c.summit_solver)?;
+    d.set_item("table_error", c.table_error)?;
+    d.set_item("summit_states", c.summit_states)?;
+    d.set_item("seconds", c.seconds)?;
+    Ok(d)
+}
+
 /// Fuller and Tabor's sweep, as `tabor rough-pulloff` computes it: one dict per lambda with the
 /// pull-off per summit against the roughness (the library checks the options).
 #[pyfunction]

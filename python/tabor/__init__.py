@@ -46,8 +46,8 @@ STATUS_NAMES = tuple(_tabor.status_names())
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
-    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_ensemble", "rough_map",
-    "rough_pulloff",
+    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
+    "rough_map", "rough_pulloff",
 ]
 
 
@@ -777,6 +777,38 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     parts = [_tabor.rough_ensemble(_real(lam, "lam"), hl, d[i:i + step].tolist(), d_min)
              for i in range(0, max(1, len(d)), step)]
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
+
+
+def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation_m=None,
+                     points=400, summits="tables"):
+    """An explicit ensemble of summits in SI, as ``tabor rough --asperities`` computes it: each
+    summit (``heights_m[i]``, ``radii_m[i]``) its own lambda and history, the materials from a
+    rough ``scene`` (a dict, as ``tabor rough --scene`` reads) or a ``preset`` name, an approach
+    down to ``min_separation_m`` (default: the mean height less three standard deviations) and a
+    retract, ``points`` separations each way. ``summits="tables"`` (default) takes the contact
+    states from tables over the summits' lambdas with their error measured (``table_error``);
+    ``"exact"`` solves every state. Returns a dict: ``summits``, ``approach`` and ``retract``
+    (arrays ``separation_m``, ``force_n``, ``real_contact_area_m2``, ``contact_fraction``,
+    ``noncontact_fraction``), ``pulloff_force_n``, ``pulloff_separation_m``, ``summit_solver``,
+    ``table_error``, ``summit_states``, ``seconds``."""
+    h = _numbers(heights_m, "heights_m").ravel()
+    r = _numbers(radii_m, "radii_m").ravel()
+    if (scene is None) == (preset is None):
+        raise ValueError("give a rough scene (a dict) or a preset name, one of them")
+    text = None
+    if scene is not None:
+        if not isinstance(scene, dict):
+            raise TypeError("scene: give a dict (as tabor rough --scene reads)")
+        try:
+            text = json.dumps(scene, allow_nan=False)
+        except ValueError:
+            raise ValueError("scene: a value is not a finite number; give finite values") from None
+    d_min = None if min_separation_m is None else _finite(min_separation_m, "min_separation_m")
+    if int(points) < 0:
+        raise ValueError(f"points = {points}: give a count >= 2")
+    return _tabor.rough_asperities(h.tolist(), r.tolist(), text,
+                                   None if preset is None else str(preset), d_min, int(points),
+                                   str(summits))
 
 
 def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10.0, points=24,

@@ -170,6 +170,15 @@ def rough_ensemble(
     separations: ArrayLike,
     min_separation: Optional[float] = None,
 ) -> Dict[str, Any]: ...
+def rough_asperities(
+    heights_m: ArrayLike,
+    radii_m: ArrayLike,
+    scene: Optional[Dict[str, Any]] = None,
+    preset: Optional[str] = None,
+    min_separation_m: Optional[float] = None,
+    points: int = 400,
+    summits: str = "tables",
+) -> Dict[str, Any]: ...
 def rough_pulloff(
     lambdas: Union[Sequence[float], npt.NDArray[np.float64]] = ...,
     sigma_min: float = 0.01,

@@ -132,3 +132,42 @@ def test_wet_rough_equals_the_command_line_and_refuses_as_it_does():
         tabor.rough(1.0, 0.5, -1.0, stress_ratio=0.2)
     with pytest.raises(ValueError, match="stress ratio"):
         tabor.rough(1.0, 0.5, -1.0, stress_ratio=-0.2, range_ratio=2.0)
+
+
+def test_asperities_equal_the_command_line_and_refuse_as_it_does(tmp_path):
+    rng = np.random.default_rng(3)
+    h = rng.normal(0.0, 50e-9, 400)
+    r = 2e-6 * np.exp(rng.normal(0.0, 0.5, 400))
+    path = tmp_path / "asp.csv"
+    rows = "".join(f"{float(a)!r},{float(b)!r}\n" for a, b in zip(h, r))
+    path.write_text("height_m,radius_m\n" + rows)
+    for summits in ["tables", "exact"]:
+        got = tabor.rough_asperities(h, r, preset="pdms-rough-glass", points=50, summits=summits)
+        out = subprocess.run([str(TABOR), "rough", "--preset", "pdms-rough-glass",
+                              "--asperities", str(path), "--points", "50", "--summits", summits,
+                              "--backend", "cpu"],
+                             capture_output=True, text=True, check=True)
+        want = json.loads(out.stdout)
+        assert got["summits"] == want["summits"] == 400
+        assert got["pulloff_force_n"] == want["pulloff_force_n"]
+        assert got["summit_solver"] == want["summit_solver"]
+        assert got["table_error"] == want["table_error"]
+        for leg in ["approach", "retract"]:
+            for k in ["separation_m", "force_n", "real_contact_area_m2", "contact_fraction",
+                      "noncontact_fraction"]:
+                assert isinstance(got[leg][k], np.ndarray)
+                np.testing.assert_array_equal(got[leg][k], np.array(want[leg][k]))
+        if summits == "tables":
+            tables = got
+    # The two solvers agree within the tables' measured error (forces relative to the largest).
+    exact = got
+    top = np.abs(exact["retract"]["force_n"]).max()
+    assert np.abs(tables["retract"]["force_n"] - exact["retract"]["force_n"]).max() < 1e-6 * top
+    with pytest.raises(ValueError, match="radius"):
+        tabor.rough_asperities([0.0], [-1e-6], preset="pdms-rough-glass")
+    with pytest.raises(ValueError, match="one radius per summit"):
+        tabor.rough_asperities([0.0, 1e-9], [1e-6], preset="pdms-rough-glass")
+    with pytest.raises(ValueError, match="tables or exact"):
+        tabor.rough_asperities(h, r, preset="pdms-rough-glass", summits="fast")
+    with pytest.raises(ValueError, match="presets are"):
+        tabor.rough_asperities(h, r, preset="granite")

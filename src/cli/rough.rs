@@ -42,6 +42,22 @@ pub struct RoughArgs {
     /// the mean summit height less three standard deviations].
     #[arg(long)]
     pub min_separation_m: Option<f64>,
+    /// How an ensemble's summits are solved: `tables` (the contact branch tabulated over the
+    /// summits' lambdas, solved exactly next to each fold, error measured and reported) or
+    /// `exact` (a root search at every summit state).
+    #[arg(long, value_enum, default_value_t = SummitsArg::Tables)]
+    pub summits: SummitsArg,
+    /// Where an ensemble's tables are solved [default: auto, or the environment variable
+    /// TABOR_BACKEND]; the summits are stepped on the CPU.
+    #[arg(long, value_enum)]
+    pub backend: Option<super::BackendArg>,
+    /// Use the first adapter whose name contains this text (see `tabor info`).
+    #[arg(long)]
+    pub adapter: Option<String>,
+    /// GPU arithmetic for an ensemble's tables [default: f64 where the adapter has it, else
+    /// f32]. The CPU path is f64.
+    #[arg(long, value_enum)]
+    pub precision: Option<super::PrecisionArg>,
     /// A built-in rough scene: mems-polysilicon, pdms-rough-glass.
     #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation"])]
     pub preset: Option<String>,
@@ -71,6 +87,15 @@ pub struct RoughArgs {
     pub plot: Option<std::path::PathBuf>,
     #[command(flatten)]
     pub figure: crate::cli::FigureArgs,
+}
+
+/// How an ensemble's summit states are found (`--summits`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SummitsArg {
+    /// Tables over the summits' lambdas, with their error measured.
+    Tables,
+    /// A root search at every summit state.
+    Exact,
 }
 
 /// The JSON of one half of the cycle: arrays, one entry per separation.
@@ -572,18 +597,28 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
         }
         _ => unreachable!("run_ensemble is called with an ensemble"),
     };
+    // Bad summits are refused before an engine is chosen (and says so).
     ensemble::check(&asp)?;
-    let c = sc.summit()?;
-    let m = ensemble::Materials {
-        e_star_pa: c.e_star,
-        work_of_adhesion_j_m2: c.work,
-        range: crate::physics::params::ForceRange::DugdaleStress(c.s0),
+    let solver = match a.summits {
+        SummitsArg::Tables => ensemble::SummitSolver::Tables,
+        SummitsArg::Exact => ensemble::SummitSolver::Exact,
     };
-    let n = asp.len() as f64;
-    let mean = asp.iter().map(|s| s.height_m).sum::<f64>() / n;
-    let sd = (asp.iter().map(|s| (s.height_m - mean).powi(2)).sum::<f64>() / n).sqrt();
-    let d_min = a.min_separation_m.unwrap_or(mean - 3.0 * sd);
-    let r = ensemble::cycle(&asp, &m, d_min, None, a.points)?;
+    let engine = match solver {
+        ensemble::SummitSolver::Exact => crate::engine::Engine::Cpu,
+        ensemble::SummitSolver::Tables => {
+            let gpu = super::basic::GpuArgs {
+                adapter: a.adapter.clone(),
+                check: super::basic::CheckCount(0),
+                precision: a.precision.unwrap_or(super::PrecisionArg::F32),
+            };
+            let mut e = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
+            if a.precision.is_none() && e.set_precision(crate::engine::Precision::F64).is_err() {
+                eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
+            }
+            e
+        }
+    };
+    let r = ensemble::scene_cycle(sc, &asp, a.min_separation_m, a.points, solver, &engine)?;
     let text = match a.format {
         Format::Csv => {
             fn half(l: &crate::rough::ensemble::EnsembleLeg) -> Vec<&[f64]> {
@@ -618,11 +653,24 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
                 "pulloff_separation_m": r.pulloff_separation_m,
                 "nominal_area_m2": sc.nominal_area_m2,
                 "pulloff_stress_pa": r.pulloff_force_n / sc.nominal_area_m2,
+                "summit_solver": r.summit_solver,
+                "table_error": r.table_error,
+                "table_check": r.table_check,
                 "model": "explicit summits, each an exact Maugis-Dugdale sphere with its own radius and history under the flat's displacement; the summits do not interact (no elastic coupling)",
             }))? + "\n"
         }
     };
     write_output(&a.output, text.as_bytes())?;
+    if let Some(e) = r.table_error {
+        eprintln!(
+            "summit states from {}: largest measured interpolation error {}",
+            r.summit_solver,
+            short(e)
+        );
+    }
+    if let Some(c) = &r.table_check {
+        eprintln!("tables: {c}");
+    }
     eprintln!(
         "{} summits: pull-off force {} N at separation {} m ({} summit-states in {} s: {} per second)",
         r.summits,

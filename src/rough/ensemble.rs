@@ -6,7 +6,9 @@
 //! Memory is the summits (two numbers each) and one accumulator per separation and thread: each
 //! summit is taken once, its own context built, and its load at every separation added in.
 
+use super::lambda_table::LambdaTables;
 use super::{RoughError, Summit, SummitBranch};
+use crate::engine::{CheckReport, Engine};
 use crate::physics::domain::DomainError;
 use crate::physics::params::{Contact, ForceRange};
 use serde::Serialize;
@@ -70,6 +72,13 @@ pub struct EnsembleCycle {
     pub summit_states: u64,
     /// Seconds the cycle took.
     pub seconds: f64,
+    /// How the summits' contact states were found: `exact`, or `tables (BACKEND)`.
+    pub summit_solver: String,
+    /// With tables: their largest measured interpolation error, relative to max(1, |value|)
+    /// per summit (loads in pi w R, contact radii in the summit's radius unit).
+    pub table_error: Option<f64>,
+    /// With tables solved on a GPU: their states against the CPU f64 solver on a sample.
+    pub table_check: Option<CheckReport>,
 }
 
 fn bad(name: &'static str, value: f64, range: &'static str, hint: &'static str) -> RoughError {
@@ -176,6 +185,29 @@ impl Sums {
     }
 }
 
+/// How each summit's contact states are found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SummitSolver {
+    /// The exact root search at every summit state.
+    Exact,
+    /// Tables over the ensemble's lambdas ([`LambdaTables`]), solved on an engine, with the
+    /// error measured; exact next to each fold.
+    Tables,
+}
+
+impl std::str::FromStr for SummitSolver {
+    type Err = RoughError;
+    fn from_str(s: &str) -> Result<Self, RoughError> {
+        match s {
+            "tables" => Ok(SummitSolver::Tables),
+            "exact" => Ok(SummitSolver::Exact),
+            _ => Err(RoughError::Scene(format!(
+                "summits {s:?} is not a summit solver: give tables or exact"
+            ))),
+        }
+    }
+}
+
 /// Adds one summit's force, contact area and branch counts at every separation, approach and
 /// retract.
 fn add_summit(
@@ -184,10 +216,16 @@ fn add_summit(
     m: &Materials,
     seps: &[f64],
     d_min: f64,
+    tables: Option<&LambdaTables>,
 ) -> Result<(), RoughError> {
     let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
         .map_err(|e| RoughError::Scene(e.to_string()))?;
     let s = Summit::new(c.lambda())?;
+    let stencil = tables.map(|t| t.stencil(s.lambda));
+    let contact = |delta: f64| match (tables, &stencil) {
+        (Some(t), Some(st)) => t.contact(&s, st, delta),
+        _ => s.contact(delta),
+    };
     let (unit, force, r_unit) = (c.approach_scale(), c.force_scale(), c.radius_scale());
     let delta_max = (a.height_m - d_min) / unit;
     for (k, &d) in seps.iter().enumerate() {
@@ -204,7 +242,7 @@ fn add_summit(
                     slot[leg + 3] += 1.0;
                 }
                 SummitBranch::Contact => {
-                    let (p, ar) = s.contact(delta).ok_or(RoughError::Failed(d, s.lambda))?;
+                    let (p, ar) = contact(delta).ok_or(RoughError::Failed(d, s.lambda))?;
                     slot[leg] += p * force;
                     slot[leg + 1] += PI * (ar * r_unit).powi(2);
                     slot[leg + 2] += 1.0;
@@ -215,8 +253,29 @@ fn add_summit(
     Ok(())
 }
 
+/// The tables an ensemble's summits need: their lambdas' range, and approaches up to the
+/// deepest any summit reaches beyond its fold.
+fn tables_for(
+    asp: &[Asperity],
+    m: &Materials,
+    d_min: f64,
+    engine: &Engine,
+) -> Result<LambdaTables, RoughError> {
+    let (mut lo, mut hi, mut delta_max) = (f64::INFINITY, 0f64, f64::NEG_INFINITY);
+    for a in asp {
+        let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
+            .map_err(|e| RoughError::Scene(e.to_string()))?;
+        let l = c.lambda();
+        lo = lo.min(l);
+        hi = hi.max(l);
+        delta_max = delta_max.max((a.height_m - d_min) / c.approach_scale());
+    }
+    LambdaTables::new(lo, hi, delta_max, engine)
+}
+
 /// Steps every summit through the approach from the largest separation down to `d_min` and
-/// the retract back; separations in m from the reference plane of the heights.
+/// the retract back; separations in m from the reference plane of the heights. Every summit
+/// state is solved exactly, on the CPU.
 pub fn cycle(
     asp: &[Asperity],
     m: &Materials,
@@ -224,10 +283,37 @@ pub fn cycle(
     d_max: Option<f64>,
     points: usize,
 ) -> Result<EnsembleCycle, RoughError> {
+    cycle_with(
+        asp,
+        m,
+        d_min,
+        d_max,
+        points,
+        SummitSolver::Exact,
+        &Engine::Cpu,
+    )
+}
+
+/// As [`cycle`], each summit's contact states found by `solver`; with
+/// [`SummitSolver::Tables`] the tables are solved on `engine` (the summits' stepping is on
+/// the CPU, a few cubic evaluations per state).
+pub fn cycle_with(
+    asp: &[Asperity],
+    m: &Materials,
+    d_min: f64,
+    d_max: Option<f64>,
+    points: usize,
+    solver: SummitSolver,
+    engine: &Engine,
+) -> Result<EnsembleCycle, RoughError> {
     use rayon::prelude::*;
     check(asp)?;
     let seps = separations(asp, m, d_min, d_max, points)?;
     let t = std::time::Instant::now();
+    let tables = match solver {
+        SummitSolver::Exact => None,
+        SummitSolver::Tables => Some(tables_for(asp, m, d_min, engine)?),
+    };
     let n = seps.len();
     // Fixed chunks summed in order: the same bytes whatever the threads' schedule.
     let chunk = (asp.len() / 64).max(1024);
@@ -236,7 +322,7 @@ pub fn cycle(
         .map(|part| -> Result<Sums, RoughError> {
             let mut acc = Sums::new(n);
             for a in part {
-                add_summit(&mut acc, a, m, &seps, d_min)?;
+                add_summit(&mut acc, a, m, &seps, d_min, tables.as_ref())?;
             }
             Ok(acc)
         })
@@ -272,8 +358,39 @@ pub fn cycle(
         approach,
         retract,
         summit_states: 2 * (asp.len() * n) as u64,
+        summit_solver: match &tables {
+            None => "exact".to_string(),
+            Some(t) => format!("tables ({})", t.backend),
+        },
+        table_error: tables.as_ref().map(|t| t.error),
+        table_check: tables.and_then(|t| t.check),
         seconds: t.elapsed().as_secs_f64(),
     })
+}
+
+/// An ensemble's cycle with a rough scene's materials (its summit radius, density, sigma and
+/// nominal area are not used: the summits are given). The smallest separation defaults to the
+/// mean summit height less three standard deviations, as for a Gaussian scene.
+pub fn scene_cycle(
+    scene: &super::scene::RoughScene,
+    asp: &[Asperity],
+    min_separation_m: Option<f64>,
+    points: usize,
+    solver: SummitSolver,
+    engine: &Engine,
+) -> Result<EnsembleCycle, RoughError> {
+    check(asp)?;
+    let c = scene.summit()?;
+    let m = Materials {
+        e_star_pa: c.e_star,
+        work_of_adhesion_j_m2: c.work,
+        range: ForceRange::DugdaleStress(c.s0),
+    };
+    let n = asp.len() as f64;
+    let mean = asp.iter().map(|s| s.height_m).sum::<f64>() / n;
+    let sd = (asp.iter().map(|s| (s.height_m - mean).powi(2)).sum::<f64>() / n).sqrt();
+    let d_min = min_separation_m.unwrap_or(mean - 3.0 * sd);
+    cycle_with(asp, &m, d_min, None, points, solver, engine)
 }
 
 /// Summits of a measured height map (rows of `nx` heights in m, pixel `pixel_m` apart): every

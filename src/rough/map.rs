@@ -35,7 +35,7 @@ const TABLE_TARGET: f64 = 1e-6;
 /// The exactly solved stretch may reach up to this v (u about 2.5).
 const EXACT_V_MAX: f64 = 2.0;
 /// Table step in the graded variable v (u = v + v^2 / (2 U_S), u = sqrt(delta - delta_out)).
-const TABLE_H: f64 = 0.025;
+pub(crate) const TABLE_H: f64 = 0.025;
 /// 1 / TABLE_H: the quadrature's inner loop multiplies rather than divides.
 const TABLE_INV_H: f64 = 40.0;
 const U_S: f64 = 4.0;
@@ -122,7 +122,7 @@ fn u_of_v(v: f64) -> f64 {
 }
 
 #[inline]
-fn v_of_u(u: f64) -> f64 {
+pub(crate) fn v_of_u(u: f64) -> f64 {
     // The positive root of v^2 / (2 U_S) + v - u = 0, written without cancellation.
     2.0 * u / (1.0 + (1.0 + u * (2.0 / U_S)).sqrt())
 }
@@ -192,7 +192,7 @@ impl BranchTable {
 
     /// The spline at `v` (the last interval's cubic beyond the table).
     #[inline]
-    fn at_v(&self, v: f64) -> f64 {
+    pub(crate) fn at_v(&self, v: f64) -> f64 {
         let x = v * TABLE_INV_H;
         let k = (x as usize).min(self.coef.len() - 1);
         let s = x - k as f64;

@@ -6,6 +6,7 @@
 //! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
 
 pub mod ensemble;
+pub mod lambda_table;
 pub mod map;
 pub mod scene;
 pub mod wet;
