@@ -113,7 +113,6 @@ pub mod cycle;
 pub mod engine;
 pub mod export;
 pub mod figure_data;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod fit;
 pub mod gpu;
 pub mod io;
