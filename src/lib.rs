@@ -123,7 +123,6 @@ pub mod profile;
 pub mod profile_two_zone;
 pub mod progress;
 #[cfg(feature = "render")]
-#[allow(missing_docs)] // not yet documented item by item
 pub mod render;
 pub mod rough;
 pub mod scene;
