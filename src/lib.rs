@@ -85,7 +85,7 @@
 
 // `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
-// Every public item is documented; the modules marked `allow(missing_docs)` below are not yet.
+// Every public item is documented.
 #![warn(missing_docs)]
 
 // Messages on stderr that never panic: std's `eprintln!` panics when stderr is a closed pipe
@@ -107,13 +107,11 @@ macro_rules! eprint {
 
 pub mod bench;
 #[cfg(feature = "cli")]
-#[allow(missing_docs)] // not yet documented item by item
 pub mod cli;
 pub mod cycle;
 pub mod engine;
 pub mod export;
 pub mod figure_data;
-#[allow(missing_docs)] // not yet documented item by item
 pub mod fit;
 pub mod gpu;
 pub mod io;
@@ -124,7 +122,6 @@ pub mod profile;
 pub mod profile_two_zone;
 pub mod progress;
 #[cfg(feature = "render")]
-#[allow(missing_docs)] // not yet documented item by item
 pub mod render;
 pub mod rough;
 pub mod scene;

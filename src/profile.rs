@@ -7,6 +7,7 @@ use crate::physics::fields::{
     energy_release_over_w, hertz_gap, hertz_pressure, jkr_gap, jkr_pressure, jkr_stress_intensity,
     MdGeometry,
 };
+use crate::physics::model::ContactModel;
 use crate::physics::params::Contact;
 use crate::solver::{LambdaContext, SolveError, Status};
 use serde::Serialize;
@@ -22,13 +23,25 @@ pub enum Given {
     Radius(f64),
 }
 
+/// Whether a model of a profile has a state at its load.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ProfileStatus {
+    /// The model has a state: the arrays are filled.
+    Ok,
+    /// The load is below this model's pull-off: no contact, empty arrays.
+    NoContact,
+}
+
 /// The profile of one model.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModelProfile {
-    /// The model: `md`, `two_zone`, `hertz`, `dmt` or `jkr`.
-    pub model: &'static str,
+    /// The model: Maugis-Dugdale, the two-zone law ([`ContactModel::SolidAndMeniscus`]), Hertz,
+    /// DMT or JKR. Written as [`ModelProfile::model_name`].
+    #[serde(serialize_with = "serialize_model")]
+    pub model: ContactModel,
     /// `ok`, or `no_contact` where the load is below this model's pull-off (empty arrays).
-    pub status: &'static str,
+    pub status: ProfileStatus,
     /// Contact radius.
     pub a: Option<f64>,
     /// Outer radius of the zone where the surface forces act (MD: the Dugdale zone; Hertz and
@@ -57,7 +70,26 @@ pub struct ModelProfile {
     pub notes: Vec<String>,
 }
 
+/// A profile's model by its name in JSON and CSV.
+fn serialize_model<S: serde::Serializer>(m: &ContactModel, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(profile_model_name(*m))
+}
+
+/// The name of a profile's model: [`ContactModel::name`], except `two_zone` for the two-zone
+/// law (the name profiles have always written).
+fn profile_model_name(m: ContactModel) -> &'static str {
+    match m {
+        ContactModel::SolidAndMeniscus => "two_zone",
+        m => m.name(),
+    }
+}
+
 impl ModelProfile {
+    /// The model's name in JSON and CSV: `md`, `two_zone`, `hertz`, `dmt` or `jkr`.
+    pub fn model_name(&self) -> &'static str {
+        profile_model_name(self.model)
+    }
+
     /// Into SI units: lengths by `fr`, forces by `ff`, approaches and gaps by `fd`, stresses by
     /// `fp` (the stress intensity by `fp sqrt(fr)`).
     pub(crate) fn scale(&mut self, fr: f64, ff: f64, fd: f64, fp: f64) {
@@ -118,10 +150,10 @@ pub(crate) fn radii(r_max: f64, n: usize, edges: &[f64]) -> Vec<f64> {
     r
 }
 
-fn no_contact(model: &'static str, load: f64, why: &str) -> ModelProfile {
+fn no_contact(model: ContactModel, load: f64, why: &str) -> ModelProfile {
     ModelProfile {
         model,
-        status: Status::NoContact.name(),
+        status: ProfileStatus::NoContact,
         a: None,
         c: None,
         load,
@@ -210,8 +242,8 @@ pub fn profile(lambda: f64, given: Given, points: usize) -> Result<Profile, Prof
     // From mu, not the gap at C: C and A are equal in f64 where lambda is large.
     let j = md.energy_release_over_w();
     let md_profile = ModelProfile {
-        model: "md",
-        status: "ok",
+        model: ContactModel::Md,
+        status: ProfileStatus::Ok,
         a: Some(a),
         c: Some(c),
         load,
@@ -246,8 +278,8 @@ pub(crate) fn closed_form_models(load: f64, r: &[f64]) -> [ModelProfile; 3] {
     );
     let hertz = match ah {
         Some(ah) => ModelProfile {
-            model: "hertz",
-            status: "ok",
+            model: ContactModel::Hertz,
+            status: ProfileStatus::Ok,
             a: Some(ah),
             c: Some(ah),
             load,
@@ -261,12 +293,16 @@ pub(crate) fn closed_form_models(load: f64, r: &[f64]) -> [ModelProfile; 3] {
             energy_release_rate_over_w: Some(0.0),
             notes: vec!["no surface forces: no tension anywhere".into()],
         },
-        None => no_contact("hertz", load, "no compressive load: Hertz has no contact"),
+        None => no_contact(
+            ContactModel::Hertz,
+            load,
+            "no compressive load: Hertz has no contact",
+        ),
     };
     let dmt = match ad {
         Some(ad) => ModelProfile {
-            model: "dmt",
-            status: "ok",
+            model: ContactModel::Dmt,
+            status: ProfileStatus::Ok,
             a: Some(ad),
             c: None,
             load,
@@ -282,14 +318,14 @@ pub(crate) fn closed_form_models(load: f64, r: &[f64]) -> [ModelProfile; 3] {
                 "Hertzian pressure and profile under the load plus 2 (the adhesive force 2 pi w R acts outside the contact, its distribution not modelled): pressure outside the contact shown as 0".into(),
             ],
         },
-        None => no_contact("dmt", load, "the load is below the DMT pull-off -2"),
+        None => no_contact(ContactModel::Dmt, load, "the load is below the DMT pull-off -2"),
     };
     let jkr = match aj {
         Some(aj) => {
             let k = jkr_stress_intensity(aj);
             ModelProfile {
-                model: "jkr",
-                status: "ok",
+                model: ContactModel::Jkr,
+                status: ProfileStatus::Ok,
                 a: Some(aj),
                 c: Some(aj),
                 load,
@@ -309,7 +345,11 @@ pub(crate) fn closed_form_models(load: f64, r: &[f64]) -> [ModelProfile; 3] {
                 ],
             }
         }
-        None => no_contact("jkr", load, "the load is below the JKR pull-off -3/2"),
+        None => no_contact(
+            ContactModel::Jkr,
+            load,
+            "the load is below the JKR pull-off -3/2",
+        ),
     };
     [hertz, dmt, jkr]
 }

@@ -2,8 +2,11 @@
 //! water meniscus; docs/PHYSICS.md section 10), beside Hertz, DMT and JKR of the total w at the
 //! same load. Units built on the total w, as in [`crate::solver::two_zone`].
 
+use crate::physics::model::ContactModel;
 use crate::physics::two_zone::Zones;
-use crate::profile::{closed_form_models, radii, Given, ModelProfile, MAX_PROFILE_POINTS};
+use crate::profile::{
+    closed_form_models, radii, Given, ModelProfile, ProfileStatus, MAX_PROFILE_POINTS,
+};
 use crate::solver::two_zone::{TwoZoneContext, TwoZoneState};
 use crate::solver::Status;
 use serde::Serialize;
@@ -108,8 +111,8 @@ pub fn two_zone_profile(
             .filter(|&c| c > s.a)
             .fold(c_out, f64::min);
     let tz = ModelProfile {
-        model: "two_zone",
-        status: "ok",
+        model: ContactModel::SolidAndMeniscus,
+        status: ProfileStatus::Ok,
         a: Some(s.a),
         c: Some(c_out),
         load: s.load,

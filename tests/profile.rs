@@ -8,7 +8,8 @@ use tabor::physics::fields::{
     energy_release_over_w, hertz_pressure, jkr_pressure, jkr_stress_intensity, MdGeometry,
 };
 use tabor::physics::md::curve_point;
-use tabor::profile::{profile, Given};
+use tabor::physics::model::ContactModel;
+use tabor::profile::{profile, Given, ProfileStatus};
 use tabor::solver::{LambdaContext, Status};
 
 #[test]
@@ -144,7 +145,11 @@ fn closed_form_fields() {
     }
     // Hertz: 3P/(2 pi a^2) sqrt(1 - r^2/a^2), in the profile of a compressive load.
     let p = profile(1.0, Given::Load(2.0), 200).unwrap();
-    let h = p.models.iter().find(|m| m.model == "hertz").unwrap();
+    let h = p
+        .models
+        .iter()
+        .find(|m| m.model == ContactModel::Hertz)
+        .unwrap();
     let a = h.a.unwrap();
     assert!((a.powi(3) - 2.0).abs() < 1e-14);
     for (r, q) in h.r.iter().zip(&h.pressure) {
@@ -156,7 +161,11 @@ fn closed_form_fields() {
         assert!((q.unwrap() - expected).abs() < 1e-12, "r {r}");
     }
     // JKR's pressure is singular at r = a: null there, never inf.
-    let j = p.models.iter().find(|m| m.model == "jkr").unwrap();
+    let j = p
+        .models
+        .iter()
+        .find(|m| m.model == ContactModel::Jkr)
+        .unwrap();
     let k = j.r.iter().position(|&r| r == j.a.unwrap()).unwrap();
     assert!(j.pressure[k].is_none());
     assert!(j.pressure.iter().flatten().all(|q| q.is_finite()));
@@ -172,10 +181,18 @@ fn closed_form_fields() {
     }
     // Below the models' pull-offs: no contact, empty arrays.
     let p = profile(10.0, Given::Load(-1.45), 200).unwrap();
-    let dmt = p.models.iter().find(|m| m.model == "dmt").unwrap();
-    assert_eq!(dmt.status, "ok");
-    let hertz = p.models.iter().find(|m| m.model == "hertz").unwrap();
-    assert!(hertz.status == "no_contact" && hertz.r.is_empty());
+    let dmt = p
+        .models
+        .iter()
+        .find(|m| m.model == ContactModel::Dmt)
+        .unwrap();
+    assert_eq!(dmt.status, ProfileStatus::Ok);
+    let hertz = p
+        .models
+        .iter()
+        .find(|m| m.model == ContactModel::Hertz)
+        .unwrap();
+    assert!(hertz.status == ProfileStatus::NoContact && hertz.r.is_empty());
     assert!(profile(1.0, Given::Load(-1.7), 200).is_err());
     assert!(profile(1e-30, Given::Load(0.0), 200).is_err());
     // Given the approach or the radius: the same state as given the load.

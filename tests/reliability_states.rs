@@ -98,7 +98,7 @@ fn energy_release_rate_is_one_where_c_equals_a_in_f64() {
     ] {
         let pr = profile(l, Given::Load(p), 64).unwrap();
         let md = &pr.models[0];
-        assert_eq!(md.model, "md");
+        assert_eq!(md.model, tabor::physics::model::ContactModel::Md);
         let j = md.energy_release_rate_over_w.unwrap();
         assert!((j - 1.0).abs() < 1e-9, "lambda {l} load {p}: J/w = {j}");
     }

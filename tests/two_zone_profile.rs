@@ -144,7 +144,7 @@ fn the_gap_at_each_edge_is_its_range_and_j_is_the_total_work() {
             assert!(rel(j, 1.0) < 1e-9, "J/w = {j}");
             assert!(rel(p.energy_release_rate_over_w, 1.0) < 1e-9);
             // Hertz, DMT and JKR of the total w at the same load.
-            let names: Vec<_> = p.models.iter().map(|m| m.model).collect();
+            let names: Vec<_> = p.models.iter().map(|m| m.model_name()).collect();
             assert_eq!(names, ["two_zone", "hertz", "dmt", "jkr"]);
             assert!(p.models.iter().all(|x| x.load == m.load));
         }

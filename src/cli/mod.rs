@@ -12,13 +12,13 @@ use clap::{Parser, Subcommand, ValueEnum};
 
 #[derive(Parser, Debug)]
 #[command(name = "tabor", version, about = "Adhesion maps for elastic spheres: exact Maugis-Dugdale solutions on the GPU and CPU", long_about = None)]
-pub struct Cli {
+pub(crate) struct Cli {
     #[command(subcommand)]
     pub command: Command,
 }
 
 #[derive(Subcommand, Debug)]
-pub enum Command {
+pub(crate) enum Command {
     /// Solve Maugis-Dugdale states: one (--lambda, --load) or a CSV of points (--input).
     Solve(basic::SolveArgs),
     /// Pull-off (jump-out) under load and displacement control for one or more lambda.
@@ -64,7 +64,7 @@ pub enum Command {
 
 /// Where the work runs (`--backend`); the library's [`crate::engine::Backend`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum BackendArg {
+pub(crate) enum BackendArg {
     /// A hardware GPU, else the CPU (exact, and faster than a software adapter on the same
     /// cores; `gpu` uses one).
     Auto,
@@ -99,7 +99,10 @@ fn env_setting(var: &str) -> anyhow::Result<Option<String>> {
 
 /// Where the work runs: `--backend`, else the environment variable TABOR_BACKEND (named in the
 /// message when its value is wrong), else `default`.
-pub fn backend_choice(flag: Option<BackendArg>, default: BackendArg) -> anyhow::Result<BackendArg> {
+pub(crate) fn backend_choice(
+    flag: Option<BackendArg>,
+    default: BackendArg,
+) -> anyhow::Result<BackendArg> {
     if let Some(b) = flag {
         return Ok(b);
     }
@@ -116,7 +119,10 @@ pub fn backend_choice(flag: Option<BackendArg>, default: BackendArg) -> anyhow::
 /// The GPU adapter to use: `--adapter`, else the environment variable TABOR_ADAPTER. The CPU
 /// backend has none: an `--adapter` with it is refused (it would be silently ignored), a
 /// TABOR_ADAPTER is not used.
-pub fn adapter_choice(flag: Option<&str>, backend: BackendArg) -> anyhow::Result<Option<String>> {
+pub(crate) fn adapter_choice(
+    flag: Option<&str>,
+    backend: BackendArg,
+) -> anyhow::Result<Option<String>> {
     if backend == BackendArg::Cpu {
         if let Some(a) = flag {
             anyhow::bail!(
@@ -133,7 +139,7 @@ pub fn adapter_choice(flag: Option<&str>, backend: BackendArg) -> anyhow::Result
 
 /// The GPU's arithmetic (`--precision`); the library's [`crate::engine::Precision`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PrecisionArg {
+pub(crate) enum PrecisionArg {
     F32,
     F64,
 }
@@ -149,7 +155,7 @@ impl From<PrecisionArg> for crate::engine::Precision {
 
 /// A map's load axis (`--load-axis`); the library's [`crate::map::LoadAxis`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum LoadAxisArg {
+pub(crate) enum LoadAxisArg {
     /// Pbar on a log axis (positive loads): the classic map.
     Log,
     /// Pbar - Pbar_c on a log axis: the tensile range down to the pull-off.
@@ -171,7 +177,7 @@ impl From<LoadAxisArg> for crate::map::LoadAxis {
 /// A quantity drawn with a colorbar (`--quantity`); the library's
 /// [`crate::render::map::Quantity`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum QuantityArg {
+pub(crate) enum QuantityArg {
     /// Contact radius A (log scale).
     A,
     /// Approach Dbar.
@@ -200,7 +206,7 @@ impl From<QuantityArg> for crate::render::map::Quantity {
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum Format {
+pub(crate) enum Format {
     Text,
     Csv,
     Json,
@@ -218,7 +224,7 @@ impl std::fmt::Display for Format {
 
 /// A `--format` that accepts only `accepted` (which `--help` lists), for a command that does
 /// not write every [`Format`].
-pub fn formats(
+pub(crate) fn formats(
     accepted: &'static [&'static str],
 ) -> impl clap::builder::TypedValueParser<Value = Format> {
     use clap::builder::TypedValueParser as _;
@@ -226,6 +232,9 @@ pub fn formats(
         .map(|s| <Format as ValueEnum>::from_str(&s, false).expect("a format name"))
 }
 
+/// Parses the process's arguments and runs the command: the whole of the `tabor` binary. A
+/// command line that cannot be parsed exits the process with code 1 (`--help` and `--version`
+/// print to stdout and exit with 0); any other failure is returned.
 pub fn run() -> anyhow::Result<()> {
     // A command line that cannot be parsed is bad input like any other: exit code 1 (clap's
     // own is 2); --help and --version go to stdout with 0.
@@ -261,7 +270,7 @@ pub fn run() -> anyhow::Result<()> {
 /// How a figure is written: its files (the format of each by its extension) and its printed
 /// size.
 #[derive(clap::Args, Debug, Clone)]
-pub struct FigureArgs {
+pub(crate) struct FigureArgs {
     /// The same figure as SVG (vector; text as text).
     #[arg(long)]
     pub svg: Option<std::path::PathBuf>,
@@ -282,7 +291,7 @@ pub struct FigureArgs {
 
 /// The data outputs of a map-like command (`--json`, and `--npy PREFIX` as PREFIX_NAME for
 /// each of `files`), named by their options for `FigureArgs::check_distinct`.
-pub fn data_outputs(
+pub(crate) fn data_outputs(
     json: Option<&std::path::Path>,
     npy: Option<&str>,
     files: &[&str],
@@ -297,7 +306,10 @@ pub fn data_outputs(
 }
 
 /// Opens PREFIX_NAME for each of `files` (none without `--npy`).
-pub fn open_npy(prefix: Option<&str>, files: &[&str]) -> anyhow::Result<Vec<crate::io::Output>> {
+pub(crate) fn open_npy(
+    prefix: Option<&str>,
+    files: &[&str],
+) -> anyhow::Result<Vec<crate::io::Output>> {
     use anyhow::Context;
     prefix
         .map_or(&[][..], |_| files)
@@ -309,7 +321,7 @@ pub fn open_npy(prefix: Option<&str>, files: &[&str]) -> anyhow::Result<Vec<crat
 
 /// The library names quantities (`lambda_min`, `width_mm`, ...), never flags; the command line
 /// adds its flag names to the library's messages, from the list for that message's source.
-pub fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
+pub(crate) fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
     names.iter().fold(msg.to_string(), |m, (name, flag)| {
         // Whole words only: `nx` in `nx_min` or `dpi` in `dpis` stays.
         let mut out = String::with_capacity(m.len());
@@ -332,7 +344,7 @@ pub fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
 }
 
 /// The rough adhesion map's quantities as flags.
-pub const ROUGH_MAP_FLAGS: &[(&str, &str)] = &[
+pub(crate) const ROUGH_MAP_FLAGS: &[(&str, &str)] = &[
     ("lambda_min", "--lambda-min"),
     ("lambda_max", "--lambda-max"),
     ("sigma_min", "--sigma-min"),
@@ -344,14 +356,14 @@ pub const ROUGH_MAP_FLAGS: &[(&str, &str)] = &[
 ];
 
 /// The humidity sweep's quantities as flags.
-pub const HUMIDITY_FLAGS: &[(&str, &str)] = &[
+pub(crate) const HUMIDITY_FLAGS: &[(&str, &str)] = &[
     ("rh_min", "--rh-min"),
     ("rh_max", "--rh-max"),
     ("points", "--points"),
 ];
 
 /// The map's quantities as flags.
-pub const MAP_FLAGS: &[(&str, &str)] = &[
+pub(crate) const MAP_FLAGS: &[(&str, &str)] = &[
     ("lambda_min", "--lambda-min"),
     ("lambda_max", "--lambda-max"),
     ("load_min", "--load-min"),
@@ -368,7 +380,7 @@ pub const MAP_FLAGS: &[(&str, &str)] = &[
 ];
 
 /// A figure's size as flags.
-pub const FIGURE_FLAGS: &[(&str, &str)] = &[("width_mm", "--width-mm"), ("dpi", "--dpi")];
+pub(crate) const FIGURE_FLAGS: &[(&str, &str)] = &[("width_mm", "--width-mm"), ("dpi", "--dpi")];
 
 impl FigureArgs {
     /// The printed size; `default_mm` where no width is given.

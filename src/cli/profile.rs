@@ -252,7 +252,7 @@ pub fn profile_csv(p: &Profile) -> anyhow::Result<String> {
     for m in &p.models {
         for ((r, q), g) in m.r.iter().zip(&m.pressure).zip(&m.gap) {
             w.write_record([
-                m.model.to_string(),
+                m.model_name().to_string(),
                 fmt17(*r),
                 q.map_or(String::new(), fmt17),
                 fmt17(*g),

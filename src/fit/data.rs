@@ -9,11 +9,17 @@ use std::collections::HashMap;
 /// One approach-retract curve, points in the order measured.
 #[derive(Clone, Debug, Default)]
 pub struct Curve {
+    /// The curve's id: the `curve` column, else `x,y` of a force map, else `0`.
     pub id: String,
+    /// The pixel column in a force map (the `x` column), if given.
     pub x: Option<i64>,
+    /// The pixel row in a force map (the `y` column), if given.
     pub y: Option<i64>,
+    /// Each point's segment: approach or retract.
     pub segment: Vec<Direction>,
+    /// Piezo height of the cantilever base at each point (m), larger farther from the sample.
     pub height: Vec<f64>,
+    /// Force at each point (N), positive when repulsive.
     pub force: Vec<f64>,
     /// What reading did to the curve (a dwell left out, one segment split): fit warnings.
     pub notes: Vec<String>,
@@ -23,55 +29,92 @@ pub struct Curve {
 }
 
 impl Curve {
+    /// The number of points.
     pub fn len(&self) -> usize {
         self.height.len()
     }
+    /// Whether the curve has no points.
     pub fn is_empty(&self) -> bool {
         self.height.is_empty()
     }
 }
 
+/// The curves of one input, in order of first appearance.
 pub type CurveSet = Vec<Curve>;
 
+/// Why an input of force curves could not be read. `path` is the input's name as given.
 #[derive(Debug, thiserror::Error)]
 pub enum DataError {
+    /// The file could not be opened or read.
     #[error("cannot read {path}")]
     Io {
+        /// The input.
         path: String,
+        /// The error of the read.
         #[source]
         source: std::io::Error,
     },
+    /// The CSV/TSV is malformed.
     #[error("{path}")]
     Csv {
+        /// The input.
         path: String,
+        /// The parser's error.
         #[source]
         source: csv::Error,
     },
+    /// A required column is absent.
     #[error("{path}: no column `{column}` (columns: {found}); a force curve needs segment, height_m and force_n")]
     MissingColumn {
+        /// The input.
         path: String,
+        /// The missing column.
         column: &'static str,
+        /// The columns the header has, comma-separated.
         found: String,
     },
+    /// A cell is not a valid value of its column.
     #[error("{path}, line {line}: {column} = `{value}` {what}")]
     Value {
+        /// The input.
         path: String,
+        /// The line of the cell (1 is the header).
         line: u64,
+        /// The cell's column.
         column: &'static str,
+        /// The cell as read.
         value: String,
+        /// What is wrong with it.
         what: &'static str,
     },
+    /// The `.npz` archive or one of its arrays is not usable.
     #[error("{path}: {what}")]
-    Npz { path: String, what: String },
+    Npz {
+        /// The input.
+        path: String,
+        /// What is wrong.
+        what: String,
+    },
+    /// The input has a header but no data rows.
     #[error("{path}: no data rows")]
-    Empty { path: String },
+    Empty {
+        /// The input.
+        path: String,
+    },
+    /// The input exceeds [`POINTS_PER_CURVE_MAX`] or [`POINTS_MAX`].
     #[error("{path}: {what}")]
-    TooLarge { path: String, what: String },
+    TooLarge {
+        /// The input.
+        path: String,
+        /// Which limit was passed.
+        what: String,
+    },
 }
 
 /// Most points of one curve (an AFM curve has 1e3..1e5) and of one input: beyond them the
 /// input is refused, so that memory stays bounded (17 bytes a point).
 pub const POINTS_PER_CURVE_MAX: usize = 10_000_000;
+/// Most points of one input, all its curves together (see [`POINTS_PER_CURVE_MAX`]).
 pub const POINTS_MAX: usize = 50_000_000;
 
 trait ReadSeek: std::io::Read + std::io::Seek {}

@@ -17,10 +17,15 @@ use std::f64::consts::PI;
 /// The humidity of a fitted curve and the solid's w it leaves (SI units).
 #[derive(Clone, Debug, Serialize)]
 pub struct FitHumidity {
+    /// Relative humidity, 0..1.
     pub relative_humidity: f64,
+    /// Contact angle of water on the surfaces (degrees).
     pub contact_angle_deg: f64,
+    /// Surface tension of the liquid (N/m), the default filled in.
     pub surface_tension_n_m: f64,
+    /// Molar volume of the liquid (m^3/mol), the default filled in.
     pub molar_volume_m3_mol: f64,
+    /// Temperature (K), the default filled in.
     pub temperature_k: f64,
     /// The meniscus as a Dugdale zone; null where none forms (a contact angle of 90 degrees or
     /// more).

@@ -22,13 +22,19 @@ pub const LEVELS: [f64; 2] = [1.0, 3.841458820694124];
 /// An interval `[low, high]`, `None` for an end the data leave open.
 pub type Interval = [Option<f64>; 2];
 
-/// The intervals of one fit at 68% and 95%.
+/// The intervals of one fit at 68% and 95% (index 0 and 1, as [`LEVELS`]); an interval is
+/// `None` where it could not be computed (no covariance, a non-finite width).
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Intervals {
+    /// The reduced modulus E* (Pa).
     pub e_star_pa: [Option<Interval>; 2],
+    /// The work of adhesion w (J/m^2).
     pub work_of_adhesion_j_m2: [Option<Interval>; 2],
+    /// The Maugis parameter lambda.
     pub lambda: [Option<Interval>; 2],
+    /// The contact point, the base height where the surfaces meet (m).
     pub contact_point_m: [Option<Interval>; 2],
+    /// The Lennard-Jones range z0 (m).
     pub z0_m: [Option<Interval>; 2],
     /// Fits at fixed lambda added to the profile to place the crossings.
     pub extra_fits: usize,

@@ -7,8 +7,11 @@ use super::*;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Segments {
+    /// The retract segment only (the default: it holds the pull-off).
     Retract,
+    /// The approach segment only.
     Approach,
+    /// Both segments, in one fit.
     Both,
 }
 
@@ -23,6 +26,8 @@ impl Segments {
     }
 }
 
+/// What a fit of force curves is given besides the curves (SI units);
+/// [`FitOptions::validate`] checks them.
 #[derive(Clone, Debug)]
 pub struct FitOptions {
     /// Tip radius R (m).
@@ -31,6 +36,7 @@ pub struct FitOptions {
     pub spring: f64,
     /// The sample's Poisson ratio, to report its Young's modulus (a rigid tip).
     pub poisson: Option<f64>,
+    /// Which segments are fitted.
     pub segments: Segments,
     /// Fix lambda through the Lennard-Jones range z0 (m) instead of fitting it.
     pub z0: Option<f64>,
@@ -72,6 +78,7 @@ pub const Z0_RANGE: (f64, f64) = (1e-12, 1e-6);
 /// adhesion. A w below the weakest van der Waals contact (1e-6) is
 /// no measurable adhesion (a Hertz curve), not a failure.
 pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
+/// The largest plausible work of adhesion w (J/m^2); see [`E_STAR_RANGE`].
 pub const W_MAX: f64 = 10.0;
 
 impl FitOptions {
@@ -143,7 +150,9 @@ impl FitOptions {
 /// An option of the fit out of its range: which (the field of [`FitOptions`]) and why.
 #[derive(Debug, Clone)]
 pub struct OptionError {
+    /// The option's field name in [`FitOptions`].
     pub option: &'static str,
+    /// What is wrong, with the value and its limits.
     pub message: String,
 }
 

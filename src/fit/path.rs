@@ -24,13 +24,18 @@ use std::f64::consts::PI;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Model {
+    /// Hertz: no adhesion.
     Hertz,
+    /// DMT: Hertz plus the adhesive load `2 pi w R` outside the contact.
     Dmt,
+    /// JKR: adhesion inside the contact, a crack at its edge.
     Jkr,
+    /// Maugis-Dugdale, lambda fitted (or fixed by z0).
     Md,
 }
 
 impl Model {
+    /// Every fitted model, from the simplest.
     pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
 
     /// The model in the common vocabulary.
@@ -43,10 +48,12 @@ impl Model {
         }
     }
 
+    /// The name in JSON and on the command line ([`ContactModel::name`]).
     pub fn name(self) -> &'static str {
         self.contact_model().name()
     }
 
+    /// The name for people ([`ContactModel::label`]).
     pub fn label(self) -> &'static str {
         self.contact_model().label()
     }
@@ -79,35 +86,51 @@ impl TryFrom<ContactModel> for Model {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Direction {
+    /// Towards the sample (the base height decreasing).
     Approach,
+    /// Away from the sample.
     Retract,
 }
 
+/// A piece of a model's equilibrium path, each with its own parameter t.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Piece {
+    /// Apart, no force: t is the approach Dbar.
     Free,
+    /// Maugis-Dugdale apart, the Dugdale zone's outer radius t = C > 0 with no contact.
     NonContact,
+    /// In contact: t = -ln mu for Maugis-Dugdale, t = A for the closed forms.
     Contact,
 }
 
 /// A state and its slopes with respect to the piece's parameter.
 #[derive(Clone, Copy, Debug)]
 pub struct Pt {
+    /// The load Pbar.
     pub load: f64,
+    /// The approach Dbar.
     pub approach: f64,
+    /// The contact radius A (0 apart).
     pub a: f64,
+    /// dPbar/dt.
     pub dload: f64,
+    /// dDbar/dt.
     pub dapproach: f64,
 }
 
 /// A state on the followed path.
 #[derive(Clone, Copy, Debug)]
 pub struct PathState {
+    /// The piece the state is on.
     pub piece: Piece,
+    /// Its parameter on that piece.
     pub t: f64,
+    /// The load Pbar (normalised).
     pub load: f64,
+    /// The contact radius A (normalised; 0 apart).
     pub a: f64,
+    /// The approach Dbar (normalised).
     pub approach: f64,
     /// Held at the end of its stretch (a point the data puts on the other side of a jump).
     pub clamped: bool,
@@ -138,8 +161,11 @@ impl PathState {
 /// can move the model's jump onto the measured one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Side {
+    /// Not told by the data: the followed path decides.
     Any,
+    /// Before the first jump of its direction (retract: still in contact).
     BeforeJump,
+    /// After it.
     AfterJump,
 }
 
@@ -170,8 +196,11 @@ struct Segment {
 /// The path of one model at one lambda under one spring, up to base displacement `delta_max`.
 #[derive(Clone, Debug)]
 pub struct SpringPath {
+    /// The model followed.
     pub model: Model,
+    /// Its Maugis parameter (used by Maugis-Dugdale only).
     pub lambda: f64,
+    /// The normalised spring stiffness kbar.
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
     free_end: f64,

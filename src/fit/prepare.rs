@@ -6,8 +6,11 @@ use super::*;
 /// A curve made ready for fitting: baseline removed, the points of the fitted segments.
 #[derive(Clone, Debug)]
 pub struct Prepared {
+    /// Base height of each fitted point (m).
     pub height: Vec<f64>,
+    /// Force at each fitted point, baseline removed (N).
     pub force: Vec<f64>,
+    /// Each point's segment.
     pub dir: Vec<Direction>,
     /// Each point's side of its segment's measured jump (Any where none was measured).
     pub side: Vec<Side>,
@@ -15,7 +18,10 @@ pub struct Prepared {
     /// (`path::fold_distance`), which stays smooth in the parameters where the model's fold
     /// passes them.
     pub at_jump: Vec<bool>,
+    /// The removed baseline `(b0, b1)`: force `b0 + b1 height` (N, N/m; b1 is 0 without
+    /// [`FitOptions::tilt`]).
     pub baseline: (f64, f64),
+    /// The rms of the baseline's points about it (N): the force noise.
     pub noise: f64,
     /// What preparing the curve changed or found (outliers dropped, jittering heights): warnings.
     pub notes: Vec<String>,
@@ -23,6 +29,7 @@ pub struct Prepared {
 
 /// Fewer points than this in the fitted segments, or in contact, and a curve is refused or warned.
 pub const MIN_POINTS: usize = 20;
+/// Fewer points in contact than this and a curve is warned about (see [`MIN_POINTS`]).
 pub const MIN_CONTACT_POINTS: usize = 10;
 
 /// Checks a curve and removes its baseline.

@@ -6,22 +6,33 @@ use super::*;
 /// Physical parameters of a model.
 #[derive(Clone, Copy, Debug)]
 pub struct Params {
+    /// The reduced modulus E* (Pa).
     pub e_star: f64,
+    /// The work of adhesion w (J/m^2).
     pub w: f64,
+    /// The Maugis parameter (used by Maugis-Dugdale only).
     pub lambda: f64,
+    /// The contact point: the base height where the base displacement is zero (m).
     pub zc: f64,
+    /// The force offset added to the model's force (N).
     pub f0: f64,
 }
 
 /// The unit conversions of one parameter set: force and approach units and kbar.
 #[derive(Clone, Copy, Debug)]
 pub struct Units {
+    /// The force unit `pi w R` (N).
     pub force: f64,
+    /// The approach unit `(pi^2 w^2 R / K^2)^(1/3)` (m), `K = 4 E*/3`.
     pub approach: f64,
+    /// The radius unit `(pi w R^2 / K)^(1/3)` (m).
     pub radius: f64,
+    /// The spring constant in these units: `k` times the approach unit over the force unit.
     pub kbar: f64,
 }
 
+/// The Johnson-Greenwood units of `p` with the tip radius `radius` (m) and the spring constant
+/// `spring` (N/m).
 pub fn units(p: &Params, radius: f64, spring: f64) -> Units {
     let k = 4.0 / 3.0 * p.e_star;
     let force = PI * p.w * radius;
@@ -434,12 +445,17 @@ impl Problem<'_> {
 /// The starting point of a fit: closed-form estimates from the measured curve.
 #[derive(Clone, Copy, Debug)]
 pub struct Estimates {
+    /// E* from the contact part of the curve taken as Hertzian (Pa).
     pub e_star: f64,
     /// The measured pull-off force (positive, N).
     pub pulloff: f64,
+    /// The contact point (m): the tip height at the pull-off, or where the force leaves zero
+    /// on a curve without adhesion.
     pub zc: f64,
 }
 
+/// The starting point of a fit of the prepared curve `d`, with the tip radius (m) and the
+/// spring constant (N/m).
 pub fn estimates(d: &Prepared, radius: f64, spring: f64) -> Estimates {
     let n = d.force.len();
     let (imin, fmin) = d

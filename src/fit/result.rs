@@ -3,9 +3,11 @@
 
 use super::*;
 
+/// How a fit of a curve (or of one model to it) ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FitStatus {
+    /// Fitted.
     Ok,
     /// The curve cannot be fitted as given (NaN, too few points, no segment to fit, ...).
     InvalidInput,
@@ -18,25 +20,37 @@ pub enum FitStatus {
 /// One model's fit.
 #[derive(Clone, Debug, Serialize)]
 pub struct ModelFit {
+    /// The model fitted.
     pub model: Model,
+    /// How the fit ended.
     pub status: FitStatus,
+    /// The reduced modulus E* (Pa).
     pub e_star_pa: f64,
+    /// Its standard error (Pa; NaN without a covariance).
     pub e_star_pa_stderr: f64,
-    /// Zero for Hertz.
+    /// The work of adhesion w (J/m^2). Zero for Hertz.
     pub work_of_adhesion_j_m2: f64,
+    /// Its standard error (J/m^2).
     pub work_of_adhesion_j_m2_stderr: f64,
-    /// Maugis-Dugdale only.
+    /// The Maugis parameter. Maugis-Dugdale only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<f64>,
+    /// Its standard error, where lambda is a fitted parameter or a function of them.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda_stderr: Option<f64>,
+    /// The contact point: the base height where the base displacement is zero (m).
     pub contact_point_m: f64,
+    /// Its standard error (m).
     pub contact_point_m_stderr: f64,
-    /// The fitted force offset, on top of the baseline removed before the fit.
+    /// The fitted force offset, on top of the baseline removed before the fit (N).
     pub force_offset_n: f64,
+    /// The rms of the force residuals (N; NaN where the model could not be evaluated).
     pub rms_residual_n: f64,
+    /// The most tensile load of the fitted path under the cantilever (N, positive).
     pub pulloff_force_model_n: f64,
+    /// The optimiser's Jacobian evaluations.
     pub iterations: usize,
+    /// Why the optimiser stopped, in words.
     pub stop: String,
     #[serde(skip)]
     pub(super) cov: Option<DMatrix<f64>>,
@@ -49,75 +63,115 @@ pub struct ModelFit {
 /// The result for one curve (SI units; `_stderr` from the covariance of the fit).
 #[derive(Clone, Debug, Serialize)]
 pub struct CurveFit {
+    /// The curve's id ([`Curve::id`]).
     pub curve: String,
+    /// The force map's pixel column, if the curve has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub x: Option<i64>,
+    /// The force map's pixel row, if the curve has one.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub y: Option<i64>,
+    /// How the fit ended; the fitted values are null unless it is `ok`.
     pub status: FitStatus,
+    /// `ok`, or why the curve was not fitted.
     pub message: String,
+    /// The reduced modulus E* of the Maugis-Dugdale fit (Pa).
     pub e_star_pa: Option<f64>,
+    /// Its standard error (Pa).
     pub e_star_pa_stderr: Option<f64>,
+    /// The sample's Young's modulus `E* (1 - nu^2)` with the given Poisson ratio (a rigid tip).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub youngs_modulus_pa: Option<f64>,
+    /// The work of adhesion w (J/m^2).
     pub work_of_adhesion_j_m2: Option<f64>,
+    /// Its standard error (J/m^2).
     pub work_of_adhesion_j_m2_stderr: Option<f64>,
+    /// The Maugis parameter lambda.
     pub lambda: Option<f64>,
+    /// Its standard error.
     pub lambda_stderr: Option<f64>,
+    /// Tabor's parameter `mu_T = (R w^2 / (E*^2 z0^3))^(1/3)` with the z0 of the fit.
     pub tabor_parameter: Option<f64>,
+    /// Its standard error.
     pub tabor_parameter_stderr: Option<f64>,
+    /// The Lennard-Jones range z0 (m): the given one, or the one lambda implies.
     pub z0_m: Option<f64>,
+    /// Its standard error (m; 0 where z0 was given).
     pub z0_m_stderr: Option<f64>,
+    /// The contact point: the base height where the base displacement is zero (m).
     pub contact_point_m: Option<f64>,
+    /// Its standard error (m).
     pub contact_point_m_stderr: Option<f64>,
     /// Baseline offset plus the fitted offset (N).
     pub force_offset_n: Option<f64>,
     /// With `tilt`: the baseline's slope (N/m of height).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub baseline_tilt_n_m: Option<f64>,
+    /// The rms of the Maugis-Dugdale fit's force residuals (N).
     pub rms_residual_n: Option<f64>,
     /// The most tensile force measured in the fitted segments, as a positive number (N).
     pub pulloff_force_measured_n: Option<f64>,
     /// The same on the fitted Maugis-Dugdale path.
     pub pulloff_force_model_n: Option<f64>,
+    /// The largest force in the fitted segments, baseline removed (N).
     pub max_load_n: Option<f64>,
+    /// The largest contact radius of the fitted Maugis-Dugdale states (m).
     pub max_contact_radius_m: Option<f64>,
     /// Normalised loads the fitted segments span on the adhesion map (min, max).
     pub load_range_normalised: Option<[f64; 2]>,
+    /// The Maugis-Dugdale fit's Jacobian evaluations.
     pub iterations: usize,
+    /// Why its optimiser stopped, in words.
     pub stop: String,
+    /// The points fitted (spikes dropped, the fitted segments only).
     pub points_fitted: usize,
+    /// How many of them the fitted Maugis-Dugdale path puts in contact.
     pub points_in_contact: usize,
     /// Hertz, DMT and JKR fitted with the same spring and jumps.
     pub models: Vec<ModelFit>,
-    /// Profile-likelihood intervals `[low, high]` (68% and 95%; `null` for an end the data
-    /// leave open), which carry lambda's ambiguity into E*, w, z0 and the contact point.
+    /// E* at 68% (Pa). The intervals are profile-likelihood ones, `[low, high]` (68% and 95%;
+    /// `null` for an end the data leave open), which carry lambda's ambiguity into E*, w, z0
+    /// and the contact point.
     pub e_star_pa_interval_68: Option<interval::Interval>,
+    /// E* at 95% (Pa).
     pub e_star_pa_interval_95: Option<interval::Interval>,
+    /// w at 68% (J/m^2).
     pub work_of_adhesion_j_m2_interval_68: Option<interval::Interval>,
+    /// w at 95% (J/m^2).
     pub work_of_adhesion_j_m2_interval_95: Option<interval::Interval>,
+    /// lambda at 68%.
     pub lambda_interval_68: Option<interval::Interval>,
+    /// lambda at 95%.
     pub lambda_interval_95: Option<interval::Interval>,
+    /// The contact point at 68% (m).
     pub contact_point_m_interval_68: Option<interval::Interval>,
+    /// The contact point at 95% (m).
     pub contact_point_m_interval_95: Option<interval::Interval>,
+    /// z0 at 68% (m).
     pub z0_m_interval_68: Option<interval::Interval>,
+    /// z0 at 95% (m).
     pub z0_m_interval_95: Option<interval::Interval>,
     /// Whether the 95% interval of lambda is bounded at both ends.
     pub lambda_determined: Option<bool>,
     /// What the data say of lambda at 95% ("lambda > 4.1 at 95%", or the interval).
     pub lambda_bound: Option<String>,
-    /// The statistical test of each closed form against Maugis-Dugdale: Delta chi^2 at the
-    /// noise of the residual.
+    /// The noise the closed forms are tested at against Maugis-Dugdale (Delta chi^2): the
+    /// residual's rms over the degrees of freedom (N).
     pub noise_from_residual_n: Option<f64>,
+    /// The simplest model the curve does not reject (by that test, or by
+    /// [`FitOptions::tolerance`] on a noise-free curve).
     pub adequate_model: Option<Model>,
+    /// Why that model, in words.
     pub why: String,
     /// The Tabor self-consistency verdict of `tabor infer` on the measured pull-off, with the
     /// fitted E* and z0.
     pub verdict: Option<String>,
+    /// What the reader should know about this fit (data, range, plausibility).
     pub warnings: Vec<String>,
     /// With a humidity: the meniscus and the solid's w with it taken out.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub humidity: Option<humidity::FitHumidity>,
+    /// The Maugis-Dugdale fit itself (not written: its values are the ones above).
     #[serde(skip)]
     pub md: Option<ModelFit>,
 }
@@ -126,11 +180,17 @@ pub struct CurveFit {
 /// curve's result, whether it is drawn on a log scale, and its label and SI unit (drawn with
 /// the prefix that suits the values where `prefixed`).
 pub struct MapQuantity {
+    /// The file name's stem.
     pub name: &'static str,
+    /// The value of a curve's result (None: a blank pixel).
     pub value: fn(&CurveFit) -> Option<f64>,
+    /// Drawn on a log scale.
     pub log: bool,
+    /// The colorbar's label.
     pub label: &'static str,
+    /// The SI unit (empty for a number).
     pub unit: &'static str,
+    /// Whether the unit takes an SI prefix suited to the values.
     pub prefixed: bool,
     /// Drawn only where lambda is determined (its standard error below it): elsewhere the
     /// value is one end of a flat misfit, and would take the colour scale.
@@ -186,8 +246,6 @@ pub const MAP_QUANTITIES: [MapQuantity; 5] = [
     },
 ];
 
-/// The pixel grid of a force map: its size and, per pixel (row-major, row 0 at y = 0), the
-/// index of its curve. Every curve needs x and y.
 /// Most pixels of a force map (4096 x 4096, as an adhesion map): a grid sized by the largest
 /// pixel index would otherwise take memory without bound.
 pub const MAP_PIXELS_MAX: usize = 1 << 24;
@@ -222,6 +280,8 @@ pub fn map_size<'a>(
     Ok((nx, ny))
 }
 
+/// The pixel grid of a force map: its size and, per pixel (row-major, row 0 at y = 0), the
+/// index of its curve. Every curve needs x and y.
 pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), String> {
     let (nx, ny) = map_size(results.iter().map(|r| (r.x, r.y, r.curve.as_str())))?;
     let mut grid = vec![None; nx * ny];

@@ -7,11 +7,16 @@ use super::{model_forces, units, Params};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
+/// What a synthetic curve is made from (SI units).
 #[derive(Clone, Debug)]
 pub struct Synthetic {
+    /// The model whose path under the cantilever gives the forces.
     pub model: Model,
+    /// Its parameters (E*, w, lambda, contact point, force offset).
     pub params: Params,
+    /// Tip radius R (m).
     pub radius: f64,
+    /// Cantilever spring constant k (N/m).
     pub spring: f64,
     /// Points per segment (approach, then retract).
     pub points: usize,
@@ -19,6 +24,7 @@ pub struct Synthetic {
     pub depth: f64,
     /// Standard deviation of the force noise (N).
     pub noise: f64,
+    /// The noise generator's seed (the curve's id is `synthetic-<seed>`).
     pub seed: u64,
 }
 

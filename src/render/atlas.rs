@@ -8,11 +8,17 @@ type Err = Box<dyn std::error::Error + Send + Sync>;
 
 /// An error map: `err` is row-major (ny rows of nx, row 0 the smallest gap), NaN marks a failure.
 pub struct ErrorMap<'a> {
+    /// The figure's title (the method).
     pub title: String,
+    /// The first and last lambda of the columns (log-spaced).
     pub lambdas: (f64, f64),
+    /// The first and last distance above the pull-off of the rows (normalised load, log-spaced).
     pub gaps: (f64, f64),
+    /// Columns.
     pub nx: usize,
+    /// Rows.
     pub ny: usize,
+    /// The relative error of the contact radius at each point.
     pub err: &'a [f64],
 }
 

@@ -86,6 +86,7 @@ impl Quantity {
     }
 }
 
+/// The fill of a region of the adhesion map (Okabe-Ito, lightened).
 pub fn region_color(r: Region) -> RGBColor {
     // Okabe-Ito, lightened so that lines and labels stay legible on top.
     match r {

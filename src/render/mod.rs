@@ -137,7 +137,9 @@ pub const SAMPLE: i32 = 72;
 /// A figure's printed size: its width and the resolution of its PNG.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Print {
+    /// The printed width (mm).
     pub width_mm: f64,
+    /// The PNG's resolution (dots per inch).
     pub dpi: f64,
 }
 
@@ -148,12 +150,14 @@ impl Default for Print {
 }
 
 impl Print {
+    /// One journal column ([`SINGLE_COLUMN_MM`]) at [`DEFAULT_DPI`].
     pub fn single_column() -> Print {
         Print {
             width_mm: SINGLE_COLUMN_MM,
             dpi: DEFAULT_DPI,
         }
     }
+    /// Two journal columns ([`DOUBLE_COLUMN_MM`]) at [`DEFAULT_DPI`].
     pub fn double_column() -> Print {
         Print {
             width_mm: DOUBLE_COLUMN_MM,
@@ -192,16 +196,27 @@ impl Print {
 /// The figures tabor draws, each with its shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
+    /// The adhesion map's regions.
     Map,
+    /// One quantity over the adhesion map's plane ([`map::Quantity`]).
     QuantityMap,
+    /// Pull-off forces against lambda.
     Pulloff,
+    /// Load-approach curves.
     Curves,
+    /// Speed against accuracy of the solver variants.
     Bench,
+    /// One error map of the failure atlas ([`atlas`]).
     Atlas,
+    /// A real contact and its place on the map (two panels).
     Scene,
+    /// An approach-retract cycle (two panels).
     Cycle,
+    /// Pressure and gap profiles (two panels).
     Profile,
+    /// A fitted force curve and its models.
     Fit,
+    /// One quantity over a force map's pixels.
     ForceMap,
 }
 
@@ -260,8 +275,11 @@ impl Kind {
 /// Which files a figure goes to.
 #[derive(Clone, Debug, Default)]
 pub struct Outputs {
+    /// The PNG file, if asked for.
     pub png: Option<std::path::PathBuf>,
+    /// The SVG file, if asked for.
     pub svg: Option<std::path::PathBuf>,
+    /// The PDF file, if asked for.
     pub pdf: Option<std::path::PathBuf>,
 }
 
@@ -294,6 +312,7 @@ impl Outputs {
         *slot = Some(path.to_path_buf());
         Ok(())
     }
+    /// Whether no file is asked for.
     pub fn is_empty(&self) -> bool {
         self.png.is_none() && self.svg.is_none() && self.pdf.is_none()
     }
@@ -309,16 +328,22 @@ impl Outputs {
 /// Which encodings to produce.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Formats {
+    /// A PNG.
     pub png: bool,
+    /// An SVG.
     pub svg: bool,
+    /// A PDF.
     pub pdf: bool,
 }
 
 /// A figure in the formats asked for.
 #[derive(Default)]
 pub struct Rendered {
+    /// The PNG's bytes.
     pub png: Option<Vec<u8>>,
+    /// The SVG's text.
     pub svg: Option<String>,
+    /// The PDF's bytes.
     pub pdf: Option<Vec<u8>>,
 }
 
@@ -568,6 +593,7 @@ pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>, image::ImageErro
     Ok(out)
 }
 
+/// The viridis colour at `t` in 0..1 (clamped): dark purple to yellow.
 pub fn viridis(t: f64) -> plotters::style::RGBColor {
     let c = colorous::VIRIDIS.eval_continuous(t.clamp(0.0, 1.0));
     plotters::style::RGBColor(c.r, c.g, c.b)
@@ -697,13 +723,14 @@ pub fn sample_dashed(
 
 /// One entry of a legend drawn in rows: a line sample (dashed or solid) and its label.
 pub struct Entry {
+    /// The label, which may hold the [`markup`] of subscripts, superscripts and bars.
     pub label: String,
+    /// The line's colour and width.
     pub style: plotters::style::ShapeStyle,
+    /// Whether the sample is dashed.
     pub dashed: bool,
 }
 
-/// Width in units of a label (markup removed) at font `size`: plotters' estimate, which is a few
-/// percent wider than the SVG text, so boxes built on it are safe.
 /// The font size at most `size` at which `text` fits on one line across `area` (less its
 /// margins): a long title is set smaller rather than cut off at both ends.
 pub fn fitting_size<DB: plotters::prelude::DrawingBackend, CT: plotters::coord::CoordTranslate>(
@@ -720,6 +747,8 @@ pub fn fitting_size<DB: plotters::prelude::DrawingBackend, CT: plotters::coord::
     }
 }
 
+/// Width in units of a label (markup removed) at font `size`: plotters' estimate, which is a few
+/// percent wider than the SVG text, so boxes built on it are safe.
 pub fn text_width<DB: plotters::prelude::DrawingBackend, CT: plotters::coord::CoordTranslate>(
     area: &plotters::prelude::DrawingArea<DB, CT>,
     text: &str,
@@ -839,6 +868,7 @@ pub fn legend_rows_height<DB: plotters::prelude::DrawingBackend>(
 /// Pixel boxes (x0, y0, x1, y1) already taken on a figure, and a search for a free spot.
 #[derive(Default)]
 pub struct Placer {
+    /// The boxes taken.
     pub boxes: Vec<(i32, i32, i32, i32)>,
     /// Polylines (pixel coordinates) that labels must not cross.
     pub lines: Vec<Vec<(i32, i32)>>,

@@ -5,6 +5,7 @@ use crate::physics::closed::{
     cos_pulloff, dmt_radius, hertz_radius, jkr_radius, JKR_PULLOFF_DISPLACEMENT, JKR_PULLOFF_LOAD,
 };
 use crate::physics::md::LAMBDA_D;
+use crate::physics::model::ContactModel;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -873,12 +874,9 @@ where
         )
     };
     let colour = profile_style;
-    let label = |m: &str| match m {
-        "md" => "Maugis-Dugdale",
-        "two_zone" => "two Dugdale zones",
-        "hertz" => "Hertz",
-        "dmt" => "DMT",
-        _ => "JKR",
+    let label = |m: ContactModel| match m {
+        ContactModel::SolidAndMeniscus => "two Dugdale zones",
+        m => m.label(),
     };
     // Pressure range: the MD and closed-form values; JKR's singular tension (infinite at r = a)
     // leaves the axes a little below the Dugdale stress.
@@ -904,7 +902,11 @@ where
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
-    for m in p.models.iter().filter(|m| m.status == "ok") {
+    for m in p
+        .models
+        .iter()
+        .filter(|m| m.status == crate::profile::ProfileStatus::Ok)
+    {
         let (col, w) = colour(m.model);
         let st = ShapeStyle::from(&col).stroke_width(w);
         // Split at missing values (JKR's singular point), clamp into the plotted range.
@@ -941,11 +943,11 @@ where
 
 /// The line of a model in the profile figure: MD (or two zones) bold black, the closed forms
 /// thin in colour.
-fn profile_style(m: &str) -> (RGBColor, u32) {
+fn profile_style(m: ContactModel) -> (RGBColor, u32) {
     match m {
-        "md" | "two_zone" => (BLACK, 4),
-        "hertz" => (GRAY_, 2),
-        "dmt" => (BLUE_, 2),
+        ContactModel::Md | ContactModel::SolidAndMeniscus => (BLACK, 4),
+        ContactModel::Hertz => (GRAY_, 2),
+        ContactModel::Dmt => (BLUE_, 2),
         _ => (ORANGE_, 2),
     }
 }
@@ -974,7 +976,11 @@ where
         .y_label_formatter(&|v| super::linear_label(*v))
         .x_label_formatter(&|v| super::linear_label(*v))
         .draw()?;
-    for m in p.models.iter().filter(|m| m.status == "ok") {
+    for m in p
+        .models
+        .iter()
+        .filter(|m| m.status == crate::profile::ProfileStatus::Ok)
+    {
         let (col, w) = colour(m.model);
         let st = ShapeStyle::from(&col).stroke_width(w);
         chart.draw_series(LineSeries::new(
