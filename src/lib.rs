@@ -13,10 +13,14 @@
 //! the MD curve, fields, number types) -> [`solver`] (f64 contexts, root finding, batches,
 //! curves) -> [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda
 //! preparation, the CPU mirror of each shader) -> [`gpu`] (device, pipelines, dispatch) ->
-//! [`engine`] (backend choice, cross-check) -> [`map`], [`scene`], [`cycle`], [`profile`] ->
+//! [`engine`] (backend choice, cross-check) -> [`map`], [`scene`], [`mod@cycle`], [`mod@profile`] ->
 //! [`render`] (feature `render`), [`export`], [`io`] -> the command line (feature `cli`). Without
 //! default features (`cargo build --lib --no-default-features`) the crate is the solver, kernels,
 //! GPU host, maps, scenes, cycles, profiles and fits, without the renderer or the terminal.
+//!
+//! The crate root re-exports what most users need ([`solve_one`], [`LambdaContext`],
+//! [`Engine`], [`MapSpec`], [`solve_scene`], [`fit_curve`], [`Rough`], ...); the modules hold
+//! the rest.
 //!
 //! # Examples
 //!
@@ -120,9 +124,23 @@ pub mod map;
 pub mod physics;
 pub mod profile;
 pub mod profile_two_zone;
-pub mod progress;
+pub(crate) mod progress;
 #[cfg(feature = "render")]
 pub mod render;
 pub mod rough;
 pub mod scene;
 pub mod solver;
+
+// What a user of the library needs most, at the crate root; the modules hold the rest.
+pub use cycle::{cycle, Cycle, Drive};
+pub use engine::{Backend, Engine, Precision};
+pub use fit::{fit_curve, Curve, CurveFit, FitOptions};
+pub use map::{compute as compute_map, MapData, MapSpec, Region};
+pub use physics::model::ContactModel;
+pub use physics::params::{Contact, ForceRange};
+pub use profile::{profile, Given, Profile};
+pub use rough::ensemble::{Asperity, EnsembleCycle, SummitSolver};
+pub use rough::map::{RoughMap, RoughMapSpec};
+pub use rough::{Rough, RoughCycle, Summit};
+pub use scene::{infer, preset, solve_scene, SceneInput, SceneResult};
+pub use solver::{solve_one, Control, LambdaContext, State, Status};

@@ -12,6 +12,8 @@ mod silent {
     /// Draws nothing; the same calls as the terminal bar.
     pub struct Progress;
 
+    // The same calls as the bar; some are made only by the command line.
+    #[allow(dead_code)]
     impl Progress {
         /// A bar of `len` units.
         pub fn new(_what: &str, _len: u64, _unit: &str) -> Progress {
