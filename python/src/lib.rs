@@ -473,7 +473,13 @@ fn infer_pulloff_wet<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let h = tabor::scene::humidity::HumidityInput::water(relative_humidity, contact_angle_deg);
     run_py(py, move || {
-        Ok(tabor::scene::infer_wet(force, radius, e_star, z0, &h)?)
+        // Named as infer_pulloff's keywords, where a scene names its keys.
+        tabor::scene::infer_wet(force, radius, e_star, z0, &h).map_err(|e| {
+            anyhow::anyhow!(e
+                .to_string()
+                .replace("humidity.relative_humidity", "relative_humidity")
+                .replace("humidity.contact_angle_deg", "contact_angle_deg"))
+        })
     })
 }
 
@@ -575,7 +581,12 @@ fn fit_curves<'py>(
         // The library's check, as the command line makes it.
         if let Err(e) = opt.validate() {
             // Named as fit_curves' keyword.
-            let kw = if e.option == "z0" { "z0_m" } else { e.option };
+            let kw = match e.option {
+                "z0" => "z0_m",
+                "spring" => "spring_n_m",
+                "radius" => "radius_m",
+                o => o,
+            };
             anyhow::bail!("{kw}: {}", e.message);
         }
         let mut curves: Vec<Curve> = Vec::new();
@@ -636,15 +647,25 @@ fn cycle<'py>(
             )))
         }
     };
-    match (stress_ratio, range_ratio) {
-        (None, None) => run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?)),
-        (Some(rho), Some(eta)) => run_py(py, move || {
-            Ok(tabor::cycle::two_zone::cycle(lam, rho, eta, drive, max_load)?)
+    match two_zone_ratios(stress_ratio, range_ratio)? {
+        None => run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?)),
+        Some((rho, eta)) => run_py(py, move || {
+            Ok(tabor::cycle::two_zone::cycle(
+                lam, rho, eta, drive, max_load,
+            )?)
         }),
-        _ => Err(PyValueError::new_err(
-            "give stress_ratio and range_ratio together (the second zone's stress and range over the solid's)",
-        )),
     }
+}
+
+/// The second zone's ratios paired by the library's check (ValueError where one is missing).
+#[pyfunction]
+#[pyo3(signature = (stress_ratio, range_ratio))]
+fn two_zone_ratios(
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
+) -> PyResult<Option<(f64, f64)>> {
+    tabor::physics::two_zone::paired_ratios(stress_ratio, range_ratio)
+        .map_err(PyValueError::new_err)
 }
 
 /// A profile's state: `given` load|approach|radius, with its value.
@@ -909,6 +930,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(profile, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
+    m.add_function(wrap_pyfunction!(two_zone_ratios, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_asperities, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_map, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_pulloff, m)?)?;

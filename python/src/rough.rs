@@ -37,16 +37,18 @@ pub fn rough<'py>(
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let c = run(py, move || {
-        match (stress_ratio, range_ratio) {
-        (None, None) => Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?),
-        (Some(rho), Some(eta)) => Ok(tabor::rough::wet::WetRough::new(lam, rho, eta, sigma)?
-            .cycle(lam, min_separation, max_separation, points)?),
-        _ => anyhow::bail!(
-            "a meniscus needs both stress_ratio and range_ratio (its stress and range over the solid's); give both, or neither for dry summits"
-        ),
-    }
-    })?;
+    let c =
+        run(py, move || {
+            let ratios = tabor::physics::two_zone::paired_ratios(stress_ratio, range_ratio)
+                .map_err(anyhow::Error::msg)?;
+            match ratios {
+                None => {
+                    Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?)
+                }
+                Some((rho, eta)) => Ok(tabor::rough::wet::WetRough::new(lam, rho, eta, sigma)?
+                    .cycle(lam, min_separation, max_separation, points)?),
+            }
+        })?;
     let d = PyDict::new(py);
     d.set_item("lambda", c.lambda)?;
     d.set_item("sigma", c.sigma)?;
@@ -167,9 +169,15 @@ fn ensemble_leg<'py>(
     let d = PyDict::new(py);
     d.set_item("separation_m", arr(py, l.separation_m.clone()))?;
     d.set_item("force_n", arr(py, l.force_n.clone()))?;
-    d.set_item("real_contact_area_m2", arr(py, l.real_contact_area_m2.clone()))?;
+    d.set_item(
+        "real_contact_area_m2",
+        arr(py, l.real_contact_area_m2.clone()),
+    )?;
     d.set_item("contact_fraction", arr(py, l.contact_fraction.clone()))?;
-    d.set_item("noncontact_fraction", arr(py, l.noncontact_fraction.clone()))?;
+    d.set_item(
+        "noncontact_fraction",
+        arr(py, l.noncontact_fraction.clone()),
+    )?;
     Ok(d)
 }
 

@@ -113,6 +113,11 @@ def _real(x, name):
     return float(_numbers(x, name))
 
 
+def _optional(x, name):
+    """None, or a float for a scalar argument."""
+    return None if x is None else _real(x, name)
+
+
 def _finite(x, name):
     """A finite float for a scalar argument, or ValueError naming it."""
     v = _real(x, name)
@@ -312,9 +317,8 @@ def pulloff(lam, stress_ratio=None, range_ratio=None):
     solid's Maugis parameter, one number, and the result is a dict of the two pull-offs'
     ``*_load``, ``*_A`` and ``*_approach`` in units built on the total work of adhesion.
     """
-    if stress_ratio is not None or range_ratio is not None:
-        if stress_ratio is None or range_ratio is None:
-            raise ValueError("give both stress_ratio= and range_ratio= for a second zone")
+    if _tabor.two_zone_ratios(_optional(stress_ratio, "stress_ratio"),
+                              _optional(range_ratio, "range_ratio")) is not None:
         return _tabor.pulloff_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),
                                        _real(range_ratio, "range_ratio"))
     (lam_f,), shape = _flat(lam, names=["lam"])
@@ -725,9 +729,8 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
              if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of load=, approach= or radius=")
-    if stress_ratio is not None or range_ratio is not None:
-        if stress_ratio is None or range_ratio is None:
-            raise ValueError("give both stress_ratio= and range_ratio= for a second zone")
+    if _tabor.two_zone_ratios(_optional(stress_ratio, "stress_ratio"),
+                              _optional(range_ratio, "range_ratio")) is not None:
         # The two-zone state (``tabor profile --stress-ratio --range-ratio``): its model
         # "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
         p = _tabor.profile_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),

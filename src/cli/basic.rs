@@ -41,10 +41,10 @@ pub struct SolveArgs {
     /// section 10).
     /// With --input, the same second zone for every row (each row's lambda the solid's), solved
     /// on the CPU.
-    #[arg(long, requires = "range_ratio")]
+    #[arg(long)]
     pub stress_ratio: Option<f64>,
     /// The second zone's range over the solid's, h2/h1.
-    #[arg(long, requires = "stress_ratio")]
+    #[arg(long)]
     pub range_ratio: Option<f64>,
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
@@ -173,8 +173,9 @@ impl Given {
 }
 
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
+    let ratios = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
     if let Some(input) = &a.input {
-        if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+        if let Some((rho, eta)) = ratios {
             return solve_two_zone_file(&a, input, (rho, eta));
         }
         return match a.control {
@@ -191,7 +192,7 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
         (None, None, Some(r)) => (Given::Radius, r),
         _ => bail!("give one of --load, --approach or --radius-a with --lambda"),
     };
-    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+    if let Some((rho, eta)) = ratios {
         return solve_two_zone(&a, lambda, (rho, eta), given, value);
     }
     if let Some(c) = a.control.filter(|&c| c != given) {
@@ -285,8 +286,7 @@ fn solve_two_zone(
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
-    let z = Zones::from_ratios(lambda, rho, eta)
-        .map_err(|e| anyhow::anyhow!("--lambda, --stress-ratio, --range-ratio: {e}"))?;
+    let z = Zones::from_ratios(lambda, rho, eta)?;
     let ctx = TwoZoneContext::new(z).map_err(|st| {
         anyhow::anyhow!(
             "--lambda {lambda}: the two-zone curve could not be computed ({})",
@@ -400,8 +400,7 @@ fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> an
         f => f,
     };
     // The ratios are checked once, with a lambda the solver takes, before anything is written.
-    Zones::from_ratios(1.0, rho, eta)
-        .map_err(|e| anyhow::anyhow!("--stress-ratio, --range-ratio: {e}"))?;
+    Zones::from_ratios(1.0, rho, eta)?;
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
@@ -933,10 +932,10 @@ pub struct PulloffArgs {
     pub lambda: Vec<f64>,
     /// A second Dugdale zone (e.g. a water meniscus): its stress over the solid's, s2/s1.
     /// Loads and radii are then in units built on the total w (docs/PHYSICS.md section 10).
-    #[arg(long, requires = "range_ratio")]
+    #[arg(long)]
     pub stress_ratio: Option<f64>,
     /// The second zone's range over the solid's, h2/h1.
-    #[arg(long, requires = "stress_ratio")]
+    #[arg(long)]
     pub range_ratio: Option<f64>,
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
@@ -951,8 +950,7 @@ fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
     use crate::solver::two_zone::TwoZoneContext;
     let mut rows = Vec::new();
     for &l in &a.lambda {
-        let z = Zones::from_ratios(l, rho, eta)
-            .map_err(|e| anyhow::anyhow!("--lambda {l}, --stress-ratio, --range-ratio: {e}"))?;
+        let z = Zones::from_ratios(l, rho, eta)?;
         let ctx = TwoZoneContext::new(z).map_err(|st| {
             anyhow::anyhow!(
                 "--lambda {l}: the two-zone curve could not be computed ({})",
@@ -1037,7 +1035,7 @@ fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
 }
 
 pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
-    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+    if let Some((rho, eta)) = super::two_zone_ratios(a.stress_ratio, a.range_ratio)? {
         return pulloff_two_zone(&a, rho, eta);
     }
     let mut rows = Vec::new();

@@ -15,6 +15,7 @@ pub enum SegmentArg {
 }
 
 #[derive(Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct FitArgs {
     /// CSV or TSV with a header (segment, height_m, force_n; optionally curve, or x and y of a
     /// force map), or a NumPy .npz with the same array names; `-` is stdin.
@@ -210,7 +211,11 @@ fn options(a: &FitArgs) -> anyhow::Result<FitOptions> {
     };
     // One check of the options, the library's, as Python's fit_curves makes it.
     if let Err(e) = opt.validate() {
-        bail!("--{}: {}", e.option.replace('_', "-"), e.message);
+        let flag = match e.option {
+            "spring" => "spring-n-m".to_string(),
+            o => o.replace('_', "-"),
+        };
+        bail!("--{flag}: {}", e.message);
     }
     Ok(opt)
 }

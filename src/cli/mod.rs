@@ -321,6 +321,22 @@ pub(crate) fn open_npy(
 
 /// The library names quantities (`lambda_min`, `width_mm`, ...), never flags; the command line
 /// adds its flag names to the library's messages, from the list for that message's source.
+/// The second zone's ratios, paired by the library's check, its message in flags.
+pub(crate) fn two_zone_ratios(
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
+) -> anyhow::Result<Option<(f64, f64)>> {
+    crate::physics::two_zone::paired_ratios(stress_ratio, range_ratio).map_err(|m| {
+        anyhow::anyhow!(with_flags(
+            &m,
+            &[
+                ("stress_ratio", "--stress-ratio"),
+                ("range_ratio", "--range-ratio")
+            ]
+        ))
+    })
+}
+
 pub(crate) fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
     names.iter().fold(msg.to_string(), |m, (name, flag)| {
         // Whole words only: `nx` in `nx_min` or `dpi` in `dpis` stays.

@@ -31,10 +31,10 @@ pub struct ProfileArgs {
     pub load_n: Option<f64>,
     /// A second Dugdale zone (e.g. a water meniscus): its stress over the solid's, s2/s1; then
     /// --lambda is the solid's and units are built on the total w (docs/PHYSICS.md section 10).
-    #[arg(long, requires = "range_ratio", conflicts_with_all = ["scene", "preset"])]
+    #[arg(long, conflicts_with_all = ["scene", "preset"])]
     pub stress_ratio: Option<f64>,
     /// The second zone's range over the solid's, h2/h1.
-    #[arg(long, requires = "stress_ratio")]
+    #[arg(long)]
     pub range_ratio: Option<f64>,
     /// Sampling points on the uniform part of the r grid (more are added near a and c).
     #[arg(long, default_value_t = 400)]
@@ -61,7 +61,7 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    if let (Some(rho), Some(eta)) = (a.stress_ratio, a.range_ratio) {
+    if let Some((rho, eta)) = super::two_zone_ratios(a.stress_ratio, a.range_ratio)? {
         return run_two_zone(&a, rho, eta, &figure, &print);
     }
     let scene = match (&a.scene, &a.preset) {
@@ -107,12 +107,8 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     if let Err(e @ crate::profile::ProfileError::Points(_)) = &p {
         bail!(super::with_flags(&e.to_string(), &[("points", "--points")]));
     }
-    let mut p = p.context(match given {
-        Given::Load(_) if contact.is_some() => "--load-n",
-        Given::Load(_) => "--load",
-        Given::Approach(_) => "--approach",
-        Given::Radius(_) => "--radius-a",
-    })?;
+    // The library's message names the quantity, as Python's profile() shows it.
+    let mut p = p?;
     if let Some(c) = &contact {
         p = p.to_si(c);
     }

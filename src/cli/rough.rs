@@ -165,10 +165,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     let (Some(lambda), Some(sigma), Some(d_min)) = (a.lambda, a.sigma, a.min_separation) else {
         anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
     };
-    if a.stress_ratio.is_some() != a.range_ratio.is_some() {
-        anyhow::bail!("a meniscus needs both --stress-ratio and --range-ratio (its stress and range over the solid's); give both, or neither for dry summits");
-    }
-    let wet = a.stress_ratio.zip(a.range_ratio);
+    let wet = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
     let c = match wet {
         None => Rough::new(lambda, sigma)?
             .cycle(d_min, a.max_separation, a.points)

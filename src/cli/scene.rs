@@ -441,10 +441,10 @@ pub struct CycleArgs {
     pub max_load: f64,
     /// A second Dugdale zone (a water meniscus): its stress over the solid's, s2/s1 (with
     /// --range-ratio; loads and approaches then in the units of the total w).
-    #[arg(long, requires = "range_ratio")]
+    #[arg(long)]
     pub stress_ratio: Option<f64>,
     /// The second zone's range over the solid's, h2/h1 (with --stress-ratio).
-    #[arg(long, requires = "stress_ratio")]
+    #[arg(long)]
     pub range_ratio: Option<f64>,
     #[arg(long, short, default_value = "-")]
     pub output: String,
@@ -528,10 +528,10 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             Drive::Spring(k)
         }
     };
-    let ratios = match (&wet, a.stress_ratio, a.range_ratio) {
-        (Some((rho, eta, _)), _, _) => Some((*rho, *eta)),
-        (None, Some(rho), Some(eta)) => Some((rho, eta)),
-        _ => None,
+    let given = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
+    let ratios = match &wet {
+        Some((rho, eta, _)) => Some((*rho, *eta)),
+        None => given,
     };
     let c = match ratios {
         Some((rho, eta)) => crate::cycle::two_zone::cycle(lambda, rho, eta, drive, a.max_load)?,

@@ -82,9 +82,9 @@ pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
 pub const W_MAX: f64 = 10.0;
 
 impl FitOptions {
-    /// Checks the options that hold for every curve (the tip radius and the spring constant are
-    /// checked per curve, since each curve may carry its own): one message naming the quantity,
-    /// its value and its limits. The command line and the Python package both call it.
+    /// Checks the options (those of every curve, the tip radius and the spring constant among
+    /// them): one message naming the quantity, its value and its limits. The command line and
+    /// the Python package both call it before any fit.
     pub fn validate(&self) -> Result<(), OptionError> {
         self.check()
             .map_err(|(option, message)| OptionError { option, message })
@@ -92,6 +92,24 @@ impl FitOptions {
 
     fn check(&self) -> Result<(), (&'static str, String)> {
         let short = crate::physics::domain::short;
+        if !(self.spring > 0.0 && self.spring.is_finite()) {
+            return Err((
+                "spring",
+                format!(
+                    "spring constant {} N/m: give the cantilever's calibrated spring constant (> 0)",
+                    short(self.spring)
+                ),
+            ));
+        }
+        if !(self.radius > 0.0 && self.radius.is_finite()) {
+            return Err((
+                "radius",
+                format!(
+                    "tip radius {} m: give a positive radius in metres",
+                    short(self.radius)
+                ),
+            ));
+        }
         if let Some(nu) = self.poisson {
             if !(nu > -1.0 && nu <= 0.5) {
                 return Err((

@@ -35,17 +35,9 @@ pub const MIN_CONTACT_POINTS: usize = 10;
 /// Checks a curve and removes its baseline.
 pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, String)> {
     let bad = |m: String| Err((FitStatus::InvalidInput, m));
-    if !(opt.spring > 0.0 && opt.spring.is_finite()) {
-        return bad(format!(
-            "spring constant {} N/m: give the cantilever's calibrated spring constant (> 0)",
-            crate::physics::domain::short(opt.spring)
-        ));
-    }
-    if !(opt.radius > 0.0 && opt.radius.is_finite()) {
-        return bad(format!(
-            "tip radius {} m: give a positive radius in metres",
-            crate::physics::domain::short(opt.radius)
-        ));
+    // The options' one check (the spring constant and the radius among them).
+    if let Err(e) = opt.validate() {
+        return bad(e.message);
     }
     for (i, (&h, &f)) in curve.height.iter().zip(&curve.force).enumerate() {
         if !h.is_finite() || !f.is_finite() {

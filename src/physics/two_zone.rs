@@ -147,6 +147,19 @@ pub fn disc_displacement(r: f64, c: f64) -> f64 {
     }
 }
 
+/// The second zone's two ratios, given together or not at all (the one-zone law): the one
+/// check of every front end, in words that name the two quantities.
+pub fn paired_ratios(
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
+) -> Result<Option<(f64, f64)>, String> {
+    match (stress_ratio, range_ratio) {
+        (None, None) => Ok(None),
+        (Some(rho), Some(eta)) => Ok(Some((rho, eta))),
+        _ => Err("give stress_ratio and range_ratio together (the second zone's stress and range over the solid's), or neither for one zone".to_string()),
+    }
+}
+
 /// The two zones in the total-w units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Zones {
