@@ -566,7 +566,7 @@ fn fit_curves<'py>(
             },
             z0: num("z0"),
             tilt: o.get("tilt").and_then(|v| v.as_bool()).unwrap_or(false),
-            tolerance: num("tolerance").unwrap_or(0.05),
+            tolerance: num("tolerance").unwrap_or(tabor::physics::model::DEFAULT_TOLERANCE),
             humidity: o
                 .get("relative_humidity")
                 .map(|_| tabor::scene::humidity::HumidityInput {
@@ -905,6 +905,7 @@ impl AdhesionMap {
 fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
+    m.add("DEFAULT_TOLERANCE", tabor::physics::model::DEFAULT_TOLERANCE)?;
     m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
     m.add("DMT_LIMIT_MAX", tabor::physics::domain::DMT_LIMIT_MAX)?;
     m.add("LIMIT_LAMBDA_MIN", tabor::physics::domain::LIMIT_LAMBDA_MIN)?;

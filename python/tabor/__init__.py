@@ -419,7 +419,7 @@ class AdhesionMap:
 
 
 def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="log",
-                 load_min=None, load_max=None, tolerance=0.05, strength_ratio=(0.001, 0.01),
+                 load_min=None, load_max=None, tolerance=_tabor.DEFAULT_TOLERANCE, strength_ratio=(0.001, 0.01),
                  *, backend="auto", precision="f32", check=1000, adapter=None):
     """Computes an adhesion map with the options of ``tabor map``; see :class:`AdhesionMap`.
 
@@ -540,7 +540,7 @@ def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
 
 
 def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
-               fit_segment="retract", z0_m=None, tilt=False, tolerance=0.05,
+               fit_segment="retract", z0_m=None, tilt=False, tolerance=_tabor.DEFAULT_TOLERANCE,
                relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
                molar_volume_m3_mol=None, temperature_k=None):
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
@@ -829,7 +829,7 @@ def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10
 
 
 def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max=1e2, ny=256,
-              tolerance=0.05, press_sigmas=3.0, check=64):
+              tolerance=_tabor.DEFAULT_TOLERANCE, press_sigmas=3.0, check=64):
     """The rough adhesion map, as ``tabor rough-map`` computes it: over ``lambda`` (nx, log) and
     ``sigma`` (ny, log, approach units), the pull-off per summit after pressing to
     ``-press_sigmas * sigma`` and retracting, relative to the smooth summit's, and the simplest

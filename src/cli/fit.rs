@@ -41,7 +41,7 @@ pub struct FitArgs {
     pub tilt: bool,
     /// The adequate model: the simplest whose rms force residual is within this fraction of
     /// Maugis-Dugdale's, or whose contact radius is within it at every fitted point in contact.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = crate::physics::model::DEFAULT_TOLERANCE)]
     pub tolerance: f64,
     #[arg(long, short, default_value = "-")]
     pub output: String,

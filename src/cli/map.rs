@@ -34,7 +34,7 @@ pub struct MapArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub load_max: Option<f64>,
     /// Relative error of the contact radius a simpler model may have.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = crate::physics::model::DEFAULT_TOLERANCE)]
     pub tolerance: f64,
     /// s0/K ratios of the large-deformation lines a/R = 0.1.
     #[arg(long, value_delimiter = ',', default_value = "0.001,0.01")]

@@ -28,7 +28,7 @@ pub struct RoughMapArgs {
     pub ny: usize,
     /// Largest error a simpler summit model may have: its rough pull-off relative to the smooth
     /// summit's, and its retract curve relative to the curve's largest |load|.
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = crate::physics::model::DEFAULT_TOLERANCE)]
     pub tolerance: f64,
     /// How far the flat was pressed before the retract, in sigma below the mean summit plane.
     #[arg(long, default_value_t = 3.0)]

@@ -61,7 +61,7 @@ impl Default for FitOptions {
             segments: Segments::Retract,
             z0: None,
             tilt: false,
-            tolerance: 0.05,
+            tolerance: crate::physics::model::DEFAULT_TOLERANCE,
             baseline_fraction: 0.3,
             humidity: None,
         }

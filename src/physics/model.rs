@@ -4,6 +4,11 @@
 
 use serde::{Deserialize, Serialize};
 
+/// How far a simpler model may be from the exact Maugis-Dugdale answer and still be the one a
+/// contact needs (the map's regions, a scene's recommended model, a fit's adequate model, the
+/// rough map's summit models), unless told otherwise: 5%.
+pub const DEFAULT_TOLERANCE: f64 = 0.05;
+
 /// A contact model, from the simplest.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
