@@ -144,6 +144,20 @@ impl Engine {
         self.solver().solve_points(points, control)
     }
 
+    /// As [`Engine::solve_points`], and on a GPU `checks` of the states (spread over the
+    /// points) re-solved by the CPU f64 solver: the one chunk step of every streaming front end.
+    pub fn solve_points_checked(
+        &self,
+        points: &[(f64, f64)],
+        control: Control,
+        checks: usize,
+    ) -> Result<(Vec<State>, Option<CheckReport>), GpuError> {
+        let states = self.solve_points(points, control)?;
+        let check = matches!(self, Engine::Gpu(_))
+            .then(|| cross_check(points, &states, control, checks, GPU_TOLERANCE));
+        Ok((states, check))
+    }
+
     /// Solves the grid lambdas x gaps, load = Pbar_c(lambda) + gap (row-major, one row per gap):
     /// the tensile range down to the pull-off, with the gap exact however small.
     pub fn solve_grid_gaps(&self, lambdas: &[f64], gaps: &[f64]) -> Result<Vec<State>, GpuError> {

@@ -233,20 +233,12 @@ fn solve_points<'py>(
         );
         let report = run(py, move || {
             let points: Vec<(f64, f64)> = lam.iter().copied().zip(value.iter().copied()).collect();
-            let s = engine.solve_points(&points, control)?;
+            let (s, report) = engine.solve_points_checked(&points, control, check)?;
             for (i, st) in s.iter().enumerate() {
                 (a[i], l[i], p[i], m[i], c[i]) =
                     (st.a, st.load, st.approach, st.m_minus_1, st.status as u8);
             }
-            Ok(gpu.then(|| {
-                tabor::engine::cross_check(
-                    &points,
-                    &s,
-                    control,
-                    check,
-                    tabor::engine::GPU_TOLERANCE,
-                )
-            }))
+            Ok(report)
         })?;
         if let Some(r) = report {
             check_report.merge(r);
@@ -905,7 +897,10 @@ impl AdhesionMap {
 fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
-    m.add("DEFAULT_TOLERANCE", tabor::physics::model::DEFAULT_TOLERANCE)?;
+    m.add(
+        "DEFAULT_TOLERANCE",
+        tabor::physics::model::DEFAULT_TOLERANCE,
+    )?;
     m.add("LAMBDA_MAX", tabor::physics::domain::LAMBDA_MAX)?;
     m.add("DMT_LIMIT_MAX", tabor::physics::domain::DMT_LIMIT_MAX)?;
     m.add("LIMIT_LAMBDA_MIN", tabor::physics::domain::LIMIT_LAMBDA_MIN)?;

@@ -1,7 +1,7 @@
 //! `tabor solve`, `tabor pulloff`, `tabor curve`.
 
 use super::{BackendArg, Format, PrecisionArg};
-use crate::engine::{cross_check, Backend, Engine};
+use crate::engine::{Backend, Engine};
 use crate::io::{fmt17, json_num, write_output, Output};
 use crate::physics::md::LAMBDA_D;
 use crate::solver::{Control, LambdaContext, State, Status};
@@ -711,16 +711,10 @@ fn solve_file(a: &SolveArgs, input: &str) -> anyhow::Result<()> {
                 break;
             }
             let t = std::time::Instant::now();
-            let states = engine.solve_points(&chunk, control)?;
+            let (states, report) = engine.solve_points_checked(&chunk, control, a.gpu.check.0)?;
             solve_s += t.elapsed().as_secs_f64();
-            if is_gpu {
-                check.merge(cross_check(
-                    &chunk,
-                    &states,
-                    control,
-                    a.gpu.check.0,
-                    GPU_TOLERANCE,
-                ));
+            if let Some(r) = report {
+                check.merge(r);
             }
             table.rows(
                 &states,

@@ -340,7 +340,9 @@ fn wet_scene(
 
 /// The scene's tolerance (default 0.05) and shear strength, checked.
 fn checked_tolerance(s: &SceneInput) -> Result<f64, ParamError> {
-    let tol = s.tolerance.unwrap_or(crate::physics::model::DEFAULT_TOLERANCE);
+    let tol = s
+        .tolerance
+        .unwrap_or(crate::physics::model::DEFAULT_TOLERANCE);
     if !(tol > 0.0 && tol < 1.0) {
         return Err(ParamError::OutOfRange {
             field: "tolerance",
