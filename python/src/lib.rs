@@ -928,6 +928,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rough::rough_ensemble, m)?)?;
     m.add_function(wrap_pyfunction!(two_zone_ratios, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_asperities, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_topography, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_map, m)?)?;
     m.add_function(wrap_pyfunction!(rough::rough_pulloff, m)?)?;
     m.add_class::<AdhesionMap>()?;

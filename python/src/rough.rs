@@ -181,6 +181,43 @@ fn ensemble_leg<'py>(
     Ok(d)
 }
 
+/// A rough scene from its JSON text or a preset's name.
+fn rough_scene(
+    scene_json: Option<String>,
+    preset: Option<String>,
+) -> anyhow::Result<tabor::rough::scene::RoughScene> {
+    match (scene_json, preset) {
+        (Some(j), None) => {
+            serde_json::from_str(&j).map_err(|e| anyhow::anyhow!("not a valid rough scene: {e}"))
+        }
+        (None, Some(p)) => tabor::rough::scene::preset(&p).ok_or_else(|| {
+            anyhow::anyhow!(
+                "no rough preset {p:?}; the presets are {}",
+                tabor::rough::scene::PRESETS.join(", ")
+            )
+        }),
+        _ => anyhow::bail!("give a rough scene (JSON text) or a preset name, one of them"),
+    }
+}
+
+/// An ensemble's cycle as a dict of NumPy arrays and numbers.
+fn ensemble_dict<'py>(
+    py: Python<'py>,
+    c: &tabor::rough::ensemble::EnsembleCycle,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("summits", c.summits)?;
+    d.set_item("approach", ensemble_leg(py, &c.approach)?)?;
+    d.set_item("retract", ensemble_leg(py, &c.retract)?)?;
+    d.set_item("pulloff_force_n", c.pulloff_force_n)?;
+    d.set_item("pulloff_separation_m", c.pulloff_separation_m)?;
+    d.set_item("summit_solver", c.summit_solver.clone())?;
+    d.set_item("table_error", c.table_error)?;
+    d.set_item("summit_states", c.summit_states)?;
+    d.set_item("seconds", c.seconds)?;
+    Ok(d)
+}
+
 /// An explicit ensemble of summits in SI (heights and radii in m) with a rough scene's
 /// materials, as `tabor rough --asperities` computes it (tables or exact, on the CPU).
 #[pyfunction]
@@ -198,17 +235,7 @@ pub fn rough_asperities<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::rough::ensemble::{scene_cycle, Asperity};
     let c = run(py, move || {
-        let scene: tabor::rough::scene::RoughScene = match (scene_json, preset) {
-            (Some(j), None) => serde_json::from_str(&j)
-                .map_err(|e| anyhow::anyhow!("not a valid rough scene: {e}"))?,
-            (None, Some(p)) => tabor::rough::scene::preset(&p).ok_or_else(|| {
-                anyhow::anyhow!(
-                    "no rough preset {p:?}; the presets are {}",
-                    tabor::rough::scene::PRESETS.join(", ")
-                )
-            })?,
-            _ => anyhow::bail!("give a rough scene (JSON text) or a preset name, one of them"),
-        };
+        let scene = rough_scene(scene_json, preset)?;
         if heights_m.len() != radii_m.len() {
             anyhow::bail!(
                 "{} heights and {} radii: give one radius per summit",
@@ -222,26 +249,54 @@ pub fn rough_asperities<'py>(
             .map(|(&height_m, &radius_m)| Asperity { height_m, radius_m })
             .collect();
         let solver = summits.parse()?;
+        let cpu = tabor::engine::Engine::Cpu;
         Ok(scene_cycle(
             &scene,
             &asp,
             min_separation_m,
             points,
             solver,
-            &tabor::engine::Engine::Cpu,
+            &cpu,
         )?)
     })?;
-    let d = PyDict::new(py);
-    d.set_item("summits", c.summits)?;
-    d.set_item("approach", ensemble_leg(py, &c.approach)?)?;
-    d.set_item("retract", ensemble_leg(py, &c.retract)?)?;
-    d.set_item("pulloff_force_n", c.pulloff_force_n)?;
-    d.set_item("pulloff_separation_m", c.pulloff_separation_m)?;
-    d.set_item("summit_solver", c.summit_solver)?;
-    d.set_item("table_error", c.table_error)?;
-    d.set_item("summit_states", c.summit_states)?;
-    d.set_item("seconds", c.seconds)?;
-    Ok(d)
+    ensemble_dict(py, &c)
+}
+
+/// The summits of a measured height map (rows of `nx` heights in m, `pixel_m` apart) through
+/// the cycle, as `tabor rough --topography --pixel-m` computes it.
+#[pyfunction]
+#[pyo3(signature = (z, nx, pixel_m, scene_json, preset, min_separation_m, points, summits))]
+#[allow(clippy::too_many_arguments)]
+pub fn rough_topography<'py>(
+    py: Python<'py>,
+    z: Vec<f64>,
+    nx: usize,
+    pixel_m: f64,
+    scene_json: Option<String>,
+    preset: Option<String>,
+    min_separation_m: Option<f64>,
+    points: usize,
+    summits: String,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tabor::rough::ensemble::{scene_cycle, summits_of_topography};
+    let c = run(py, move || {
+        let scene = rough_scene(scene_json, preset)?;
+        let asp = summits_of_topography(&z, nx, pixel_m)?;
+        if asp.is_empty() {
+            anyhow::bail!("the height map has no summit (no pixel above its eight neighbours with a positive curvature)");
+        }
+        let solver = summits.parse()?;
+        let cpu = tabor::engine::Engine::Cpu;
+        Ok(scene_cycle(
+            &scene,
+            &asp,
+            min_separation_m,
+            points,
+            solver,
+            &cpu,
+        )?)
+    })?;
+    ensemble_dict(py, &c)
 }
 
 /// Fuller and Tabor's sweep, as `tabor rough-pulloff` computes it: one dict per lambda with the

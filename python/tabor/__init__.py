@@ -47,7 +47,7 @@ __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
     "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
-    "rough_map", "rough_pulloff",
+    "rough_map", "rough_pulloff", "rough_topography",
 ]
 
 
@@ -782,6 +782,20 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
+def _rough_scene(scene, preset):
+    """A rough scene as JSON text (or None with a preset), checked as the command line reads it."""
+    if (scene is None) == (preset is None):
+        raise ValueError("give a rough scene (a dict) or a preset name, one of them")
+    if scene is None:
+        return None
+    if not isinstance(scene, dict):
+        raise TypeError("scene: give a dict (as tabor rough --scene reads)")
+    try:
+        return json.dumps(scene, allow_nan=False)
+    except ValueError:
+        raise ValueError("scene: a value is not a finite number; give finite values") from None
+
+
 def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation_m=None,
                      points=400, summits="tables"):
     """An explicit ensemble of summits in SI, as ``tabor rough --asperities`` computes it: each
@@ -796,20 +810,30 @@ def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation
     ``table_error``, ``summit_states``, ``seconds``."""
     h = _numbers(heights_m, "heights_m").ravel()
     r = _numbers(radii_m, "radii_m").ravel()
-    if (scene is None) == (preset is None):
-        raise ValueError("give a rough scene (a dict) or a preset name, one of them")
-    text = None
-    if scene is not None:
-        if not isinstance(scene, dict):
-            raise TypeError("scene: give a dict (as tabor rough --scene reads)")
-        try:
-            text = json.dumps(scene, allow_nan=False)
-        except ValueError:
-            raise ValueError("scene: a value is not a finite number; give finite values") from None
+    text = _rough_scene(scene, preset)
     d_min = None if min_separation_m is None else _finite(min_separation_m, "min_separation_m")
     if int(points) < 0:
         raise ValueError(f"points = {points}: give a count >= 2")
     return _tabor.rough_asperities(h.tolist(), r.tolist(), text,
+                                   None if preset is None else str(preset), d_min, int(points),
+                                   str(summits))
+
+
+def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation_m=None,
+                     points=400, summits="tables"):
+    """A measured height map (2-D array, m, pixels ``pixel_m`` apart) as ``tabor rough
+    --topography --pixel-m`` takes it: its summits are the pixels above their eight neighbours,
+    with the radius from the mean curvature there (as Greenwood and Williamson did), then the
+    cycle of :func:`rough_asperities`, whose dict it returns."""
+    z = _numbers(heights_m, "heights_m")
+    if z.ndim != 2:
+        raise ValueError(f"heights_m has shape {z.shape}: give a 2-D height map")
+    text = _rough_scene(scene, preset)
+    d_min = None if min_separation_m is None else _finite(min_separation_m, "min_separation_m")
+    if int(points) < 0:
+        raise ValueError(f"points = {points}: give a count >= 2")
+    return _tabor.rough_topography(np.ascontiguousarray(z).ravel().tolist(), int(z.shape[1]),
+                                   _real(pixel_m, "pixel_m"), text,
                                    None if preset is None else str(preset), d_min, int(points),
                                    str(summits))
 

@@ -179,6 +179,15 @@ def rough_asperities(
     points: int = 400,
     summits: str = "tables",
 ) -> Dict[str, Any]: ...
+def rough_topography(
+    heights_m: ArrayLike,
+    pixel_m: float,
+    scene: Optional[Dict[str, Any]] = None,
+    preset: Optional[str] = None,
+    min_separation_m: Optional[float] = None,
+    points: int = 400,
+    summits: str = "tables",
+) -> Dict[str, Any]: ...
 def rough_pulloff(
     lambdas: Union[Sequence[float], npt.NDArray[np.float64]] = ...,
     sigma_min: float = 0.01,

@@ -171,3 +171,32 @@ def test_asperities_equal_the_command_line_and_refuse_as_it_does(tmp_path):
         tabor.rough_asperities(h, r, preset="pdms-rough-glass", summits="fast")
     with pytest.raises(ValueError, match="presets are"):
         tabor.rough_asperities(h, r, preset="granite")
+
+
+def test_topography_equals_the_command_line(tmp_path):
+    # Three paraboloid bumps of known radius on a flat (as tests/rough.rs makes them).
+    ny, nx, px = 40, 60, 1e-8
+    y, x = np.mgrid[0:ny, 0:nx] * px
+    z = np.zeros((ny, nx))
+    for bx, by, h, r in [(10, 10, 30e-9, 1e-7), (30, 20, 50e-9, 1.5e-7), (50, 30, 20e-9, 8e-8)]:
+        z = np.maximum(z, h - ((x - bx * px) ** 2 + (y - by * px) ** 2) / (2 * r))
+    path = tmp_path / "z.npy"
+    np.save(path, z)
+    got = tabor.rough_topography(z, px, preset="pdms-rough-glass", points=30)
+    out = subprocess.run([str(TABOR), "rough", "--preset", "pdms-rough-glass", "--topography",
+                          str(path), "--pixel-m", str(px), "--points", "30", "--backend", "cpu"],
+                         capture_output=True, text=True, check=True)
+    want = json.loads(out.stdout)
+    assert got["summits"] == want["summits"] == 3
+    assert got["pulloff_force_n"] == want["pulloff_force_n"] < 0
+    for leg in ["approach", "retract"]:
+        np.testing.assert_array_equal(got[leg]["force_n"], np.array(want[leg]["force_n"]))
+    # Fortran order is the same map.
+    same = tabor.rough_topography(np.asfortranarray(z), px, preset="pdms-rough-glass", points=30)
+    np.testing.assert_array_equal(same["retract"]["force_n"], got["retract"]["force_n"])
+    with pytest.raises(ValueError, match="2-D"):
+        tabor.rough_topography(z.ravel(), px, preset="pdms-rough-glass")
+    with pytest.raises(ValueError, match="pixel size"):
+        tabor.rough_topography(z, -1.0, preset="pdms-rough-glass")
+    with pytest.raises(ValueError, match="no summit"):
+        tabor.rough_topography(np.zeros((5, 5)), px, preset="pdms-rough-glass")
