@@ -666,7 +666,11 @@ fn refined(
         .min_by(|&a, &b| curve[a].total_cmp(&curve[b]))
         .unwrap_or(0);
     let (mut best_d, mut best) = (seps[i], curve[i]);
-    if refine {
+    // Every sample compressive and the last, where the summits come free, the smallest: the load
+    // falls to zero from above and there is no tensile minimum; Brent would only walk to the
+    // end of the bracket (about 28 loads, a fifth of the map's points at large sigma).
+    let falling_to_free = i + 1 == seps.len() && best > 0.0;
+    if refine && !falling_to_free {
         let (lo, hi) = (i.saturating_sub(1), (i + 1).min(seps.len() - 1));
         let (a, b) = (seps[lo], seps[hi]);
         // The pull-off is the value at a smooth minimum (smooth on the scale sigma, the
