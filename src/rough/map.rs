@@ -347,44 +347,40 @@ struct Model<'a> {
     reached: Vec<(f64, f64, Law<'a>)>,
 }
 
-/// `exp(x)` for `x <= 0` (the Gaussian at the quadrature's nodes) within about 1 ulp of
-/// `f64::exp`, written without calls or branches so that a loop of them vectorises: `x = k ln2 +
-/// r` with `|r| <= ln2 / 2` (ln2 in two parts, the first with trailing zeros so that `k ln2_hi`
-/// is exact), `exp(r)` by its Taylor series to `r^13` (the rest below 5e-18), and `2^k` put into
-/// the exponent's bits. Below -708 (where `2^k` leaves the normal range) it returns `exp(-708)`.
+/// Entries of [`ExpTable`].
+const EXP_N: usize = 64;
+
+/// `2^(j / EXP_N)` for `j < EXP_N`: the table of [`exp_nonpositive`].
+struct ExpTable([f64; EXP_N]);
+
+impl ExpTable {
+    fn new() -> ExpTable {
+        ExpTable(std::array::from_fn(|j| (j as f64 / EXP_N as f64).exp2()))
+    }
+}
+
+/// `exp(x)` for `x <= 0` (the Gaussian at the quadrature's nodes) within about 1.5 ulp of
+/// `f64::exp`, written without calls or branches so that a loop of them vectorises:
+/// `x = (k / 64) ln2 + r` with `|r| <= ln2 / 128` (ln2 in two parts, the first with trailing
+/// zeros so that `k ln2_hi / 64` is exact), `exp(r)` by its Taylor series to `r^5` (the rest
+/// below 4e-17), `2^(k / 64)` from the table times a power of two put into the exponent's
+/// bits. Below -708 (where that power leaves the normal range) it returns `exp(-708)`.
 #[inline(always)]
-fn exp_nonpositive(x: f64) -> f64 {
-    const LN2_HI: f64 = 0.693_147_180_369_123_8;
-    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+fn exp_nonpositive(x: f64, table: &ExpTable) -> f64 {
+    const LN2_HI: f64 = 0.693_147_180_369_123_8 / EXP_N as f64;
+    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10 / EXP_N as f64;
     // 1.5 * 2^52: adding it rounds to an integer, which is left in the low bits.
     const SHIFT: f64 = 6_755_399_441_055_744.0;
+    // k + 1023 * 64 >= 0 for x >= -708: logical shifts give 2^(k / 64)'s parts.
+    const BIAS: u64 = 1023 * EXP_N as u64;
     let x = x.max(-708.0);
-    let z = x * std::f64::consts::LOG2_E + SHIFT;
+    let z = x * (EXP_N as f64 * std::f64::consts::LOG2_E) + SHIFT;
     let kf = z - SHIFT;
-    let k = z.to_bits().wrapping_sub(SHIFT.to_bits());
+    let kb = z.to_bits().wrapping_sub(SHIFT.to_bits()).wrapping_add(BIAS);
     let r = (x - kf * LN2_HI) - kf * LN2_LO;
-    // 1 / n!, n = 0..=13.
-    const C: [f64; 14] = [
-        1.0,
-        1.0,
-        1.0 / 2.0,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5040.0,
-        1.0 / 40320.0,
-        1.0 / 362_880.0,
-        1.0 / 3_628_800.0,
-        1.0 / 39_916_800.0,
-        1.0 / 479_001_600.0,
-        1.0 / 6_227_020_800.0,
-    ];
-    let mut p = C[13];
-    for c in C[..13].iter().rev() {
-        p = p * r + c;
-    }
-    p * f64::from_bits(k.wrapping_add(1023).wrapping_shl(52))
+    let p = 1.0 + r * (1.0 + r * (0.5 + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0)))));
+    let two_m = f64::from_bits((kb / EXP_N as u64) << 52);
+    table.0[(kb % EXP_N as u64) as usize] * two_m * p
 }
 
 /// Gauss-Legendre nodes and weights on [0, 1].
@@ -416,6 +412,7 @@ struct Quad {
     /// The CPU has AVX2: the node loops run four wide (the same operations, without fused
     /// multiply-adds, so the same numbers as without it).
     avx2: bool,
+    exp: ExpTable,
 }
 
 impl Quad {
@@ -426,7 +423,11 @@ impl Quad {
         let avx2 = std::arch::is_x86_feature_detected!("avx2");
         #[cfg(not(target_arch = "x86_64"))]
         let avx2 = false;
-        Quad { nodes, avx2 }
+        Quad {
+            nodes,
+            avx2,
+            exp: ExpTable::new(),
+        }
     }
 
     /// The mean retract load per summit at separation `d` after pressing to `d_min`.
@@ -465,7 +466,7 @@ impl Quad {
         }
         let (mut wt, mut delta) = ([0.0; GL_N], [0.0; GL_N]);
         for k in 0..GL_N {
-            wt[k] = self.nodes[k].1 * jac[k] * exp_nonpositive(-0.5 * t[k] * t[k]);
+            wt[k] = self.nodes[k].1 * jac[k] * exp_nonpositive(-0.5 * t[k] * t[k], &self.exp);
             delta[k] = sigma * t[k] - d;
         }
         law.weighted_sum(&wt, &delta) / (2.0 * PI).sqrt()
@@ -1118,17 +1119,19 @@ mod tests {
         }
     }
 
-    /// The quadrature's exp agrees with the library's to about an ulp over the Gaussian's range
+    /// The quadrature's exp agrees with the library's to about 1.5 ulp over the Gaussian's range
     /// and beyond, and is exp(-708) below -708.
     #[test]
     fn exp_nonpositive_matches_exp() {
+        let t = ExpTable::new();
+        let exp_nonpositive = |x: f64| super::exp_nonpositive(x, &t);
         let mut worst = 0.0f64;
         for i in 0..=200_000 {
             let x = -30.0 * i as f64 / 200_000.0 - 1e-9 * (i % 7) as f64;
             let (a, b) = (exp_nonpositive(x), x.exp());
             worst = worst.max((a - b).abs() / b);
         }
-        assert!(worst < 3e-16, "{worst:e}");
+        assert!(worst < 4e-16, "{worst:e}");
         for x in [-100.0, -500.0, -707.9] {
             assert!((exp_nonpositive(x) / f64::exp(x) - 1.0).abs() < 1e-15);
         }
