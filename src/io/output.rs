@@ -318,7 +318,8 @@ mod tests {
         assert_eq!(std::fs::read_to_string(&p).unwrap(), "new");
         let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
         assert_eq!(names.len(), 1, "temporary files left: {names:?}");
-        assert!(pending().is_empty());
+        // Only this test's files: the other tests of this module write in parallel.
+        assert!(!pending().iter().any(|q| q.starts_with(dir.path())));
         #[cfg(unix)]
         {
             use std::os::unix::fs::PermissionsExt;

@@ -1167,11 +1167,17 @@ mod tests {
             let tol = 1e-6;
             let h = 0.37;
             let i = c - 0.11;
-            let starts = [None, Some([(i, f(i)), (i - h, f(i - h)), (i + h, f(i + h))])];
+            let starts = [
+                None,
+                Some([(i, f(i)), (i - h, f(i - h)), (i + h, f(i + h))]),
+            ];
             for (start, (lo, hi)) in starts.into_iter().zip([(c - 1.0, c + 1.3), (i - h, i + h)]) {
                 let (x, fx) = brent_min(&f, lo, hi, start, tol);
                 assert!((x - x_ref).abs() < 3.0 * tol, "{c}: {x} against {x_ref}");
-                assert!((fx - f_ref).abs() < 1e-12 * f_ref.abs(), "{c}: {fx} against {f_ref}");
+                assert!(
+                    (fx - f_ref).abs() < 1e-12 * f_ref.abs(),
+                    "{c}: {fx} against {f_ref}"
+                );
             }
         }
     }
