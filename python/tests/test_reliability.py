@@ -78,9 +78,11 @@ def test_non_finite_si_values_are_named_not_a_json_parse_error():
         tabor.fit_pairs([1e-6, 2e-6], [1e-6, 1.2e-6], radius_m=float("inf"))
     assert "radius_m = inf" in str(e.value)
     h = np.linspace(1e-7, -1e-7, 50)
-    # fit_curves gives a bad option as the curves' status (the library names it), not a raise.
-    r = tabor.fit_curve(h, h, np.ones(50), radius_m=float("nan"), spring_n_m=1.0)
-    assert r["status"] == "invalid_input" and "radius NaN m" in r["message"]
+    # A bad option of every curve is refused before any fit, named as the keyword (the library's
+    # check, the command line's words).
+    with pytest.raises(ValueError) as e:
+        tabor.fit_curve(h, h, np.ones(50), radius_m=float("nan"), spring_n_m=1.0)
+    assert str(e.value) == "radius_m: tip radius NaN m: give a positive radius in metres"
     with pytest.raises(TypeError):
         tabor.fit_curve(h, h, np.ones(50), radius_m=1e-8 + 1j, spring_n_m=1.0)
 
