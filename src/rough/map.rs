@@ -21,10 +21,11 @@ use std::f64::consts::PI;
 /// The Gaussian's mass beyond this many sigma (2.6e-12) is dropped in the map's quadrature.
 const Z_MAP: f64 = 7.0;
 /// Widest quadrature piece, in sigma, and its Gauss-Legendre nodes: over the 256 x 256
-/// gallery map the pull-offs agree with 20 nodes on pieces of 1 sigma within 7e-7 of
-/// max(|pull-off|, 1e-3 |Pbar_c|), 3e-6 with the 12 nodes on 2 sigma used before, for 0.84
-/// of the time (measured as in README's rough-map section).
-const PIECE: f64 = 6.0;
+/// gallery map the pull-offs agree with 20 nodes on pieces of 1 sigma within 7.6e-7 of
+/// max(|pull-off|, 1e-3 |Pbar_c|), the same largest difference as with pieces of 6 sigma
+/// (0.8 of the time) and 3e-6 with 12 nodes on 2 sigma; pieces of 14 sigma miss by 1.2e-4
+/// (measured as in README's rough-map section).
+const PIECE: f64 = 8.0;
 const GL_N: usize = 20;
 /// Samples of each retract curve (the curves are compared there; the pull-off is refined from
 /// the smallest).
@@ -34,6 +35,8 @@ pub const CURVE_SAMPLES: usize = 20;
 const TABLE_TARGET: f64 = 1e-6;
 /// The exactly solved stretch may reach up to this v (u about 2.5).
 const EXACT_V_MAX: f64 = 2.0;
+/// How much finer the table of that stretch is ([`BranchTable::refine_fold`]).
+const FOLD_REFINE: usize = 16;
 /// Table step in the graded variable v (u = v + v^2 / (2 U_S), u = sqrt(delta - delta_out)).
 pub(crate) const TABLE_H: f64 = 0.025;
 /// 1 / TABLE_H: the quadrature's inner loop multiplies rather than divides.
@@ -115,6 +118,26 @@ pub struct BranchTable {
     pub error: f64,
     /// Below this v the load is solved exactly, not interpolated (0: nowhere).
     pub exact_below: f64,
+    /// A finer table of the stretch next to the fold that this table misses the target in
+    /// (from `exact_below` up to its end), where that one meets it.
+    fold: Option<FoldTable>,
+}
+
+/// The stretch `v < end` next to the fold, tabulated at [`FOLD_REFINE`] times the main step
+/// (the cubic's coefficients in `s = v / h - k`).
+#[derive(Clone, Debug)]
+struct FoldTable {
+    inv_h: f64,
+    end: f64,
+    coef: Vec<[f64; 4]>,
+}
+
+impl FoldTable {
+    #[inline]
+    fn at_v(&self, v: f64) -> f64 {
+        let x = v * self.inv_h;
+        spline_at(&self.coef, x)
+    }
 }
 
 fn u_of_v(v: f64) -> f64 {
@@ -165,6 +188,7 @@ impl BranchTable {
             coef: spline(vals),
             error: 0.0,
             exact_below: 0.0,
+            fold: None,
         };
         let errs: Vec<f64> = mids
             .iter()
@@ -190,21 +214,64 @@ impl BranchTable {
         Some(t)
     }
 
+    /// Tabulates the stretch left to exact solves at [`FOLD_REFINE`] times the resolution,
+    /// solving `load` (exact) at the finer nodes and midpoints: where that table meets
+    /// [`TABLE_TARGET`] the quadrature interpolates it (its error joins [`BranchTable::error`]),
+    /// and only the intervals next to the fold that still miss it are solved exactly. One
+    /// exact solve costs as much as a hundred interpolations: near lambda_D, where the branch
+    /// turns within a tiny range of approaches, those solves were an eighth of a map's time.
+    pub fn refine_fold(&mut self, load: impl Fn(f64) -> Option<f64>) {
+        if self.exact_below <= 0.0 {
+            return;
+        }
+        let h = TABLE_H / FOLD_REFINE as f64;
+        let n = (self.exact_below / TABLE_H).round() as usize * FOLD_REFINE;
+        let delta = |v: f64| {
+            let u = u_of_v(v);
+            self.delta0 + u * u
+        };
+        let Some(vals) = (0..=n)
+            .map(|k| load(delta(k as f64 * h)))
+            .collect::<Option<Vec<_>>>()
+        else {
+            return;
+        };
+        let coef = spline(&vals);
+        let fine = FoldTable {
+            inv_h: 1.0 / h,
+            end: self.exact_below,
+            coef,
+        };
+        let mut errs = Vec::with_capacity(n);
+        for k in 0..n {
+            let v = (k as f64 + 0.5) * h;
+            let Some(exact) = load(delta(v)) else { return };
+            errs.push((fine.at_v(v) - exact).abs() / exact.abs().max(1.0));
+        }
+        let first = errs
+            .iter()
+            .rposition(|&e| !(e <= TABLE_TARGET))
+            .map_or(0, |k| k + 1);
+        if first == n {
+            return;
+        }
+        self.error = errs[first..].iter().fold(self.error, |a, &b| a.max(b));
+        self.exact_below = first as f64 * h;
+        self.fold = Some(fine);
+    }
+
     /// The spline at `v` (the last interval's cubic beyond the table).
     #[inline]
     pub(crate) fn at_v(&self, v: f64) -> f64 {
         let x = v * TABLE_INV_H;
-        let k = (x as usize).min(self.coef.len() - 1);
-        let s = x - k as f64;
-        let c = &self.coef[k];
-        ((c[3] * s + c[2]) * s + c[1]) * s + c[0]
+        spline_at(&self.coef, x)
     }
 
     /// The interpolated load; where `v` is below [`BranchTable::exact_below`] the caller solves
     /// exactly instead ([`BranchTable::load_or`]).
     #[inline]
     pub fn load(&self, delta: f64) -> f64 {
-        self.at_v(v_of_u((delta - self.delta0).max(0.0).sqrt()))
+        self.load_or(delta, None)
     }
 
     /// The load: interpolated, or from `exact` in the exactly solved stretch (NaN where that
@@ -212,11 +279,22 @@ impl BranchTable {
     #[inline]
     pub fn load_or(&self, delta: f64, exact: Option<&Summit>) -> f64 {
         let v = v_of_u((delta - self.delta0).max(0.0).sqrt());
-        match exact {
-            Some(s) if v < self.exact_below => s.contact(delta).map_or(f64::NAN, |c| c.0),
+        match (exact, &self.fold) {
+            (Some(s), _) if v < self.exact_below => s.contact(delta).map_or(f64::NAN, |c| c.0),
+            (_, Some(f)) if v < f.end => f.at_v(v),
             _ => self.at_v(v),
         }
     }
+}
+
+/// The spline of [`spline`] at `x` in units of its spacing from the first node (the last
+/// interval's cubic beyond it).
+#[inline(always)]
+fn spline_at(coef: &[[f64; 4]], x: f64) -> f64 {
+    let k = (x as usize).min(coef.len() - 1);
+    let s = x - k as f64;
+    let c = &coef[k];
+    ((c[3] * s + c[2]) * s + c[1]) * s + c[0]
 }
 
 /// The not-a-knot cubic spline through `y` at unit spacing, as per-interval coefficients in the
@@ -304,7 +382,7 @@ impl Law<'_> {
             s
         }
         match self {
-            Law::Table(t, Some(s)) if t.exact_below > 0.0 => {
+            Law::Table(t, Some(s)) if t.exact_below > 0.0 || t.fold.is_some() => {
                 sum(wt, delta, |x| t.load_or(x, Some(s)))
             }
             Law::Table(t, _) => {
@@ -407,8 +485,57 @@ fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// `G(h) = integral over [h, Z_MAP] of phi(t) (t - h)^(3/2) dt`, the Gaussian moment behind
+/// every Hertzian summit population (Greenwood and Williamson's F_3/2, truncated where the map
+/// truncates): a not-a-knot spline on a uniform grid of h, its nodes computed with t = h + u^2
+/// (which leaves the smooth integrand 2 u^4 phi(h + u^2)) by composite Gauss-Legendre. G is
+/// smooth in h (G(-7) = 18.6 at most), and the table is within 1e-12 of G at every midpoint
+/// (the tests; 4e-12 with half the nodes).
+struct HertzTail {
+    coef: Vec<[f64; 4]>,
+}
+
+/// Nodes of [`HertzTail`] per unit of h.
+const HERTZ_TAIL_PER_UNIT: f64 = 256.0;
+
+impl HertzTail {
+    fn new(nodes: &[(f64, f64)]) -> HertzTail {
+        let n = (2.0 * Z_MAP * HERTZ_TAIL_PER_UNIT) as usize + 1;
+        let y: Vec<f64> = (0..n)
+            .map(|k| Self::exact(nodes, -Z_MAP + k as f64 / HERTZ_TAIL_PER_UNIT))
+            .collect();
+        HertzTail { coef: spline(&y) }
+    }
+
+    /// G(h) by quadrature: eight pieces of 20 Gauss-Legendre nodes in u = sqrt(t - h).
+    fn exact(nodes: &[(f64, f64)], h: f64) -> f64 {
+        let u_max = (Z_MAP - h).max(0.0).sqrt();
+        let w = u_max / 8.0;
+        let mut total = 0.0;
+        for p in 0..8 {
+            for &(x, wx) in nodes {
+                let u = w * (p as f64 + x);
+                let t = h + u * u;
+                total += wx * w * 2.0 * u.powi(4) * (-0.5 * t * t).exp();
+            }
+        }
+        total / (2.0 * PI).sqrt()
+    }
+
+    /// G(h) for `-Z_MAP <= h`: interpolated (zero from `Z_MAP` up).
+    #[inline]
+    fn at(&self, h: f64) -> f64 {
+        if h >= Z_MAP {
+            return 0.0;
+        }
+        let x = (h + Z_MAP) * HERTZ_TAIL_PER_UNIT;
+        spline_at(&self.coef, x)
+    }
+}
+
 struct Quad {
     nodes: [(f64, f64); GL_N],
+    hertz: HertzTail,
     /// The CPU has AVX2: the node loops run four wide (the same operations, without fused
     /// multiply-adds, so the same numbers as without it).
     avx2: bool,
@@ -424,6 +551,7 @@ impl Quad {
         #[cfg(not(target_arch = "x86_64"))]
         let avx2 = false;
         Quad {
+            hertz: HertzTail::new(&nodes),
             nodes,
             avx2,
             exp: ExpTable::new(),
@@ -490,6 +618,28 @@ impl Quad {
                 let b = ((d + dh) / sigma).min(hi);
                 if !(b > a) {
                     continue;
+                }
+                // The Hertzian and rigid laws over the whole population in contact (from the
+                // summits just touching up to the truncation) are Gaussian moments in closed
+                // form: sigma^(3/2) G(h) and the tail mass, no nodes.
+                if dl == 0.0 && a == s0 && b == Z_MAP {
+                    let mass = || super::upper_tail(a) - super::upper_tail(Z_MAP);
+                    let hertz = || sigma * sigma.sqrt() * self.hertz.at(a);
+                    match law {
+                        Law::Hertz => {
+                            total += hertz();
+                            continue;
+                        }
+                        Law::DmtContact => {
+                            total += hertz() - 2.0 * mass();
+                            continue;
+                        }
+                        Law::Rigid => {
+                            total += -2.0 * mass();
+                            continue;
+                        }
+                        _ => {}
+                    }
                 }
                 // Mostly one piece: no divisions then (the same numbers as with them).
                 let (pieces, w) = if b - a <= PIECE {
@@ -942,7 +1092,13 @@ pub fn compute_with(
         .par_iter()
         .map(|&l| Summit::new(l))
         .collect::<Result<_, _>>()?;
-    let (tables, table_check) = tables(&summits, delta_hi, engine)?;
+    let (mut tables, table_check) = tables(&summits, delta_hi, engine)?;
+    // The stretches next to the fold that the tables miss the target in, finer (exact f64
+    // solves on the CPU, whatever the backend: a few columns near lambda_D).
+    tables
+        .par_iter_mut()
+        .zip(&summits)
+        .for_each(|(t, s)| t.refine_fold(|d| s.contact(d).map(|c| c.0)));
     type Column = (f64, f64, Vec<(f64, f64, Region, [f64; 4])>);
     let columns: Vec<Column> = summits
         .par_iter()
@@ -1128,6 +1284,45 @@ mod tests {
 
     /// The quadrature's exp agrees with the library's to about 1.5 ulp over the Gaussian's range
     /// and beyond, and is exp(-708) below -708.
+    #[test]
+    fn hertz_tail_table_is_the_moment() {
+        let q = Quad::new();
+        // Between the nodes, against the quadrature that made them (absolute: loads are
+        // sigma^(3/2) G against a scale of sigma^(3/2) G(-press)).
+        let mut worst = 0.0f64;
+        for k in 0..(14.0 * HERTZ_TAIL_PER_UNIT) as usize {
+            let h = -Z_MAP + (k as f64 + 0.5) / HERTZ_TAIL_PER_UNIT;
+            let g = HertzTail::exact(&q.nodes, h);
+            worst = worst.max((q.hertz.at(h) - g).abs());
+        }
+        assert!(worst < 1e-12, "table error {worst:e}");
+        // Independent values: G(0) = E[t^(3/2); t > 0] = 2^(3/4) Gamma(5/4) / (2 sqrt(pi)) less
+        // the 5.6e-11 of it beyond the truncation at 7, and G(-7) against a plain midpoint sum.
+        let g0 = 2f64.powf(0.75) * 0.906_402_477_055_477 / (2.0 * PI.sqrt());
+        assert!((q.hertz.at(0.0) / g0 - 1.0).abs() < 1e-10);
+        let n = 2_400_000;
+        let dt = 24.0 / n as f64;
+        let m: f64 = (0..n)
+            .map(|i| {
+                let t = -12.0 + (i as f64 + 0.5) * dt;
+                if t > -7.0 && t < 7.0 {
+                    (t + 7.0).powf(1.5) * (-0.5 * t * t).exp()
+                } else {
+                    0.0
+                }
+            })
+            .sum::<f64>()
+            * dt
+            / (2.0 * PI).sqrt();
+        assert!(
+            (q.hertz.at(-7.0) / m - 1.0).abs() < 1e-9,
+            "{} {}",
+            q.hertz.at(-7.0),
+            m
+        );
+        assert_eq!(q.hertz.at(7.5), 0.0);
+    }
+
     #[test]
     fn exp_nonpositive_matches_exp() {
         let t = ExpTable::new();
