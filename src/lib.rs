@@ -132,11 +132,11 @@ pub mod scene;
 pub mod solver;
 
 // What a user of the library needs most, at the crate root; the modules hold the rest.
-pub use cycle::{cycle, Cycle, Drive};
+pub use cycle::{cycle, Cycle, CycleSpec, Drive};
 pub use engine::{Backend, Engine, Precision};
 pub use fit::{fit_curve, Curve, CurveFit, FitOptions};
 pub use map::{compute as compute_map, MapData, MapSpec, Region};
-pub use physics::model::ContactModel;
+pub use physics::model::{ContactLaw, ContactModel};
 pub use physics::params::{Contact, ForceRange};
 pub use profile::{profile, Given, Profile};
 pub use rough::ensemble::{Asperity, EnsembleCycle, SummitSolver};

@@ -308,3 +308,54 @@ fn spring_jump_out_is_the_fold_found_exactly() {
     eprintln!("spring jump-out against the independent fold: {folds} folds, worst {worst:.2e}");
     assert!(folds >= 6, "{folds}");
 }
+
+/// The one entry of the command line and Python: a contact law (MD, or with both ratios the
+/// two-zone law; a lone ratio refused, naming both) and a drive; the same cycle as each law's
+/// own function, bit for bit, and the same refusals.
+#[test]
+fn the_cycle_spec_dispatches_on_the_law() {
+    use tabor::cycle::CycleSpec;
+    use tabor::physics::model::{ContactLaw, ContactModel};
+    let json = |c: &Cycle| serde_json::to_string(c).unwrap();
+    let e = ContactLaw::new(1.0, Some(0.2), None).unwrap_err();
+    assert!(
+        e.contains("stress_ratio") && e.contains("range_ratio"),
+        "{e}"
+    );
+    for d in [Drive::RigidGrips, Drive::DeadLoad, Drive::Spring(0.7)] {
+        let md = ContactLaw::new(0.8, None, None).unwrap();
+        assert_eq!(md.model(), ContactModel::Md);
+        let spec = CycleSpec {
+            law: md,
+            drive: d,
+            max_load: 2.0,
+        };
+        assert_eq!(
+            json(&spec.run().unwrap()),
+            json(&cycle::cycle(0.8, d, 2.0).unwrap())
+        );
+        let law = ContactLaw::new(2.0, Some(0.3), Some(3.0)).unwrap();
+        assert_eq!(
+            (law.model(), law.lambda()),
+            (ContactModel::SolidAndMeniscus, 2.0)
+        );
+        let spec = CycleSpec { law, ..spec };
+        assert_eq!(json(&spec.run().unwrap()), json(&wet(2.0, 0.3, 3.0, d)));
+    }
+    let bad = CycleSpec {
+        law: ContactLaw::Md { lambda: 1.0 },
+        drive: Drive::Spring(-1.0),
+        max_load: 2.0,
+    };
+    let e = bad.run().unwrap_err().to_string();
+    assert!(e.contains("spring stiffness") && e.contains("-1"), "{e}");
+    let bad = CycleSpec {
+        law: ContactLaw::new(1.0, Some(0.2), Some(-1.0)).unwrap(),
+        ..bad
+    };
+    assert!(bad
+        .run()
+        .unwrap_err()
+        .to_string()
+        .contains("range ratio = -1"));
+}

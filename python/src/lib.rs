@@ -639,14 +639,14 @@ fn cycle<'py>(
             )))
         }
     };
-    match two_zone_ratios(stress_ratio, range_ratio)? {
-        None => run_py(py, move || Ok(tabor::cycle::cycle(lam, drive, max_load)?)),
-        Some((rho, eta)) => run_py(py, move || {
-            Ok(tabor::cycle::two_zone::cycle(
-                lam, rho, eta, drive, max_load,
-            )?)
-        }),
-    }
+    let law = tabor::physics::model::ContactLaw::new(lam, stress_ratio, range_ratio)
+        .map_err(PyValueError::new_err)?;
+    let spec = tabor::cycle::CycleSpec {
+        law,
+        drive,
+        max_load,
+    };
+    run_py(py, move || Ok(spec.run()?))
 }
 
 /// The second zone's ratios paired by the library's check (ValueError where one is missing).

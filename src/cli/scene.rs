@@ -458,7 +458,8 @@ pub struct CycleArgs {
 }
 
 pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
-    use crate::cycle::{cycle, normalised_stiffness, Drive};
+    use crate::cycle::{normalised_stiffness, CycleSpec, Drive};
+    use crate::physics::model::ContactLaw;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(read_scene(f)?),
         (None, Some(p)) => Some(preset_named(p)?),
@@ -528,15 +529,24 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
             Drive::Spring(k)
         }
     };
-    let given = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
     let ratios = match &wet {
         Some((rho, eta, _)) => Some((*rho, *eta)),
-        None => given,
+        None => super::two_zone_ratios(a.stress_ratio, a.range_ratio)?,
     };
-    let c = match ratios {
-        Some((rho, eta)) => crate::cycle::two_zone::cycle(lambda, rho, eta, drive, a.max_load)?,
-        None => cycle(lambda, drive, a.max_load)?,
+    let law = match ratios {
+        Some((stress_ratio, range_ratio)) => ContactLaw::SolidAndMeniscus {
+            lambda,
+            stress_ratio,
+            range_ratio,
+        },
+        None => ContactLaw::Md { lambda },
     };
+    let c = CycleSpec {
+        law,
+        drive,
+        max_load: a.max_load,
+    }
+    .run()?;
     let text = cycle_text(&c, a.format)?;
     write_output(&a.output, text.as_bytes())?;
     cycle_summary(&c, lambda, ratios, contact.as_ref().map(scale));

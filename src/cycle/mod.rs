@@ -258,20 +258,96 @@ fn check_drive(drive: Drive, max_load: f64) -> Result<(), crate::solver::SolveEr
 pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
     crate::solver::domain::check_lambda(lambda)?;
     check_drive(drive, max_load)?;
-    let path = equilibrium_path(lambda, max_load, 400);
+    let Ok(c) = run(&Md(lambda), drive, max_load);
+    Ok(c)
+}
+
+/// What a cycle needs of a contact law: its complete equilibrium path up to a load, and its
+/// exact jump-outs (the path's samples only bracket them). The drive, the stability, the jumps
+/// and the loop's area are the same for every law (`run`); a law implements this in its own
+/// module (MD here, the two-zone law in `two_zone.rs`).
+pub(crate) trait PathLaw {
+    /// Why the law's path could not be solved.
+    type Error;
+    /// The Maugis parameter reported with the cycle (the solid's).
+    fn lambda(&self) -> f64;
+    /// The path from free to `max_load`, its parameter rising along it.
+    fn path(&self, max_load: f64) -> Result<Vec<PathPoint>, Self::Error>;
+    /// Puts the jump-outs where the law's folds are.
+    fn refine_jumps(&self, drive: Drive, jumps: &mut [Jump]);
+}
+
+/// The Maugis-Dugdale law at this lambda (checked by the caller).
+struct Md(f64);
+
+impl PathLaw for Md {
+    type Error = std::convert::Infallible;
+    fn lambda(&self) -> f64 {
+        self.0
+    }
+    fn path(&self, max_load: f64) -> Result<Vec<PathPoint>, Self::Error> {
+        Ok(equilibrium_path(self.0, max_load, 400))
+    }
+    fn refine_jumps(&self, drive: Drive, jumps: &mut [Jump]) {
+        refine_jump_outs(self.0, drive, jumps)
+    }
+}
+
+/// The cycle of any law under `drive` (law and drive checked).
+fn run<L: PathLaw>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, L::Error> {
+    let path = law.path(max_load)?;
     let f = follow(&path, drive);
     let mut jumps = f.jumps;
-    refine_jump_outs(lambda, drive, &mut jumps);
-    let (steps, hysteresis, stable) = (f.steps, f.hysteresis, f.stable);
+    law.refine_jumps(drive, &mut jumps);
     Ok(Cycle {
-        lambda,
+        lambda: law.lambda(),
         drive,
         path,
-        stable,
-        steps,
+        stable: f.stable,
+        steps: f.steps,
         jumps,
-        hysteresis,
+        hysteresis: f.hysteresis,
     })
+}
+
+/// Why a cycle was not computed: a bad law, drive or load (the message names the quantity, the
+/// value and what to give), or a two-zone curve that could not be solved.
+#[derive(Debug, thiserror::Error)]
+pub enum CycleError {
+    /// The MD law or the drive.
+    #[error(transparent)]
+    Solve(#[from] crate::solver::SolveError),
+    /// The two-zone law.
+    #[error(transparent)]
+    Zones(#[from] crate::solver::two_zone::ZonesError),
+}
+
+/// An approach-retract cycle to compute: the options of `tabor cycle` and `tabor.cycle`, checked
+/// here for both.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CycleSpec {
+    /// The contact law.
+    pub law: crate::physics::model::ContactLaw,
+    /// How the base is driven.
+    pub drive: Drive,
+    /// The load the approach ends at (0 < max_load <= 1e12; the two-zone law's in total-w
+    /// units).
+    pub max_load: f64,
+}
+
+impl CycleSpec {
+    /// The cycle, after the law's and the drive's checks (each one line naming the value).
+    pub fn run(&self) -> Result<Cycle, CycleError> {
+        use crate::physics::model::ContactLaw;
+        Ok(match self.law {
+            ContactLaw::Md { lambda } => cycle(lambda, self.drive, self.max_load)?,
+            ContactLaw::SolidAndMeniscus {
+                lambda,
+                stress_ratio,
+                range_ratio,
+            } => two_zone::cycle(lambda, stress_ratio, range_ratio, self.drive, self.max_load)?,
+        })
+    }
 }
 
 /// What a drive makes of an equilibrium path (any contact law's): the steps followed, the jumps

@@ -5,9 +5,7 @@
 //! is the shorter range, both discs until the axis gap closes, then the contact curve.
 //! A single zone, or two zones of one range, is MD itself and gives MD's cycle.
 
-use super::{
-    check_drive, control_of, equilibrium_path, follow, refine_jump_outs, Branch, Cycle, Drive, Jump,
-};
+use super::{check_drive, control_of, run, Branch, Cycle, Drive, Jump, Md, PathLaw};
 use super::{PathPoint, Phase};
 use crate::physics::two_zone::Zones;
 use crate::physics::two_zone::{non_contact_both, non_contact_single, NonContactPoint, Shape};
@@ -31,32 +29,47 @@ pub fn cycle(
     let zones = Zones::from_ratios(lambda_s, rho, eta)?;
     crate::solver::domain::check_lambda(lambda_s).map_err(|e| err(e.into()))?;
     check_drive(drive, max_load).map_err(err)?;
-    let (path, ctx) = match zones.shape() {
+    match zones.shape() {
+        // One zone, or two of one range: MD itself, reported with the solid's lambda.
         Shape::Single { lambda } => {
             crate::solver::domain::check_lambda(lambda).map_err(|e| err(e.into()))?;
-            (equilibrium_path(lambda, max_load, N), None)
+            let Ok(mut c) = run(&Md(lambda), drive, max_load);
+            c.lambda = lambda_s;
+            Ok(c)
         }
         Shape::Two { long } => {
             let ctx = TwoZoneContext::new(zones).map_err(|s| failed("its pull-offs", s))?;
-            (two_zone_path(&ctx, long, max_load)?, Some((ctx, long)))
+            run(
+                &TwoZones {
+                    lambda_s,
+                    ctx,
+                    long,
+                },
+                drive,
+                max_load,
+            )
         }
-    };
-    let f = follow(&path, drive);
-    let mut jumps = f.jumps;
-    match (&ctx, zones.shape()) {
-        (Some((ctx, long)), _) => refine_two_zone(ctx, *long, drive, &mut jumps),
-        (None, Shape::Single { lambda }) => refine_jump_outs(lambda, drive, &mut jumps),
-        _ => {}
     }
-    Ok(Cycle {
-        lambda: lambda_s,
-        drive,
-        path,
-        stable: f.stable,
-        steps: f.steps,
-        jumps,
-        hysteresis: f.hysteresis,
-    })
+}
+
+/// The two-zone law with both zones; `long` is the longer-range zone.
+struct TwoZones {
+    lambda_s: f64,
+    ctx: TwoZoneContext,
+    long: usize,
+}
+
+impl PathLaw for TwoZones {
+    type Error = ZonesError;
+    fn lambda(&self) -> f64 {
+        self.lambda_s
+    }
+    fn path(&self, max_load: f64) -> Result<Vec<PathPoint>, ZonesError> {
+        two_zone_path(&self.ctx, self.long, max_load)
+    }
+    fn refine_jumps(&self, drive: Drive, jumps: &mut [Jump]) {
+        refine_two_zone(&self.ctx, self.long, drive, jumps)
+    }
 }
 
 fn failed(what: &str, s: Status) -> ZonesError {

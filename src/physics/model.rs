@@ -139,3 +139,63 @@ mod tests {
         );
     }
 }
+
+/// A contact law tabor solves exactly, with its parameters: what an operation is asked to solve
+/// (in the normalised units of docs/PHYSICS.md; the two-zone law in its total-w units). The
+/// operations dispatch on it (a cycle: `cycle::CycleSpec`), each law's equations in its own
+/// module; a new law is a new variant here plus that module.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum ContactLaw {
+    /// Maugis-Dugdale: one Dugdale zone, Maugis parameter `lambda`.
+    Md {
+        /// The Maugis parameter.
+        lambda: f64,
+    },
+    /// The solid's Dugdale zone (`lambda`) plus a water meniscus, a second zone of stress
+    /// `stress_ratio` and range `range_ratio` times the solid's (docs/PHYSICS.md section 10).
+    SolidAndMeniscus {
+        /// The solid's Maugis parameter.
+        lambda: f64,
+        /// The meniscus's stress over the solid's.
+        stress_ratio: f64,
+        /// The meniscus's range over the solid's.
+        range_ratio: f64,
+    },
+}
+
+impl ContactLaw {
+    /// MD at `lambda`, or with both of the second zone's ratios the two-zone law: the one
+    /// pairing check of every front end (a lone ratio is refused, naming both).
+    pub fn new(
+        lambda: f64,
+        stress_ratio: Option<f64>,
+        range_ratio: Option<f64>,
+    ) -> Result<ContactLaw, String> {
+        Ok(
+            match super::two_zone::paired_ratios(stress_ratio, range_ratio)? {
+                None => ContactLaw::Md { lambda },
+                Some((stress_ratio, range_ratio)) => ContactLaw::SolidAndMeniscus {
+                    lambda,
+                    stress_ratio,
+                    range_ratio,
+                },
+            },
+        )
+    }
+
+    /// The law's model name.
+    pub fn model(&self) -> ContactModel {
+        match self {
+            ContactLaw::Md { .. } => ContactModel::Md,
+            ContactLaw::SolidAndMeniscus { .. } => ContactModel::SolidAndMeniscus,
+        }
+    }
+
+    /// The (solid's) Maugis parameter.
+    pub fn lambda(&self) -> f64 {
+        match *self {
+            ContactLaw::Md { lambda } | ContactLaw::SolidAndMeniscus { lambda, .. } => lambda,
+        }
+    }
+}

@@ -214,9 +214,9 @@ impl BranchTable {
         Some(t)
     }
 
-    /// Tabulates the stretch left to exact solves at [`FOLD_REFINE`] times the resolution,
-    /// solving `load` (exact) at the finer nodes and midpoints: where that table meets
-    /// [`TABLE_TARGET`] the quadrature interpolates it (its error joins [`BranchTable::error`]),
+    /// Tabulates the stretch left to exact solves at 16 times the resolution, solving `load`
+    /// (exact) at the finer nodes and midpoints: where that table meets the 1e-6 target the
+    /// quadrature interpolates it (its error joins [`BranchTable::error`]),
     /// and only the intervals next to the fold that still miss it are solved exactly. One
     /// exact solve costs as much as a hundred interpolations: near lambda_D, where the branch
     /// turns within a tiny range of approaches, those solves were an eighth of a map's time.
