@@ -243,6 +243,77 @@ fn tabor(args: &[&str]) -> std::process::Output {
         .unwrap()
 }
 
+/// Data and figure are written together or not at all: a figure that cannot be written leaves
+/// no data file (and a data file that cannot be written no figure), for every command that
+/// writes both.
+#[test]
+fn a_failed_figure_leaves_no_data_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = dir.path().join("out.json");
+    let fig = dir.path().join("fig.png");
+    let (d, f) = (data.to_str().unwrap(), fig.to_str().unwrap());
+    let nowhere = "/nonexistent-dir/x";
+    let cases: [&[&str]; 4] = [
+        &[
+            "rough",
+            "--lambda",
+            "1",
+            "--sigma",
+            "0.5",
+            "--min-separation",
+            "-1",
+        ],
+        &["rough-pulloff", "--points", "4"],
+        &["cycle", "--lambda", "1"],
+        &["profile", "--lambda", "1", "--load", "1"],
+    ];
+    for args in cases {
+        let bad_plot = [nowhere, ".png"].concat();
+        let o = tabor(&[args, &["-o", d, "--plot", &bad_plot]].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            !o.status.success() && err.contains("/nonexistent-dir"),
+            "{args:?}: {err}"
+        );
+        assert!(
+            !data.exists(),
+            "{args:?}: the data file was written without its figure"
+        );
+        let bad_data = [nowhere, ".json"].concat();
+        let o = tabor(&[args, &["-o", &bad_data, "--plot", f]].concat());
+        assert!(
+            !o.status.success() && !fig.exists(),
+            "{args:?}: a figure without its data"
+        );
+        let o = tabor(&[args, &["-o", d, "--plot", f]].concat());
+        assert!(
+            o.status.success() && data.exists() && fig.exists(),
+            "{args:?}"
+        );
+        std::fs::remove_file(&data).unwrap();
+        std::fs::remove_file(&fig).unwrap();
+    }
+    // An explicit ensemble has no figure: refused, not ignored.
+    let csv = dir.path().join("summits.csv");
+    std::fs::write(&csv, "height_m,radius_m\n1e-9,1e-6\n-2e-9,2e-6\n").unwrap();
+    let o = tabor(&[
+        "rough",
+        "--preset",
+        "mems-polysilicon",
+        "--asperities",
+        csv.to_str().unwrap(),
+        "-o",
+        d,
+        "--plot",
+        f,
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && err.contains("--plot") && !data.exists() && !fig.exists(),
+        "{err}"
+    );
+}
+
 #[test]
 fn the_command_writes_the_keys_and_refuses_bad_input() {
     let o = tabor(&[

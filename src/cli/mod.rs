@@ -457,3 +457,46 @@ impl FigureArgs {
         Ok(o)
     }
 }
+
+/// Writes the data (`-o`) and the figure (`--plot`, `--svg`, `--pdf`) together: every file is
+/// opened and the figure drawn before any is written, and none is put in place unless all were.
+/// A bad figure path or a failed drawing leaves no data file behind, and a bad data path no
+/// figure. With no figure asked for, only the data.
+pub(crate) fn write_with_figure(
+    output: &str,
+    data: &[u8],
+    kind: crate::render::Kind,
+    print: &crate::render::Print,
+    figure: &crate::render::Outputs,
+    draw: crate::render::DrawSvg,
+) -> anyhow::Result<()> {
+    use anyhow::Context;
+    use std::io::Write;
+    let open = |p: &std::path::Path| crate::io::Output::create(p);
+    let mut files = vec![(open(std::path::Path::new(output))?, data.to_vec())];
+    if !figure.is_empty() {
+        let opened =
+            [&figure.png, &figure.svg, &figure.pdf].map(|p| p.as_deref().map(open).transpose());
+        let mut outs = Vec::with_capacity(3);
+        for o in opened {
+            outs.push(o?);
+        }
+        let r = crate::render::draw_figure(kind, print, figure.formats(), draw)
+            .map_err(anyhow::Error::from_boxed)?;
+        let bytes = [r.png, r.svg.map(String::into_bytes), r.pdf];
+        for (o, b) in outs.into_iter().zip(bytes) {
+            if let (Some(o), Some(b)) = (o, b) {
+                files.push((o, b));
+            }
+        }
+    }
+    for (o, b) in files.iter_mut() {
+        let shown = o.name().display().to_string();
+        o.write_all(b)
+            .with_context(|| format!("cannot write {shown}"))?;
+    }
+    for (o, _) in files {
+        o.commit()?;
+    }
+    Ok(())
+}

@@ -1,8 +1,9 @@
 //! `tabor profile`: pressure and gap inside and around the contact.
 
 use super::Format;
-use crate::io::{fmt17, write_output};
+use crate::io::fmt17;
 use crate::profile::{profile, Given, Profile};
+use crate::render::Kind;
 use anyhow::{bail, Context};
 use clap::Args;
 
@@ -116,13 +117,15 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         Format::Csv => profile_csv(&p)?,
         _ => serde_json::to_string_pretty(&p)? + "\n",
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Profile, &print, &figure, &|r| {
-            crate::render::plots::profile(r, &p)
-        })
-        .context("drawing the profile")?;
-    }
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Profile,
+        &print,
+        &figure,
+        &|r| crate::render::plots::profile(r, &p),
+    )
+    .context("writing the profile")?;
     for w in &p.warnings {
         eprintln!("warning: {w}");
     }
@@ -228,13 +231,15 @@ fn write_two_zone(
         Format::Csv => profile_csv(&as_md)?,
         _ => serde_json::to_string_pretty(p)? + "\n",
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Profile, print, figure, &|r| {
-            crate::render::plots::profile(r, &as_md)
-        })
-        .context("drawing the profile")?;
-    }
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Profile,
+        print,
+        figure,
+        &|r| crate::render::plots::profile(r, &as_md),
+    )
+    .context("writing the profile")?;
     for w in &p.warnings {
         eprintln!("warning: {w}");
     }

@@ -3,6 +3,7 @@
 use super::Format;
 use crate::io::{fmt17, write_output};
 use crate::physics::domain::short;
+use crate::render::Kind;
 use crate::rough::{Mean, Rough, RoughCycle};
 use anyhow::Context;
 use clap::Args;
@@ -157,6 +158,9 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         let Some(sc) = scene else {
             anyhow::bail!("an ensemble needs the materials: give --scene FILE or --preset NAME with --asperities or --topography");
         };
+        if !figure.is_empty() {
+            anyhow::bail!("--plot, --svg and --pdf draw the statistical cycle; an explicit ensemble (--asperities, --topography) has no figure yet: drop them (the output has the whole cycle)");
+        }
         return run_ensemble(&a, &sc);
     }
     if let Some(sc) = scene {
@@ -195,17 +199,19 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
             serde_json::to_string_pretty(&j)? + "\n"
         }
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        let short = crate::physics::domain::short;
-        let title_note = wet.map_or(String::new(), |(rho, eta)| {
-            format!(", meniscus ρ = {}, η = {}", short(rho), short(eta))
-        });
-        crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
-            crate::render::rough::cycle(r, &c, &title_note)
-        })
-        .context("drawing the rough cycle")?;
-    }
+    let short = crate::physics::domain::short;
+    let title_note = wet.map_or(String::new(), |(rho, eta)| {
+        format!(", meniscus ρ = {}, η = {}", short(rho), short(eta))
+    });
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Cycle,
+        &print,
+        &figure,
+        &|r| crate::render::rough::cycle(r, &c, &title_note),
+    )
+    .context("writing the rough cycle")?;
     eprintln!(
         "lambda = {}, sigma = {} (Fuller-Tabor parameter {}): pull-off {} per summit at separation {} (a smooth summit: {}); energy lost {} per summit per cycle",
         short(c.lambda),
@@ -351,14 +357,16 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
             }))? + "\n"
         }
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        let d = -a.press_sigmas;
-        crate::render::plots::save(crate::render::Kind::Pulloff, &print, &figure, &|r| {
-            crate::render::rough::pulloff_curves(r, &curves, d)
-        })
-        .context("drawing the pull-off against roughness")?;
-    }
+    let d = -a.press_sigmas;
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Pulloff,
+        &print,
+        &figure,
+        &|r| crate::render::rough::pulloff_curves(r, &curves, d),
+    )
+    .context("writing the pull-off against roughness")?;
     Ok(())
 }
 
@@ -425,19 +433,21 @@ fn run_scene(
         }
         _ => serde_json::to_string_pretty(&r)? + "\n",
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        let c = &r.normalised;
-        let note = if r.meniscus.is_some() {
-            ", with a meniscus"
-        } else {
-            ""
-        };
-        crate::render::plots::save(crate::render::Kind::Cycle, print, figure, &|d| {
-            crate::render::rough::cycle(d, c, note)
-        })
-        .context("drawing the rough cycle")?;
-    }
+    let c = &r.normalised;
+    let note = if r.meniscus.is_some() {
+        ", with a meniscus"
+    } else {
+        ""
+    };
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Cycle,
+        print,
+        figure,
+        &|d| crate::render::rough::cycle(d, c, note),
+    )
+    .context("writing the rough cycle")?;
     eprintln!(
         "{}: {} summits, lambda = {} (Tabor parameter {}), sigma = {} approach units (Fuller-Tabor parameter {})",
         r.name.as_deref().unwrap_or("rough scene"),

@@ -2,6 +2,7 @@
 
 use super::Format;
 use crate::io::write_output;
+use crate::render::Kind;
 use crate::scene::{infer, preset, preset_names, solve_scene, SceneInput, SceneResult};
 use anyhow::{bail, Context};
 use clap::Args;
@@ -62,13 +63,24 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         _ => scene_text(&r),
     };
-    write_output(&a.output, text.as_bytes())?;
-    if !figure.is_empty() {
-        let fig = crate::figure_data::scene_data(&r)?;
-        crate::render::plots::save(crate::render::Kind::Scene, &print, &figure, &|root| {
-            crate::render::plots::scene(root, &r, &fig)
-        })
-        .context("drawing the scene")?;
+    let fig = if figure.is_empty() {
+        None
+    } else {
+        Some(crate::figure_data::scene_data(&r)?)
+    };
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Scene,
+        &print,
+        &figure,
+        &|root| match &fig {
+            Some(fig) => crate::render::plots::scene(root, &r, fig),
+            None => Ok(()),
+        },
+    )
+    .context("writing the scene")?;
+    if fig.is_some() {
         eprintln!("wrote the figure");
     }
     Ok(())
@@ -548,13 +560,17 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     }
     .run()?;
     let text = cycle_text(&c, a.format)?;
-    write_output(&a.output, text.as_bytes())?;
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Cycle,
+        &print,
+        &figure,
+        &|r| crate::render::plots::cycle(r, &c),
+    )
+    .context("writing the cycle")?;
     cycle_summary(&c, lambda, ratios, contact.as_ref().map(scale));
     if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Cycle, &print, &figure, &|r| {
-            crate::render::plots::cycle(r, &c)
-        })
-        .context("drawing the cycle")?;
         eprintln!("wrote the figure");
     }
     Ok(())
@@ -690,12 +706,16 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
         Format::Csv => humidity_csv(&r),
         Format::Text => humidity_text(&r),
     };
-    write_output(&a.output, text.as_bytes())?;
+    super::write_with_figure(
+        &a.output,
+        text.as_bytes(),
+        Kind::Pulloff,
+        &print,
+        &figure,
+        &|root| crate::render::plots::humidity(root, &r),
+    )
+    .context("writing the humidity sweep")?;
     if !figure.is_empty() {
-        crate::render::plots::save(crate::render::Kind::Pulloff, &print, &figure, &|root| {
-            crate::render::plots::humidity(root, &r)
-        })
-        .context("drawing the humidity figure")?;
         eprintln!("wrote the figure");
     }
     Ok(())

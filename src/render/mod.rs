@@ -316,7 +316,7 @@ impl Outputs {
     pub fn is_empty(&self) -> bool {
         self.png.is_none() && self.svg.is_none() && self.pdf.is_none()
     }
-    fn formats(&self) -> Formats {
+    pub(crate) fn formats(&self) -> Formats {
         Formats {
             png: self.png.is_some(),
             svg: self.svg.is_some(),
