@@ -344,6 +344,8 @@ fn the_command_writes_the_keys_and_refuses_bad_input() {
             "load",
             "contact_fraction",
             "noncontact_fraction",
+            "contact_load",
+            "noncontact_load",
         ] {
             assert_eq!(j[leg][k].as_array().unwrap().len(), 40, "{leg}.{k}");
         }
@@ -770,4 +772,84 @@ fn tabulated_summits_are_the_exact_ones_within_the_stated_error() {
         in_contact > n,
         "the cycle reaches contact on most of its separations"
     );
+}
+
+/// The load carried by each branch: the two parts add up to the load, the cohesive zones'
+/// part is tensile and vanishes with its fraction, and both agree with an explicit ensemble
+/// drawn from the same Gaussian (each summit on its own branch) within its sampling error.
+#[test]
+fn each_branch_carries_its_part_of_the_load() {
+    use tabor::rough::{Leg, Rough};
+    let r = Rough::new(0.2, 0.3).unwrap();
+    let c = r.cycle(-1.0, None, 60).unwrap();
+    let mut split = 0;
+    for m in c.approach.iter().chain(&c.retract) {
+        let sum = m.contact_load + m.noncontact_load;
+        assert!(
+            (sum - m.load).abs() <= 1e-14 * m.load.abs().max(1.0),
+            "{m:?}"
+        );
+        assert!(m.noncontact_load <= 0.0, "{m:?}");
+        if m.noncontact_fraction == 0.0 {
+            assert_eq!(m.noncontact_load, 0.0);
+        }
+        if m.contact_fraction == 0.0 {
+            assert_eq!(m.contact_load, 0.0);
+        }
+        split += usize::from(m.contact_fraction > 0.01 && m.noncontact_fraction > 0.01);
+    }
+    assert!(split > 5, "the cycle crosses from one branch to the other");
+    // Heights by the inverse Gaussian at evenly spaced probabilities (a quasi-random draw).
+    let n = 100_000;
+    let z: Vec<f64> = (0..n)
+        .map(|i| {
+            let p = (i as f64 + 0.5) / n as f64;
+            // The inverse of the normal distribution by bisection.
+            let (mut lo, mut hi) = (-9.0f64, 9.0f64);
+            for _ in 0..80 {
+                let m = 0.5 * (lo + hi);
+                if 0.5 * erfc_own(-m / std::f64::consts::SQRT_2) < p {
+                    lo = m;
+                } else {
+                    hi = m;
+                }
+            }
+            0.3 * 0.5 * (lo + hi)
+        })
+        .collect();
+    for (leg, d) in [(Leg::Approach, 0.9), (Leg::Retract { d_min: -1.0 }, 0.9)] {
+        let (exact, drawn) = (
+            r.mean(leg, d).unwrap(),
+            r.ensemble_mean(leg, &z, d).unwrap(),
+        );
+        for (a, b) in [
+            (exact.contact_load, drawn.contact_load),
+            (exact.noncontact_load, drawn.noncontact_load),
+        ] {
+            assert!((a - b).abs() < 2e-3, "{leg:?} d = {d}: {a} against {b}");
+        }
+    }
+}
+
+/// erfc by its continued fraction and series (the test's own, not the library's).
+fn erfc_own(x: f64) -> f64 {
+    if x < 0.0 {
+        return 2.0 - erfc_own(-x);
+    }
+    if x < 2.0 {
+        // erf by its Taylor series.
+        let (mut term, mut sum, mut k) = (x, x, 0.0);
+        while term.abs() > 1e-17 * sum.abs() {
+            k += 1.0;
+            term *= -x * x / k;
+            sum += term / (2.0 * k + 1.0);
+        }
+        return 1.0 - 2.0 / std::f64::consts::PI.sqrt() * sum;
+    }
+    // Lentz's continued fraction for erfc.
+    let mut f = x;
+    for k in (1..60).rev() {
+        f = x + (k as f64 / 2.0) / f;
+    }
+    (-x * x).exp() / (f * std::f64::consts::PI.sqrt())
 }

@@ -106,6 +106,8 @@ struct Leg {
     load: Vec<f64>,
     contact_fraction: Vec<f64>,
     noncontact_fraction: Vec<f64>,
+    contact_load: Vec<f64>,
+    noncontact_load: Vec<f64>,
 }
 
 impl Leg {
@@ -115,6 +117,8 @@ impl Leg {
             load: v.iter().map(|m| m.load).collect(),
             contact_fraction: v.iter().map(|m| m.contact_fraction).collect(),
             noncontact_fraction: v.iter().map(|m| m.noncontact_fraction).collect(),
+            contact_load: v.iter().map(|m| m.contact_load).collect(),
+            noncontact_load: v.iter().map(|m| m.noncontact_load).collect(),
         }
     }
 }
@@ -249,6 +253,8 @@ fn csv(c: &RoughCycle) -> anyhow::Result<String> {
             col(v, |m| m.load),
             col(v, |m| m.contact_fraction),
             col(v, |m| m.noncontact_fraction),
+            col(v, |m| m.contact_load),
+            col(v, |m| m.noncontact_load),
         ]
     };
     let (ap, re) = (half(&c.approach), half(&c.retract));
@@ -258,6 +264,8 @@ fn csv(c: &RoughCycle) -> anyhow::Result<String> {
             "load",
             "contact_fraction",
             "noncontact_fraction",
+            "contact_load",
+            "noncontact_load",
         ],
         [
             ("approach", ap.iter().map(|v| v.as_slice()).collect()),

@@ -61,6 +61,44 @@ where
         .draw_series(LineSeries::new(pts(&c.approach), approach))?
         .label("approach")
         .legend(sample(approach));
+    // What each branch carries, in the leg's colour and the line styles of the fractions'
+    // panel: the summits in contact (solid) and those with a cohesive zone only (dashed, always
+    // tensile). Drawn only where that branch holds summits, and only where some summits have a
+    // cohesive zone only (else the summits in contact carry the whole load).
+    let split = all().any(|m| m.noncontact_fraction > 0.0);
+    for (v, col) in [(&c.retract, ORANGE_), (&c.approach, BLUE_)]
+        .into_iter()
+        .filter(|_| split)
+    {
+        let thin = ShapeStyle::from(&col.mix(0.75)).stroke_width(3);
+        let on = |f: fn(&Mean) -> f64, w: fn(&Mean) -> f64| -> Vec<(f64, f64)> {
+            v.iter()
+                .filter(|m| w(m) > 0.0)
+                .map(|m| (m.separation, f(m)))
+                .collect()
+        };
+        chart.draw_series(LineSeries::new(
+            on(|m| m.contact_load, |m| m.contact_fraction),
+            thin,
+        ))?;
+        chart.draw_series(DashedLineSeries::new(
+            on(|m| m.noncontact_load, |m| m.noncontact_fraction),
+            12,
+            8,
+            thin,
+        ))?;
+    }
+    if split {
+        let key = ShapeStyle::from(&GRAY_).stroke_width(3);
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label("by the summits in contact")
+            .legend(sample(key));
+        chart
+            .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
+            .label("by cohesive zones only")
+            .legend(sample_dashed(key));
+    }
     chart.draw_series(std::iter::once(Circle::new(
         (c.pulloff_separation, c.pulloff_load),
         14,

@@ -180,6 +180,12 @@ pub struct Mean {
     pub contact_fraction: f64,
     /// Fraction of summits on the non-contact (cohesive zone only) branch.
     pub noncontact_fraction: f64,
+    /// The part of the load per summit carried by the summits in contact (with their Dugdale
+    /// zones): `load = contact_load + noncontact_load`.
+    pub contact_load: f64,
+    /// The part carried by the summits on the non-contact branch (cohesive zone only, always
+    /// tensile).
+    pub noncontact_load: f64,
     /// The quadrature's error estimate of the load.
     #[serde(skip)]
     pub quadrature_error: f64,
@@ -318,15 +324,21 @@ impl Rough {
     /// this surface's lambda, at separation `d`: each summit on its own branch.
     pub fn ensemble_mean(&self, leg: Leg, z: &[f64], d: f64) -> Result<Mean, RoughError> {
         let (mut load, mut contact, mut noncontact) = (0.0, 0.0, 0.0);
+        let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for &zi in z {
             let b = self.branch(leg, zi, d);
-            load += self
+            let p = self
                 .summit
                 .load(b, zi - d)
                 .ok_or(RoughError::Failed(d, self.summit.lambda))?;
+            load += p;
             match b {
-                SummitBranch::Contact => contact += 1.0,
-                SummitBranch::NonContact => noncontact += 1.0,
+                SummitBranch::Contact => {
+                    (contact, contact_load) = (contact + 1.0, contact_load + p)
+                }
+                SummitBranch::NonContact => {
+                    (noncontact, noncontact_load) = (noncontact + 1.0, noncontact_load + p)
+                }
                 SummitBranch::Free => {}
             }
         }
@@ -336,6 +348,8 @@ impl Rough {
             load: load / n,
             contact_fraction: contact / n,
             noncontact_fraction: noncontact / n,
+            contact_load: contact_load / n,
+            noncontact_load: noncontact_load / n,
             quadrature_error: 0.0,
         })
     }
@@ -375,6 +389,7 @@ impl Rough {
         let cuts = self.pieces(leg, d);
         let failed = Cell::new(false);
         let (mut load, mut contact, mut noncontact, mut error) = (0.0, 0.0, 0.0, 0.0);
+        let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for w in cuts.windows(2) {
             let (t0, t1) = (w[0], w[1]);
             let branch = self.branch(leg, 0.5 * (t0 + t1) * s, d);
@@ -398,6 +413,10 @@ impl Rough {
             let (v, e) = integrate(&f, t0, t1);
             load += v;
             error += e;
+            match branch {
+                SummitBranch::Contact => contact_load += v,
+                _ => noncontact_load += v,
+            }
         }
         if failed.get() {
             return Err(RoughError::Failed(d, self.summit.lambda));
@@ -407,6 +426,8 @@ impl Rough {
             load,
             contact_fraction: contact,
             noncontact_fraction: noncontact,
+            contact_load,
+            noncontact_load,
             quadrature_error: error,
         })
     }

@@ -509,6 +509,7 @@ impl WetRough {
         cuts.dedup();
         let failed = Cell::new(false);
         let (mut load, mut contact, mut noncontact, mut error) = (0.0, 0.0, 0.0, 0.0);
+        let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for w in cuts.windows(2) {
             let (t0, t1) = (w[0], w[1]);
             let k = Self::stretch(summit, leg, 0.5 * (t0 + t1) * s, d);
@@ -531,6 +532,10 @@ impl WetRough {
             let (v, e) = integrate(&f, t0, t1);
             load += v;
             error += e;
+            match summit.stretches[k].branch() {
+                SummitBranch::Contact => contact_load += v,
+                _ => noncontact_load += v,
+            }
         }
         if failed.get() {
             return Err(RoughError::Failed(d, summit.ctx.zones.lambda[0]));
@@ -540,6 +545,8 @@ impl WetRough {
             load,
             contact_fraction: contact,
             noncontact_fraction: noncontact,
+            contact_load,
+            noncontact_load,
             quadrature_error: error,
         })
     }
