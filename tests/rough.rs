@@ -543,6 +543,35 @@ fn si_scenes_scale_the_summit_units_and_warn() {
     let o = tabor(&["rough", "--preset", "nonsense"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&o.stderr).contains("mems-polysilicon"));
+    // Every preset sticks: a tensile pull-off force equal to the summits' count times the
+    // normalised one; the colloidal probe covers only a few dozen summits and says so.
+    for name in tabor::rough::scene::PRESETS {
+        let sc = preset(name).unwrap();
+        let r = sc.solve(60).unwrap();
+        let few = name == "colloidal-probe-wafer";
+        assert_eq!(
+            r.warnings.len(),
+            usize::from(few),
+            "{name}: {:?}",
+            r.warnings
+        );
+        assert!(!few || r.warnings[0].contains("summits in the nominal area"));
+        let c = sc.summit().unwrap();
+        let d_min = sc
+            .min_separation_m
+            .map_or(-3.0 * r.sigma_normalised, |d| d / c.approach_scale());
+        let cyc = Rough::new(c.lambda(), sc.sigma_m / c.approach_scale())
+            .unwrap()
+            .cycle(d_min, None, 60)
+            .unwrap();
+        let per = std::f64::consts::PI * sc.work_of_adhesion_j_m2 * sc.summit_radius_m;
+        let want = cyc.pulloff_load * per * sc.summit_density_m2 * sc.nominal_area_m2;
+        assert!(
+            r.pulloff_force_n < 0.0 && (r.pulloff_force_n / want - 1.0).abs() < 1e-12,
+            "{name}: {} against {want}",
+            r.pulloff_force_n
+        );
+    }
 }
 
 /// A .npy file of float64 values written here byte by byte (the format is four lines of spec).

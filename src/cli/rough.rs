@@ -59,7 +59,7 @@ pub struct RoughArgs {
     /// f32]. The CPU path is f64.
     #[arg(long, value_enum)]
     pub precision: Option<super::PrecisionArg>,
-    /// A built-in rough scene: mems-polysilicon, pdms-rough-glass.
+    /// A built-in rough scene: mems-polysilicon, pdms-rough-glass, colloidal-probe-wafer.
     #[arg(long, conflicts_with_all = ["lambda", "sigma", "min_separation", "max_separation"])]
     pub preset: Option<String>,
 

@@ -85,12 +85,41 @@ pub fn preset(name: &str) -> Option<RoughScene> {
             humidity: None,
             source: Some("PDMS on glass E* = 2.4 MPa, w = 44 mJ/m^2 (as the pdms-glass scene); summits of radius 10 um, 1000 per mm^2, rms height 0.2 um: representative, not a measured sample".into()),
         }),
+        "colloidal-probe-wafer" => Some(RoughScene {
+            name: Some("silica colloidal probe (radius 25 um) on a rough silicon wafer".into()),
+            body1: Some(Body {
+                youngs_modulus_pa: 73e9,
+                poisson_ratio: 0.17,
+                radius_m: None,
+            }),
+            body2: Some(Body {
+                youngs_modulus_pa: 130e9,
+                poisson_ratio: 0.28,
+                radius_m: None,
+            }),
+            e_star_pa: None,
+            work_of_adhesion_j_m2: 0.05,
+            z0_m: Some(0.3e-9),
+            s0_pa: None,
+            h0_m: None,
+            summit_radius_m: 200e-9,
+            summit_density_m2: 5e13,
+            sigma_m: 0.5e-9,
+            nominal_area_m2: 2.0 * std::f64::consts::PI * 25e-6 * 6.0 * 0.5e-9,
+            min_separation_m: Some(-1e-9),
+            humidity: None,
+            source: Some("silica E = 73 GPa, nu = 0.17 on silicon E = 130 GPa, nu = 0.28; w = 0.05 J/m^2 (oxide on oxide, dry); wafer summits of radius 200 nm, 50 per um^2, rms height 0.5 nm, pressed to 2 sigma below their mean plane: representative, not a measured sample. Nominal area: the patch of the 25 um probe within 6 sigma of the wafer, 2 pi R 6 sigma: only about 24 summits, so the statistics are stretched (the warning says so; an explicit ensemble of the measured summits under the probe, --asperities, is the tool), and the probe's own curvature across the patch (Greenwood and Tripp) and its attraction beyond the summits are not modelled".into()),
+        }),
         _ => None,
     }
 }
 
 /// The built-in rough scenes.
-pub const PRESETS: [&str; 2] = ["mems-polysilicon", "pdms-rough-glass"];
+pub const PRESETS: [&str; 3] = [
+    "mems-polysilicon",
+    "pdms-rough-glass",
+    "colloidal-probe-wafer",
+];
 
 /// One half of the cycle in SI units, one entry per separation.
 #[derive(Clone, Debug, Serialize)]
