@@ -720,6 +720,58 @@ fn explicit_summits_each_follow_their_own_branch() {
     }
     let o = tabor(&["rough", "--asperities", bad.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1));
+    // The summits as .npy (rows height_m, radius_m) give the CSV's bytes.
+    let (csv, npy) = (dir.path().join("s.csv"), dir.path().join("s.npy"));
+    let rows = [(1e-8, 2e-5), (-5e-9, 8e-6), (2.5e-8, 1.2e-5)];
+    let text: String = rows.iter().map(|(h, r)| format!("{h:e},{r:e}\n")).collect();
+    std::fs::write(&csv, format!("height_m,radius_m\n{text}")).unwrap();
+    let flat: Vec<f64> = rows.iter().flat_map(|&(h, r)| [h, r]).collect();
+    write_npy(&npy, (3, 2), false, &flat);
+    let ens = |p: &std::path::Path| {
+        tabor(&[
+            "rough",
+            "--preset",
+            "pdms-rough-glass",
+            "--asperities",
+            p.to_str().unwrap(),
+            "--points",
+            "20",
+        ])
+    };
+    let (a, b) = (ens(&csv), ens(&npy));
+    assert!(a.status.success(), "{}", String::from_utf8_lossy(&a.stderr));
+    assert_eq!(a.stdout, b.stdout);
+    // Bad height maps: empty, or with a missing pixel; one line each, nothing written.
+    let out = dir.path().join("out.json");
+    for (shape, values, needle) in [
+        ((0, 5), vec![], "size"),
+        (
+            (3, 3),
+            vec![0.0, 1.0, 0.0, 1.0, f64::NAN, 1.0, 0.0, 1.0, 0.0],
+            "finite",
+        ),
+    ] {
+        let p = dir.path().join("bad.npy");
+        write_npy(&p, shape, false, &values);
+        let o = tabor(&[
+            "rough",
+            "--preset",
+            "pdms-rough-glass",
+            "--topography",
+            p.to_str().unwrap(),
+            "--pixel-m",
+            "1e-8",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{shape:?}: {err}");
+        assert!(
+            err.contains(needle) && err.lines().count() == 1,
+            "{shape:?}: {err}"
+        );
+        assert!(!out.exists(), "{shape:?}: an output was written");
+    }
 }
 
 /// An ensemble whose summits span lambda 0.31..3.1 (across lambda_D): each summit's states from
