@@ -59,6 +59,45 @@ fn vanishing_roughness_is_the_single_summit() {
     }
 }
 
+/// sigma -> 0 is `tabor cycle --control grips` itself: the rough retract after pressing to the
+/// approach 1, at the separation minus each retract state of the single summit's grips cycle,
+/// is that state's load within 1e-9 (the states at a jump, whose landing is interpolated on the
+/// path, and those within 1e-6 of a jump, where the Gaussian mixes two branches, left out).
+#[test]
+fn vanishing_roughness_is_the_grips_cycle() {
+    use tabor::cycle::{cycle, Drive, Phase};
+    for lambda in [0.1, 0.5, 2.0, 10.0] {
+        let c = cycle(lambda, Drive::RigidGrips, 4.0).unwrap();
+        let r = Rough::new(lambda, 1e-9).unwrap();
+        let jumps: Vec<f64> = c
+            .jumps
+            .iter()
+            .flat_map(|j| [Some(j.from.approach), j.to.map(|t| t.approach)])
+            .flatten()
+            .collect();
+        let mut checked = 0;
+        for s in c
+            .steps
+            .iter()
+            .filter(|s| s.phase == Phase::Retract && !s.jump)
+        {
+            let delta = s.point.approach;
+            if delta > 1.0 || jumps.iter().any(|j| (delta - j).abs() < 1e-6) {
+                continue;
+            }
+            let m = r.mean(Leg::Retract { d_min: -1.0 }, -delta).unwrap();
+            let want = s.point.load;
+            assert!(
+                (m.load - want).abs() < 1e-9 * (1.0 + want.abs()),
+                "lambda {lambda}, approach {delta}: {} against the cycle's {want}",
+                m.load
+            );
+            checked += 1;
+        }
+        assert!(checked > 50, "lambda {lambda}: {checked} states");
+    }
+}
+
 /// JKR in the summit's units: P(A), delta(A) and d delta / dA.
 fn jkr(a: f64) -> (f64, f64, f64) {
     let s6 = 6f64.sqrt();
