@@ -20,6 +20,14 @@ fn leg<'py>(py: Python<'py>, v: &[Mean]) -> PyResult<Bound<'py, PyDict>> {
         "noncontact_fraction",
         arr(py, v.iter().map(|m| m.noncontact_fraction).collect()),
     )?;
+    d.set_item(
+        "contact_load",
+        arr(py, v.iter().map(|m| m.contact_load).collect()),
+    )?;
+    d.set_item(
+        "noncontact_load",
+        arr(py, v.iter().map(|m| m.noncontact_load).collect()),
+    )?;
     Ok(d)
 }
 
@@ -37,18 +45,16 @@ pub fn rough<'py>(
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let c =
-        run(py, move || {
-            let ratios = tabor::physics::two_zone::paired_ratios(stress_ratio, range_ratio)
-                .map_err(anyhow::Error::msg)?;
-            match ratios {
-                None => {
-                    Ok(Rough::new(lam, sigma)?.cycle(min_separation, max_separation, points)?)
-                }
-                Some((rho, eta)) => Ok(tabor::rough::wet::WetRough::new(lam, rho, eta, sigma)?
-                    .cycle(lam, min_separation, max_separation, points)?),
-            }
-        })?;
+    let c = run(py, move || {
+        let law =
+            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(anyhow::Error::msg)?;
+        Ok(tabor::rough::wet::WetRough::of_law(law, sigma)?.cycle(
+            lam,
+            min_separation,
+            max_separation,
+            points,
+        )?)
+    })?;
     let d = PyDict::new(py);
     d.set_item("lambda", c.lambda)?;
     d.set_item("sigma", c.sigma)?;

@@ -754,7 +754,8 @@ def rough(lam, sigma, min_separation, max_separation=None, points=400, stress_ra
     summit feels the flat) to ``min_separation`` and back, as ``tabor rough`` computes it.
     Loads per summit in pi w R, separations and sigma in the summit's approach unit. Returns a
     dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
-    ``noncontact_fraction``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
+    ``noncontact_fraction``, and the load's parts ``contact_load`` and ``noncontact_load``),
+    ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
     ``smooth_pulloff``, ``fuller_tabor_parameter``, ``quadrature_error`` (the largest error
     estimate of the quadrature over the loads given). With ``stress_ratio`` and ``range_ratio``
     (both), a water meniscus on every summit (``tabor rough --stress-ratio --range-ratio``): the

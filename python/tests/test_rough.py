@@ -23,7 +23,8 @@ def test_rough_equals_the_command_line():
               "fuller_tabor_parameter"]:
         assert got[k] == want[k], k
     for leg in ["approach", "retract"]:
-        for k in ["separation", "load", "contact_fraction", "noncontact_fraction"]:
+        for k in ["separation", "load", "contact_fraction", "noncontact_fraction",
+                  "contact_load", "noncontact_load"]:
             assert isinstance(got[leg][k], np.ndarray)
             np.testing.assert_array_equal(got[leg][k], np.array(want[leg][k]))
 
@@ -122,7 +123,8 @@ def test_wet_rough_equals_the_command_line_and_refuses_as_it_does():
               "fuller_tabor_parameter"]:
         assert got[k] == want[k], k
     for leg in ["approach", "retract"]:
-        for k in ["separation", "load", "contact_fraction", "noncontact_fraction"]:
+        for k in ["separation", "load", "contact_fraction", "noncontact_fraction",
+                  "contact_load", "noncontact_load"]:
             np.testing.assert_array_equal(got[leg][k], np.array(want[leg][k]))
     # rho = 0 is the dry surface.
     dry = tabor.rough(1.0, 0.5, -1.0, points=20)

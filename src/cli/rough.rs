@@ -4,7 +4,7 @@ use super::Format;
 use crate::io::{fmt17, write_output};
 use crate::physics::domain::short;
 use crate::render::Kind;
-use crate::rough::{Mean, Rough, RoughCycle};
+use crate::rough::{Mean, RoughCycle};
 use anyhow::Context;
 use clap::Args;
 use serde::Serialize;
@@ -174,14 +174,11 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
     };
     let wet = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
-    let c = match wet {
-        None => Rough::new(lambda, sigma)?
-            .cycle(d_min, a.max_separation, a.points)
-            .context("the separations (--min-separation, --max-separation, --points)")?,
-        Some((rho, eta)) => crate::rough::wet::WetRough::new(lambda, rho, eta, sigma)?
-            .cycle(lambda, d_min, a.max_separation, a.points)
-            .context("the separations (--min-separation, --max-separation, --points)")?,
-    };
+    let law = crate::ContactLaw::new(lambda, a.stress_ratio, a.range_ratio)
+        .map_err(anyhow::Error::msg)?;
+    let c = crate::rough::wet::WetRough::of_law(law, sigma)?
+        .cycle(lambda, d_min, a.max_separation, a.points)
+        .context("the separations (--min-separation, --max-separation, --points)")?;
     let text = match a.format {
         Format::Csv => csv(&c)?,
         _ => {

@@ -443,6 +443,20 @@ pub enum WetRough {
 }
 
 impl WetRough {
+    /// Summits of the contact law `law` (MD, or the solid with its meniscus), heights N(0,
+    /// sigma^2) in the law's approach unit: the one entry of the command line and Python.
+    pub fn of_law(law: crate::ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
+        use crate::ContactLaw;
+        match law {
+            ContactLaw::Md { lambda } => Ok(WetRough::Dry(Rough::new(lambda, sigma)?)),
+            ContactLaw::SolidAndMeniscus {
+                lambda,
+                stress_ratio,
+                range_ratio,
+            } => WetRough::new(lambda, stress_ratio, range_ratio, sigma),
+        }
+    }
+
     /// Summits of solid Maugis parameter `lambda_s` with a second zone of stress ratio `rho` and
     /// range ratio `eta` (section 10), heights N(0, sigma^2) in the total-w approach unit.
     pub fn new(lambda_s: f64, rho: f64, eta: f64, sigma: f64) -> Result<WetRough, RoughError> {
