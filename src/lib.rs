@@ -123,6 +123,7 @@ pub mod kernel;
 pub mod map;
 pub mod physics;
 pub mod profile;
+pub mod profile_spec;
 pub mod profile_two_zone;
 pub(crate) mod progress;
 #[cfg(feature = "render")]

@@ -408,3 +408,34 @@ fn a_wet_scene_profile_is_the_scene_state_in_si() {
     assert!(rel(w, 0.1 + w2) < 1e-9, "{w} {}", 0.1 + w2);
     assert!(rel(s[0].as_f64().unwrap() * h[0].as_f64().unwrap(), 0.1) < 1e-9);
 }
+
+/// The one entry of Python's profile(): the law's own profile, serialised as before, and the
+/// law's own refusals.
+#[test]
+fn the_profile_spec_dispatches_on_the_law() {
+    use tabor::profile_spec::ProfileSpec;
+    use tabor::ContactLaw;
+    fn json<T: serde::Serialize>(v: &T) -> String {
+        serde_json::to_string(v).unwrap()
+    }
+    let given = Given::Load(0.5);
+    let md = ProfileSpec {
+        law: ContactLaw::new(0.7, None, None).unwrap(),
+        given,
+        points: 64,
+    };
+    assert_eq!(
+        json(&md.run().unwrap()),
+        json(&profile(0.7, given, 64).unwrap())
+    );
+    let wet = ProfileSpec {
+        law: ContactLaw::new(0.7, Some(0.2), Some(5.0)).unwrap(),
+        ..md
+    };
+    assert_eq!(
+        json(&wet.run().unwrap()),
+        json(&two_zone_profile(0.7, 0.2, 5.0, given, 64).unwrap())
+    );
+    let few = ProfileSpec { points: 3, ..wet };
+    assert!(few.run().unwrap_err().to_string().contains("points 3"));
+}

@@ -673,40 +673,27 @@ fn given_of(given: &str, value: f64) -> PyResult<tabor::profile::Given> {
     }
 }
 
-/// Pressure and gap profiles (JSON): `given` load|approach|radius.
+/// Pressure and gap profiles: `given` load|approach|radius; with both of the second zone's
+/// ratios the two-zone state's (`tabor profile --stress-ratio --range-ratio`).
 #[pyfunction]
+#[pyo3(signature = (lam, given, value, points, stress_ratio=None, range_ratio=None))]
+#[allow(clippy::too_many_arguments)]
 fn profile<'py>(
     py: Python<'py>,
     lam: f64,
     given: &str,
     value: f64,
     points: usize,
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let g = given_of(given, value)?;
-    run_py(py, move || Ok(tabor::profile::profile(lam, g, points)?))
-}
-
-/// The profile of a two-zone state (`tabor profile --stress-ratio --range-ratio`).
-#[pyfunction]
-fn profile_two_zone<'py>(
-    py: Python<'py>,
-    lam: f64,
-    stress_ratio: f64,
-    range_ratio: f64,
-    given: &str,
-    value: f64,
-    points: usize,
-) -> PyResult<Bound<'py, PyAny>> {
-    let g = given_of(given, value)?;
-    run_py(py, move || {
-        Ok(tabor::profile_two_zone::two_zone_profile(
-            lam,
-            stress_ratio,
-            range_ratio,
-            g,
-            points,
-        )?)
-    })
+    let spec = tabor::profile_spec::ProfileSpec {
+        law: tabor::ContactLaw::new(lam, stress_ratio, range_ratio)
+            .map_err(PyValueError::new_err)?,
+        given: given_of(given, value)?,
+        points,
+    };
+    run_py(py, move || Ok(spec.run()?))
 }
 
 /// Both pull-offs of the solid's lambda with a second zone (`tabor pulloff --stress-ratio
@@ -918,7 +905,6 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
     m.add_function(wrap_pyfunction!(plan_segments, m)?)?;
-    m.add_function(wrap_pyfunction!(profile_two_zone, m)?)?;
     m.add_function(wrap_pyfunction!(infer_pulloff_wet, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff_two_zone, m)?)?;
     m.add_function(wrap_pyfunction!(fit_pairs, m)?)?;

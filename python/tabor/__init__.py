@@ -729,16 +729,11 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
              if v is not None]
     if len(given) != 1:
         raise ValueError("give exactly one of load=, approach= or radius=")
-    if _tabor.two_zone_ratios(_optional(stress_ratio, "stress_ratio"),
-                              _optional(range_ratio, "range_ratio")) is not None:
-        # The two-zone state (``tabor profile --stress-ratio --range-ratio``): its model
-        # "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
-        p = _tabor.profile_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),
-                                    _real(range_ratio, "range_ratio"), given[0][0],
-                                    _real(given[0][1], given[0][0]), int(points))
-    else:
-        p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
-                           int(points))
+    # With both ratios the two-zone state (``tabor profile --stress-ratio --range-ratio``):
+    # its model "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
+    p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
+                       int(points), _optional(stress_ratio, "stress_ratio"),
+                       _optional(range_ratio, "range_ratio"))
     for m in p["models"]:
         m["r"] = np.array(m["r"], dtype=float)
         m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],
