@@ -368,6 +368,12 @@ fn the_command_writes_the_keys_and_refuses_bad_input() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // The JSON says what the model leaves out and where that fails.
+    let model = j["model"].as_str().unwrap();
+    assert!(
+        model.contains("do not interact") && model.contains("fails when contact spots crowd"),
+        "{model}"
+    );
     for k in [
         "pulloff_load",
         "pulloff_separation",

@@ -142,7 +142,7 @@ struct Json<'a> {
     model: &'a str,
 }
 
-const MODEL: &str = "Greenwood-Williamson: identical spherical summits, Gaussian heights, each an exact Maugis-Dugdale sphere under rigid grips with its own history; the summits do not interact (no elastic coupling), which fails when contact spots crowd (a real contact area beyond about 10% of the nominal), when sigma is comparable to the summit radius, or for few summits";
+use crate::rough::scene::MODEL;
 
 const MODEL_WET: &str = "Greenwood-Williamson with a water meniscus on every summit: identical spherical summits, Gaussian heights, each an exact two-zone (solid Dugdale zone plus meniscus) sphere under rigid grips with its own history; loads in pi w R with w the total work of adhesion; the summits and their menisci do not interact, which fails where the meniscus range approaches the summit spacing or sigma (menisci merge), as for the dry model where contact spots crowd; the meniscus is in equilibrium (no film dynamics) and its Kelvin radius small against the summit radius";
 
