@@ -473,7 +473,10 @@ pub(crate) fn write_with_figure(
     use anyhow::Context;
     use std::io::Write;
     let open = |p: &std::path::Path| crate::io::Output::create(p);
-    let mut files = vec![(open(std::path::Path::new(output))?, data.to_vec())];
+    let mut files = vec![(
+        open(std::path::Path::new(output))?,
+        std::borrow::Cow::Borrowed(data),
+    )];
     if !figure.is_empty() {
         let opened =
             [&figure.png, &figure.svg, &figure.pdf].map(|p| p.as_deref().map(open).transpose());
@@ -486,7 +489,7 @@ pub(crate) fn write_with_figure(
         let bytes = [r.png, r.svg.map(String::into_bytes), r.pdf];
         for (o, b) in outs.into_iter().zip(bytes) {
             if let (Some(o), Some(b)) = (o, b) {
-                files.push((o, b));
+                files.push((o, std::borrow::Cow::Owned(b)));
             }
         }
     }

@@ -174,8 +174,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         anyhow::bail!("give --lambda, --sigma and --min-separation (or --scene/--preset)");
     };
     let wet = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
-    let law = crate::ContactLaw::new(lambda, a.stress_ratio, a.range_ratio)
-        .map_err(anyhow::Error::msg)?;
+    let law = crate::ContactLaw::with_ratios(lambda, wet);
     let c = crate::rough::wet::WetRough::of_law(law, sigma)?
         .cycle(lambda, d_min, a.max_separation, a.points)
         .context("the separations (--min-separation, --max-separation, --points)")?;

@@ -545,16 +545,8 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         Some((rho, eta, _)) => Some((*rho, *eta)),
         None => super::two_zone_ratios(a.stress_ratio, a.range_ratio)?,
     };
-    let law = match ratios {
-        Some((stress_ratio, range_ratio)) => ContactLaw::SolidAndMeniscus {
-            lambda,
-            stress_ratio,
-            range_ratio,
-        },
-        None => ContactLaw::Md { lambda },
-    };
     let c = CycleSpec {
-        law,
+        law: ContactLaw::with_ratios(lambda, ratios),
         drive,
         max_load: a.max_load,
     }

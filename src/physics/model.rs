@@ -172,16 +172,21 @@ impl ContactLaw {
         stress_ratio: Option<f64>,
         range_ratio: Option<f64>,
     ) -> Result<ContactLaw, String> {
-        Ok(
-            match super::two_zone::paired_ratios(stress_ratio, range_ratio)? {
-                None => ContactLaw::Md { lambda },
-                Some((stress_ratio, range_ratio)) => ContactLaw::SolidAndMeniscus {
-                    lambda,
-                    stress_ratio,
-                    range_ratio,
-                },
+        let ratios = super::two_zone::paired_ratios(stress_ratio, range_ratio)?;
+        Ok(ContactLaw::with_ratios(lambda, ratios))
+    }
+
+    /// MD at `lambda`, or with the second zone's (stress, range) ratios, already paired, the
+    /// two-zone law.
+    pub fn with_ratios(lambda: f64, ratios: Option<(f64, f64)>) -> ContactLaw {
+        match ratios {
+            None => ContactLaw::Md { lambda },
+            Some((stress_ratio, range_ratio)) => ContactLaw::SolidAndMeniscus {
+                lambda,
+                stress_ratio,
+                range_ratio,
             },
-        )
+        }
     }
 
     /// The law's model name.

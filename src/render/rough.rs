@@ -114,7 +114,20 @@ where
     )))?;
     legend(&mut chart, SeriesLabelPosition::LowerRight, NOTE)?;
 
-    let mut frac = builder(&right, "").build_cartesian_2d(xmin..xmax, 0.0..1.0)?;
+    fractions(&right, c, (xmin, xmax))
+}
+
+/// The cycle's right panel: the fractions of summits in contact (solid) and with a cohesive
+/// zone only (dashed), coloured by leg as in the load panel.
+fn fractions<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    c: &RoughCycle,
+    (xmin, xmax): (f64, f64),
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let mut frac = builder(area, "").build_cartesian_2d(xmin..xmax, 0.0..1.0)?;
     super::house_mesh(
         frac.configure_mesh(),
         "separation  d",

@@ -600,6 +600,20 @@ impl Quad {
         law.weighted_sum(&wt, &delta) / (2.0 * PI).sqrt()
     }
 
+    /// The mean load of the summits from height `h` (sigma) up, all in contact, where the law
+    /// is Hertz's, DMT's or the rigid summits': closed forms in the tail mass and `G(h)`.
+    #[inline(always)]
+    fn moment(&self, law: Law, sigma: f64, h: f64) -> Option<f64> {
+        let mass = || super::upper_tail(h) - super::upper_tail(Z_MAP);
+        let hertz = || sigma * sigma.sqrt() * self.hertz.at(h);
+        match law {
+            Law::Hertz => Some(hertz()),
+            Law::DmtContact => Some(hertz() - 2.0 * mass()),
+            Law::Rigid => Some(-2.0 * mass()),
+            _ => None,
+        }
+    }
+
     /// [`Quad::retract`] for any CPU.
     #[inline(always)]
     fn retract_any(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
@@ -623,22 +637,9 @@ impl Quad {
                 // summits just touching up to the truncation) are Gaussian moments in closed
                 // form: sigma^(3/2) G(h) and the tail mass, no nodes.
                 if dl == 0.0 && a == s0 && b == Z_MAP {
-                    let mass = || super::upper_tail(a) - super::upper_tail(Z_MAP);
-                    let hertz = || sigma * sigma.sqrt() * self.hertz.at(a);
-                    match law {
-                        Law::Hertz => {
-                            total += hertz();
-                            continue;
-                        }
-                        Law::DmtContact => {
-                            total += hertz() - 2.0 * mass();
-                            continue;
-                        }
-                        Law::Rigid => {
-                            total += -2.0 * mass();
-                            continue;
-                        }
-                        _ => {}
+                    if let Some(v) = self.moment(law, sigma, a) {
+                        total += v;
+                        continue;
                     }
                 }
                 // Mostly one piece: no divisions then (the same numbers as with them).
