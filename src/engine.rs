@@ -311,12 +311,19 @@ impl Solve for Gpu {
         lambdas: &[f64],
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
+        let t0 = std::time::Instant::now();
         let nx = lambdas.len();
         let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
         // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
-        let started = solver::with_gap_starts(ctx, gaps);
+        // Only a software adapter wants them (see `wants_starts`).
+        let started = if wants_starts(self) {
+            solver::with_gap_starts(ctx, gaps)
+        } else {
+            std::borrow::Cow::Borrowed(ctx)
+        };
         let prepared = prepare_contexts(&started, lambdas);
         let starts = Starts::new(&started, &prepared);
+        let t_starts = t0.elapsed().as_secs_f64();
         let out = self.grid_started(
             &prepared,
             &starts,
@@ -325,10 +332,19 @@ impl Solve for Gpu {
             true,
             KernelFlags::SHIPPED,
         )?;
+        let t_gpu = t0.elapsed().as_secs_f64() - t_starts;
         let idx: Vec<(u32, f64)> = (0..out.len())
             .map(|i| ((i % nx) as u32, gaps[i / nx]))
             .collect();
-        finish(self, ctx, lambdas, &idx, &out, Control::Load, true)
+        let states = finish(self, ctx, lambdas, &idx, &out, Control::Load, true);
+        if crate::gpu::device::trace() {
+            eprintln!(
+                "gpu trace: band of {} states: starts and contexts {t_starts:.4} s, gpu {t_gpu:.4} s, finish {:.4} s",
+                out.len(),
+                t0.elapsed().as_secs_f64() - t_starts - t_gpu
+            );
+        }
+        states
     }
     fn solve_grid_with(
         &self,
@@ -338,7 +354,11 @@ impl Solve for Gpu {
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
         let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-        let started = solver::with_starts(ctx, values, control);
+        let started = if wants_starts(self) {
+            solver::with_starts(ctx, values, control)
+        } else {
+            std::borrow::Cow::Borrowed(ctx)
+        };
         let prepared = prepare_contexts(&started, lambdas);
         let starts = Starts::new(&started, &prepared);
         let out = self.grid_started(
@@ -378,6 +398,14 @@ fn prepare_contexts(
             )
         })
         .collect()
+}
+
+/// Whether a grid on this adapter gets the CPU-built dense starts. They halve the kernel's
+/// iterations (3.77 to 1.82 a state), which pays on a software adapter sharing the CPU's cores;
+/// a hardware GPU solves a million states in about a millisecond without them, while building
+/// them per band costs the CPU more than that (README, Speed).
+fn wants_starts(g: &Gpu) -> bool {
+    g.adapter.software
 }
 
 fn kind(g: &Gpu) -> &'static str {

@@ -232,9 +232,18 @@ pub struct Gpu {
 
 const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
 
+/// With `TABOR_GPU_TRACE=1` each GPU run prints where its time went (pipeline, upload, each
+/// dispatch's wait and read-back) on stderr: the way to see a host-side bottleneck on an
+/// adapter at hand.
+pub(crate) fn trace() -> bool {
+    static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ON.get_or_init(|| std::env::var("TABOR_GPU_TRACE").is_ok_and(|v| v == "1"))
+}
+
 impl Gpu {
     /// Opens the first hardware adapter, or the one whose name contains `adapter_name`.
     pub fn new(adapter_name: Option<&str>) -> Result<Gpu, GpuError> {
+        let t0 = std::time::Instant::now();
         let adapter = choose_adapter(adapter_name)?;
         let info = adapter.get_info();
         let limits = adapter.limits();
@@ -329,6 +338,12 @@ impl Gpu {
             error,
         };
         gpu.check()?;
+        if trace() {
+            eprintln!(
+                "gpu trace: adapter, device and shader module in {:.4} s",
+                t0.elapsed().as_secs_f64()
+            );
+        }
         Ok(gpu)
     }
 
@@ -552,7 +567,9 @@ impl Gpu {
                 self.max_buffer
             )));
         }
+        let t0 = std::time::Instant::now();
         let pipeline = self.pipeline(variant)?;
+        let t_pipeline = t0.elapsed().as_secs_f64();
         let d = &self.device;
         let lam_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("lambdas"),
@@ -598,6 +615,7 @@ impl Gpu {
             out: &out_buf,
             staging: &staging,
         };
+        let t_upload = t0.elapsed().as_secs_f64() - t_pipeline;
         while start < total {
             let n = chunk.min(total - start);
             let p = Params {
@@ -608,6 +626,14 @@ impl Gpu {
             };
             self.dispatch(&pipeline, &bufs, p, input_stride, &mut result)?;
             start += n;
+        }
+        if trace() {
+            eprintln!(
+                "gpu trace: {} {total} points in {} dispatches: pipeline {t_pipeline:.4} s, upload {t_upload:.4} s, total {:.4} s",
+                variant.entry.name(),
+                total.div_ceil(chunk),
+                t0.elapsed().as_secs_f64()
+            );
         }
         Ok(result)
     }
@@ -679,6 +705,7 @@ impl Gpu {
         }
         let bytes = (p.count as usize * out_bytes) as u64;
         enc.copy_buffer_to_buffer(bufs.out, 0, bufs.staging, 0, bytes);
+        let t0 = std::time::Instant::now();
         self.queue.submit([enc.finish()]);
         let slice = bufs.staging.slice(..bytes);
         let (tx, rx) = std::sync::mpsc::channel();
@@ -687,6 +714,7 @@ impl Gpu {
         });
         d.poll(wgpu::PollType::wait_indefinitely())
             .map_err(|e| GpuError::Runtime(e.to_string()))?;
+        let t_wait = t0.elapsed().as_secs_f64();
         match rx.recv() {
             Ok(Ok(())) => {}
             Ok(Err(e)) => return Err(GpuError::Runtime(format!("reading results back: {e}"))),
@@ -703,6 +731,13 @@ impl Gpu {
             result.extend_from_slice(bytemuck::cast_slice(&view));
         }
         bufs.staging.unmap();
+        if trace() {
+            eprintln!(
+                "gpu trace:   dispatch of {}: compute and copy {t_wait:.4} s, read back {:.4} s",
+                p.count,
+                t0.elapsed().as_secs_f64() - t_wait
+            );
+        }
         self.check()
     }
 }
