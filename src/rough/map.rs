@@ -409,11 +409,27 @@ impl Law<'_> {
             Law::Table(t, _) => {
                 // The graded variable of every node first (square roots and a division, which
                 // vectorise), then the spline.
-                let mut v = [0.0; GL_N];
+                // Then each node's interval and local variable (a vector conversion), and the
+                // cubics apart from the sum, so that no chain of one node waits on another's.
+                let last = (t.coef.len() - 1) as f64;
+                let (mut at, mut s) = ([0u32; GL_N], [0.0; GL_N]);
                 for k in 0..GL_N {
-                    v[k] = v_of_u((delta[k] - t.delta0).max(0.0).sqrt());
+                    let x = v_of_u((delta[k] - t.delta0).max(0.0).sqrt()) * TABLE_INV_H;
+                    let xk = x.min(last).max(0.0);
+                    // SAFETY: xk is finite and within 0..=last, far below u32::MAX.
+                    at[k] = unsafe { xk.to_int_unchecked::<u32>() };
+                    s[k] = x - at[k] as f64;
                 }
-                sum(wt, &v, |v| spline_at_fused(&t.coef, v * TABLE_INV_H))
+                let mut f = [0.0; GL_N];
+                for k in 0..GL_N {
+                    // SAFETY: at[k] <= last.
+                    let c = unsafe { t.coef.get_unchecked(at[k] as usize) };
+                    f[k] = c[3]
+                        .mul_add(s[k], c[2])
+                        .mul_add(s[k], c[1])
+                        .mul_add(s[k], c[0]);
+                }
+                sum(wt, &f, |f| f)
             }
             Law::NonContact { lambda, h0, c_star } => {
                 let f = PI * lambda / 2.0;
