@@ -303,21 +303,6 @@ fn spline_at(coef: &[[f64; 4]], x: f64) -> f64 {
     ((c[3] * s + c[2]) * s + c[1]) * s + c[0]
 }
 
-/// [`spline_at`] with fused multiply-adds: the quadrature's node loops, compiled for FMA (see
-/// [`Quad::retract`]), where the Horner chain's latency bounds the loop. It differs from
-/// [`spline_at`] by rounding only (about 1e-16 relative).
-#[inline(always)]
-fn spline_at_fused(coef: &[[f64; 4]], x: f64) -> f64 {
-    let last = coef.len() - 1;
-    let xk = x.min(last as f64).max(0.0);
-    // SAFETY: as in `spline_at`.
-    let k = unsafe { xk.to_int_unchecked::<usize>() };
-    let s = x - k as f64;
-    // SAFETY: k <= last.
-    let c = unsafe { coef.get_unchecked(k) };
-    c[3].mul_add(s, c[2]).mul_add(s, c[1]).mul_add(s, c[0])
-}
-
 /// The not-a-knot cubic spline through `y` at unit spacing, as per-interval coefficients in the
 /// local variable `s` in [0, 1]. Not-a-knot at uniform spacing makes the second derivatives `M`
 /// linear over the first and last three nodes (`M0 = 2 M1 - M2`), so the first and last
@@ -410,7 +395,9 @@ impl Law<'_> {
                 // The graded variable of every node first (square roots and a division, which
                 // vectorise), then the spline.
                 // Then each node's interval and local variable (a vector conversion), and the
-                // cubics apart from the sum, so that no chain of one node waits on another's.
+                // cubics apart from the sum, so that no chain of one node waits on another's;
+                // fused multiply-adds (compiled for FMA, see `Quad::retract`) shorten the
+                // Horner chain and differ from `spline_at` by rounding only.
                 let last = (t.coef.len() - 1) as f64;
                 let (mut at, mut s) = ([0u32; GL_N], [0.0; GL_N]);
                 for k in 0..GL_N {
@@ -578,8 +565,9 @@ impl HertzTail {
 struct Quad {
     nodes: [(f64, f64); GL_N],
     hertz: HertzTail,
-    /// The CPU has AVX2: the node loops run four wide (the same operations, without fused
-    /// multiply-adds, so the same numbers as without it).
+    /// The CPU has AVX2 and FMA: the node loops run four wide, their multiply-adds fused in
+    /// hardware. The loops' `mul_add`s are fused on every CPU (a library call where FMA is
+    /// missing), so the numbers do not depend on it.
     avx2: bool,
     exp: ExpTable,
 }
@@ -611,7 +599,7 @@ impl Quad {
         self.retract_any(m, sigma, d_min, d)
     }
 
-    /// [`Quad::retract`] compiled for AVX2.
+    /// [`Quad::retract`] compiled for AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn retract_avx2(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
