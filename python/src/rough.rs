@@ -239,31 +239,16 @@ pub fn rough_asperities<'py>(
     points: usize,
     summits: String,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tabor::rough::ensemble::{scene_cycle, Asperity};
+    use tabor::rough::ensemble::{asperities, EnsembleSpec};
     let c = run(py, move || {
         let scene = rough_scene(scene_json, preset)?;
-        if heights_m.len() != radii_m.len() {
-            anyhow::bail!(
-                "{} heights and {} radii: give one radius per summit",
-                heights_m.len(),
-                radii_m.len()
-            );
-        }
-        let asp: Vec<Asperity> = heights_m
-            .iter()
-            .zip(&radii_m)
-            .map(|(&height_m, &radius_m)| Asperity { height_m, radius_m })
-            .collect();
-        let solver = summits.parse()?;
-        let cpu = tabor::engine::Engine::Cpu;
-        Ok(scene_cycle(
-            &scene,
-            &asp,
+        let asp = asperities(&heights_m, &radii_m)?;
+        let spec = EnsembleSpec {
             min_separation_m,
             points,
-            solver,
-            &cpu,
-        )?)
+            solver: summits.parse()?,
+        };
+        Ok(spec.run(&scene, &asp, &tabor::engine::Engine::Cpu)?)
     })?;
     ensemble_dict(py, &c)
 }
@@ -284,23 +269,16 @@ pub fn rough_topography<'py>(
     points: usize,
     summits: String,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tabor::rough::ensemble::{scene_cycle, summits_of_topography};
+    use tabor::rough::ensemble::{topography_summits, EnsembleSpec};
     let c = run(py, move || {
         let scene = rough_scene(scene_json, preset)?;
-        let asp = summits_of_topography(&z, nx, pixel_m)?;
-        if asp.is_empty() {
-            anyhow::bail!("the height map has no summit (no pixel above its eight neighbours with a positive curvature)");
-        }
-        let solver = summits.parse()?;
-        let cpu = tabor::engine::Engine::Cpu;
-        Ok(scene_cycle(
-            &scene,
-            &asp,
+        let asp = topography_summits(&z, nx, pixel_m)?;
+        let spec = EnsembleSpec {
             min_separation_m,
             points,
-            solver,
-            &cpu,
-        )?)
+            solver: summits.parse()?,
+        };
+        Ok(spec.run(&scene, &asp, &tabor::engine::Engine::Cpu)?)
     })?;
     ensemble_dict(py, &c)
 }

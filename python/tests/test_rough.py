@@ -200,5 +200,13 @@ def test_topography_equals_the_command_line(tmp_path):
         tabor.rough_topography(z.ravel(), px, preset="pdms-rough-glass")
     with pytest.raises(ValueError, match="pixel size"):
         tabor.rough_topography(z, -1.0, preset="pdms-rough-glass")
-    with pytest.raises(ValueError, match="no summit"):
+    with pytest.raises(ValueError, match="no summit") as refused:
         tabor.rough_topography(np.zeros((5, 5)), px, preset="pdms-rough-glass")
+    # The command line refuses a flat map in the library's words, naming its file.
+    flat = tmp_path / "flat.npy"
+    np.save(flat, np.zeros((5, 5)))
+    out = subprocess.run([str(TABOR), "rough", "--preset", "pdms-rough-glass", "--topography",
+                          str(flat), "--pixel-m", str(px), "--backend", "cpu"],
+                         capture_output=True, text=True)
+    assert out.returncode == 1
+    assert str(refused.value) in out.stderr and str(flat) in out.stderr

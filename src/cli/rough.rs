@@ -585,93 +585,23 @@ fn read_asperities(
 }
 
 fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::Result<()> {
-    use crate::rough::ensemble;
-    let asp = match (&a.asperities, &a.topography) {
-        (Some(p), _) => read_asperities(p)?,
-        (None, Some(p)) => {
-            let (z, shape) = read_npy(p, "--topography")?;
-            if shape.len() != 2 {
-                anyhow::bail!(
-                    "--topography {} has shape {shape:?}: give a 2-D height map",
-                    p.display()
-                );
-            }
-            let s = ensemble::summits_of_topography(
-                &z,
-                shape[1] as usize,
-                a.pixel_m.unwrap_or(f64::NAN),
-            )?;
-            if s.is_empty() {
-                anyhow::bail!("--topography {} has no summit (no pixel above its eight neighbours with a positive curvature)", p.display());
-            }
-            s
-        }
-        _ => unreachable!("run_ensemble is called with an ensemble"),
-    };
+    use crate::rough::ensemble::{EnsembleSpec, SummitSolver};
     // Bad summits are refused before an engine is chosen (and says so).
-    ensemble::check(&asp)?;
-    let solver = match a.summits {
-        SummitsArg::Tables => ensemble::SummitSolver::Tables,
-        SummitsArg::Exact => ensemble::SummitSolver::Exact,
+    let asp = ensemble_summits(a)?;
+    let spec = EnsembleSpec {
+        min_separation_m: a.min_separation_m,
+        points: a.points,
+        solver: match a.summits {
+            SummitsArg::Tables => SummitSolver::Tables,
+            SummitsArg::Exact => SummitSolver::Exact,
+        },
     };
-    let engine = match solver {
-        ensemble::SummitSolver::Exact => crate::engine::Engine::Cpu,
-        ensemble::SummitSolver::Tables => {
-            let gpu = super::basic::GpuArgs {
-                adapter: a.adapter.clone(),
-                check: super::basic::CheckCount(0),
-                precision: a.precision.unwrap_or(super::PrecisionArg::F32),
-            };
-            let mut e = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
-            if a.precision.is_none() && e.set_precision(crate::engine::Precision::F64).is_err() {
-                eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
-            }
-            e
-        }
+    let engine = match spec.solver {
+        SummitSolver::Exact => crate::engine::Engine::Cpu,
+        SummitSolver::Tables => table_engine(a)?,
     };
-    let r = ensemble::scene_cycle(sc, &asp, a.min_separation_m, a.points, solver, &engine)?;
-    let text = match a.format {
-        Format::Csv => {
-            fn half(l: &crate::rough::ensemble::EnsembleLeg) -> Vec<&[f64]> {
-                vec![
-                    l.separation_m.as_slice(),
-                    &l.force_n,
-                    &l.real_contact_area_m2,
-                    &l.contact_fraction,
-                    &l.noncontact_fraction,
-                ]
-            }
-            phases_csv(
-                &[
-                    "separation_m",
-                    "force_n",
-                    "real_contact_area_m2",
-                    "contact_fraction",
-                    "noncontact_fraction",
-                ],
-                [
-                    ("approach", half(&r.approach)),
-                    ("retract", half(&r.retract)),
-                ],
-            )?
-        }
-        _ => {
-            serde_json::to_string_pretty(&serde_json::json!({
-                "summits": r.summits,
-                "approach": r.approach,
-                "retract": r.retract,
-                "pulloff_force_n": r.pulloff_force_n,
-                "pulloff_separation_m": r.pulloff_separation_m,
-                "nominal_area_m2": sc.nominal_area_m2,
-                "pulloff_stress_pa": r.pulloff_force_n / sc.nominal_area_m2,
-                "summit_solver": r.summit_solver,
-                "table_error": r.table_error,
-                "table_check": r.table_check,
-                "model": "explicit summits, each an exact Maugis-Dugdale sphere with its own radius and history under the flat's displacement; the summits do not interact (no elastic coupling)",
-            }))? + "\n"
-        }
-    };
-    write_output(&a.output, text.as_bytes())?;
+    let r = spec.run(sc, &asp, &engine)?;
+    write_output(&a.output, ensemble_text(&r, sc, a.format)?.as_bytes())?;
     if let Some(e) = r.table_error {
         eprintln!(
             "summit states from {}: largest measured interpolation error {}",
@@ -692,4 +622,88 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
         short(r.summit_states as f64 / r.seconds.max(1e-9))
     );
     Ok(())
+}
+
+/// The summits of `--asperities` or `--topography`, checked by the library.
+fn ensemble_summits(a: &RoughArgs) -> anyhow::Result<Vec<crate::rough::ensemble::Asperity>> {
+    use crate::rough::ensemble;
+    match (&a.asperities, &a.topography) {
+        (Some(p), _) => {
+            let asp = read_asperities(p)?;
+            ensemble::check(&asp)?;
+            Ok(asp)
+        }
+        (None, Some(p)) => {
+            let (z, shape) = read_npy(p, "--topography")?;
+            if shape.len() != 2 {
+                anyhow::bail!(
+                    "--topography {} has shape {shape:?}: give a 2-D height map",
+                    p.display()
+                );
+            }
+            let nx = shape[1] as usize;
+            ensemble::topography_summits(&z, nx, a.pixel_m.unwrap_or(f64::NAN))
+                .with_context(|| format!("--topography {}", p.display()))
+        }
+        _ => unreachable!("run_ensemble is called with an ensemble"),
+    }
+}
+
+/// The engine of the summit tables: `--backend`, in f64 where the adapter has f64 shaders
+/// unless `--precision` says otherwise.
+fn table_engine(a: &RoughArgs) -> anyhow::Result<crate::engine::Engine> {
+    let gpu = super::basic::GpuArgs {
+        adapter: a.adapter.clone(),
+        check: super::basic::CheckCount(0),
+        precision: a.precision.unwrap_or(super::PrecisionArg::F32),
+    };
+    let mut e = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
+    if a.precision.is_none() && e.set_precision(crate::engine::Precision::F64).is_err() {
+        eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
+    }
+    Ok(e)
+}
+
+/// An ensemble's cycle as CSV (both legs) or JSON.
+fn ensemble_text(
+    r: &crate::rough::ensemble::EnsembleCycle,
+    sc: &crate::rough::scene::RoughScene,
+    format: Format,
+) -> anyhow::Result<String> {
+    if let Format::Csv = format {
+        fn half(l: &crate::rough::ensemble::EnsembleLeg) -> Vec<&[f64]> {
+            vec![
+                l.separation_m.as_slice(),
+                &l.force_n,
+                &l.real_contact_area_m2,
+                &l.contact_fraction,
+                &l.noncontact_fraction,
+            ]
+        }
+        let names = [
+            "separation_m",
+            "force_n",
+            "real_contact_area_m2",
+            "contact_fraction",
+            "noncontact_fraction",
+        ];
+        let legs = [
+            ("approach", half(&r.approach)),
+            ("retract", half(&r.retract)),
+        ];
+        return phases_csv(&names, legs);
+    }
+    Ok(serde_json::to_string_pretty(&serde_json::json!({
+        "summits": r.summits,
+        "approach": r.approach,
+        "retract": r.retract,
+        "pulloff_force_n": r.pulloff_force_n,
+        "pulloff_separation_m": r.pulloff_separation_m,
+        "nominal_area_m2": sc.nominal_area_m2,
+        "pulloff_stress_pa": r.pulloff_force_n / sc.nominal_area_m2,
+        "summit_solver": r.summit_solver,
+        "table_error": r.table_error,
+        "table_check": r.table_check,
+        "model": "explicit summits, each an exact Maugis-Dugdale sphere with its own radius and history under the flat's displacement; the summits do not interact (no elastic coupling)",
+    }))? + "\n")
 }

@@ -230,6 +230,39 @@ pub struct Gpu {
     error: Arc<Mutex<Option<String>>>,
 }
 
+/// The kernels' bindings: the parameters (uniform), the lambdas and the input (read-only) and
+/// the output.
+fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("md"),
+        entries: &[
+            wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
+            storage(1, true),
+            storage(2, true),
+            storage(3, false),
+        ],
+    })
+}
+
 const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
 
 /// With `TABOR_GPU_TRACE=1` each GPU run prints where its time went (pipeline, upload, each
@@ -282,34 +315,7 @@ impl Gpu {
             label: Some("md"),
             source: wgpu::ShaderSource::Wgsl(crate::kernel::shader_source().into()),
         });
-        let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Storage { read_only },
-                has_dynamic_offset: false,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("md"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                storage(1, true),
-                storage(2, true),
-                storage(3, false),
-            ],
-        });
+        let layout = bind_group_layout(&device);
         let pl = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("md"),
             bind_group_layouts: &[Some(&layout)],
@@ -707,7 +713,29 @@ impl Gpu {
         enc.copy_buffer_to_buffer(bufs.out, 0, bufs.staging, 0, bytes);
         let t0 = std::time::Instant::now();
         self.queue.submit([enc.finish()]);
-        let slice = bufs.staging.slice(..bytes);
+        let t_wait = self.read_back(bufs.staging, bytes, t0, result)?;
+        bufs.staging.unmap();
+        if trace() {
+            eprintln!(
+                "gpu trace:   dispatch of {}: compute and copy {t_wait:.4} s, read back {:.4} s",
+                p.count,
+                t0.elapsed().as_secs_f64() - t_wait
+            );
+        }
+        self.check()
+    }
+
+    /// Maps the first `bytes` of `staging` once the queue is done and appends them to `result`;
+    /// returns the seconds from `t0` to the queue's end (for the trace).
+    fn read_back<T: bytemuck::Pod>(
+        &self,
+        staging: &wgpu::Buffer,
+        bytes: u64,
+        t0: std::time::Instant,
+        result: &mut Vec<T>,
+    ) -> Result<f64, GpuError> {
+        let d = &self.device;
+        let slice = staging.slice(..bytes);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
             let _ = tx.send(r);
@@ -730,15 +758,7 @@ impl Gpu {
                 .map_err(|e| GpuError::Runtime(format!("reading results back: {e}")))?;
             result.extend_from_slice(bytemuck::cast_slice(&view));
         }
-        bufs.staging.unmap();
-        if trace() {
-            eprintln!(
-                "gpu trace:   dispatch of {}: compute and copy {t_wait:.4} s, read back {:.4} s",
-                p.count,
-                t0.elapsed().as_secs_f64() - t_wait
-            );
-        }
-        self.check()
+        Ok(t_wait)
     }
 }
 

@@ -393,6 +393,70 @@ pub fn scene_cycle(
     cycle_with(asp, &m, d_min, None, points, solver, engine)
 }
 
+/// An explicit ensemble's cycle with a rough scene's materials: the options of `tabor rough
+/// --asperities/--topography` and of Python's `rough_asperities`/`rough_topography`, which
+/// only parse them.
+#[derive(Clone, Copy, Debug)]
+pub struct EnsembleSpec {
+    /// The smallest separation (m from the heights' reference plane); None: the mean summit
+    /// height less three standard deviations.
+    pub min_separation_m: Option<f64>,
+    /// Separations each way.
+    pub points: usize,
+    /// How each summit's states are found.
+    pub solver: SummitSolver,
+}
+
+impl EnsembleSpec {
+    /// The cycle of `asp` with `scene`'s materials, the tables (if any) solved on `engine`.
+    pub fn run(
+        &self,
+        scene: &super::scene::RoughScene,
+        asp: &[Asperity],
+        engine: &Engine,
+    ) -> Result<EnsembleCycle, RoughError> {
+        scene_cycle(
+            scene,
+            asp,
+            self.min_separation_m,
+            self.points,
+            self.solver,
+            engine,
+        )
+    }
+}
+
+/// Summits from parallel arrays of heights and radii (m), checked ([`check`]).
+pub fn asperities(heights_m: &[f64], radii_m: &[f64]) -> Result<Vec<Asperity>, RoughError> {
+    if heights_m.len() != radii_m.len() {
+        return Err(RoughError::Scene(format!(
+            "{} heights and {} radii: give one radius per summit",
+            heights_m.len(),
+            radii_m.len()
+        )));
+    }
+    let asp: Vec<Asperity> = heights_m
+        .iter()
+        .zip(radii_m)
+        .map(|(&height_m, &radius_m)| Asperity { height_m, radius_m })
+        .collect();
+    check(&asp)?;
+    Ok(asp)
+}
+
+/// The summits of a measured height map ([`summits_of_topography`]), refusing a map with none.
+pub fn topography_summits(z: &[f64], nx: usize, pixel_m: f64) -> Result<Vec<Asperity>, RoughError> {
+    let asp = summits_of_topography(z, nx, pixel_m)?;
+    if asp.is_empty() {
+        return Err(RoughError::Scene(
+            "the height map has no summit (no pixel above its eight neighbours with a positive curvature)"
+                .into(),
+        ));
+    }
+    check(&asp)?;
+    Ok(asp)
+}
+
 /// Summits of a measured height map (rows of `nx` heights in m, pixel `pixel_m` apart): every
 /// pixel higher than its eight neighbours, with the radius from the mean curvature there
 /// (`1/R = -(z_xx + z_yy) / 2` by central differences), as Greenwood and Williamson did.
