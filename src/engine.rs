@@ -311,40 +311,7 @@ impl Solve for Gpu {
         lambdas: &[f64],
         gaps: &[f64],
     ) -> Result<Vec<State>, GpuError> {
-        let t0 = std::time::Instant::now();
-        let nx = lambdas.len();
-        let rows: Vec<(f32, f32)> = gaps.iter().map(|&v| split(v)).collect();
-        // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
-        // Only a software adapter wants them (see `wants_starts`).
-        let started = if wants_starts(self) {
-            solver::with_gap_starts(ctx, gaps)
-        } else {
-            std::borrow::Cow::Borrowed(ctx)
-        };
-        let prepared = prepare_contexts(&started, lambdas);
-        let starts = Starts::new(&started, &prepared);
-        let t_starts = t0.elapsed().as_secs_f64();
-        let out = self.grid_started(
-            &prepared,
-            &starts,
-            &rows,
-            Control::Load,
-            true,
-            KernelFlags::SHIPPED,
-        )?;
-        let t_gpu = t0.elapsed().as_secs_f64() - t_starts;
-        let idx: Vec<(u32, f64)> = (0..out.len())
-            .map(|i| ((i % nx) as u32, gaps[i / nx]))
-            .collect();
-        let states = finish(self, ctx, lambdas, &idx, &out, Control::Load, true);
-        if crate::gpu::device::trace() {
-            eprintln!(
-                "gpu trace: band of {} states: starts and contexts {t_starts:.4} s, gpu {t_gpu:.4} s, finish {:.4} s",
-                out.len(),
-                t0.elapsed().as_secs_f64() - t_starts - t_gpu
-            );
-        }
-        states
+        grid_on_gpu(self, ctx, lambdas, gaps, Control::Load, true)
     }
     fn solve_grid_with(
         &self,
@@ -353,28 +320,54 @@ impl Solve for Gpu {
         values: &[f64],
         control: Control,
     ) -> Result<Vec<State>, GpuError> {
-        let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-        let started = if wants_starts(self) {
-            solver::with_starts(ctx, values, control)
-        } else {
-            std::borrow::Cow::Borrowed(ctx)
-        };
-        let prepared = prepare_contexts(&started, lambdas);
-        let starts = Starts::new(&started, &prepared);
-        let out = self.grid_started(
-            &prepared,
-            &starts,
-            &rows,
-            control,
-            false,
-            KernelFlags::SHIPPED,
-        )?;
-        let nx = lambdas.len();
-        let idx: Vec<(u32, f64)> = (0..out.len())
-            .map(|i| ((i % nx) as u32, values[i / nx]))
-            .collect();
-        finish(self, ctx, lambdas, &idx, &out, control, false)
+        grid_on_gpu(self, ctx, lambdas, values, control, false)
     }
+}
+
+/// The grid `lambdas x values` (row-major, one row per value) by the grid kernel: the values
+/// are loads, approaches, or with `gaps` distances above the pull-off (load control).
+fn grid_on_gpu(
+    g: &Gpu,
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+    values: &[f64],
+    control: Control,
+    gaps: bool,
+) -> Result<Vec<State>, GpuError> {
+    let t0 = std::time::Instant::now();
+    let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
+    // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
+    // Only a software adapter wants them (see `wants_starts`).
+    let started = match (wants_starts(g), gaps) {
+        (false, _) => std::borrow::Cow::Borrowed(ctx),
+        (true, true) => solver::with_gap_starts(ctx, values),
+        (true, false) => solver::with_starts(ctx, values, control),
+    };
+    let prepared = prepare_contexts(&started, lambdas);
+    let starts = Starts::new(&started, &prepared);
+    let t_starts = t0.elapsed().as_secs_f64();
+    let out = g.grid_started(
+        &prepared,
+        &starts,
+        &rows,
+        control,
+        gaps,
+        KernelFlags::SHIPPED,
+    )?;
+    let t_gpu = t0.elapsed().as_secs_f64() - t_starts;
+    let nx = lambdas.len();
+    let idx: Vec<(u32, f64)> = (0..out.len())
+        .map(|i| ((i % nx) as u32, values[i / nx]))
+        .collect();
+    let states = finish(g, ctx, lambdas, &idx, &out, control, gaps);
+    if crate::gpu::device::trace() {
+        eprintln!(
+            "gpu trace: grid of {} states: starts and contexts {t_starts:.4} s, gpu {t_gpu:.4} s, states on the CPU {:.4} s",
+            out.len(),
+            t0.elapsed().as_secs_f64() - t_starts - t_gpu
+        );
+    }
+    states
 }
 
 /// The per-lambda contexts of a lambda axis, in parallel (None for an invalid lambda).
@@ -401,9 +394,9 @@ fn prepare_contexts(
 }
 
 /// Whether a grid on this adapter gets the CPU-built dense starts. They halve the kernel's
-/// iterations (3.77 to 1.82 a state), which pays on a software adapter sharing the CPU's cores;
-/// a hardware GPU solves a million states in about a millisecond without them, while building
-/// them per band costs the CPU more than that (README, Speed).
+/// iterations (3.77 to 1.82 a state on an H200), which pays on a software adapter sharing the
+/// CPU's cores; a hardware GPU solves a million states in about a millisecond without them,
+/// while building them per band costs the CPU more than that (README, Speed).
 fn wants_starts(g: &Gpu) -> bool {
     g.adapter.software
 }

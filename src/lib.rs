@@ -109,12 +109,16 @@ macro_rules! eprint {
     }};
 }
 
+// The speed-against-accuracy workload of `tabor bench` and the data behind the gallery's line
+// figures: public for the command line's and the tests' use, not part of the library's API.
+#[doc(hidden)]
 pub mod bench;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod cycle;
 pub mod engine;
 pub mod export;
+#[doc(hidden)]
 pub mod figure_data;
 pub mod fit;
 pub mod gpu;
@@ -140,7 +144,7 @@ pub use map::{compute as compute_map, MapData, MapSpec, Region};
 pub use physics::model::{ContactLaw, ContactModel};
 pub use physics::params::{Contact, ForceRange};
 pub use profile::{profile, Given, Profile};
-pub use rough::ensemble::{Asperity, EnsembleCycle, SummitSolver};
+pub use rough::ensemble::{Asperity, EnsembleCycle, EnsembleSpec, SummitSolver};
 pub use rough::map::{RoughMap, RoughMapSpec};
 pub use rough::{Rough, RoughCycle, Summit};
 pub use scene::{infer, preset, solve_scene, SceneInput, SceneResult};

@@ -197,8 +197,9 @@ fn grid_512_agrees_with_cpu_on_every_status() {
     assert!(worst <= F32_TOL);
 }
 
-/// The grid kernel with the dense starts against its CPU mirror: the same statuses, nearly
-/// always the same iteration count, A within a few ulps, and far fewer iterations than without.
+/// The grid kernel with the dense starts against its CPU mirror: the same statuses, A as the
+/// mirror's (see `Mirrored::assert`), and far fewer iterations than without: under half on
+/// lavapipe (1.26 against 3.77), under 0.6 where multiply-adds fuse (1.82 on an H200).
 #[test]
 fn started_grid_matches_its_mirror() {
     use tabor::kernel::cpu::md::solve_f32_started;
@@ -257,7 +258,8 @@ fn started_grid_matches_its_mirror() {
         iters_plain as f64 / n
     );
     mirrored.assert(&g, "started grid");
-    assert!((iters as f64) < 0.5 * iters_plain as f64);
+    let share = if bit_exact(&g) { 0.5 } else { 0.6 };
+    assert!((iters as f64) < share * iters_plain as f64);
 }
 
 #[test]

@@ -596,6 +596,7 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
             SummitsArg::Exact => SummitSolver::Exact,
         },
     };
+    spec.validate()?;
     let engine = match spec.solver {
         SummitSolver::Exact => crate::engine::Engine::Cpu,
         SummitSolver::Tables => table_engine(a)?,

@@ -267,7 +267,8 @@ const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
 
 /// With `TABOR_GPU_TRACE=1` each GPU run prints where its time went (pipeline, upload, each
 /// dispatch's wait and read-back) on stderr: the way to see a host-side bottleneck on an
-/// adapter at hand.
+/// adapter at hand. "Upload" is the host's staging of the buffers: wgpu copies them to the
+/// device at the first submit, so that copy shows in the first dispatch's "compute and copy".
 pub(crate) fn trace() -> bool {
     static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *ON.get_or_init(|| std::env::var("TABOR_GPU_TRACE").is_ok_and(|v| v == "1"))

@@ -131,14 +131,7 @@ fn separations(
     d_max: Option<f64>,
     points: usize,
 ) -> Result<Vec<f64>, RoughError> {
-    if !(2..=POINTS_MAX).contains(&points) {
-        return Err(bad(
-            "the number of separations",
-            points as f64,
-            "2..10000",
-            "give at least 2 points",
-        ));
-    }
+    check_points(points)?;
     let top = asp
         .iter()
         .map(|a| a.height_m)
@@ -408,6 +401,21 @@ pub struct EnsembleSpec {
 }
 
 impl EnsembleSpec {
+    /// Checks the options, before any engine is chosen: the number of separations, and the
+    /// smallest separation where one is given.
+    pub fn validate(&self) -> Result<(), RoughError> {
+        check_points(self.points)?;
+        match self.min_separation_m {
+            Some(d) if !d.is_finite() => Err(bad(
+                "the smallest separation (m)",
+                d,
+                "finite",
+                "give a finite separation, or none for three standard deviations below the mean height",
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// The cycle of `asp` with `scene`'s materials, the tables (if any) solved on `engine`.
     pub fn run(
         &self,
@@ -415,6 +423,7 @@ impl EnsembleSpec {
         asp: &[Asperity],
         engine: &Engine,
     ) -> Result<EnsembleCycle, RoughError> {
+        self.validate()?;
         scene_cycle(
             scene,
             asp,
@@ -424,6 +433,19 @@ impl EnsembleSpec {
             engine,
         )
     }
+}
+
+/// The number of separations each way: 2..=[`POINTS_MAX`].
+fn check_points(points: usize) -> Result<(), RoughError> {
+    if !(2..=POINTS_MAX).contains(&points) {
+        return Err(bad(
+            "the number of separations",
+            points as f64,
+            "2..10000",
+            "give at least 2 points",
+        ));
+    }
+    Ok(())
 }
 
 /// Summits from parallel arrays of heights and radii (m), checked ([`check`]).

@@ -111,7 +111,9 @@ impl RoughMapSpec {
 #[derive(Clone, Debug)]
 pub struct BranchTable {
     delta0: f64,
-    /// Per interval in v, the cubic's coefficients in `s = v / TABLE_H - k`, lowest first.
+    /// Per interval in v, the cubic's coefficients in `s = v / TABLE_H - k`, lowest first;
+    /// from [`spline`] only, so never empty (the unchecked indexing of [`spline_at`] and the
+    /// quadrature relies on it).
     coef: Vec<[f64; 4]>,
     /// The largest difference, at the midpoints of all intervals, between the interpolant and
     /// the exact load, divided by max(1, |load|), outside the exactly solved stretch.
@@ -378,7 +380,7 @@ impl Law<'_> {
     /// `sum over k of wt[k] * load(delta[k])`, in node order: one loop per law, so that the
     /// law's match and constants stay out of the node loop.
     #[inline(always)]
-    fn weighted_sum(self, wt: &[f64; GL_N], delta: &[f64; GL_N]) -> f64 {
+    fn weighted_sum<const FUSED: bool>(self, wt: &[f64; GL_N], delta: &[f64; GL_N]) -> f64 {
         #[inline(always)]
         fn sum(wt: &[f64; GL_N], delta: &[f64; GL_N], f: impl Fn(f64) -> f64) -> f64 {
             let mut s = 0.0;
@@ -398,6 +400,7 @@ impl Law<'_> {
                 // cubics apart from the sum, so that no chain of one node waits on another's;
                 // fused multiply-adds (compiled for FMA, see `Quad::retract`) shorten the
                 // Horner chain and differ from `spline_at` by rounding only.
+                debug_assert!(!t.coef.is_empty() && t.coef.len() < u32::MAX as usize);
                 let last = (t.coef.len() - 1) as f64;
                 let (mut at, mut s) = ([0u32; GL_N], [0.0; GL_N]);
                 for k in 0..GL_N {
@@ -411,10 +414,8 @@ impl Law<'_> {
                 for k in 0..GL_N {
                     // SAFETY: at[k] <= last.
                     let c = unsafe { t.coef.get_unchecked(at[k] as usize) };
-                    f[k] = c[3]
-                        .mul_add(s[k], c[2])
-                        .mul_add(s[k], c[1])
-                        .mul_add(s[k], c[0]);
+                    let m = |a, b| madd::<FUSED>(a, s[k], b);
+                    f[k] = m(m(m(c[3], c[2]), c[1]), c[0]);
                 }
                 sum(wt, &f, |f| f)
             }
@@ -449,6 +450,18 @@ struct Model<'a> {
     reached: Vec<(f64, f64, Law<'a>)>,
 }
 
+/// `a b + c`, fused into one rounding where `FUSED` (the quadrature's node loops on CPUs with
+/// FMA, where the multiply-add chains' latency bounds the loops), else two; the two differ by
+/// rounding only (about 1e-16 relative).
+#[inline(always)]
+fn madd<const FUSED: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if FUSED {
+        a.mul_add(b, c)
+    } else {
+        a * b + c
+    }
+}
+
 /// Entries of [`ExpTable`].
 const EXP_N: usize = 64;
 
@@ -468,7 +481,7 @@ impl ExpTable {
 /// below 4e-17), `2^(k / 64)` from the table times a power of two put into the exponent's
 /// bits. Below -708 (where that power leaves the normal range) it returns `exp(-708)`.
 #[inline(always)]
-fn exp_nonpositive(x: f64, table: &ExpTable) -> f64 {
+fn exp_nonpositive<const FUSED: bool>(x: f64, table: &ExpTable) -> f64 {
     const LN2_HI: f64 = 0.693_147_180_369_123_8 / EXP_N as f64;
     const LN2_LO: f64 = 1.908_214_929_270_587_7e-10 / EXP_N as f64;
     // 1.5 * 2^52: adding it rounds to an integer, which is left in the low bits.
@@ -479,13 +492,17 @@ fn exp_nonpositive(x: f64, table: &ExpTable) -> f64 {
     let z = x * (EXP_N as f64 * std::f64::consts::LOG2_E) + SHIFT;
     let kf = z - SHIFT;
     let kb = z.to_bits().wrapping_sub(SHIFT.to_bits()).wrapping_add(BIAS);
-    let r = (-kf).mul_add(LN2_LO, (-kf).mul_add(LN2_HI, x));
-    let p = r
-        .mul_add(1.0 / 120.0, 1.0 / 24.0)
-        .mul_add(r, 1.0 / 6.0)
-        .mul_add(r, 0.5)
-        .mul_add(r, 1.0)
-        .mul_add(r, 1.0);
+    let m = madd::<FUSED>;
+    let r = m(-kf, LN2_LO, m(-kf, LN2_HI, x));
+    let p = m(
+        m(
+            m(m(m(r, 1.0 / 120.0, 1.0 / 24.0), r, 1.0 / 6.0), r, 0.5),
+            r,
+            1.0,
+        ),
+        r,
+        1.0,
+    );
     let two_m = f64::from_bits((kb / EXP_N as u64) << 52);
     table.0[(kb % EXP_N as u64) as usize] * two_m * p
 }
@@ -565,9 +582,9 @@ impl HertzTail {
 struct Quad {
     nodes: [(f64, f64); GL_N],
     hertz: HertzTail,
-    /// The CPU has AVX2 and FMA: the node loops run four wide, their multiply-adds fused in
-    /// hardware. The loops' `mul_add`s are fused on every CPU (a library call where FMA is
-    /// missing), so the numbers do not depend on it.
+    /// The CPU has AVX2 and FMA: the node loops run four wide, their multiply-adds fused. An
+    /// x86-64 CPU without them rounds each product and sum apart (the same results to about
+    /// 1e-16 relative); other architectures fuse.
     avx2: bool,
     exp: ExpTable,
 }
@@ -592,24 +609,37 @@ impl Quad {
     /// The mean retract load per summit at separation `d` after pressing to `d_min`.
     fn retract(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
         #[cfg(target_arch = "x86_64")]
-        if self.avx2 {
-            // SAFETY: the CPU has AVX2 (checked in `Quad::new`).
-            return unsafe { self.retract_avx2(m, sigma, d_min, d) };
+        {
+            if self.avx2 {
+                // SAFETY: the CPU has AVX2 and FMA (checked in `Quad::new`).
+                return unsafe { self.retract_avx2(m, sigma, d_min, d) };
+            }
+            // Without FMA a fused multiply-add is a slow library call: two roundings instead.
+            self.retract_any::<false>(m, sigma, d_min, d)
         }
-        self.retract_any(m, sigma, d_min, d)
+        #[cfg(not(target_arch = "x86_64"))]
+        self.retract_any::<true>(m, sigma, d_min, d)
     }
 
     /// [`Quad::retract`] compiled for AVX2 and FMA.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
     unsafe fn retract_avx2(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
-        self.retract_any(m, sigma, d_min, d)
+        self.retract_any::<true>(m, sigma, d_min, d)
     }
 
     /// Integral of phi(t) law(sigma t - d) over [t0, t1]; with `fold` the substitution
     /// t = t0 + (t1 - t0) s^2 takes out a square root at t0.
     #[inline(always)]
-    fn piece(&self, law: Law, sigma: f64, d: f64, t0: f64, t1: f64, fold: bool) -> f64 {
+    fn piece<const FUSED: bool>(
+        &self,
+        law: Law,
+        sigma: f64,
+        d: f64,
+        t0: f64,
+        t1: f64,
+        fold: bool,
+    ) -> f64 {
         let w = t1 - t0;
         // Node by node in separate loops without calls, which the compiler vectorises.
         let (mut t, mut jac) = ([0.0; GL_N], [0.0; GL_N]);
@@ -625,10 +655,11 @@ impl Quad {
         }
         let (mut wt, mut delta) = ([0.0; GL_N], [0.0; GL_N]);
         for k in 0..GL_N {
-            wt[k] = self.nodes[k].1 * jac[k] * exp_nonpositive(-0.5 * t[k] * t[k], &self.exp);
+            wt[k] =
+                self.nodes[k].1 * jac[k] * exp_nonpositive::<FUSED>(-0.5 * t[k] * t[k], &self.exp);
             delta[k] = sigma * t[k] - d;
         }
-        law.weighted_sum(&wt, &delta) / (2.0 * PI).sqrt()
+        law.weighted_sum::<FUSED>(&wt, &delta) / (2.0 * PI).sqrt()
     }
 
     /// The mean load of the summits from height `h` (sigma) up, all in contact, where the law
@@ -647,7 +678,7 @@ impl Quad {
 
     /// [`Quad::retract`] for any CPU.
     #[inline(always)]
-    fn retract_any(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
+    fn retract_any<const FUSED: bool>(&self, m: &Model, sigma: f64, d_min: f64, d: f64) -> f64 {
         let mut total = 0.0;
         // Heights (in sigma) of each history class.
         let t_touch = (d_min + m.touched_from) / sigma;
@@ -683,7 +714,7 @@ impl Quad {
                 for k in 0..pieces {
                     let t0 = a + w * k as f64;
                     let fold = k == 0 && a == s0;
-                    total += self.piece(law, sigma, d, t0, t0 + w, fold);
+                    total += self.piece::<FUSED>(law, sigma, d, t0, t0 + w, fold);
                 }
             }
         }
@@ -1358,7 +1389,12 @@ mod tests {
     #[test]
     fn exp_nonpositive_matches_exp() {
         let t = ExpTable::new();
-        let exp_nonpositive = |x: f64| super::exp_nonpositive(x, &t);
+        // Both roundings of the multiply-adds: the fused one of CPUs with FMA, and two apart.
+        check_exp(|x| super::exp_nonpositive::<true>(x, &t));
+        check_exp(|x| super::exp_nonpositive::<false>(x, &t));
+    }
+
+    fn check_exp(exp_nonpositive: impl Fn(f64) -> f64) {
         let mut worst = 0.0f64;
         for i in 0..=200_000 {
             let x = -30.0 * i as f64 / 200_000.0 - 1e-9 * (i % 7) as f64;
