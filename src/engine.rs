@@ -343,7 +343,8 @@ fn grid_on_gpu(
         (true, true) => solver::with_gap_starts(ctx, values),
         (true, false) => solver::with_starts(ctx, values, control),
     };
-    let prepared = prepare_contexts(&started, lambdas);
+    // Preparing a lambda does not use its start: the bands of a map share one preparation.
+    let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
     let starts = Starts::new(&started, &prepared);
     let t_starts = t0.elapsed().as_secs_f64();
     let out = g.grid_started(

@@ -801,3 +801,23 @@ fn ensemble_tables_on_the_gpu_are_the_cpu_tables() {
         }
     }
 }
+
+/// A map's bands share one preparation of their lambdas (kept by the Gpu); a grid of other
+/// lambdas on the same engine is prepared anew: every run gives a fresh engine's states.
+#[test]
+fn grids_on_one_engine_reuse_only_their_own_preparation() {
+    let Some(_) = gpu() else { return };
+    let adapter = std::env::var("TABOR_ADAPTER").ok();
+    let engine = || Engine::select(Backend::Gpu, adapter.as_deref()).unwrap().0;
+    let loads = logspace(-2.0, 2.0, 40);
+    let (l1, l2) = (logspace(-2.0, 2.0, 33), logspace(-1.7, 2.3, 33));
+    let a = |s: Vec<tabor::solver::State>| s.iter().map(|s| s.a.to_bits()).collect::<Vec<_>>();
+    let e = engine();
+    let first = a(e.solve_grid(&l1, &loads, Control::Load).unwrap());
+    let other = a(e.solve_grid(&l2, &loads, Control::Load).unwrap());
+    let again = a(e.solve_grid(&l1, &loads, Control::Load).unwrap());
+    let fresh = a(engine().solve_grid(&l2, &loads, Control::Load).unwrap());
+    assert_eq!(first, again);
+    assert_eq!(other, fresh);
+    assert_ne!(first, other);
+}

@@ -228,6 +228,9 @@ pub struct Gpu {
     max_binding: u64,
     max_buffer: u64,
     error: Arc<Mutex<Option<String>>>,
+    /// The lambdas (their bits) of the last grid and the kernel's preparation of each: a map's
+    /// bands share them, and preparing is a pull-off search and tables per lambda.
+    prepared: Mutex<Option<(Vec<u64>, Arc<Vec<GpuLambda>>)>>,
 }
 
 /// The kernels' bindings: the parameters (uniform), the lambdas and the input (read-only) and
@@ -343,6 +346,7 @@ impl Gpu {
             max_binding,
             max_buffer,
             error,
+            prepared: Mutex::new(None),
         };
         gpu.check()?;
         if trace() {
@@ -399,6 +403,25 @@ impl Gpu {
     pub fn limit_dispatch(&self, n: usize) {
         self.max_dispatch
             .store(n, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    /// The kernel's preparation of `lambdas`: the last one where the lambdas are the same
+    /// (bit for bit), else `make()`, kept for the next call. Preparing depends on the lambda
+    /// alone, so a kept one is what `make` would give.
+    pub(crate) fn prepared_for(
+        &self,
+        lambdas: &[f64],
+        make: impl FnOnce() -> Vec<GpuLambda>,
+    ) -> Arc<Vec<GpuLambda>> {
+        let bits: Vec<u64> = lambdas.iter().map(|l| l.to_bits()).collect();
+        if let Some((b, p)) = self.prepared.lock().unwrap().as_ref() {
+            if *b == bits {
+                return p.clone();
+            }
+        }
+        let p = Arc::new(make());
+        *self.prepared.lock().unwrap() = Some((bits, p.clone()));
+        p
     }
 
     fn check(&self) -> Result<(), GpuError> {
