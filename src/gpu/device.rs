@@ -230,8 +230,11 @@ pub struct Gpu {
     error: Arc<Mutex<Option<String>>>,
     /// The lambdas (their bits) of the last grid and the kernel's preparation of each: a map's
     /// bands share them, and preparing is a pull-off search and tables per lambda.
-    prepared: Mutex<Option<(Vec<u64>, Arc<Vec<GpuLambda>>)>>,
+    prepared: Mutex<Option<Prepared>>,
 }
+
+/// A grid's lambdas (their bits) and the kernel's preparation of each.
+type Prepared = (Vec<u64>, Arc<Vec<GpuLambda>>);
 
 /// The kernels' bindings: the parameters (uniform), the lambdas and the input (read-only) and
 /// the output.
