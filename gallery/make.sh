@@ -26,6 +26,8 @@ if [ "${BENCH:-replot}" = measure ]; then
 else
     $T bench --replot $G/bench.json --out-dir $G
 fi
+# The same chart of a run on an NVIDIA H200 system (16 CPU threads), redrawn from its record.
+$T bench --replot $G/h200/bench.json --out-dir $G/h200
 $T atlas --out-dir $G/atlas
 $T scene --preset afm-si --plot $G/scene_afm.png > $G/scene_afm.txt
 $T scene --preset afm-si --double-column --plot $G/scene_afm_double.png > /dev/null
