@@ -340,7 +340,11 @@ where
     );
     let plot = chart.plotting_area().get_pixel_range();
     let frame = (plot.0.start, plot.1.start, plot.0.end, plot.1.end);
-    for r in results {
+    // Labels from the fastest variant down: in a column of markers the labels then stack in the
+    // markers' order.
+    let mut by_speed: Vec<&crate::bench::VariantResult> = results.iter().collect();
+    by_speed.sort_by(|a, b| b.points_per_second.total_cmp(&a.points_per_second));
+    for r in by_speed {
         let (x, y) = (err(r), r.points_per_second);
         let label = if r.failures > 0 {
             format!("{} ({} failed)", r.name, r.failures)
@@ -351,18 +355,33 @@ where
             super::text_width(root, &label, NOTE),
             super::line_height(NOTE),
         );
-        let spots = label_spots(chart.backend_coord(&(x, y)), size, x <= 1e-2);
+        let (px, py) = chart.backend_coord(&(x, y));
+        let spots = label_spots((px, py), size, x <= 1e-2);
         // The map's placer: the first spot over no marker, label or line, else the one that
         // crosses fewest lines.
         let spot = placer
             .take(spots.iter().copied(), frame)
             .or_else(|| placer.take_least_crossing(spots.iter().copied(), frame))
             .unwrap_or(spots[0]);
+        let mid = (spot.1 + spot.3) / 2;
+        // A label moved off its marker's level gets a thin leader to it, so that a crowded
+        // column of markers can still be read.
+        if (mid - py).abs() > size.1 / 2 {
+            let (from, to) = if spot.0 > px {
+                ((px + 20, py), (spot.0 - 4, mid))
+            } else {
+                ((px - 20, py), (spot.2 + 4, mid))
+            };
+            root.draw(&PathElement::new(
+                vec![from, to],
+                ShapeStyle::from(&GRAY_).stroke_width(2),
+            ))?;
+        }
         let style = ("sans-serif", NOTE)
             .into_font()
             .color(&BLACK)
             .pos(Pos::new(HPos::Left, VPos::Center));
-        root.draw(&Text::new(label, (spot.0, (spot.1 + spot.3) / 2), style))?;
+        root.draw(&Text::new(label, (spot.0, mid), style))?;
     }
     chart.draw_series(std::iter::once(Text::new(
         "orange: GPU; blue: CPU; gray: closed forms; hollow: some points failed",
@@ -391,14 +410,14 @@ fn bench_marker(r: &crate::bench::VariantResult) -> ShapeStyle {
 }
 
 /// Candidate boxes for a label of size `(w, h)` beside a marker at `(px, py)`: level with it,
-/// then one, two and three lines up and down, on the preferred side first.
+/// then one to five lines up and down, on the preferred side first.
 fn label_spots(
     (px, py): (i32, i32),
     (w, h): (i32, i32),
     right_first: bool,
 ) -> Vec<(i32, i32, i32, i32)> {
     let mut spots = Vec::new();
-    for dy in [0, -1, 1, -2, 2, -3, 3].map(|k| k * (h + 4)) {
+    for dy in [0, -1, 1, -2, 2, -3, 3, -4, 4, -5, 5].map(|k| k * (h + 4)) {
         for right in [right_first, !right_first] {
             let x0 = if right { px + 28 } else { px - 28 - w };
             spots.push((x0, py + dy - h / 2, x0 + w, py + dy + h / 2));
