@@ -599,7 +599,7 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
     spec.validate()?;
     let engine = match spec.solver {
         SummitSolver::Exact => crate::engine::Engine::Cpu,
-        SummitSolver::Tables => table_engine(a)?,
+        SummitSolver::Tables => table_engine(a.backend, &a.adapter, a.precision)?,
     };
     let r = spec.run(sc, &asp, &engine)?;
     write_output(&a.output, ensemble_text(&r, sc, a.format)?.as_bytes())?;
@@ -650,16 +650,20 @@ fn ensemble_summits(a: &RoughArgs) -> anyhow::Result<Vec<crate::rough::ensemble:
     }
 }
 
-/// The engine of the summit tables: `--backend`, in f64 where the adapter has f64 shaders
-/// unless `--precision` says otherwise.
-fn table_engine(a: &RoughArgs) -> anyhow::Result<crate::engine::Engine> {
+/// The engine of summit tables (ensembles and the rough map): `--backend`, in f64 where the
+/// adapter has f64 shaders unless `--precision` says otherwise.
+pub(super) fn table_engine(
+    backend: Option<super::BackendArg>,
+    adapter: &Option<String>,
+    precision: Option<super::PrecisionArg>,
+) -> anyhow::Result<crate::engine::Engine> {
     let gpu = super::basic::GpuArgs {
-        adapter: a.adapter.clone(),
+        adapter: adapter.clone(),
         check: super::basic::CheckCount(0),
-        precision: a.precision.unwrap_or(super::PrecisionArg::F32),
+        precision: precision.unwrap_or(super::PrecisionArg::F32),
     };
-    let mut e = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
-    if a.precision.is_none() && e.set_precision(crate::engine::Precision::F64).is_err() {
+    let mut e = super::basic::engine_for(backend, super::BackendArg::Auto, &gpu)?;
+    if precision.is_none() && e.set_precision(crate::engine::Precision::F64).is_err() {
         eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
     }
     Ok(e)

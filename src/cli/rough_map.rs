@@ -194,15 +194,7 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     let mut figure_out = [open(&figure.png)?, open(&figure.svg)?, open(&figure.pdf)?];
     let mut json_out = open(&a.json).context("--json")?;
     let mut npy = super::open_npy(a.npy.as_deref(), &NPY_FILES)?;
-    let gpu = super::basic::GpuArgs {
-        adapter: a.adapter.clone(),
-        check: super::basic::CheckCount(0),
-        precision: a.precision.unwrap_or(super::PrecisionArg::F32),
-    };
-    let mut engine = super::basic::engine_for(a.backend, super::BackendArg::Auto, &gpu)?;
-    if a.precision.is_none() && engine.set_precision(crate::engine::Precision::F64).is_err() {
-        eprintln!("the adapter has no f64 shaders: the tables are solved in f32 (--precision f32)");
-    }
+    let engine = super::rough::table_engine(a.backend, &a.adapter, a.precision)?;
     let m = crate::rough::map::compute_with(&spec, a.check, &engine)?;
     let want = crate::render::Formats {
         png: figure.png.is_some(),

@@ -351,37 +351,8 @@ where
         } else {
             r.name.clone()
         };
-        let size = (
-            super::text_width(root, &label, NOTE),
-            super::line_height(NOTE),
-        );
-        let (px, py) = chart.backend_coord(&(x, y));
-        let spots = label_spots((px, py), size, x <= 1e-2);
-        // The map's placer: the first spot over no marker, label or line, else the one that
-        // crosses fewest lines.
-        let spot = placer
-            .take(spots.iter().copied(), frame)
-            .or_else(|| placer.take_least_crossing(spots.iter().copied(), frame))
-            .unwrap_or(spots[0]);
-        let mid = (spot.1 + spot.3) / 2;
-        // A label moved off its marker's level gets a thin leader to it, so that a crowded
-        // column of markers can still be read.
-        if (mid - py).abs() > size.1 / 2 {
-            let (from, to) = if spot.0 > px {
-                ((px + 20, py), (spot.0 - 4, mid))
-            } else {
-                ((px - 20, py), (spot.2 + 4, mid))
-            };
-            root.draw(&PathElement::new(
-                vec![from, to],
-                ShapeStyle::from(&GRAY_).stroke_width(2),
-            ))?;
-        }
-        let style = ("sans-serif", NOTE)
-            .into_font()
-            .color(&BLACK)
-            .pos(Pos::new(HPos::Left, VPos::Center));
-        root.draw(&Text::new(label, (spot.0, mid), style))?;
+        let marker = chart.backend_coord(&(x, y));
+        bench_label(root, &mut placer, frame, marker, x <= 1e-2, label)?;
     }
     chart.draw_series(std::iter::once(Text::new(
         "orange: GPU; blue: CPU; gray: closed forms; hollow: some points failed",
@@ -389,6 +360,49 @@ where
         ("sans-serif", NOTE).into_font(),
     )))?;
     super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
+    Ok(())
+}
+
+/// Draws `label` at the first spot beside the marker at pixel `(px, py)` that the placer finds
+/// free (else the one crossing fewest lines), with a thin leader where it left the marker's
+/// level, so that a crowded column of markers can still be read.
+fn bench_label<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    placer: &mut super::Placer,
+    frame: (i32, i32, i32, i32),
+    (px, py): (i32, i32),
+    right_first: bool,
+    label: String,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let size = (
+        super::text_width(root, &label, NOTE),
+        super::line_height(NOTE),
+    );
+    let spots = label_spots((px, py), size, right_first);
+    let spot = placer
+        .take(spots.iter().copied(), frame)
+        .or_else(|| placer.take_least_crossing(spots.iter().copied(), frame))
+        .unwrap_or(spots[0]);
+    let mid = (spot.1 + spot.3) / 2;
+    if (mid - py).abs() > size.1 / 2 {
+        let (from, to) = if spot.0 > px {
+            ((px + 20, py), (spot.0 - 4, mid))
+        } else {
+            ((px - 20, py), (spot.2 + 4, mid))
+        };
+        root.draw(&PathElement::new(
+            vec![from, to],
+            ShapeStyle::from(&GRAY_).stroke_width(2),
+        ))?;
+    }
+    let style = ("sans-serif", NOTE)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    root.draw(&Text::new(label, (spot.0, mid), style))?;
     Ok(())
 }
 
