@@ -526,10 +526,52 @@ pub(super) fn fit_model(
     fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE)
 }
 
+impl<'a> Problem<'a> {
+    /// The least-squares problem of one model on a prepared curve, scaled by the curve's
+    /// largest force and its height span.
+    pub(super) fn new(
+        model: Model,
+        d: &'a Prepared,
+        opt: &FitOptions,
+        w_ref: f64,
+        fixed_lambda: Option<f64>,
+    ) -> Problem<'a> {
+        let fscale = d
+            .force
+            .iter()
+            .fold(0.0f64, |m, f| m.max(f.abs()))
+            .max(1e-30);
+        let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+            - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+        Problem {
+            model,
+            data: d,
+            radius: opt.radius,
+            spring: opt.spring,
+            z0: opt.z0,
+            fixed_lambda,
+            w_ref,
+            z_scale: hspan.max(1e-30),
+            f_scale: fscale,
+            x: DVector::zeros(0),
+            states: RefCell::new(None),
+            hints: RefCell::new(None),
+            jacobians: RefCell::new(0),
+        }
+    }
+}
+
 /// The iteration budget of a fit (MINPACK's: this many evaluations per parameter and one), and
 /// the shorter one of a scouting free fit.
 pub(super) const PATIENCE: usize = 150;
 pub(super) const SCOUT_PATIENCE: usize = 4;
+
+/// The relative tolerance (MINPACK's ftol and xtol) of a fit at fixed lambda. Such fits only
+/// place the profile of the misfit, read as Delta chi^2 = Delta RSS / s^2 with s^2 = RSS / (m -
+/// 5): an RSS within 1e-10 of its minimum moves Delta chi^2 by 1e-10 m, far below the profile's
+/// resolution, and saves the last iterations of a linear convergence. Free fits keep the
+/// crate's 30 epsilon, so that noise-free curves recover their parameters to rounding.
+pub(super) const PROFILE_TOL: f64 = 1e-10;
 
 #[allow(clippy::too_many_arguments)]
 pub(super) fn fit_model_for(
@@ -541,31 +583,13 @@ pub(super) fn fit_model_for(
     fixed_lambda: Option<f64>,
     patience: usize,
 ) -> ModelFit {
-    let fscale = d
-        .force
-        .iter()
-        .fold(0.0f64, |m, f| m.max(f.abs()))
-        .max(1e-30);
-    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
-        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
-    let mut prob = Problem {
-        model,
-        data: d,
-        radius: opt.radius,
-        spring: opt.spring,
-        z0: opt.z0,
-        fixed_lambda,
-        w_ref,
-        z_scale: hspan.max(1e-30),
-        f_scale: fscale,
-        x: DVector::zeros(0),
-        states: RefCell::new(None),
-        hints: RefCell::new(None),
-        jacobians: RefCell::new(0),
-    };
+    let mut prob = Problem::new(model, d, opt, w_ref, fixed_lambda);
     prob.x = prob.internal(&start);
     let scout = patience == SCOUT_PATIENCE;
-    let lm = LevenbergMarquardt::new().with_patience(patience);
+    let mut lm = LevenbergMarquardt::new().with_patience(patience);
+    if fixed_lambda.is_some() {
+        lm = lm.with_ftol(PROFILE_TOL).with_xtol(PROFILE_TOL);
+    }
     let (prob, report) = lm.minimize(prob);
     let x = prob.x.clone();
     let p = prob.params(&x);

@@ -9,10 +9,33 @@ pub(super) fn profile_lambdas() -> impl Iterator<Item = f64> {
     (0..16).map(|i| 10f64.powf(-2.0 + 5.0 * i as f64 / 15.0))
 }
 
-/// Free fits start from this many of the best profile points: near the truth the misfit can
-/// dip sharply between profile points (lambda sets the attractive tail and the jump), so the
-/// free fit has to start near the dip to find it.
-pub(super) const FREE_STARTS: usize = 16;
+/// The profile points a free fit starts from first: the best two, and every local minimum of
+/// the misfit along lambda with its two neighbours. Near the truth the misfit can dip sharply
+/// between profile points (lambda sets the attractive tail and the jump), so a free fit has to
+/// start beside the dip to find it; a basin of the misfit is entered from its lowest profile
+/// point, while free fits from the other points of a basin end in the same minimum.
+pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
+    let r: Vec<f64> = profile.iter().map(rank).collect();
+    let n = r.len();
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| r[a].total_cmp(&r[b]));
+    let mut pick = vec![false; n];
+    for &i in order.iter().take(2) {
+        pick[i] = true;
+    }
+    for i in (0..n).filter(|&i| r[i].is_finite()) {
+        if (i == 0 || r[i] <= r[i - 1]) && (i + 1 == n || r[i] <= r[i + 1]) {
+            pick[i.saturating_sub(1)..(i + 2).min(n)].fill(true);
+        }
+    }
+    order.into_iter().filter(|&i| pick[i]).collect()
+}
+
+/// A free fit whose rms residual is within this factor of the baseline's noise has reached the
+/// noise floor: no other start can do significantly better. Above it (a fixed-lambda fit of
+/// the profile may itself have stopped in a local minimum, hiding a basin), free fits start
+/// from every other profile point too.
+pub(super) const NOISE_FLOOR: f64 = 1.25;
 
 /// Misfit for ranking: the rms residual, even where the iteration limit stopped a fit.
 pub(super) fn rank(m: &ModelFit) -> f64 {
@@ -37,28 +60,17 @@ pub(super) fn free_fit(
     order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
     // The profile has its 16 fixed lambdas.
     let best_profile = rank(&profile[order[0]]);
-    // Scouts: short free fits from every profile point; the best two are then fitted fully.
-    let mut scouts: Vec<ModelFit> = order
-        .iter()
-        .take(FREE_STARTS)
-        .map(|&i| {
-            let m = &profile[i];
-            fit_model_for(Model::Md, d, opt, m.params(), w_ref, None, SCOUT_PATIENCE)
-        })
-        .collect();
-    scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
-    let fulls: Vec<ModelFit> = scouts
-        .iter()
-        .take(2)
-        .map(|m| {
-            let mut f = fit_model(Model::Md, d, opt, m.params(), w_ref, None);
-            // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
-            if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
-                f.status = FitStatus::Ok;
-            }
-            f
-        })
-        .collect();
+    // Scouts: short free fits from the profile's basins; the best two are then fitted fully.
+    // Where that does not reach the noise floor, from every other profile point as well.
+    let first = scout_starts(&profile);
+    let (mut scouts, mut fulls) = scout(d, opt, w_ref, &profile, &first, best_profile);
+    let best = fulls.iter().map(key).fold(f64::INFINITY, f64::min);
+    if !(best <= NOISE_FLOOR * d.noise) {
+        let rest: Vec<usize> = order.iter().copied().filter(|i| !first.contains(i)).collect();
+        let (more, more_fulls) = scout(d, opt, w_ref, &profile, &rest, best_profile);
+        scouts.extend(more);
+        fulls.extend(more_fulls);
+    }
     let Some(mut md) = fulls.iter().cloned().reduce(better) else {
         return profile[order[0]].clone();
     };
@@ -75,6 +87,39 @@ pub(super) fn free_fit(
     }
     let others: Vec<&ModelFit> = scouts.iter().chain(&fulls).collect();
     widen_by_region(md, d, &profile, &others)
+}
+
+/// Short free fits (scouts) from the profile points `starts`, best first, and the full fits
+/// from the best two of them.
+fn scout(
+    d: &Prepared,
+    opt: &FitOptions,
+    w_ref: f64,
+    profile: &[ModelFit],
+    starts: &[usize],
+    best_profile: f64,
+) -> (Vec<ModelFit>, Vec<ModelFit>) {
+    let mut scouts: Vec<ModelFit> = starts
+        .iter()
+        .map(|&i| {
+            let m = &profile[i];
+            fit_model_for(Model::Md, d, opt, m.params(), w_ref, None, SCOUT_PATIENCE)
+        })
+        .collect();
+    scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
+    let fulls = scouts
+        .iter()
+        .take(2)
+        .map(|m| {
+            let mut f = fit_model(Model::Md, d, opt, m.params(), w_ref, None);
+            // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
+            if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
+                f.status = FitStatus::Ok;
+            }
+            f
+        })
+        .collect();
+    (scouts, fulls)
 }
 
 /// The free fit's standard errors widened by the 3-sigma region of the profile and of the
