@@ -117,6 +117,21 @@ pub struct Pt {
     pub dload: f64,
     /// dDbar/dt.
     pub dapproach: f64,
+    /// dA/dt.
+    pub da: f64,
+}
+
+impl Pt {
+    /// The state a small step `dt` along the piece, to first order: within rounding of the
+    /// state itself where dt is below 1e-8 of the parameter's scale.
+    fn moved(&self, dt: f64) -> Pt {
+        Pt {
+            load: self.load + self.dload * dt,
+            approach: self.approach + self.dapproach * dt,
+            a: self.a + self.da * dt,
+            ..*self
+        }
+    }
 }
 
 /// A state on the followed path.
@@ -220,6 +235,7 @@ pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
             a: 0.0,
             dload: 0.0,
             dapproach: 1.0,
+            da: 0.0,
         },
         Piece::NonContact => {
             let (load, approach) = non_contact_point(lambda, t);
@@ -229,6 +245,7 @@ pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
                 a: 0.0,
                 dload: -PI * lambda * t,
                 dapproach: t - 8.0 * lambda / (3.0 * PI),
+                da: 0.0,
             }
         }
         Piece::Contact => match model {
@@ -241,6 +258,7 @@ pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
                     a: c.a,
                     dload: -mu * c.dload_dmu,
                     dapproach: -mu * c.dapproach_dmu,
+                    da: -mu * c.da_dmu,
                 }
             }
             Model::Hertz | Model::Dmt => Pt {
@@ -249,6 +267,7 @@ pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
                 a: t,
                 dload: 3.0 * t * t,
                 dapproach: 2.0 * t,
+                da: 1.0,
             },
             Model::Jkr => {
                 let s6 = (6.0 * t).sqrt();
@@ -258,6 +277,7 @@ pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
                     a: t,
                     dload: 3.0 * t * t - 1.5 * s6,
                     dapproach: 2.0 * t - s6 / (3.0 * t),
+                    da: 1.0,
                 }
             }
         },
@@ -901,13 +921,11 @@ pub fn near(
         }
         let step = r / s;
         t -= step;
-        if step.abs() <= 1e-13 * t.abs().max(1.0) {
-            return Some(PathState::on(
-                piece,
-                t,
-                &state(model, lambda, piece, t),
-                false,
-            ));
+        if step.abs() <= 1e-8 * t.abs().max(1.0) {
+            // Newton converges quadratically: the state after this step differs from its
+            // first-order extrapolation by about step^2, below rounding, so it is not
+            // evaluated again.
+            return Some(PathState::on(piece, t, &p.moved(-step), false));
         }
     }
     None
