@@ -379,6 +379,8 @@ mod tests {
                 x: DVector::zeros(0),
                 states: RefCell::new(None),
                 hints: RefCell::new(None),
+                residual: RefCell::new(None),
+                forward_lambda: false,
                 jacobians: RefCell::new(0),
             };
             let prob = Problem {

@@ -131,6 +131,11 @@ pub(super) struct Problem<'a> {
     pub(super) states: RefCell<Option<Vec<PathState>>>,
     /// The last states evaluated: each point's search starts there at the next parameters.
     pub(super) hints: RefCell<Option<Vec<PathState>>>,
+    /// The residuals at the current parameters, with `states`.
+    pub(super) residual: RefCell<Option<DVector<f64>>>,
+    /// Lambda's column by forward differences from `residual`: one evaluation of the paths
+    /// instead of two, for a scouting fit, which only has to reach its basin.
+    pub(super) forward_lambda: bool,
     pub(super) jacobians: RefCell<usize>,
 }
 
@@ -321,6 +326,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     fn set_params(&mut self, x: &DVector<f64>) {
         self.x.copy_from(x);
         *self.states.borrow_mut() = None;
+        *self.residual.borrow_mut() = None;
     }
 
     fn params(&self) -> DVector<f64> {
@@ -334,6 +340,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             Some((r, s)) => {
                 *self.hints.borrow_mut() = Some(s.clone());
                 *self.states.borrow_mut() = Some(s);
+                *self.residual.borrow_mut() = Some(r.clone());
                 Some(r)
             }
             None => Some(DVector::from_element(self.data.force.len(), 1e6)),
@@ -353,8 +360,20 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut j = self.analytic_jacobian(&base);
         if self.has_lambda() {
             let k = 1 + self.has_w() as usize;
-            let c = self.numeric_jacobian(&base, &[k])?;
-            j.set_column(k, &c.column(k));
+            let r0 = self.residual.borrow().clone();
+            match r0.filter(|_| self.forward_lambda) {
+                Some(r0) => {
+                    let h = 1e-6 * self.x[k].abs().max(1.0);
+                    let mut xp = self.x.clone();
+                    xp[k] += h;
+                    let (rp, _) = self.eval(&xp, Some(&base))?;
+                    j.set_column(k, &((rp - r0) / h));
+                }
+                None => {
+                    let c = self.numeric_jacobian(&base, &[k])?;
+                    j.set_column(k, &c.column(k));
+                }
+            }
         }
         self.fold_rows(&mut j, &base);
         Some(j)
@@ -556,6 +575,8 @@ impl<'a> Problem<'a> {
             x: DVector::zeros(0),
             states: RefCell::new(None),
             hints: RefCell::new(None),
+            residual: RefCell::new(None),
+            forward_lambda: false,
             jacobians: RefCell::new(0),
         }
     }
@@ -586,6 +607,7 @@ pub(super) fn fit_model_for(
     let mut prob = Problem::new(model, d, opt, w_ref, fixed_lambda);
     prob.x = prob.internal(&start);
     let scout = patience == SCOUT_PATIENCE;
+    prob.forward_lambda = scout;
     let mut lm = LevenbergMarquardt::new().with_patience(patience);
     if fixed_lambda.is_some() {
         lm = lm.with_ftol(PROFILE_TOL).with_xtol(PROFILE_TOL);
