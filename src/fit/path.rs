@@ -387,11 +387,23 @@ impl SpringPath {
     }
 
     /// Delta(t) = target on [lo, hi], where Delta rises: safeguarded Newton.
-    fn solve_in(&self, piece: Piece, target: f64, mut lo: f64, mut hi: f64) -> (Pt, f64) {
+    fn solve_in(&self, piece: Piece, target: f64, lo: f64, hi: f64) -> (Pt, f64) {
+        self.solve_between(piece, target, (lo, None), (hi, None))
+    }
+
+    /// The same, with Delta at either end where it is known (a node's).
+    fn solve_between(
+        &self,
+        piece: Piece,
+        target: f64,
+        (mut lo, d_lo): (f64, Option<f64>),
+        (mut hi, d_hi): (f64, Option<f64>),
+    ) -> (Pt, f64) {
         if piece == Piece::Free {
             return (state(self.model, self.lambda, piece, target), target);
         }
-        let (d_lo, d_hi) = (self.delta(piece, lo), self.delta(piece, hi));
+        let d_lo = d_lo.unwrap_or_else(|| self.delta(piece, lo));
+        let d_hi = d_hi.unwrap_or_else(|| self.delta(piece, hi));
         let mut t = if d_hi > d_lo {
             lo + (hi - lo) * ((target - d_lo) / (d_hi - d_lo)).clamp(0.0, 1.0)
         } else {
@@ -706,29 +718,31 @@ impl SpringPath {
 
     fn at_in(&self, seg: &Segment, delta: f64) -> PathState {
         let (lo, hi) = if seg.piece == Piece::Free {
-            (seg.t_lo, seg.t_hi)
+            ((seg.t_lo, None), (seg.t_hi, None))
         } else {
             self.bracket(seg, delta)
         };
-        let (p, t) = self.solve_in(seg.piece, delta, lo, hi);
+        let (p, t) = self.solve_between(seg.piece, delta, lo, hi);
         PathState::on(seg.piece, t, &p, false)
     }
 
-    /// The nodes around `delta` inside a segment.
-    fn bracket(&self, seg: &Segment, delta: f64) -> (f64, f64) {
+    /// The nodes around `delta` inside a segment, with their Delta (None at the segment's
+    /// ends, which are not nodes).
+    #[allow(clippy::type_complexity)]
+    fn bracket(&self, seg: &Segment, delta: f64) -> ((f64, Option<f64>), (f64, Option<f64>)) {
         let nodes = &self.pieces.iter().find(|p| p.0 == seg.piece).unwrap().1;
         let i = nodes.partition_point(|n| n.t <= seg.t_lo);
         let j = nodes.partition_point(|n| n.t < seg.t_hi);
-        let mut lo = seg.t_lo;
-        let mut hi = seg.t_hi;
+        let mut lo = (seg.t_lo, None);
+        let mut hi = (seg.t_hi, None);
         // Within the segment Delta rises with t: binary search the interior nodes.
         let interior = &nodes[i..j.max(i)];
         let k = interior.partition_point(|n| n.delta < delta);
         if k > 0 {
-            lo = interior[k - 1].t;
+            lo = (interior[k - 1].t, Some(interior[k - 1].delta));
         }
         if k < interior.len() {
-            hi = interior[k].t;
+            hi = (interior[k].t, Some(interior[k].delta));
         }
         (lo, hi)
     }
