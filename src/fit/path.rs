@@ -386,29 +386,30 @@ impl SpringPath {
         r.x.clamp(lo, hi)
     }
 
-    /// Delta(t) = target on [lo, hi], where Delta rises: safeguarded Newton.
-    fn solve_in(&self, piece: Piece, target: f64, lo: f64, hi: f64) -> (Pt, f64) {
-        self.solve_between(piece, target, (lo, None), (hi, None))
-    }
-
-    /// The same, with Delta at either end where it is known (a node's).
+    /// Delta(t) = target on [lo, hi], where Delta rises: safeguarded Newton, with Delta and its
+    /// slope at either end where they are known (a node's).
     fn solve_between(
         &self,
         piece: Piece,
         target: f64,
-        (mut lo, d_lo): (f64, Option<f64>),
-        (mut hi, d_hi): (f64, Option<f64>),
+        (mut lo, n_lo): (f64, Option<(f64, f64)>),
+        (mut hi, n_hi): (f64, Option<(f64, f64)>),
     ) -> (Pt, f64) {
         if piece == Piece::Free {
             return (state(self.model, self.lambda, piece, target), target);
         }
-        let d_lo = d_lo.unwrap_or_else(|| self.delta(piece, lo));
-        let d_hi = d_hi.unwrap_or_else(|| self.delta(piece, hi));
+        let d_lo = n_lo.map_or_else(|| self.delta(piece, lo), |n| n.0);
+        let d_hi = n_hi.map_or_else(|| self.delta(piece, hi), |n| n.0);
         let mut t = if d_hi > d_lo {
             lo + (hi - lo) * ((target - d_lo) / (d_hi - d_lo)).clamp(0.0, 1.0)
         } else {
             0.5 * (lo + hi)
         };
+        if let (Some((_, m0)), Some((_, m1)), true) = (n_lo, n_hi, d_hi > d_lo) {
+            // Between two nodes, Delta's cubic Hermite interpolant (values and slopes) puts
+            // the start within the cube of the node spacing: two Newton steps on it.
+            t = hermite_root(lo, hi, (d_lo, m0), (d_hi, m1), target, t);
+        }
         for _ in 0..100 {
             let (p, d, s) = self.eval(piece, t);
             let r = d - target;
@@ -565,7 +566,8 @@ impl SpringPath {
                 return None;
             }
             if a.delta <= delta && delta <= b.delta {
-                Some(self.solve_in(piece, delta, a.t, b.t).1)
+                let (na, nb) = (Some((a.delta, a.slope)), Some((b.delta, b.slope)));
+                Some(self.solve_between(piece, delta, (a.t, na), (b.t, nb)).1)
             } else if (a.delta - delta).abs() <= tol {
                 Some(a.t)
             } else if (b.delta - delta).abs() <= tol {
@@ -726,10 +728,14 @@ impl SpringPath {
         PathState::on(seg.piece, t, &p, false)
     }
 
-    /// The nodes around `delta` inside a segment, with their Delta (None at the segment's
-    /// ends, which are not nodes).
+    /// The nodes around `delta` inside a segment, with their Delta and its slope (None at the
+    /// segment's ends, which are not nodes).
     #[allow(clippy::type_complexity)]
-    fn bracket(&self, seg: &Segment, delta: f64) -> ((f64, Option<f64>), (f64, Option<f64>)) {
+    fn bracket(
+        &self,
+        seg: &Segment,
+        delta: f64,
+    ) -> ((f64, Option<(f64, f64)>), (f64, Option<(f64, f64)>)) {
         let nodes = &self.pieces.iter().find(|p| p.0 == seg.piece).unwrap().1;
         let i = nodes.partition_point(|n| n.t <= seg.t_lo);
         let j = nodes.partition_point(|n| n.t < seg.t_hi);
@@ -739,10 +745,13 @@ impl SpringPath {
         let interior = &nodes[i..j.max(i)];
         let k = interior.partition_point(|n| n.delta < delta);
         if k > 0 {
-            lo = (interior[k - 1].t, Some(interior[k - 1].delta));
+            lo = (
+                interior[k - 1].t,
+                Some((interior[k - 1].delta, interior[k - 1].slope)),
+            );
         }
         if k < interior.len() {
-            hi = (interior[k].t, Some(interior[k].delta));
+            hi = (interior[k].t, Some((interior[k].delta, interior[k].slope)));
         }
         (lo, hi)
     }
@@ -804,6 +813,36 @@ impl SpringPath {
         }
         best
     }
+}
+
+/// The root of the cubic Hermite interpolant through (t0, d0, slope m0) and (t1, d1, m1) at
+/// `target`, by two Newton steps from `t` (kept inside [t0, t1]).
+fn hermite_root(
+    t0: f64,
+    t1: f64,
+    (d0, m0): (f64, f64),
+    (d1, m1): (f64, f64),
+    target: f64,
+    t: f64,
+) -> f64 {
+    let h = t1 - t0;
+    let mut s = (t - t0) / h;
+    for _ in 0..2 {
+        let (s2, s3) = (s * s, s * s * s);
+        let v = (2.0 * s3 - 3.0 * s2 + 1.0) * d0
+            + (s3 - 2.0 * s2 + s) * h * m0
+            + (-2.0 * s3 + 3.0 * s2) * d1
+            + (s3 - s2) * h * m1;
+        let dv = (6.0 * s2 - 6.0 * s) * d0
+            + (3.0 * s2 - 4.0 * s + 1.0) * h * m0
+            + (-6.0 * s2 + 6.0 * s) * d1
+            + (3.0 * s2 - 2.0 * s) * h * m1;
+        if !(dv > 0.0) {
+            break;
+        }
+        s = (s - (v - target) / dv).clamp(0.0, 1.0);
+    }
+    t0 + s * h
 }
 
 /// What the per-thread cache holds: a radius's parameter on the contact piece, or the states at

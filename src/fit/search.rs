@@ -66,7 +66,11 @@ pub(super) fn free_fit(
     let (mut scouts, mut fulls) = scout(d, opt, w_ref, &profile, &first, best_profile);
     let best = fulls.iter().map(key).fold(f64::INFINITY, f64::min);
     if !(best <= NOISE_FLOOR * d.noise) {
-        let rest: Vec<usize> = order.iter().copied().filter(|i| !first.contains(i)).collect();
+        let rest: Vec<usize> = order
+            .iter()
+            .copied()
+            .filter(|i| !first.contains(i))
+            .collect();
         let (more, more_fulls) = scout(d, opt, w_ref, &profile, &rest, best_profile);
         scouts.extend(more);
         fulls.extend(more_fulls);
