@@ -9,8 +9,8 @@ pub(super) fn profile_lambdas() -> impl Iterator<Item = f64> {
     (0..16).map(|i| 10f64.powf(-2.0 + 5.0 * i as f64 / 15.0))
 }
 
-/// The profile points a free fit starts from first: the best two, and every local minimum of
-/// the misfit along lambda with its two neighbours. Near the truth the misfit can dip sharply
+/// The profile points a free fit starts from first: the best two, every local minimum of the
+/// misfit along lambda with its two neighbours, and every fifth point. Near the truth the misfit can dip sharply
 /// between profile points (lambda sets the attractive tail and the jump), so a free fit has to
 /// start beside the dip to find it; a basin of the misfit is entered from its lowest profile
 /// point, while free fits from the other points of a basin end in the same minimum.
@@ -27,6 +27,12 @@ pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
         if (i == 0 || r[i] <= r[i - 1]) && (i + 1 == n || r[i] <= r[i + 1]) {
             pick[i.saturating_sub(1)..(i + 2).min(n)].fill(true);
         }
+    }
+    // A dip can hide between two profile points on a stretch where the profile only falls
+    // (the fixed-lambda fits beside it do not see it): free fits from every fifth point
+    // (a factor 46 in lambda apart) roll down such stretches into it.
+    for i in (0..n).step_by(5) {
+        pick[i] = true;
     }
     order.into_iter().filter(|&i| pick[i]).collect()
 }
