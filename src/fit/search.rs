@@ -10,10 +10,10 @@ pub(super) fn profile_lambdas() -> impl Iterator<Item = f64> {
 }
 
 /// The profile points a free fit starts from first: the best two, every local minimum of the
-/// misfit along lambda with its two neighbours, and every fifth point. Near the truth the misfit can dip sharply
-/// between profile points (lambda sets the attractive tail and the jump), so a free fit has to
-/// start beside the dip to find it; a basin of the misfit is entered from its lowest profile
-/// point, while free fits from the other points of a basin end in the same minimum.
+/// misfit along lambda with its two neighbours, and every fifth point. Near the truth the
+/// misfit can dip sharply between profile points (lambda sets the attractive tail and the
+/// jump), so a free fit has to start where it can roll into the dip; free fits from the other
+/// points of a basin end in the same minimum.
 pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
     let r: Vec<f64> = profile.iter().map(rank).collect();
     let n = r.len();
@@ -37,10 +37,11 @@ pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
     order.into_iter().filter(|&i| pick[i]).collect()
 }
 
-/// A free fit whose rms residual is within this factor of the baseline's noise has reached the
-/// noise floor: no other start can do significantly better. Above it (a fixed-lambda fit of
-/// the profile may itself have stopped in a local minimum, hiding a basin), free fits start
-/// from every other profile point too.
+/// Where the best free fit's rms residual exceeds the baseline's noise by more than this
+/// factor, it has not reached the noise floor: a fixed-lambda fit of the profile may itself
+/// have stopped in a local minimum and hidden a basin, so free fits start from every other
+/// profile point too. (Below it a missed dip can still cost a fraction of the noise: the first
+/// starts are chosen to find those.)
 pub(super) const NOISE_FLOOR: f64 = 1.25;
 
 /// Misfit for ranking: the rms residual, even where the iteration limit stopped a fit.
