@@ -585,9 +585,9 @@ fn instrument_segment_numbers_with_a_pause_and_a_dwell_give_the_same_fit() {
 }
 
 /// The free fit finds the global minimum where the misfit dips between two points of the lambda
-/// profile: the first 16 curves of the force-map benchmark (`bash bench/fit_map.sh 16`: lambda
-/// 0.30..0.37, a 40 N/m cantilever, 20 pN noise), whose dips a search from the profile's local
-/// minima alone missed (ending 0.2-0.9% higher in rms). The misfit of a fit at the true
+/// profile: the first 16 curves of the force-map benchmark's 256-curve map (`bash
+/// bench/fit_map.sh 16`: lambda 0.30..0.37, a 40 N/m cantilever, 20 pN noise), 9 of whose dips
+/// a search from the profile's local minima alone missed (ending 0.1-0.8% higher in rms). The misfit of a fit at the true
 /// Lennard-Jones range z0 (lambda tied to the truth) bounds the global minimum from above, up
 /// to how closely the two fits converge: 2e-4 in rms is a Delta chi^2 of 0.2 on these curves.
 #[test]
@@ -639,5 +639,8 @@ fn a_dip_between_profile_points_is_found() {
             excess
         })
         .reduce(|| f64::NEG_INFINITY, f64::max);
-    assert!(worst < 2e-4, "a free fit above the fit at the true z0 by {worst:e}");
+    assert!(
+        worst < 2e-4,
+        "a free fit above the fit at the true z0 by {worst:e}"
+    );
 }

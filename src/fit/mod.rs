@@ -417,4 +417,49 @@ mod tests {
             }
         }
     }
+
+    #[test]
+    fn a_scouts_forward_lambda_column_matches_the_central_one() {
+        let s = synthetic::Synthetic {
+            model: Model::Md,
+            params: Params {
+                e_star: 1.5e9,
+                w: 0.05,
+                lambda: 0.8,
+                zc: 40e-9,
+                f0: 0.0,
+            },
+            radius: 20e-9,
+            spring: 2.0,
+            points: 200,
+            depth: 6.0,
+            noise: 1e-11,
+            seed: 5,
+        };
+        let opt = FitOptions {
+            radius: 20e-9,
+            spring: 2.0,
+            ..FitOptions::default()
+        };
+        let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
+        let mut start = s.params;
+        start.e_star *= 1.1;
+        start.lambda *= 1.3;
+        let mut prob = Problem::new(Model::Md, &d, &opt, 0.05, None);
+        prob.x = prob.internal(&start);
+        // The residual at hand, as the solver leaves it before asking for the Jacobian.
+        LeastSquaresProblem::residuals(&prob).unwrap();
+        assert!(prob.residual.borrow().is_some());
+        let central = LeastSquaresProblem::jacobian(&prob).unwrap();
+        prob.forward_lambda = true;
+        let forward = LeastSquaresProblem::jacobian(&prob).unwrap();
+        let (c, f) = (central.column(2), forward.column(2));
+        let err = (c - f).amax() / c.amax();
+        assert!(err < 1e-4, "forward against central: {err:e}");
+        assert!(err > 0.0, "the forward column was not taken");
+        // The other columns are the same.
+        for k in [0, 1, 3, 4] {
+            assert_eq!(central.column(k), forward.column(k));
+        }
+    }
 }

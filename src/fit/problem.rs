@@ -360,15 +360,16 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut j = self.analytic_jacobian(&base);
         if self.has_lambda() {
             let k = 1 + self.has_w() as usize;
+            let h = 1e-6 * self.x[k].abs().max(1.0);
+            let mut xp = self.x.clone();
+            xp[k] += h;
             let r0 = self.residual.borrow().clone();
-            match r0.filter(|_| self.forward_lambda) {
-                Some(r0) => {
-                    let h = 1e-6 * self.x[k].abs().max(1.0);
-                    let mut xp = self.x.clone();
-                    xp[k] += h;
-                    let (rp, _) = self.eval(&xp, Some(&base))?;
-                    j.set_column(k, &((rp - r0) / h));
-                }
+            let forward = r0
+                .filter(|_| self.forward_lambda)
+                .and_then(|r0| Some((self.eval(&xp, Some(&base))?.0 - r0) / h));
+            match forward {
+                Some(c) => j.set_column(k, &c),
+                // Central differences, or one-sided where a side leaves the domain.
                 None => {
                     let c = self.numeric_jacobian(&base, &[k])?;
                     j.set_column(k, &c.column(k));
@@ -398,8 +399,8 @@ impl Problem<'_> {
             let (dp_dd, dp_dk) = if s.piece == Piece::Free || s.clamped {
                 (0.0, 0.0)
             } else {
-                // The state's slopes at s.t, as stored with it (the same numbers as
-                // `path::state` gives there).
+                // The state's slopes at s.t, as stored with it (`path::state`'s there, or
+                // theirs one Newton step below 1e-8 away, where `path::near` stopped).
                 let g = s.dapproach + s.dload / u.kbar;
                 if g.abs() > 0.0 {
                     (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
@@ -589,9 +590,10 @@ pub(super) const SCOUT_PATIENCE: usize = 4;
 
 /// The relative tolerance (MINPACK's ftol and xtol) of a fit at fixed lambda. Such fits only
 /// place the profile of the misfit, read as Delta chi^2 = Delta RSS / s^2 with s^2 = RSS / (m -
-/// 5): an RSS within 1e-10 of its minimum moves Delta chi^2 by 1e-10 m, far below the profile's
-/// resolution, and saves the last iterations of a linear convergence. Free fits keep the
-/// crate's 30 epsilon, so that noise-free curves recover their parameters to rounding.
+/// 5). A fit stops when a step would reduce the RSS by less than this fraction, which leaves it
+/// within a few times that of its minimum: Delta chi^2 moves by about 1e-10 m, far below the
+/// profile's resolution, and the last iterations of a linear convergence are saved. Free fits
+/// keep the crate's 30 epsilon, so that noise-free curves recover their parameters to rounding.
 pub(super) const PROFILE_TOL: f64 = 1e-10;
 
 #[allow(clippy::too_many_arguments)]

@@ -1,6 +1,7 @@
 //! The search for the global minimum of the Maugis-Dugdale fit: the profile over lambda,
-//! short free fits from each of its points, the best of them fitted fully, and the errors
-//! widened by the profile's region.
+//! short free fits from its basins and every fifth point (from all of its points where those
+//! miss the noise floor), the best of them fitted fully, and the errors widened by the
+//! profile's region.
 
 use super::*;
 
@@ -53,7 +54,7 @@ pub(super) fn rank(m: &ModelFit) -> f64 {
     }
 }
 
-/// The free Maugis-Dugdale fit from the best two points of the lambda profile, with standard
+/// The free Maugis-Dugdale fit from the best two of its short free fits, with standard
 /// errors that also cover the profile's confidence region: where the misfit is flat in lambda
 /// (one retract curve often cannot tell lambda = 0.3 from 30 within its noise) the covariance's
 /// local picture understates the spread, while the profile sees it.
