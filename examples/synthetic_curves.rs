@@ -4,8 +4,7 @@
 //!
 //! cargo run --release --example synthetic_curves -- OUT.csv [curves] [points per segment]
 //!     [spring constant, N/m: 2] [force noise, N: 5e-11]
-use tabor::fit::synthetic::{synthetic, Synthetic};
-use tabor::fit::{Model, Params};
+use tabor::fit::synthetic::{map_curve, synthetic};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -23,25 +22,7 @@ fn main() {
     w.write_record(["x", "y", "segment", "height_m", "force_n"])
         .unwrap();
     for i in 0..curves {
-        // A 20 nm tip on a polymer-like sample, w and lambda varying across the map.
-        let t = i as f64 / curves.max(2) as f64;
-        let s = Synthetic {
-            model: Model::Md,
-            params: Params {
-                e_star: 2e9,
-                w: 0.04 + 0.03 * t,
-                lambda: 0.3 * 10f64.powf(1.5 * t),
-                zc: 50e-9,
-                f0: 0.0,
-            },
-            radius: 20e-9,
-            spring,
-            points,
-            depth: 8.0,
-            noise,
-            seed: i as u64 + 1,
-        };
-        let c = synthetic(&s);
+        let c = synthetic(&map_curve(i, curves, points, spring, noise));
         for k in 0..c.len() {
             w.write_record([
                 (i % side).to_string(),

@@ -587,31 +587,15 @@ fn instrument_segment_numbers_with_a_pause_and_a_dwell_give_the_same_fit() {
 /// The free fit finds the global minimum where the misfit dips between two points of the lambda
 /// profile: the first 16 curves of the force-map benchmark's 256-curve map (`bash
 /// bench/fit_map.sh 16`: lambda 0.30..0.37, a 40 N/m cantilever, 20 pN noise), 9 of whose dips
-/// a search from the profile's local minima alone missed (ending 0.1-0.8% higher in rms). The misfit of a fit at the true
-/// Lennard-Jones range z0 (lambda tied to the truth) bounds the global minimum from above, up
+/// a search from the profile's local minima alone missed (ending 0.1-0.8% higher in rms). The
+/// misfit of a fit at the true Lennard-Jones range z0 (lambda tied to the truth) bounds the global minimum from above, up
 /// to how closely the two fits converge: 2e-4 in rms is a Delta chi^2 of 0.2 on these curves.
 #[test]
 fn a_dip_between_profile_points_is_found() {
     let worst = (0..16usize)
         .into_par_iter()
         .map(|i| {
-            let t = i as f64 / 256.0;
-            let s = Synthetic {
-                model: Model::Md,
-                params: Params {
-                    e_star: 2e9,
-                    w: 0.04 + 0.03 * t,
-                    lambda: 0.3 * 10f64.powf(1.5 * t),
-                    zc: 50e-9,
-                    f0: 0.0,
-                },
-                radius: 20e-9,
-                spring: 40.0,
-                points: 500,
-                depth: 8.0,
-                noise: 2e-11,
-                seed: i as u64 + 1,
-            };
+            let s = tabor::fit::synthetic::map_curve(i, 256, 500, 40.0, 2e-11);
             let c = synthetic(&s);
             let opt = FitOptions {
                 radius: 20e-9,

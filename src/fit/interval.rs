@@ -12,7 +12,7 @@
 //! lambda)] is taken over the fits of the lambda profile, each quadratic in theta at its lambda
 //! (from its covariance at the common noise); at the best fit the covariance is the free one.
 
-use super::{fit_model, FitOptions, ModelFit, Prepared};
+use super::{fit_model, scales, FitOptions, ModelFit, Prepared};
 use crate::fit::path::Model;
 use serde::Serialize;
 
@@ -46,18 +46,6 @@ struct Point {
     chi: f64,
     fit: ModelFit,
     free: bool,
-}
-
-/// The parameter scales of a curve's fits (`fit_model_for`'s).
-fn scales(d: &Prepared) -> (f64, f64) {
-    let f = d
-        .force
-        .iter()
-        .fold(0.0f64, |m, f| m.max(f.abs()))
-        .max(1e-30);
-    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
-        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
-    (f, hspan.max(1e-30))
 }
 
 fn rss(f: &ModelFit, m: f64) -> f64 {

@@ -366,27 +366,10 @@ mod tests {
             start.e_star *= 1.1;
             start.w *= 0.95;
             start.zc += 0.2e-9;
-            let prob = Problem {
-                model,
-                data: &d,
-                radius: opt.radius,
-                spring,
-                z0: None,
-                fixed_lambda: None,
-                w_ref: 0.05,
-                z_scale: 1e-8,
-                f_scale: 1e-9,
-                x: DVector::zeros(0),
-                states: RefCell::new(None),
-                hints: RefCell::new(None),
-                residual: RefCell::new(None),
-                forward_lambda: false,
-                jacobians: RefCell::new(0),
-            };
-            let prob = Problem {
-                x: prob.internal(&start),
-                ..prob
-            };
+            let mut prob = Problem::new(model, &d, &opt, 0.05, None);
+            prob.z_scale = 1e-8;
+            prob.f_scale = 1e-9;
+            prob.x = prob.internal(&start);
             let base = prob.eval(&prob.x, None).unwrap().1;
             let mut a = prob.analytic_jacobian(&base);
             // The points before the jump are fitted by their distance to the curve, by

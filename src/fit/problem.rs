@@ -360,13 +360,13 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         let mut j = self.analytic_jacobian(&base);
         if self.has_lambda() {
             let k = 1 + self.has_w() as usize;
-            let h = 1e-6 * self.x[k].abs().max(1.0);
-            let mut xp = self.x.clone();
-            xp[k] += h;
             let r0 = self.residual.borrow().clone();
-            let forward = r0
-                .filter(|_| self.forward_lambda)
-                .and_then(|r0| Some((self.eval(&xp, Some(&base))?.0 - r0) / h));
+            let forward = r0.filter(|_| self.forward_lambda).and_then(|r0| {
+                let h = 1e-6 * self.x[k].abs().max(1.0);
+                let mut xp = self.x.clone();
+                xp[k] += h;
+                Some((self.eval(&xp, Some(&base))?.0 - r0) / h)
+            });
             match forward {
                 Some(c) => j.set_column(k, &c),
                 // Central differences, or one-sided where a side leaves the domain.
@@ -546,6 +546,18 @@ pub(super) fn fit_model(
     fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE)
 }
 
+/// The scales of a curve's fit parameters: its largest force (N) and its height span (m).
+pub(super) fn scales(d: &Prepared) -> (f64, f64) {
+    let f = d
+        .force
+        .iter()
+        .fold(0.0f64, |m, f| m.max(f.abs()))
+        .max(1e-30);
+    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+    (f, hspan.max(1e-30))
+}
+
 impl<'a> Problem<'a> {
     /// The least-squares problem of one model on a prepared curve, scaled by the curve's
     /// largest force and its height span.
@@ -556,13 +568,7 @@ impl<'a> Problem<'a> {
         w_ref: f64,
         fixed_lambda: Option<f64>,
     ) -> Problem<'a> {
-        let fscale = d
-            .force
-            .iter()
-            .fold(0.0f64, |m, f| m.max(f.abs()))
-            .max(1e-30);
-        let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
-            - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
+        let (f_scale, z_scale) = scales(d);
         Problem {
             model,
             data: d,
@@ -571,8 +577,8 @@ impl<'a> Problem<'a> {
             z0: opt.z0,
             fixed_lambda,
             w_ref,
-            z_scale: hspan.max(1e-30),
-            f_scale: fscale,
+            z_scale,
+            f_scale,
             x: DVector::zeros(0),
             states: RefCell::new(None),
             hints: RefCell::new(None),

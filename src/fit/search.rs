@@ -15,11 +15,10 @@ pub(super) fn profile_lambdas() -> impl Iterator<Item = f64> {
 /// misfit can dip sharply between profile points (lambda sets the attractive tail and the
 /// jump), so a free fit has to start where it can roll into the dip; free fits from the other
 /// points of a basin end in the same minimum.
-pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
+/// `order`: the profile's points, best first.
+pub(super) fn scout_starts(profile: &[ModelFit], order: &[usize]) -> Vec<usize> {
     let r: Vec<f64> = profile.iter().map(rank).collect();
     let n = r.len();
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&a, &b| r[a].total_cmp(&r[b]));
     let mut pick = vec![false; n];
     for &i in order.iter().take(2) {
         pick[i] = true;
@@ -35,7 +34,7 @@ pub(super) fn scout_starts(profile: &[ModelFit]) -> Vec<usize> {
     for i in (0..n).step_by(5) {
         pick[i] = true;
     }
-    order.into_iter().filter(|&i| pick[i]).collect()
+    order.iter().copied().filter(|&i| pick[i]).collect()
 }
 
 /// Where the best free fit's rms residual exceeds the baseline's noise by more than this
@@ -70,7 +69,7 @@ pub(super) fn free_fit(
     let best_profile = rank(&profile[order[0]]);
     // Scouts: short free fits from the profile's basins; the best two are then fitted fully.
     // Where that does not reach the noise floor, from every other profile point as well.
-    let first = scout_starts(&profile);
+    let first = scout_starts(&profile, &order);
     let (mut scouts, mut fulls) = scout(d, opt, w_ref, &profile, &first, best_profile);
     let best = fulls.iter().map(key).fold(f64::INFINITY, f64::min);
     if !(best <= NOISE_FLOOR * d.noise) {

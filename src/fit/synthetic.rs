@@ -28,6 +28,29 @@ pub struct Synthetic {
     pub seed: u64,
 }
 
+/// Curve `i` of `curves` in the synthetic force map of the fitting example and benchmark
+/// (`examples/synthetic_curves.rs`, `bench/fit_map.sh`): a 20 nm tip on a polymer-like sample,
+/// w 0.04..0.07 J/m^2 and lambda 0.3..9.5 varying along the map, seeded by its index.
+pub fn map_curve(i: usize, curves: usize, points: usize, spring: f64, noise: f64) -> Synthetic {
+    let t = i as f64 / curves.max(2) as f64;
+    Synthetic {
+        model: Model::Md,
+        params: Params {
+            e_star: 2e9,
+            w: 0.04 + 0.03 * t,
+            lambda: 0.3 * 10f64.powf(1.5 * t),
+            zc: 50e-9,
+            f0: 0.0,
+        },
+        radius: 20e-9,
+        spring,
+        points,
+        depth: 8.0,
+        noise,
+        seed: i as u64 + 1,
+    }
+}
+
 /// The curve: the base goes from far away to `depth` past the contact point and back, the far
 /// 40% of each segment beyond the last force (jump-out included), so a baseline can be taken.
 ///
