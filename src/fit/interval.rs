@@ -12,8 +12,7 @@
 //! lambda)] is taken over the fits of the lambda profile, each quadratic in theta at its lambda
 //! (from its covariance at the common noise); at the best fit the covariance is the free one.
 
-use super::{fit_model, scales, FitOptions, ModelFit, Prepared};
-use crate::fit::path::Model;
+use super::{fit_md_from, scales, FitOptions, ModelFit, Prepared, PATIENCE};
 use serde::Serialize;
 
 /// Delta chi^2 of the 68% and 95% levels (one parameter).
@@ -186,13 +185,14 @@ impl Search<'_> {
                 .unwrap();
             let mut start = near.fit.params();
             start.lambda = x.exp();
-            let f = fit_model(
-                Model::Md,
+            let f = fit_md_from(
+                &near.fit,
                 self.d,
                 self.opt,
                 start,
                 self.w_ref,
                 Some(x.exp()),
+                PATIENCE,
             );
             *extra += 1;
             if !f.rms_residual_n.is_finite() {

@@ -35,7 +35,7 @@ use summary::*;
 use crate::physics::params::LJ_STRESS;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
-use path::{PathState, Piece, Side};
+use path::{Hint, PathState, Piece, Side};
 use serde::Serialize;
 use std::cell::RefCell;
 use std::f64::consts::PI;
@@ -102,19 +102,28 @@ pub fn fit_curve(curve: &Curve, opt: &FitOptions) -> CurveFit {
     if let Err(e) = opt.validate() {
         return fail(curve, FitStatus::InvalidInput, e.message);
     }
-    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| fit_curve_inner(curve, opt)))
-        .unwrap_or_else(|p| {
-            let what = p
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
-                .unwrap_or_default();
-            fail(
-                curve,
-                FitStatus::NotConverged,
-                format!("internal error while fitting this curve ({what}); please report it with the curve"),
-            )
-        })
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        let mut r = fit_curve_inner(curve, opt);
+        // The path states only start the next fit: a force map keeps none.
+        for m in r.md.iter_mut().chain(r.models.iter_mut()) {
+            m.states = None;
+        }
+        r
+    }))
+    .unwrap_or_else(|p| {
+        let what = p
+            .downcast_ref::<String>()
+            .cloned()
+            .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+            .unwrap_or_default();
+        fail(
+            curve,
+            FitStatus::NotConverged,
+            format!(
+                "internal error while fitting this curve ({what}); please report it with the curve"
+            ),
+        )
+    })
 }
 
 fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
@@ -172,17 +181,20 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
             Err(out) => return *out,
         },
         None => {
-            let profile: Vec<ModelFit> = profile_lambdas()
-                .map(|l| {
-                    let pc = crate::physics::closed::cos_pulloff(l).abs();
-                    let s = if l < 1.0 {
-                        from(&dmt, l, 2.0, pc)
-                    } else {
-                        from(&jkr, l, 1.5, pc)
-                    };
-                    fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
-                })
-                .collect();
+            let mut profile: Vec<ModelFit> = Vec::new();
+            for l in profile_lambdas() {
+                let pc = crate::physics::closed::cos_pulloff(l).abs();
+                let s = if l < 1.0 {
+                    from(&dmt, l, 2.0, pc)
+                } else {
+                    from(&jkr, l, 1.5, pc)
+                };
+                // Each point's first search starts at its state on the previous profile point.
+                profile.push(match profile.last() {
+                    Some(prev) => fit_md_from(prev, &d, opt, s, w_ref, Some(l), PATIENCE),
+                    None => fit_model(Model::Md, &d, opt, s, w_ref, Some(l)),
+                });
+            }
             let md = free_fit(&d, opt, w_ref, profile.clone());
             let iv = if md.status == FitStatus::Ok {
                 interval::profile_intervals(&d, opt, w_ref, &md, &profile)
@@ -402,47 +414,99 @@ mod tests {
     }
 
     #[test]
-    fn a_scouts_forward_lambda_column_matches_the_central_one() {
-        let s = synthetic::Synthetic {
-            model: Model::Md,
-            params: Params {
-                e_star: 1.5e9,
-                w: 0.05,
-                lambda: 0.8,
-                zc: 40e-9,
-                f0: 0.0,
-            },
-            radius: 20e-9,
-            spring: 2.0,
-            points: 200,
-            depth: 6.0,
-            noise: 1e-11,
-            seed: 5,
-        };
-        let opt = FitOptions {
-            radius: 20e-9,
-            spring: 2.0,
-            ..FitOptions::default()
-        };
-        let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
-        let mut start = s.params;
-        start.e_star *= 1.1;
-        start.lambda *= 1.3;
-        let mut prob = Problem::new(Model::Md, &d, &opt, 0.05, None);
-        prob.x = prob.internal(&start);
-        // The residual at hand, as the solver leaves it before asking for the Jacobian.
-        LeastSquaresProblem::residuals(&prob).unwrap();
-        assert!(prob.residual.borrow().is_some());
-        let central = LeastSquaresProblem::jacobian(&prob).unwrap();
-        prob.forward_lambda = true;
-        let forward = LeastSquaresProblem::jacobian(&prob).unwrap();
-        let (c, f) = (central.column(2), forward.column(2));
-        let err = (c - f).amax() / c.amax();
-        assert!(err < 1e-4, "forward against central: {err:e}");
-        assert!(err > 0.0, "the forward column was not taken");
-        // The other columns are the same.
-        for k in [0, 1, 3, 4] {
-            assert_eq!(central.column(k), forward.column(k));
+    fn lambda_slopes_of_the_pieces_match_differences() {
+        use path::{state, state_dlambda, Piece};
+        for &lambda in &[0.05, 0.7, 6.0] {
+            let c_end = crate::physics::md::zero_radius_end(lambda).c;
+            for (piece, t) in [
+                (Piece::NonContact, 0.3 * c_end),
+                (Piece::NonContact, 0.9 * c_end),
+                (Piece::Contact, -3.0),
+                (Piece::Contact, 0.5),
+                (Piece::Contact, 4.0),
+            ] {
+                let (dl, dd) = state_dlambda(Model::Md, lambda, piece, t);
+                let h = 1e-5 * lambda;
+                let (p, m) = (
+                    state(Model::Md, lambda + h, piece, t),
+                    state(Model::Md, lambda - h, piece, t),
+                );
+                let fl = (p.load - m.load) / (2.0 * h);
+                let fd = (p.approach - m.approach) / (2.0 * h);
+                let at = format!("{piece:?} at lambda {lambda}, t {t}");
+                assert!(
+                    (dl - fl).abs() <= 1e-7 * fl.abs().max(1.0),
+                    "{at}: {dl} {fl}"
+                );
+                assert!(
+                    (dd - fd).abs() <= 1e-7 * fd.abs().max(1.0),
+                    "{at}: {dd} {fd}"
+                );
+            }
         }
+        assert_eq!(
+            state_dlambda(Model::Jkr, 1.0, Piece::Contact, 2.0),
+            (0.0, 0.0)
+        );
+        assert_eq!(state_dlambda(Model::Md, 1.0, Piece::Free, 2.0), (0.0, 0.0));
+    }
+
+    #[test]
+    fn lambdas_analytic_column_matches_central_differences() {
+        // The contact piece's rows (the non-contact piece's slopes are checked in `path`).
+        let mut compared = 0;
+        for (lambda, spring) in [(0.8, 2.0), (0.05, 50.0)] {
+            let s = synthetic::Synthetic {
+                model: Model::Md,
+                params: Params {
+                    e_star: 1.5e9,
+                    w: 0.05,
+                    lambda,
+                    zc: 40e-9,
+                    f0: 0.0,
+                },
+                radius: 20e-9,
+                spring,
+                points: 200,
+                depth: 6.0,
+                noise: 1e-11,
+                seed: 5,
+            };
+            let opt = FitOptions {
+                radius: 20e-9,
+                spring,
+                ..FitOptions::default()
+            };
+            let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
+            let mut start = s.params;
+            start.e_star *= 1.1;
+            start.lambda *= 1.3;
+            let mut prob = Problem::new(Model::Md, &d, &opt, 0.05, None);
+            prob.x = prob.internal(&start);
+            LeastSquaresProblem::residuals(&prob).unwrap();
+            // Some points may be held at the end of their stretch (lambda is 30% off): their
+            // rows come from differences in both.
+            let base = prob.states.borrow().clone().unwrap();
+            let j = LeastSquaresProblem::jacobian(&prob).unwrap();
+            let c = prob.numeric_jacobian(&base, &[2]).unwrap();
+            // Central differences with a step of 1e-6 in ln lambda: truncation about 1e-12,
+            // rounding of the residuals (1e-16 of the largest force) over the step about 1e-10.
+            // The points before a jump have their own rows (the distance to the fold), by
+            // differences in both.
+            let scale = c.column(2).amax();
+            for (i, s) in base.iter().enumerate().filter(|(i, _)| !d.at_jump[*i]) {
+                let (a, n) = (j[(i, 2)], c[(i, 2)]);
+                assert!(
+                    (a - n).abs() <= 1e-7 * scale,
+                    "lambda {lambda}, point {i} on {:?}: analytic {a:e} against central {n:e}",
+                    s.piece
+                );
+                if s.piece != path::Piece::Free && !s.clamped {
+                    assert!(a != 0.0, "lambda {lambda}, point {i}: no slope");
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared > 100, "{compared} rows compared");
     }
 }

@@ -73,7 +73,8 @@ pub fn model_forces(
     model_forces_from(model, p, radius, spring, height, dir, side, None)
 }
 
-/// [`model_forces`], each point's search started from its state in `hints` (nearby parameters).
+/// [`model_forces`], each point's search started from its state in `hints` (nearby parameters),
+/// evaluated at the lambda given with them.
 #[allow(clippy::too_many_arguments)]
 pub fn model_forces_from(
     model: Model,
@@ -83,7 +84,7 @@ pub fn model_forces_from(
     height: &[f64],
     dir: &[Direction],
     side: Option<&[Side]>,
-    hints: Option<&[PathState]>,
+    hints: Option<(&[PathState], f64)>,
 ) -> Option<Evaluated> {
     let u = units(p, radius, spring);
     if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
@@ -104,7 +105,11 @@ pub fn model_forces_from(
                 d,
                 dir,
                 side.map_or(Side::Any, |s| s[i]),
-                hints.map(|h| &h[i]),
+                hints.map(|(h, l)| Hint {
+                    state: &h[i],
+                    // The closed forms have no lambda.
+                    same_curve: model != Model::Md || l.to_bits() == p.lambda.to_bits(),
+                }),
             )
         })
         .collect();
@@ -129,13 +134,9 @@ pub(super) struct Problem<'a> {
     pub(super) x: DVector<f64>,
     /// The states at the current parameters (the Jacobian keeps each point on its piece).
     pub(super) states: RefCell<Option<Vec<PathState>>>,
-    /// The last states evaluated: each point's search starts there at the next parameters.
-    pub(super) hints: RefCell<Option<Vec<PathState>>>,
-    /// The residuals at the current parameters, with `states`.
-    pub(super) residual: RefCell<Option<DVector<f64>>>,
-    /// Lambda's column by forward differences from `residual`: one evaluation of the paths
-    /// instead of two, for a scouting fit, which only has to reach its basin.
-    pub(super) forward_lambda: bool,
+    /// The last states evaluated and their lambda: each point's search starts there at the
+    /// next parameters.
+    pub(super) hints: RefCell<Option<(Vec<PathState>, f64)>>,
     pub(super) jacobians: RefCell<usize>,
 }
 
@@ -247,7 +248,7 @@ impl Problem<'_> {
                     &d.height,
                     &d.dir,
                     Some(&d.side),
-                    hints.as_deref(),
+                    hints.as_ref().map(|(h, l)| (h.as_slice(), *l)),
                 )?
                 .2
             }
@@ -326,7 +327,6 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     fn set_params(&mut self, x: &DVector<f64>) {
         self.x.copy_from(x);
         *self.states.borrow_mut() = None;
-        *self.residual.borrow_mut() = None;
     }
 
     fn params(&self) -> DVector<f64> {
@@ -338,9 +338,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         // would end the whole minimisation).
         match self.eval(&self.x, None) {
             Some((r, s)) => {
-                *self.hints.borrow_mut() = Some(s.clone());
+                *self.hints.borrow_mut() = Some((s.clone(), self.params(&self.x).lambda));
                 *self.states.borrow_mut() = Some(s);
-                *self.residual.borrow_mut() = Some(r.clone());
                 Some(r)
             }
             None => Some(DVector::from_element(self.data.force.len(), 1e6)),
@@ -358,21 +357,15 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
         let mut j = self.analytic_jacobian(&base);
-        if self.has_lambda() {
+        let held = |s: &PathState| s.clamped && s.piece != Piece::Free;
+        if self.has_lambda() && base.iter().any(held) {
+            // A held point sits at the end of its stretch, which moves with lambda: its row of
+            // lambda's column by differences.
             let k = 1 + self.has_w() as usize;
-            let r0 = self.residual.borrow().clone();
-            let forward = r0.filter(|_| self.forward_lambda).and_then(|r0| {
-                let h = 1e-6 * self.x[k].abs().max(1.0);
-                let mut xp = self.x.clone();
-                xp[k] += h;
-                Some((self.eval(&xp, Some(&base))?.0 - r0) / h)
-            });
-            match forward {
-                Some(c) => j.set_column(k, &c),
-                // Central differences, or one-sided where a side leaves the domain.
-                None => {
-                    let c = self.numeric_jacobian(&base, &[k])?;
-                    j.set_column(k, &c.column(k));
+            let c = self.numeric_jacobian(&base, &[k])?;
+            for (i, s) in base.iter().enumerate() {
+                if held(s) {
+                    j[(i, k)] = c[(i, k)];
                 }
             }
         }
@@ -388,8 +381,9 @@ impl Problem<'_> {
     /// `dP/dkbar = P' P / (kbar^2 g)`, with `g = dDelta/dt = D' + P'/kbar`. Points on the free
     /// piece, or held at the end of their stretch (where the data put them past the model's
     /// jump), move with the offset only: for held points an approximation, which the iteration
-    /// tolerates and which a converged fit rarely needs. The lambda column is left to
-    /// differences.
+    /// tolerates and which a converged fit rarely needs. Lambda's column is the state's slide
+    /// along its piece as lambda moves ([`Problem::dload_dlambda`]); held points take theirs
+    /// from differences (their stretch's end moves with lambda).
     pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> DMatrix<f64> {
         let p = self.params(&self.x);
         let u = units(&p, self.radius, self.spring);
@@ -421,12 +415,29 @@ impl Problem<'_> {
                 k += 1;
             }
             if self.has_lambda() {
+                j[(i, k)] = u.force * p.lambda * self.dload_dlambda(&p, &u, s) / self.f_scale;
                 k += 1;
             }
             j[(i, k)] = u.force * dp_dd * (self.z_scale / u.approach) / self.f_scale;
             j[(i, k + 1)] = 1.0;
         }
         j
+    }
+
+    /// dPbar/dlambda at the point's Delta (fixed) and kbar: the state slides along its piece,
+    /// `dt/dlambda = -(D_lambda + P_lambda / kbar) / g`. Zero on the free piece and for held
+    /// points (their rows are taken by differences).
+    fn dload_dlambda(&self, p: &Params, u: &Units, s: &PathState) -> f64 {
+        if s.piece == Piece::Free || s.clamped {
+            return 0.0;
+        }
+        let (pl, dl) = path::state_dlambda(self.model, p.lambda, s.piece, s.t);
+        let g = s.dapproach + s.dload / u.kbar;
+        if g.abs() > 0.0 {
+            pl - s.dload * (dl + pl / u.kbar) / g
+        } else {
+            0.0
+        }
     }
 
     /// Central differences in the given columns (others zero), each point kept on its piece.
@@ -543,7 +554,36 @@ pub(super) fn fit_model(
     w_ref: f64,
     fixed_lambda: Option<f64>,
 ) -> ModelFit {
-    fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE)
+    fit_model_for(model, d, opt, start, w_ref, fixed_lambda, PATIENCE, None)
+}
+
+/// [`fit_model`] of Maugis-Dugdale started from the fit `from` (its parameters moved by
+/// `start`), each point's first search begun at `from`'s state (Newton steps instead of a
+/// search from the path's nodes; checked to stay on its stretch).
+pub(super) fn fit_md_from(
+    from: &ModelFit,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+    patience: usize,
+) -> ModelFit {
+    let hints = from
+        .states
+        .as_deref()
+        .zip(from.lambda)
+        .map(|(s, l)| (s.as_slice(), l));
+    fit_model_for(
+        Model::Md,
+        d,
+        opt,
+        start,
+        w_ref,
+        fixed_lambda,
+        patience,
+        hints,
+    )
 }
 
 /// The scales of a curve's fit parameters: its largest force (N) and its height span (m).
@@ -582,8 +622,6 @@ impl<'a> Problem<'a> {
             x: DVector::zeros(0),
             states: RefCell::new(None),
             hints: RefCell::new(None),
-            residual: RefCell::new(None),
-            forward_lambda: false,
             jacobians: RefCell::new(0),
         }
     }
@@ -603,6 +641,7 @@ pub(super) const SCOUT_PATIENCE: usize = 4;
 pub(super) const PROFILE_TOL: f64 = 1e-10;
 
 #[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments)]
 pub(super) fn fit_model_for(
     model: Model,
     d: &Prepared,
@@ -611,11 +650,14 @@ pub(super) fn fit_model_for(
     w_ref: f64,
     fixed_lambda: Option<f64>,
     patience: usize,
+    hints: Option<(&[PathState], f64)>,
 ) -> ModelFit {
     let mut prob = Problem::new(model, d, opt, w_ref, fixed_lambda);
     prob.x = prob.internal(&start);
+    *prob.hints.borrow_mut() = hints
+        .filter(|(h, _)| h.len() == d.force.len())
+        .map(|(h, l)| (h.to_vec(), l));
     let scout = patience == SCOUT_PATIENCE;
-    prob.forward_lambda = scout;
     let mut lm = LevenbergMarquardt::new().with_patience(patience);
     if fixed_lambda.is_some() {
         lm = lm.with_ftol(PROFILE_TOL).with_xtol(PROFILE_TOL);
@@ -637,7 +679,7 @@ pub(super) fn fit_model_for(
             let rss = r.norm_squared();
             let rms = (rss / m as f64).sqrt() * prob.f_scale;
             // A scout's covariance is never read (only its misfit and parameters): its final
-            // Jacobian, two path evaluations per column of lambda, is skipped.
+            // Jacobian is skipped.
             let inv = (!scout)
                 .then(|| prob.jacobian())
                 .flatten()
@@ -677,6 +719,9 @@ pub(super) fn fit_model_for(
         stop: stop_text(&report.termination),
         cov,
         jtj_inv,
+        states: evaluated
+            .filter(|_| model == Model::Md)
+            .map(|(_, s)| std::sync::Arc::new(s)),
     }
 }
 

@@ -58,6 +58,10 @@ pub struct ModelFit {
     /// f0 / f_scale) with residuals in units of f_scale: the covariance at any noise level.
     #[serde(skip)]
     pub(super) jtj_inv: Option<DMatrix<f64>>,
+    /// A Maugis-Dugdale fit's states at its parameters: the next fit started from it begins
+    /// each point's search there (dropped from the curve's result).
+    #[serde(skip)]
+    pub(super) states: Option<std::sync::Arc<Vec<super::PathState>>>,
 }
 
 /// The result for one curve (SI units; `_stderr` from the covariance of the fit).

@@ -114,7 +114,7 @@ fn scout(
         .iter()
         .map(|&i| {
             let m = &profile[i];
-            fit_model_for(Model::Md, d, opt, m.params(), w_ref, None, SCOUT_PATIENCE)
+            fit_md_from(m, d, opt, m.params(), w_ref, None, SCOUT_PATIENCE)
         })
         .collect();
     scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
@@ -122,7 +122,7 @@ fn scout(
         .iter()
         .take(2)
         .map(|m| {
-            let mut f = fit_model(Model::Md, d, opt, m.params(), w_ref, None);
+            let mut f = fit_md_from(m, d, opt, m.params(), w_ref, None, PATIENCE);
             // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
             if f.status == FitStatus::NotConverged && rank(&f) <= best_profile * (1.0 + 1e-9) {
                 f.status = FitStatus::Ok;

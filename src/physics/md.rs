@@ -84,6 +84,26 @@ pub fn curve_point<T: Real>(lambda: T, mu: T) -> CurvePoint<T> {
     }
 }
 
+/// The slopes of A, Pbar and Dbar with respect to lambda at fixed mu (the curve point of
+/// [`curve_point`] as lambda moves): equation (1), `alpha A^2 + beta A = 1` with
+/// `alpha = lambda f1 / 2` and `beta = (4/3) lambda^2 f2`, differentiated at fixed f1, f2.
+/// A fit's Jacobian takes lambda's column from them instead of from differences.
+pub fn curve_point_dlambda(lambda: f64, mu: f64) -> (f64, f64, f64) {
+    let (at, mu_minus_at) = mu.atan_parts();
+    let mu2 = mu * mu;
+    let m = (1.0 + mu2).sqrt();
+    let f1 = mu2 * at + mu_minus_at;
+    let f2 = mu * at - mu2 / (1.0 + m);
+    let alpha = 0.5 * lambda * f1;
+    let beta = 4.0 / 3.0 * lambda * lambda * f2;
+    let a = 2.0 / (beta + (beta * beta + 4.0 * alpha).sqrt());
+    let g = mu + (1.0 + mu2) * at;
+    let da = -(0.5 * f1 * a * a + 8.0 / 3.0 * lambda * f2 * a) / (2.0 * alpha * a + beta);
+    let dload = da * (3.0 * a * a - 2.0 * lambda * a * g) - a * a * g;
+    let dapproach = da * (2.0 * a - 4.0 / 3.0 * lambda * mu) - 4.0 / 3.0 * a * mu;
+    (da, dload, dapproach)
+}
+
 /// The end of the curve at A -> 0 (m -> infinity, C = m A finite), where it meets the
 /// non-contact branch: `(pi lambda/4) C^2 + (2 (pi-2) lambda^2/3) C = 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -144,6 +164,26 @@ mod tests {
         };
         assert!((at - quarter_pi).to_f64().abs() < 1e-31);
         assert!((d + at - Dd::of(1.0)).to_f64().abs() < 1e-31);
+    }
+
+    #[test]
+    fn lambda_slopes_match_differences_of_the_curve() {
+        for &lambda in &[0.05, 0.4, 1.0, 3.0, 20.0] {
+            for &mu in &[1e-3, 0.1, 1.0, 4.0, 50.0] {
+                let (da, dp, dd) = curve_point_dlambda(lambda, mu);
+                let h = 1e-5 * lambda;
+                let (p, m) = (curve_point(lambda + h, mu), curve_point(lambda - h, mu));
+                let close = |x: f64, fd: f64, what: &str| {
+                    assert!(
+                        (x - fd).abs() <= 1e-7 * fd.abs().max(1e-3),
+                        "{what} at lambda {lambda}, mu {mu}: {x} against {fd}"
+                    )
+                };
+                close(da, (p.a - m.a) / (2.0 * h), "dA");
+                close(dp, (p.load - m.load) / (2.0 * h), "dP");
+                close(dd, (p.approach - m.approach) / (2.0 * h), "dD");
+            }
+        }
     }
 
     #[test]
