@@ -123,6 +123,10 @@ pub mod figure_data;
 pub mod fit;
 pub mod gpu;
 pub mod io;
+// The WGSL kernels' sources, buffer layouts and CPU mirrors: the GPU host and the engine use
+// them; public only so that the shader and GPU tests can compare each kernel with its mirror
+// bit for bit. A user solves through `engine`, `map` or `solver`.
+#[doc(hidden)]
 pub mod kernel;
 pub mod map;
 pub mod physics;
