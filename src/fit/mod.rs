@@ -453,7 +453,8 @@ mod tests {
 
     #[test]
     fn lambdas_analytic_column_matches_central_differences() {
-        // The contact piece's rows (the non-contact piece's slopes are checked in `path`).
+        // Every row not before a jump; these curves put their points on the contact and free
+        // pieces (the non-contact piece's slopes are checked in the test above).
         let mut compared = 0;
         for (lambda, spring) in [(0.8, 2.0), (0.05, 50.0)] {
             let s = synthetic::Synthetic {
@@ -489,8 +490,9 @@ mod tests {
             let base = prob.states.borrow().clone().unwrap();
             let j = LeastSquaresProblem::jacobian(&prob).unwrap();
             let c = prob.numeric_jacobian(&base, &[2]).unwrap();
-            // Central differences with a step of 1e-6 in ln lambda: truncation about 1e-12,
-            // rounding of the residuals (1e-16 of the largest force) over the step about 1e-10.
+            // Central differences with a step of 1e-6 max(|ln lambda|, 1) (3e-6 at lambda 0.05):
+            // truncation about 1e-11, rounding of the residuals (1e-16 of the largest force)
+            // over the step about 1e-10.
             // The points before a jump have their own rows (the distance to the fold), by
             // differences in both.
             let scale = c.column(2).amax();

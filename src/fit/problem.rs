@@ -641,7 +641,6 @@ pub(super) const SCOUT_PATIENCE: usize = 4;
 pub(super) const PROFILE_TOL: f64 = 1e-10;
 
 #[allow(clippy::too_many_arguments)]
-#[allow(clippy::too_many_arguments)]
 pub(super) fn fit_model_for(
     model: Model,
     d: &Prepared,
