@@ -35,7 +35,7 @@ use summary::*;
 use crate::physics::params::LJ_STRESS;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
-use path::{Hint, PathState, Piece, Side};
+use path::{PathState, Piece, Side};
 use serde::Serialize;
 use std::cell::RefCell;
 use std::f64::consts::PI;
@@ -181,20 +181,17 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
             Err(out) => return *out,
         },
         None => {
-            let mut profile: Vec<ModelFit> = Vec::new();
-            for l in profile_lambdas() {
-                let pc = crate::physics::closed::cos_pulloff(l).abs();
-                let s = if l < 1.0 {
-                    from(&dmt, l, 2.0, pc)
-                } else {
-                    from(&jkr, l, 1.5, pc)
-                };
-                // Each point's first search starts at its state on the previous profile point.
-                profile.push(match profile.last() {
-                    Some(prev) => fit_md_from(prev, &d, opt, s, w_ref, Some(l), PATIENCE),
-                    None => fit_model(Model::Md, &d, opt, s, w_ref, Some(l)),
-                });
-            }
+            let profile: Vec<ModelFit> = profile_lambdas()
+                .map(|l| {
+                    let pc = crate::physics::closed::cos_pulloff(l).abs();
+                    let s = if l < 1.0 {
+                        from(&dmt, l, 2.0, pc)
+                    } else {
+                        from(&jkr, l, 1.5, pc)
+                    };
+                    fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
+                })
+                .collect();
             let md = free_fit(&d, opt, w_ref, profile.clone());
             let iv = if md.status == FitStatus::Ok {
                 interval::profile_intervals(&d, opt, w_ref, &md, &profile)

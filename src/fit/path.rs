@@ -135,16 +135,6 @@ impl Pt {
     }
 }
 
-/// Where a point's search starts: its state at nearby parameters.
-#[derive(Clone, Copy, Debug)]
-pub struct Hint<'a> {
-    /// The state.
-    pub state: &'a PathState,
-    /// Whether it lies on the curve being searched (the same model and lambda): its load,
-    /// approach and slopes are then the curve's at its t, and not evaluated again.
-    pub same_curve: bool,
-}
-
 /// A state on the followed path.
 #[derive(Clone, Copy, Debug)]
 pub struct PathState {
@@ -164,7 +154,6 @@ pub struct PathState {
     /// reads them instead of evaluating the state again).
     pub(crate) dload: f64,
     pub(crate) dapproach: f64,
-    pub(crate) da: f64,
 }
 
 impl PathState {
@@ -178,19 +167,6 @@ impl PathState {
             clamped,
             dload: p.dload,
             dapproach: p.dapproach,
-            da: p.da,
-        }
-    }
-
-    /// The state's point on its piece, with its slopes.
-    fn pt(&self) -> Pt {
-        Pt {
-            load: self.load,
-            approach: self.approach,
-            a: self.a,
-            dload: self.dload,
-            dapproach: self.dapproach,
-            da: self.da,
         }
     }
 }
@@ -702,7 +678,7 @@ impl SpringPath {
         delta: f64,
         dir: Direction,
         side: Side,
-        hint: Option<Hint>,
+        hint: Option<&PathState>,
     ) -> PathState {
         let Some(j) = self.first_jump(dir).filter(|_| side != Side::Any) else {
             let segs = self.segments(dir);
@@ -741,29 +717,15 @@ impl SpringPath {
             .unwrap_or_else(|| self.state_at(seg, t, true))
     }
 
-    fn at_in_from(&self, seg: &Segment, delta: f64, hint: Option<Hint>) -> PathState {
-        if let Some(Hint {
-            state: h,
-            same_curve,
-        }) = hint
-        {
+    fn at_in_from(&self, seg: &Segment, delta: f64, hint: Option<&PathState>) -> PathState {
+        if let Some(h) = hint {
             if seg.piece != Piece::Free
                 && h.piece == seg.piece
                 && !h.clamped
                 && h.t >= seg.t_lo
                 && h.t <= seg.t_hi
             {
-                let at = same_curve.then(|| h.pt());
-                let s = near_from(
-                    self.model,
-                    self.lambda,
-                    self.kbar,
-                    delta,
-                    seg.piece,
-                    h.t,
-                    at,
-                );
-                if let Some(s) = s {
+                if let Some(s) = near(self.model, self.lambda, self.kbar, delta, seg.piece, h.t) {
                     if s.t >= seg.t_lo && s.t <= seg.t_hi {
                         return s;
                     }
@@ -1004,21 +966,6 @@ pub fn near(
     piece: Piece,
     t: f64,
 ) -> Option<PathState> {
-    near_from(model, lambda, kbar, delta, piece, t, None)
-}
-
-/// [`near`], with the state at `t` given where it is known (a hint on the same curve: the
-/// normalised curve depends on lambda only, so a fit that holds lambda, or a closed form,
-/// moves only Delta and kbar between its evaluations).
-fn near_from(
-    model: Model,
-    lambda: f64,
-    kbar: f64,
-    delta: f64,
-    piece: Piece,
-    t: f64,
-    mut at: Option<Pt>,
-) -> Option<PathState> {
     if piece == Piece::Free {
         return Some(PathState {
             piece,
@@ -1029,19 +976,13 @@ fn near_from(
             clamped: false,
             dload: 0.0,
             dapproach: 1.0,
-            da: 0.0,
         });
     }
     let mut t = t;
     for _ in 0..8 {
-        // A given state only takes the first step: a hint may itself be a first-order
-        // extrapolation, so the state returned is always one evaluated here (or one step from it).
-        let (p, fresh) = match at.take() {
-            Some(p) => (p, false),
-            None => (state(model, lambda, piece, t), true),
-        };
+        let p = state(model, lambda, piece, t);
         let r = p.approach + p.load / kbar - delta;
-        if fresh && r.abs() <= 1e-14 * delta.abs().max(1.0) {
+        if r.abs() <= 1e-14 * delta.abs().max(1.0) {
             return Some(PathState::on(piece, t, &p, false));
         }
         let s = p.dapproach + p.dload / kbar;
@@ -1050,7 +991,7 @@ fn near_from(
         }
         let step = r / s;
         t -= step;
-        if fresh && step.abs() <= 1e-8 * t.abs().max(1.0) {
+        if step.abs() <= 1e-8 * t.abs().max(1.0) {
             // Newton converges quadratically: the state after this step differs from its
             // first-order extrapolation by about step^2 (1e-16 of the parameter's scale
             // squared), so it is not evaluated again.

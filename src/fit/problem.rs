@@ -73,8 +73,7 @@ pub fn model_forces(
     model_forces_from(model, p, radius, spring, height, dir, side, None)
 }
 
-/// [`model_forces`], each point's search started from its state in `hints` (nearby parameters),
-/// evaluated at the lambda given with them.
+/// [`model_forces`], each point's search started from its state in `hints` (nearby parameters).
 #[allow(clippy::too_many_arguments)]
 pub fn model_forces_from(
     model: Model,
@@ -84,7 +83,7 @@ pub fn model_forces_from(
     height: &[f64],
     dir: &[Direction],
     side: Option<&[Side]>,
-    hints: Option<(&[PathState], f64)>,
+    hints: Option<&[PathState]>,
 ) -> Option<Evaluated> {
     let u = units(p, radius, spring);
     if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
@@ -105,11 +104,7 @@ pub fn model_forces_from(
                 d,
                 dir,
                 side.map_or(Side::Any, |s| s[i]),
-                hints.map(|(h, l)| Hint {
-                    state: &h[i],
-                    // The closed forms have no lambda.
-                    same_curve: model != Model::Md || l.to_bits() == p.lambda.to_bits(),
-                }),
+                hints.map(|h| &h[i]),
             )
         })
         .collect();
@@ -134,9 +129,8 @@ pub(super) struct Problem<'a> {
     pub(super) x: DVector<f64>,
     /// The states at the current parameters (the Jacobian keeps each point on its piece).
     pub(super) states: RefCell<Option<Vec<PathState>>>,
-    /// The last states evaluated and their lambda: each point's search starts there at the
-    /// next parameters.
-    pub(super) hints: RefCell<Option<(Vec<PathState>, f64)>>,
+    /// The last states evaluated: each point's search starts there at the next parameters.
+    pub(super) hints: RefCell<Option<Vec<PathState>>>,
     pub(super) jacobians: RefCell<usize>,
 }
 
@@ -248,7 +242,7 @@ impl Problem<'_> {
                     &d.height,
                     &d.dir,
                     Some(&d.side),
-                    hints.as_ref().map(|(h, l)| (h.as_slice(), *l)),
+                    hints.as_deref(),
                 )?
                 .2
             }
@@ -338,7 +332,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         // would end the whole minimisation).
         match self.eval(&self.x, None) {
             Some((r, s)) => {
-                *self.hints.borrow_mut() = Some((s.clone(), self.params(&self.x).lambda));
+                *self.hints.borrow_mut() = Some(s.clone());
                 *self.states.borrow_mut() = Some(s);
                 Some(r)
             }
@@ -569,11 +563,7 @@ pub(super) fn fit_md_from(
     fixed_lambda: Option<f64>,
     patience: usize,
 ) -> ModelFit {
-    let hints = from
-        .states
-        .as_deref()
-        .zip(from.lambda)
-        .map(|(s, l)| (s.as_slice(), l));
+    let hints = from.states.as_deref().map(|s| s.as_slice());
     fit_model_for(
         Model::Md,
         d,
@@ -649,13 +639,13 @@ pub(super) fn fit_model_for(
     w_ref: f64,
     fixed_lambda: Option<f64>,
     patience: usize,
-    hints: Option<(&[PathState], f64)>,
+    hints: Option<&[PathState]>,
 ) -> ModelFit {
     let mut prob = Problem::new(model, d, opt, w_ref, fixed_lambda);
     prob.x = prob.internal(&start);
     *prob.hints.borrow_mut() = hints
-        .filter(|(h, _)| h.len() == d.force.len())
-        .map(|(h, l)| (h.to_vec(), l));
+        .filter(|h| h.len() == d.force.len())
+        .map(<[_]>::to_vec);
     let scout = patience == SCOUT_PATIENCE;
     let mut lm = LevenbergMarquardt::new().with_patience(patience);
     if fixed_lambda.is_some() {
