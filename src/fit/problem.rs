@@ -285,25 +285,87 @@ impl Problem<'_> {
         .map(|(r, _)| r * u.force / self.f_scale)
     }
 
-    /// The rows of the points before a jump by central differences (the analytic slopes are the
-    /// force residual's).
+    /// The rows of the points before a jump, whose residual is the signed distance `r = e.n`
+    /// from the measured point to the curve's nearest state (see [`path::fold_distance`]), times
+    /// `pi w R / f_scale`. The nearest state is stationary (`e.T = 0`, so `e` lies along the
+    /// unit normal `n`): as a parameter moves, `dr = n . de` at that state's fixed t, the moves
+    /// of t and of `n` dropping out. In the plane (load, 10 kbar Delta) `e` is
+    /// `(P - L, 10 (kbar (D - Delta) + P))` with the measured load `L = (F - f0) / (pi w R)`.
     pub(super) fn fold_rows(&self, j: &mut DMatrix<f64>, base: &[PathState]) {
+        let p = self.params(&self.x);
+        let u = units(&p, self.radius, self.spring);
         for (i, s) in base.iter().enumerate() {
             if !self.data.at_jump[i] || s.piece == Piece::Free {
                 continue;
             }
-            for k in 0..self.n() {
-                let h = 1e-6 * self.x[k].abs().max(1.0);
-                let at = |dx: f64| {
-                    let mut x = self.x.clone();
-                    x[k] += dx;
-                    let p = self.params(&x);
-                    let u = units(&p, self.radius, self.spring);
-                    self.fold_residual(&p, &u, i, s)
-                };
-                if let (Some(a), Some(b)) = (at(h), at(-h)) {
-                    j[(i, k)] = (a - b) / (2.0 * h);
-                }
+            let delta = (p.zc - self.data.height[i]) / u.approach;
+            let load = (self.data.force[i] - p.f0) / u.force;
+            let Some((r, t)) = path::fold_distance(
+                self.model,
+                p.lambda,
+                u.kbar,
+                FOLD_SCALE * u.kbar,
+                s.piece,
+                s.t,
+                delta,
+                load,
+            ) else {
+                // The residual is the force's: its analytic row stands.
+                continue;
+            };
+            let q = path::state(self.model, p.lambda, s.piece, t);
+            let (tp, td) = (q.dload, FOLD_SCALE * (u.kbar * q.dapproach + q.dload));
+            let norm = tp.hypot(td);
+            let (np, nd) = (td / norm, -tp / norm);
+            let kb = u.kbar;
+            let (ep, ed) = (
+                q.load - load,
+                FOLD_SCALE * (kb * (q.approach - delta) + q.load),
+            );
+            if !(norm > 0.0) || (ep * tp + ed * td).abs() > 1e-6 * norm * ep.hypot(ed) {
+                // Not a regular nearest state: the closed forms' curves have a cusp at A = 0
+                // (DMT's jump), where the tangent vanishes and e is not along the normal.
+                self.fold_row_by_differences(j, i, s);
+                continue;
+            }
+            // de = (dP - dL, 10 (dkbar (D - Delta) - kbar dDelta + dP)) per column.
+            let de = |dp: f64, dl: f64, dkbar: f64, ddelta: f64| {
+                np * (dp - dl) + nd * FOLD_SCALE * (dkbar * (q.approach - delta) - kb * ddelta + dp)
+            };
+            let to_res = u.force / self.f_scale;
+            let mut k = 0;
+            // kbar ~ w^(-1/3) E*^(-2/3), Delta ~ w^(-2/3) E*^(2/3), L ~ 1/w.
+            j[(i, k)] = de(0.0, 0.0, -2.0 / 3.0 * kb, 2.0 / 3.0 * delta) * to_res;
+            k += 1;
+            if self.has_w() {
+                // The factor pi w R of the residual moves with w too.
+                j[(i, k)] = (de(0.0, -load, -kb / 3.0, -2.0 / 3.0 * delta) + r) * to_res;
+                k += 1;
+            }
+            if self.has_lambda() {
+                let (pl, dl) = path::state_dlambda(self.model, p.lambda, s.piece, t);
+                let dp = p.lambda * pl;
+                j[(i, k)] = (np * dp + nd * FOLD_SCALE * (kb * p.lambda * dl + dp)) * to_res;
+                k += 1;
+            }
+            j[(i, k)] = de(0.0, 0.0, 0.0, self.z_scale / u.approach) * to_res;
+            j[(i, k + 1)] = de(0.0, -self.f_scale / u.force, 0.0, 0.0) * to_res;
+        }
+    }
+
+    /// Row `i` of a point before a jump by central differences of its distance.
+    fn fold_row_by_differences(&self, j: &mut DMatrix<f64>, i: usize, s: &PathState) {
+        for k in 0..self.n() {
+            let h = 1e-6 * self.x[k].abs().max(1.0);
+            let at = |dx: f64| {
+                let mut x = self.x.clone();
+                x[k] += dx;
+                let p = self.params(&x);
+                let u = units(&p, self.radius, self.spring);
+                self.fold_residual(&p, &u, i, s)
+            };
+            if let (Some(a), Some(b)) = (at(h), at(-h)) {
+                j[(i, k)] = (a - b) / (2.0 * h);
             }
         }
     }
