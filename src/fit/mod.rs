@@ -339,6 +339,39 @@ mod tests {
         assert_eq!(spikes(&h), Vec::<usize>::new());
     }
 
+    /// A 200-point synthetic curve of `model` (E* 1.5 GPa, w 0.05 J/m^2, R 20 nm, 10 pN noise)
+    /// under a cantilever of `spring` N/m, its options and the prepared curve.
+    fn test_curve(
+        model: Model,
+        lambda: f64,
+        spring: f64,
+        seed: u64,
+    ) -> (synthetic::Synthetic, FitOptions, Prepared) {
+        let s = synthetic::Synthetic {
+            model,
+            params: Params {
+                e_star: 1.5e9,
+                w: 0.05,
+                lambda,
+                zc: 40e-9,
+                f0: 0.0,
+            },
+            radius: 20e-9,
+            spring,
+            points: 200,
+            depth: 6.0,
+            noise: 1e-11,
+            seed,
+        };
+        let opt = FitOptions {
+            radius: 20e-9,
+            spring,
+            ..FitOptions::default()
+        };
+        let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
+        (s, opt, d)
+    }
+
     #[test]
     fn the_analytic_jacobian_matches_differences() {
         for (model, lambda, spring) in [
@@ -348,28 +381,7 @@ mod tests {
             (Model::Dmt, 1.0, 10.0),
             (Model::Hertz, 1.0, 2.0),
         ] {
-            let s = synthetic::Synthetic {
-                model,
-                params: Params {
-                    e_star: 1.5e9,
-                    w: 0.05,
-                    lambda,
-                    zc: 40e-9,
-                    f0: 0.0,
-                },
-                radius: 20e-9,
-                spring,
-                points: 200,
-                depth: 6.0,
-                noise: 1e-11,
-                seed: 3,
-            };
-            let opt = FitOptions {
-                radius: 20e-9,
-                spring,
-                ..FitOptions::default()
-            };
-            let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
+            let (s, opt, d) = test_curve(model, lambda, spring, 3);
             let mut start = s.params;
             // Off the truth, so that the residuals and slopes are generic.
             start.e_star *= 1.1;
@@ -460,28 +472,7 @@ mod tests {
         // pieces (the non-contact piece's slopes are checked in the test above).
         let mut compared = 0;
         for (lambda, spring) in [(0.8, 2.0), (0.05, 50.0)] {
-            let s = synthetic::Synthetic {
-                model: Model::Md,
-                params: Params {
-                    e_star: 1.5e9,
-                    w: 0.05,
-                    lambda,
-                    zc: 40e-9,
-                    f0: 0.0,
-                },
-                radius: 20e-9,
-                spring,
-                points: 200,
-                depth: 6.0,
-                noise: 1e-11,
-                seed: 5,
-            };
-            let opt = FitOptions {
-                radius: 20e-9,
-                spring,
-                ..FitOptions::default()
-            };
-            let d = prepare(&synthetic::synthetic(&s), &opt).unwrap();
+            let (s, opt, d) = test_curve(Model::Md, lambda, spring, 5);
             let mut start = s.params;
             start.e_star *= 1.1;
             start.lambda *= 1.3;

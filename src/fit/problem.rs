@@ -267,12 +267,26 @@ impl Problem<'_> {
         i: usize,
         s: &PathState,
     ) -> Option<f64> {
+        self.nearest_fold(p, u, i, s)
+            .map(|(r, ..)| r * u.force / self.f_scale)
+    }
+
+    /// Point `i` before a jump seen from the curve: its signed distance (normalised), the
+    /// parameter of the nearest state, and its Delta and load. None off a jump, on the free
+    /// piece, or where the search for the nearest state fails.
+    fn nearest_fold(
+        &self,
+        p: &Params,
+        u: &Units,
+        i: usize,
+        s: &PathState,
+    ) -> Option<(f64, f64, f64, f64)> {
         if !self.data.at_jump[i] || s.piece == Piece::Free {
             return None;
         }
         let delta = (p.zc - self.data.height[i]) / u.approach;
         let load = (self.data.force[i] - p.f0) / u.force;
-        path::fold_distance(
+        let (r, t) = path::fold_distance(
             self.model,
             p.lambda,
             u.kbar,
@@ -281,8 +295,8 @@ impl Problem<'_> {
             s.t,
             delta,
             load,
-        )
-        .map(|(r, _)| r * u.force / self.f_scale)
+        )?;
+        Some((r, t, delta, load))
     }
 
     /// The rows of the points before a jump, whose residual is the signed distance `r = e.n`
@@ -295,22 +309,9 @@ impl Problem<'_> {
         let p = self.params(&self.x);
         let u = units(&p, self.radius, self.spring);
         for (i, s) in base.iter().enumerate() {
-            if !self.data.at_jump[i] || s.piece == Piece::Free {
-                continue;
-            }
-            let delta = (p.zc - self.data.height[i]) / u.approach;
-            let load = (self.data.force[i] - p.f0) / u.force;
-            let Some((r, t)) = path::fold_distance(
-                self.model,
-                p.lambda,
-                u.kbar,
-                FOLD_SCALE * u.kbar,
-                s.piece,
-                s.t,
-                delta,
-                load,
-            ) else {
-                // The residual is the force's: its analytic row stands.
+            let Some((r, t, delta, load)) = self.nearest_fold(&p, &u, i, s) else {
+                // Not before a jump, or no nearest state: the residual is the force's, and so
+                // is its analytic row.
                 continue;
             };
             let q = path::state(self.model, p.lambda, s.piece, t);
