@@ -392,7 +392,7 @@ mod tests {
             prob.f_scale = 1e-9;
             prob.x = prob.internal(&start);
             let base = prob.eval(&prob.x, None).unwrap().1;
-            let mut a = prob.analytic_jacobian(&base);
+            let mut a = prob.analytic_jacobian(&base).0;
             // The points before the jump are fitted by their distance to the curve: their rows
             // from its slopes at the nearest state, against differences of that distance.
             prob.fold_rows(&mut a, &base);
@@ -504,5 +504,55 @@ mod tests {
             }
         }
         assert!(compared > 100, "{compared} rows compared");
+    }
+
+    #[test]
+    fn the_states_slides_match_differences() {
+        // dt/dx of each state (the next trial's hints move along it) against central
+        // differences of the states found by Newton steps from the base, every parameter.
+        let mut compared = 0;
+        for (model, lambda, spring) in [
+            (Model::Md, 0.8, 2.0),
+            (Model::Md, 5.0, 0.5),
+            (Model::Jkr, 1.0, 2.0),
+        ] {
+            let (s, opt, d) = test_curve(model, lambda, spring, 7);
+            let mut start = s.params;
+            start.e_star *= 1.1;
+            start.w *= 0.95;
+            start.lambda *= 1.2;
+            let mut prob = Problem::new(model, &d, &opt, 0.05, None);
+            prob.x = prob.internal(&start);
+            let base = prob.eval(&prob.x, None).unwrap().1;
+            let (_, dt) = prob.analytic_jacobian(&base);
+            for k in 0..prob.n() {
+                let h = 1e-6 * prob.x[k].abs().max(1.0);
+                let (mut xp, mut xm) = (prob.x.clone(), prob.x.clone());
+                xp[k] += h;
+                xm[k] -= h;
+                let sp = prob.eval(&xp, Some(&base)).unwrap().1;
+                let sm = prob.eval(&xm, Some(&base)).unwrap().1;
+                for (i, b) in base.iter().enumerate() {
+                    if b.piece == path::Piece::Free || b.clamped {
+                        assert_eq!(dt[(i, k)], 0.0);
+                        continue;
+                    }
+                    if sp[i].piece != b.piece || sm[i].piece != b.piece {
+                        continue;
+                    }
+                    let n = (sp[i].t - sm[i].t) / (2.0 * h);
+                    // The base states' slopes may be those one Newton step (below 1e-8) away,
+                    // and the differences' truncation grows near a fold: hints need no more.
+                    assert!(
+                        (dt[(i, k)] - n).abs() <= 1e-4 * n.abs().max(1.0),
+                        "{model:?} parameter {k}, point {i} on {:?}: {} against {n}",
+                        b.piece,
+                        dt[(i, k)]
+                    );
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared > 500, "{compared} slides compared");
     }
 }

@@ -131,7 +131,38 @@ pub(super) struct Problem<'a> {
     pub(super) states: RefCell<Option<Vec<PathState>>>,
     /// The last states evaluated: each point's search starts there at the next parameters.
     pub(super) hints: RefCell<Option<Vec<PathState>>>,
+    /// The states where the Jacobian was last taken, with each state's slide `dt/dx`: the next
+    /// trial's hints move along it (Newton then starts second-order close).
+    pub(super) slides: RefCell<Option<Slides>>,
     pub(super) jacobians: RefCell<usize>,
+}
+
+/// A Jacobian's base: its internal parameters, its states and how far each state's parameter t
+/// slides per unit of each internal parameter at fixed base displacement.
+pub(super) struct Slides {
+    x: DVector<f64>,
+    states: Vec<PathState>,
+    dt_dx: DMatrix<f64>,
+}
+
+impl Slides {
+    /// The base states with t moved to first order to the parameters `x` (held and free
+    /// points as they were).
+    fn hints(&self, x: &DVector<f64>) -> Vec<PathState> {
+        let dx = x - &self.x;
+        self.states
+            .iter()
+            .enumerate()
+            .map(|(i, s)| {
+                let mut h = *s;
+                let t = s.t + (self.dt_dx.row(i) * &dx)[0];
+                if t.is_finite() && !s.clamped && s.piece != Piece::Free {
+                    h.t = t;
+                }
+                h
+            })
+            .collect()
+    }
 }
 
 impl Problem<'_> {
@@ -391,6 +422,9 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
+        if let Some(h) = self.slides.borrow().as_ref().map(|b| b.hints(&self.x)) {
+            *self.hints.borrow_mut() = Some(h);
+        }
         // Outside the domain: a large residual, so the step is refused and shortened (a None
         // would end the whole minimisation).
         match self.eval(&self.x, None) {
@@ -413,7 +447,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             // lambda moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
-        let mut j = self.analytic_jacobian(&base);
+        let (mut j, dt_dx) = self.analytic_jacobian(&base);
         let held = |s: &PathState| s.clamped && s.piece != Piece::Free;
         if self.has_lambda() && base.iter().any(held) {
             // A held point sits at the end of its stretch, which moves with lambda: its row of
@@ -427,6 +461,11 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             }
         }
         self.fold_rows(&mut j, &base);
+        *self.slides.borrow_mut() = Some(Slides {
+            x: self.x.clone(),
+            states: base,
+            dt_dx,
+        });
         Some(j)
     }
 }
@@ -441,59 +480,70 @@ impl Problem<'_> {
     /// tolerates and which a converged fit rarely needs. Lambda's column is the state's slide
     /// along its piece as lambda moves ([`Problem::dload_dlambda`]); held points take theirs
     /// from differences (their stretch's end moves with lambda).
-    pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> DMatrix<f64> {
+    pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> (DMatrix<f64>, DMatrix<f64>) {
         let p = self.params(&self.x);
         let u = units(&p, self.radius, self.spring);
         let (m, n) = (base.len(), self.n());
         let mut j = DMatrix::zeros(m, n);
+        let mut dt = DMatrix::zeros(m, n);
         for (i, s) in base.iter().enumerate() {
-            let (dp_dd, dp_dk) = if s.piece == Piece::Free || s.clamped {
-                (0.0, 0.0)
+            // 1/g = dt/dDelta at fixed kbar, the state's slide along its piece; the state's
+            // slopes at s.t, as stored with it (`path::state`'s there, or theirs one Newton step
+            // below 1e-8 away, where `path::near` stopped).
+            let g = s.dapproach + s.dload / u.kbar;
+            let slides = !(s.piece == Piece::Free || s.clamped) && g.abs() > 0.0;
+            let (dp_dd, dp_dk) = if slides {
+                (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
             } else {
-                // The state's slopes at s.t, as stored with it (`path::state`'s there, or
-                // theirs one Newton step below 1e-8 away, where `path::near` stopped).
-                let g = s.dapproach + s.dload / u.kbar;
-                if g.abs() > 0.0 {
-                    (s.dload / g, s.dload * s.load / (u.kbar * u.kbar * g))
-                } else {
-                    (0.0, 0.0)
-                }
+                (0.0, 0.0)
             };
+            let inv_g = if slides { 1.0 / g } else { 0.0 };
             let delta = (p.zc - self.data.height[i]) / u.approach;
-            let col = |dln_fs: f64, dln_ds: f64, dln_k: f64| {
-                u.force * (s.load * dln_fs - dp_dd * delta * dln_ds + dp_dk * u.kbar * dln_k)
-                    / self.f_scale
+            // A parameter that scales the force by dln_fs, the approach unit by dln_ds and kbar
+            // by dln_k moves Delta by -Delta dln_ds and the spring's share P / kbar by
+            // -(P / kbar) dln_k.
+            let mut col = |k: usize, dln_fs: f64, dln_ds: f64, dln_k: f64| {
+                dt[(i, k)] = (-delta * dln_ds + s.load / u.kbar * dln_k) * inv_g;
+                j[(i, k)] = u.force
+                    * (s.load * dln_fs - dp_dd * delta * dln_ds + dp_dk * u.kbar * dln_k)
+                    / self.f_scale;
             };
             let mut k = 0;
-            j[(i, k)] = col(0.0, -2.0 / 3.0, -2.0 / 3.0);
+            col(k, 0.0, -2.0 / 3.0, -2.0 / 3.0);
             k += 1;
             if self.has_w() {
-                j[(i, k)] = col(1.0, 2.0 / 3.0, -1.0 / 3.0);
+                col(k, 1.0, 2.0 / 3.0, -1.0 / 3.0);
                 k += 1;
             }
             if self.has_lambda() {
-                j[(i, k)] = u.force * p.lambda * self.dload_dlambda(&p, &u, s) / self.f_scale;
+                let (dp, slide) = self.dload_dlambda(&p, &u, s);
+                j[(i, k)] = u.force * p.lambda * dp / self.f_scale;
+                dt[(i, k)] = p.lambda * slide;
                 k += 1;
             }
             j[(i, k)] = u.force * dp_dd * (self.z_scale / u.approach) / self.f_scale;
+            dt[(i, k)] = (self.z_scale / u.approach) * inv_g;
             j[(i, k + 1)] = 1.0;
         }
-        j
+        (j, dt)
     }
 
-    /// dPbar/dlambda at the point's Delta (fixed) and kbar: the state slides along its piece,
-    /// `dt/dlambda = -(D_lambda + P_lambda / kbar) / g`. Zero on the free piece and for held
-    /// points (their rows are taken by differences).
-    fn dload_dlambda(&self, p: &Params, u: &Units, s: &PathState) -> f64 {
+    /// dPbar/dlambda at the point's Delta (fixed) and kbar, and the state's slide along its
+    /// piece, `dt/dlambda = -(D_lambda + P_lambda / kbar) / g`. Zero on the free piece and for
+    /// held points (their rows are taken by differences).
+    fn dload_dlambda(&self, p: &Params, u: &Units, s: &PathState) -> (f64, f64) {
         if s.piece == Piece::Free || s.clamped {
-            return 0.0;
+            return (0.0, 0.0);
         }
         let (pl, dl) = path::state_dlambda(self.model, p.lambda, s.piece, s.t);
         let g = s.dapproach + s.dload / u.kbar;
         if g.abs() > 0.0 {
-            pl - s.dload * (dl + pl / u.kbar) / g
+            (
+                pl - s.dload * (dl + pl / u.kbar) / g,
+                -(dl + pl / u.kbar) / g,
+            )
         } else {
-            0.0
+            (0.0, 0.0)
         }
     }
 
@@ -675,6 +725,7 @@ impl<'a> Problem<'a> {
             x: DVector::zeros(0),
             states: RefCell::new(None),
             hints: RefCell::new(None),
+            slides: RefCell::new(None),
             jacobians: RefCell::new(0),
         }
     }
