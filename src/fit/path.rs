@@ -14,7 +14,7 @@
 
 use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
 use crate::physics::model::ContactModel;
-use crate::solver::context::x_at_radius;
+use crate::solver::context::x_at_radius_newton;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -327,7 +327,7 @@ impl SpringPath {
         let t_of_radius = |a: f64| {
             if md {
                 -cached(Key::Radius(lambda.to_bits(), a.to_bits()), || {
-                    Cached::X(x_at_radius(lambda, a))
+                    Cached::X(x_at_radius_newton(lambda, a))
                 })
                 .x()
             } else {
