@@ -734,7 +734,7 @@ impl<'a> Problem<'a> {
 /// The iteration budget of a fit (MINPACK's: this many evaluations per parameter and one), and
 /// the shorter one of a scouting free fit.
 pub(super) const PATIENCE: usize = 150;
-pub(super) const SCOUT_PATIENCE: usize = 4;
+pub(super) const SCOUT_PATIENCE: usize = 3;
 
 /// The relative tolerance (MINPACK's ftol and xtol) of a fit at fixed lambda. Such fits only
 /// place the profile of the misfit, read as Delta chi^2 = Delta RSS / s^2 with s^2 = RSS / (m -

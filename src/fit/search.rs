@@ -118,9 +118,16 @@ fn scout(
         })
         .collect();
     scouts.sort_by(|a, b| rank(a).total_cmp(&rank(b)));
-    let fulls = scouts
-        .iter()
-        .take(2)
+    // The best two distinct scouts: two that ended at one point (scouts from a basin's two
+    // sides often converge there) would give two full fits of one minimum.
+    let mut distinct: Vec<&ModelFit> = Vec::new();
+    for s in &scouts {
+        if distinct.len() < 2 && !distinct.iter().any(|d| same_point(d, s)) {
+            distinct.push(s);
+        }
+    }
+    let fulls = distinct
+        .into_iter()
         .map(|m| {
             let mut f = fit_md_from(m, d, opt, m.params(), w_ref, None, PATIENCE);
             // Stopped by the iteration limit but no worse than any fixed-lambda fit: accepted.
@@ -131,6 +138,16 @@ fn scout(
         })
         .collect();
     (scouts, fulls)
+}
+
+/// Whether two fits ended at one point: E*, w and lambda within 1e-6, the misfit within 1e-9
+/// (relative).
+fn same_point(a: &ModelFit, b: &ModelFit) -> bool {
+    let near = |x: f64, y: f64, tol: f64| (x - y).abs() <= tol * x.abs().max(y.abs());
+    near(a.e_star_pa, b.e_star_pa, 1e-6)
+        && near(a.work_of_adhesion_j_m2, b.work_of_adhesion_j_m2, 1e-6)
+        && near(a.lambda.unwrap_or(0.0), b.lambda.unwrap_or(0.0), 1e-6)
+        && near(a.rms_residual_n, b.rms_residual_n, 1e-9)
 }
 
 /// The free fit's standard errors widened by the 3-sigma region of the profile and of the
