@@ -224,11 +224,12 @@ pub struct SpringPath {
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
     free_end: f64,
-    /// Retract segments from the top down, approach segments from the bottom up.
-    retract: Vec<Segment>,
-    approach: Vec<Segment>,
-    /// The first jump of each direction (retract, approach): the last segment before it.
-    jumps: [Option<usize>; 2],
+    /// Retract segments from the top down, and the retract's first jump (the last segment
+    /// before it).
+    retract: (Vec<Segment>, Option<usize>),
+    /// The same for the approach, from the bottom up: followed when first asked for (a fit of
+    /// retract data, the default, never needs it).
+    approach: std::cell::OnceCell<(Vec<Segment>, Option<usize>)>,
 }
 
 /// The state at parameter t of a piece, for a model at lambda (ignored by the closed forms).
@@ -357,17 +358,25 @@ impl SpringPath {
             kbar,
             pieces,
             free_end,
-            retract: Vec::new(),
-            approach: Vec::new(),
-            jumps: [None, None],
+            retract: (Vec::new(), None),
+            approach: std::cell::OnceCell::new(),
         };
-        path.retract = path.follow(Direction::Retract);
-        path.approach = path.follow(Direction::Approach);
-        path.jumps = [
-            path.find_first_jump(Direction::Retract),
-            path.find_first_jump(Direction::Approach),
-        ];
+        let segs = path.follow(Direction::Retract);
+        let jump = path.find_first_jump(&segs, Direction::Retract);
+        path.retract = (segs, jump);
         path
+    }
+
+    /// The segments followed in a direction and the first jump's index.
+    fn followed(&self, dir: Direction) -> &(Vec<Segment>, Option<usize>) {
+        match dir {
+            Direction::Retract => &self.retract,
+            Direction::Approach => self.approach.get_or_init(|| {
+                let segs = self.follow(Direction::Approach);
+                let jump = self.find_first_jump(&segs, Direction::Approach);
+                (segs, jump)
+            }),
+        }
     }
 
     fn eval(&self, piece: Piece, t: f64) -> (Pt, f64, f64) {
@@ -654,19 +663,16 @@ impl SpringPath {
     }
 
     fn segments(&self, dir: Direction) -> &[Segment] {
-        match dir {
-            Direction::Retract => &self.retract,
-            Direction::Approach => &self.approach,
-        }
+        &self.followed(dir).0
     }
 
     fn first_jump(&self, dir: Direction) -> Option<usize> {
-        self.jumps[(dir == Direction::Approach) as usize]
+        self.followed(dir).1
     }
 
-    /// The index of the last segment before the first jump (a change of load), if any.
-    fn find_first_jump(&self, dir: Direction) -> Option<usize> {
-        let segs = self.segments(dir);
+    /// The index of the last of `segs` (followed in `dir`) before the first jump (a change of
+    /// load), if any.
+    fn find_first_jump(&self, segs: &[Segment], dir: Direction) -> Option<usize> {
         (0..segs.len().saturating_sub(1)).find(|&j| {
             let (a, b) = (&segs[j], &segs[j + 1]);
             let (ta, tb) = match dir {
@@ -800,8 +806,9 @@ impl SpringPath {
     /// jump-out, or the start of the approach's force zone).
     pub fn force_reach(&self) -> f64 {
         self.retract
+            .0
             .iter()
-            .chain(&self.approach)
+            .chain(self.segments(Direction::Approach))
             .filter(|s| s.piece != Piece::Free)
             .map(|s| s.delta_lo)
             .fold(self.free_end, f64::min)
