@@ -449,15 +449,15 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         }
         let (mut j, dt_dx) = self.analytic_jacobian(&base);
         let held = |s: &PathState| s.clamped && s.piece != Piece::Free;
-        if self.has_lambda() && base.iter().any(held) {
+        let rows: Vec<usize> = (0..base.len()).filter(|&i| held(&base[i])).collect();
+        if self.has_lambda() && !rows.is_empty() {
             // A held point sits at the end of its stretch, which moves with lambda: its row of
-            // lambda's column by differences.
+            // lambda's column by differences (of its rows alone: most Jacobians of a free fit
+            // have held points, and the other rows would double the fit's evaluations).
             let k = 1 + self.has_w() as usize;
-            let c = self.numeric_jacobian(&base, &[k])?;
-            for (i, s) in base.iter().enumerate() {
-                if held(s) {
-                    j[(i, k)] = c[(i, k)];
-                }
+            let c = self.numeric_rows(&base, &rows, k)?;
+            for (&i, v) in rows.iter().zip(c) {
+                j[(i, k)] = v;
             }
         }
         self.fold_rows(&mut j, &base);
@@ -544,6 +544,74 @@ impl Problem<'_> {
             )
         } else {
             (0.0, 0.0)
+        }
+    }
+
+    /// The residuals of the points `rows` at parameters x, each on the piece its `base` state had:
+    /// [`Problem::eval`] with `near`, for those rows alone.
+    fn eval_rows(&self, x: &DVector<f64>, base: &[PathState], rows: &[usize]) -> Option<Vec<f64>> {
+        let p = self.params(x);
+        let d = self.data;
+        let u = units(&p, self.radius, self.spring);
+        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
+            return None;
+        }
+        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+            return None;
+        }
+        let top = d
+            .height
+            .iter()
+            .map(|h| (p.zc - h) / u.approach)
+            .fold(1.0, f64::max);
+        let mut full: Option<SpringPath> = None;
+        let r: Vec<f64> = rows
+            .iter()
+            .map(|&i| {
+                let s = &base[i];
+                let delta = (p.zc - d.height[i]) / u.approach;
+                let st = (!s.clamped)
+                    .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
+                    .flatten()
+                    .unwrap_or_else(|| {
+                        full.get_or_insert_with(|| {
+                            SpringPath::new(self.model, p.lambda, u.kbar, top)
+                        })
+                        .at_side(delta, d.dir[i], d.side[i])
+                    });
+                self.fold_residual(&p, &u, i, &st)
+                    .unwrap_or_else(|| (st.load * u.force + p.f0 - d.force[i]) / self.f_scale)
+            })
+            .collect();
+        r.iter().all(|v| v.is_finite()).then_some(r)
+    }
+
+    /// Central differences in column k of the rows `rows` ([`Problem::numeric_jacobian`]'s).
+    fn numeric_rows(&self, base: &[PathState], rows: &[usize], k: usize) -> Option<Vec<f64>> {
+        let h = 1e-6 * self.x[k].abs().max(1.0);
+        let mut xp = self.x.clone();
+        xp[k] += h;
+        let mut xm = self.x.clone();
+        xm[k] -= h;
+        match (
+            self.eval_rows(&xp, base, rows),
+            self.eval_rows(&xm, base, rows),
+        ) {
+            (Some(rp), Some(rm)) => Some(
+                rp.iter()
+                    .zip(&rm)
+                    .map(|(p, m)| (p - m) / (2.0 * h))
+                    .collect(),
+            ),
+            (rp, _) => {
+                // One side left the domain or a branch: a one-sided difference.
+                let r0 = self.eval_rows(&self.x, base, rows)?;
+                let rp = rp.or_else(|| {
+                    self.eval_rows(&xm, base, rows)
+                        .map(|rm| r0.iter().zip(&rm).map(|(a, b)| 2.0 * a - b).collect())
+                })?;
+                Some(rp.iter().zip(&r0).map(|(p, a)| (p - a) / h).collect())
+            }
         }
     }
 
