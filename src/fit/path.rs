@@ -200,7 +200,7 @@ struct Node {
 }
 
 /// A slope in t of Delta, or of its terms, below this is rounding (Delta is O(1) in these
-/// units; a fold's bracket between nodes has slopes of 1e-3 and more at its ends).
+/// units). A genuine fold's bracket between nodes has a slope far above it at one end at least.
 const SLOPE_ROUNDING: f64 = 1e-13;
 
 /// One followed stretch: Delta rises with t over [t_lo, t_hi].
@@ -411,11 +411,14 @@ impl SpringPath {
         // far end, A -> 0 as t -> -inf, where the curve's slopes in t vanish), Delta is flat to
         // rounding across the bracket and any point of it is the fold: the secant would bisect
         // noise to the last bit.
-        if s_lo.abs().max(s_hi.abs()) <= SLOPE_ROUNDING {
-            let p = self.eval(piece, lo).0;
-            if p.dapproach.abs() + (p.dload / self.kbar).abs() <= SLOPE_ROUNDING {
-                return 0.5 * (lo + hi);
-            }
+        let terms = |t: f64| {
+            let p = self.eval(piece, t).0;
+            p.dapproach.abs() + (p.dload / self.kbar).abs()
+        };
+        if s_lo.abs().max(s_hi.abs()) <= SLOPE_ROUNDING
+            && terms(lo).max(terms(hi)) <= SLOPE_ROUNDING
+        {
+            return 0.5 * (lo + hi);
         }
         // secant_bracketed wants f(lo) > 0 > f(hi).
         let sign = if s_lo > 0.0 { 1.0 } else { -1.0 };

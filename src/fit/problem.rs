@@ -129,7 +129,8 @@ pub(super) struct Problem<'a> {
     pub(super) x: DVector<f64>,
     /// The states at the current parameters (the Jacobian keeps each point on its piece).
     pub(super) states: RefCell<Option<Vec<PathState>>>,
-    /// The last states evaluated: each point's search starts there at the next parameters.
+    /// Where each point's search starts at the next parameters: the last states evaluated, or
+    /// after a Jacobian its base states moved along their slides (`slides`).
     pub(super) hints: RefCell<Option<Vec<PathState>>>,
     /// The states where the Jacobian was last taken, with each state's slide `dt/dx`: the next
     /// trial's hints move along it (Newton then starts second-order close).
@@ -479,7 +480,8 @@ impl Problem<'_> {
     /// jump), move with the offset only: for held points an approximation, which the iteration
     /// tolerates and which a converged fit rarely needs. Lambda's column is the state's slide
     /// along its piece as lambda moves ([`Problem::dload_dlambda`]); held points take theirs
-    /// from differences (their stretch's end moves with lambda).
+    /// from differences (their stretch's end moves with lambda). Also returns each state's
+    /// slide `dt/dx` along its piece (zero for free and held points), from the same slopes.
     pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> (DMatrix<f64>, DMatrix<f64>) {
         let p = self.params(&self.x);
         let u = units(&p, self.radius, self.spring);

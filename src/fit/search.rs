@@ -53,7 +53,7 @@ pub(super) fn rank(m: &ModelFit) -> f64 {
     }
 }
 
-/// The free Maugis-Dugdale fit from the best two of its short free fits, with standard
+/// The free Maugis-Dugdale fit from the best two distinct short free fits, with standard
 /// errors that also cover the profile's confidence region: where the misfit is flat in lambda
 /// (one retract curve often cannot tell lambda = 0.3 from 30 within its noise) the covariance's
 /// local picture understates the spread, while the profile sees it.
@@ -67,7 +67,8 @@ pub(super) fn free_fit(
     order.sort_by(|&a, &b| rank(&profile[a]).total_cmp(&rank(&profile[b])));
     // The profile has its 16 fixed lambdas.
     let best_profile = rank(&profile[order[0]]);
-    // Scouts: short free fits from the profile's basins; the best two are then fitted fully.
+    // Scouts: short free fits from the profile's basins; the best two distinct ones are then
+    // fitted fully.
     // Where that does not reach the noise floor, from every other profile point as well.
     let first = scout_starts(&profile, &order);
     let (mut scouts, mut fulls) = scout(d, opt, w_ref, &profile, &first, best_profile);
@@ -101,7 +102,7 @@ pub(super) fn free_fit(
 }
 
 /// Short free fits (scouts) from the profile points `starts`, best first, and the full fits
-/// from the best two of them.
+/// from the best two distinct ones.
 fn scout(
     d: &Prepared,
     opt: &FitOptions,

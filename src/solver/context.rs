@@ -176,14 +176,15 @@ pub fn x_at_radius_newton(lambda: f64, a: f64) -> f64 {
     let mut x = 0.0;
     for _ in 0..200 {
         let p = point(lambda, x);
-        // ln A falls with x: positive residuals lie left of the root.
+        // ln A falls with x: positive residuals lie left of the root (a NaN, as bisection
+        // took it, right of it).
         let r = p.a.ln() - target;
-        if r > 0.0 {
-            lo = x;
-        } else if r < 0.0 {
-            hi = x;
-        } else {
+        if r == 0.0 {
             return x;
+        } else if r > 0.0 {
+            lo = x;
+        } else {
+            hi = x;
         }
         let slope = p.mu * p.da_dmu / p.a;
         let newton = x - r / slope;
