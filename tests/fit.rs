@@ -584,6 +584,19 @@ fn instrument_segment_numbers_with_a_pause_and_a_dwell_give_the_same_fit() {
     );
 }
 
+/// Curve i of the force-map benchmark's map of n curves (`bench/fit_map.sh`: 500 points a
+/// segment, a 40 N/m cantilever, 20 pN noise) and its options.
+fn map_case(i: usize, n: usize) -> (Synthetic, tabor::fit::Curve, FitOptions) {
+    let s = tabor::fit::synthetic::map_curve(i, n, 500, 40.0, 2e-11);
+    let c = synthetic(&s);
+    let opt = FitOptions {
+        radius: 20e-9,
+        spring: 40.0,
+        ..FitOptions::default()
+    };
+    (s, c, opt)
+}
+
 /// The free fit finds the global minimum where the misfit dips between two points of the lambda
 /// profile: the first 16 curves of the force-map benchmark's 256-curve map (`bash
 /// bench/fit_map.sh 16`: lambda 0.30..0.37, a 40 N/m cantilever, 20 pN noise), 9 of whose dips
@@ -595,13 +608,7 @@ fn a_dip_between_profile_points_is_found() {
     let worst = (0..16usize)
         .into_par_iter()
         .map(|i| {
-            let s = tabor::fit::synthetic::map_curve(i, 256, 500, 40.0, 2e-11);
-            let c = synthetic(&s);
-            let opt = FitOptions {
-                radius: 20e-9,
-                spring: 40.0,
-                ..FitOptions::default()
-            };
+            let (s, c, opt) = map_case(i, 256);
             let free = fit_curve(&c, &opt);
             let p = s.params;
             let at_truth = fit_curve(
@@ -636,13 +643,7 @@ fn a_dip_between_profile_points_is_found() {
 /// 0.5..1.1 (z0 from the true E* and w): within 2e-4 in rms (a Delta chi^2 of 0.2).
 #[test]
 fn the_full_fits_start_from_two_distinct_basins() {
-    let s = tabor::fit::synthetic::map_curve(19 + 64 * 20, 4096, 500, 40.0, 2e-11);
-    let c = synthetic(&s);
-    let opt = FitOptions {
-        radius: 20e-9,
-        spring: 40.0,
-        ..FitOptions::default()
-    };
+    let (s, c, opt) = map_case(19 + 64 * 20, 4096);
     let free = fit_curve(&c, &opt);
     assert_eq!(free.status, FitStatus::Ok, "{}", free.message);
     let p = s.params;

@@ -228,42 +228,10 @@ impl Problem<'_> {
         x: &DVector<f64>,
         near: Option<&[PathState]>,
     ) -> Option<(DVector<f64>, Vec<PathState>)> {
-        let p = self.params(x);
+        let (p, u) = self.checked(x)?;
         let d = self.data;
-        let u = units(&p, self.radius, self.spring);
-        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
-            return None;
-        }
-        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
-            return None;
-        }
         let states: Vec<PathState> = match near {
-            Some(base) => {
-                // Where Newton from the base state fails (a point at a fold, or at the A = 0
-                // end of DMT), the point is located on the path itself.
-                let mut full: Option<SpringPath> = None;
-                let top = d
-                    .height
-                    .iter()
-                    .map(|h| (p.zc - h) / u.approach)
-                    .fold(1.0, f64::max);
-                let mut out = Vec::with_capacity(base.len());
-                for (i, s) in base.iter().enumerate() {
-                    let delta = (p.zc - d.height[i]) / u.approach;
-                    let newton = (!s.clamped)
-                        .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
-                        .flatten();
-                    out.push(match newton {
-                        Some(s) => s,
-                        None => full
-                            .get_or_insert_with(|| {
-                                SpringPath::new(self.model, p.lambda, u.kbar, top)
-                            })
-                            .at_side(delta, d.dir[i], d.side[i]),
-                    });
-                }
-                out
-            }
+            Some(base) => self.states_near(&p, &u, base, 0..base.len()),
             None => {
                 let hints = self.hints.borrow();
                 model_forces_from(
@@ -281,12 +249,62 @@ impl Problem<'_> {
         };
         let r = DVector::from_iterator(
             states.len(),
-            states.iter().enumerate().map(|(i, s)| {
-                self.fold_residual(&p, &u, i, s)
-                    .unwrap_or_else(|| (s.load * u.force + p.f0 - d.force[i]) / self.f_scale)
-            }),
+            states
+                .iter()
+                .enumerate()
+                .map(|(i, s)| self.residual(&p, &u, i, s)),
         );
         r.iter().all(|v| v.is_finite()).then_some((r, states))
+    }
+
+    /// The parameters and units at x; None where they leave the models' domain.
+    fn checked(&self, x: &DVector<f64>) -> Option<(Params, Units)> {
+        let p = self.params(x);
+        let u = units(&p, self.radius, self.spring);
+        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
+            return None;
+        }
+        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+            return None;
+        }
+        Some((p, u))
+    }
+
+    /// The states of the points `rows` at (p, u), each on the piece its `base` state had: Newton
+    /// steps from it, or where those fail (a point at a fold, or at the A = 0 end of DMT) and for
+    /// held points, located on the path itself.
+    fn states_near(
+        &self,
+        p: &Params,
+        u: &Units,
+        base: &[PathState],
+        rows: impl Iterator<Item = usize>,
+    ) -> Vec<PathState> {
+        let d = self.data;
+        let top = d
+            .height
+            .iter()
+            .map(|h| (p.zc - h) / u.approach)
+            .fold(1.0, f64::max);
+        let mut full: Option<SpringPath> = None;
+        rows.map(|i| {
+            let s = &base[i];
+            let delta = (p.zc - d.height[i]) / u.approach;
+            (!s.clamped)
+                .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
+                .flatten()
+                .unwrap_or_else(|| {
+                    full.get_or_insert_with(|| SpringPath::new(self.model, p.lambda, u.kbar, top))
+                        .at_side(delta, d.dir[i], d.side[i])
+                })
+        })
+        .collect()
+    }
+
+    /// Point i's residual in state s: its distance to the fold before a jump, else its force's.
+    fn residual(&self, p: &Params, u: &Units, i: usize, s: &PathState) -> f64 {
+        self.fold_residual(p, u, i, s)
+            .unwrap_or_else(|| (s.load * u.force + p.f0 - self.data.force[i]) / self.f_scale)
     }
 
     /// A point before a measured jump: its distance to the model's curve near its state (in
@@ -552,43 +570,18 @@ impl Problem<'_> {
     /// The residuals of the points `rows` at parameters x, each on the piece its `base` state had:
     /// [`Problem::eval`] with `near`, for those rows alone.
     fn eval_rows(&self, x: &DVector<f64>, base: &[PathState], rows: &[usize]) -> Option<Vec<f64>> {
-        let p = self.params(x);
-        let d = self.data;
-        let u = units(&p, self.radius, self.spring);
-        if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
-            return None;
-        }
-        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
-            return None;
-        }
-        let top = d
-            .height
-            .iter()
-            .map(|h| (p.zc - h) / u.approach)
-            .fold(1.0, f64::max);
-        let mut full: Option<SpringPath> = None;
+        let (p, u) = self.checked(x)?;
+        let states = self.states_near(&p, &u, base, rows.iter().copied());
         let r: Vec<f64> = rows
             .iter()
-            .map(|&i| {
-                let s = &base[i];
-                let delta = (p.zc - d.height[i]) / u.approach;
-                let st = (!s.clamped)
-                    .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
-                    .flatten()
-                    .unwrap_or_else(|| {
-                        full.get_or_insert_with(|| {
-                            SpringPath::new(self.model, p.lambda, u.kbar, top)
-                        })
-                        .at_side(delta, d.dir[i], d.side[i])
-                    });
-                self.fold_residual(&p, &u, i, &st)
-                    .unwrap_or_else(|| (st.load * u.force + p.f0 - d.force[i]) / self.f_scale)
-            })
+            .zip(&states)
+            .map(|(&i, s)| self.residual(&p, &u, i, s))
             .collect();
         r.iter().all(|v| v.is_finite()).then_some(r)
     }
 
-    /// Central differences in column k of the rows `rows` ([`Problem::numeric_jacobian`]'s).
+    /// Central differences in column k of the rows `rows`, each point kept on its piece; a
+    /// one-sided difference where one side leaves the domain or a branch.
     fn numeric_rows(&self, base: &[PathState], rows: &[usize], k: usize) -> Option<Vec<f64>> {
         let h = 1e-6 * self.x[k].abs().max(1.0);
         let mut xp = self.x.clone();
@@ -623,28 +616,11 @@ impl Problem<'_> {
         base: &[PathState],
         cols: &[usize],
     ) -> Option<DMatrix<f64>> {
-        let m = base.len();
-        let mut j = DMatrix::zeros(m, self.n());
+        let all: Vec<usize> = (0..base.len()).collect();
+        let mut j = DMatrix::zeros(base.len(), self.n());
         for &k in cols {
-            let h = 1e-6 * self.x[k].abs().max(1.0);
-            let mut xp = self.x.clone();
-            xp[k] += h;
-            let mut xm = self.x.clone();
-            xm[k] -= h;
-            let (rp, rm) = (self.eval(&xp, Some(base)), self.eval(&xm, Some(base)));
-            match (rp, rm) {
-                (Some((rp, _)), Some((rm, _))) => {
-                    j.set_column(k, &((rp - rm) / (2.0 * h)));
-                }
-                _ => {
-                    // One side left the domain or a branch: a one-sided difference.
-                    let r0 = self.eval(&self.x, Some(base))?.0;
-                    let (rp, _) = self
-                        .eval(&xp, Some(base))
-                        .or_else(|| self.eval(&xm, Some(base)).map(|(r, s)| (2.0 * &r0 - r, s)))?;
-                    j.set_column(k, &((rp - r0) / h));
-                }
-            }
+            let c = self.numeric_rows(base, &all, k)?;
+            j.set_column(k, &DVector::from_vec(c));
         }
         Some(j)
     }
