@@ -23,7 +23,9 @@ fn main() {
     for f in [
         "shaders/md.wgsl",
         "shaders/solve.wgsl",
+        "shaders/curve64.wgsl",
         "shaders/polish64.wgsl",
+        "shaders/fit_states.wgsl",
         "src/physics/tolerances.rs",
     ] {
         println!("cargo:rerun-if-changed={f}");
@@ -37,9 +39,13 @@ fn main() {
         &md,
         Capabilities::default(),
     );
-    validate(
-        "shaders/polish64.wgsl",
-        &(prelude + &read("shaders/polish64.wgsl")),
-        Capabilities::FLOAT64,
-    );
+    // The f64 modules: the shared curve point, then each module's entry point.
+    let curve64 = prelude + &read("shaders/curve64.wgsl") + "\n";
+    for f in ["shaders/polish64.wgsl", "shaders/fit_states.wgsl"] {
+        validate(
+            &format!("shaders/curve64.wgsl + {f}"),
+            &(curve64.clone() + &read(f)),
+            Capabilities::FLOAT64,
+        );
+    }
 }

@@ -821,3 +821,57 @@ fn grids_on_one_engine_reuse_only_their_own_preparation() {
     assert_eq!(other, fresh);
     assert_ne!(first, other);
 }
+
+/// A force map's curve points batched on the GPU (`shaders/fit_states.wgsl`, f64): on lavapipe
+/// the mirror's bits, elsewhere its loads to rounding; everywhere the fit path's own states
+/// (`SpringPath::at`) within the path's tolerance, every point converged.
+#[test]
+fn fit_states_match_the_mirror_and_the_path() {
+    use tabor::fit::{batch, synthetic::map_curve, units, Direction, Model, SpringPath};
+    use tabor::kernel::cpu::fit_states::fit_state;
+    let Some(g) = gpu() else { return };
+    if !g.f64 {
+        eprintln!("SKIPPED: {} has no f64 shaders", g.adapter.name);
+        return;
+    }
+    // Curves across the benchmark map's lambda range (0.3..9.5), springs 0.4 and 40 N/m.
+    let (mut paths, mut deltas) = (Vec::new(), Vec::new());
+    for i in 0..24 {
+        let s = map_curve(i * 41, 1000, 300, if i % 2 == 0 { 40.0 } else { 0.4 }, 0.0);
+        let u = units(&s.params, s.radius, s.spring);
+        let p = SpringPath::new(Model::Md, s.params.lambda, u.kbar, s.depth);
+        let low = p.force_reach().min(0.0) - 1.0;
+        deltas.push(
+            (0..300)
+                .map(|k| low + (s.depth - low) * k as f64 / 299.0)
+                .collect::<Vec<f64>>(),
+        );
+        paths.push(p);
+    }
+    let b = batch::pack(&mut paths, &deltas);
+    assert!(
+        b.points.len() > 24 * 100,
+        "{} points batched",
+        b.points.len()
+    );
+    let out = g.fit_states(&b.curves, &b.points).unwrap();
+    let (mut worst_mirror, mut worst_path, mut same) = (0f64, 0f64, 0usize);
+    for ((o, p), &(c, i)) in out.iter().zip(&b.points).zip(&b.index) {
+        let m = fit_state(&b.curves[c as usize], p);
+        assert!(o.converged() && m.converged(), "curve {c} point {i}");
+        same += (o == &m) as usize;
+        let path = paths[c as usize].at(deltas[c as usize][i as usize], Direction::Retract);
+        worst_mirror = worst_mirror.max((o.load - m.load).abs() / m.load.abs().max(1.0));
+        worst_path = worst_path.max((o.load - path.load).abs() / path.load.abs().max(1.0));
+    }
+    eprintln!(
+        "fit_states on {}: {} points, {same} bit-identical to the mirror, loads within {worst_mirror:.1e} of it and {worst_path:.1e} of the path's",
+        g.adapter.name,
+        out.len()
+    );
+    if bit_exact(&g) {
+        assert_eq!(same, out.len());
+    }
+    assert!(worst_mirror <= 1e-13, "{worst_mirror:e}");
+    assert!(worst_path <= 1e-13, "{worst_path:e}");
+}

@@ -85,6 +85,27 @@ fn f64_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
 }
 
+/// The force-map states' module (f64, the refinement's curve point) validates with FLOAT64
+/// alone, and its structs match the Rust ones.
+#[test]
+fn fit_states_module_validates_and_matches_rust_layout() {
+    use tabor::kernel::layout::{FitCurve64, FitOut64, FitPoint64};
+    let m = parse(&tabor::kernel::fit_states_source());
+    Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
+        .validate(&m)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    assert!(
+        Validator::new(ValidationFlags::all(), Capabilities::default())
+            .validate(&m)
+            .is_err()
+    );
+    let size_of = |name: &str| wgsl_size(&m, name);
+    assert_eq!(size_of("FitCurve64"), std::mem::size_of::<FitCurve64>());
+    assert_eq!(size_of("FitPoint64"), std::mem::size_of::<FitPoint64>());
+    assert_eq!(size_of("FitOut64"), std::mem::size_of::<FitOut64>());
+    assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
+}
+
 /// The value of a named WGSL `const` of `m` (a scalar literal).
 fn wgsl_const(m: &naga::Module, name: &str) -> f64 {
     let (_, c) = m
@@ -119,7 +140,8 @@ fn shader_constants_match_the_host() {
     }
     let size = tabor::physics::tolerances::WORKGROUP_SIZE as u32;
     let p64 = parse(&tabor::kernel::polish64_source());
-    for module in [&m, &p64] {
+    let fit64 = parse(&tabor::kernel::fit_states_source());
+    for module in [&m, &p64, &fit64] {
         for e in &module.entry_points {
             assert_eq!(e.workgroup_size, [size, 1, 1], "{}", e.name);
         }

@@ -436,6 +436,30 @@ impl SpringPath {
         r.x.clamp(lo, hi)
     }
 
+    /// Where `solve_between` starts: Delta's cubic Hermite interpolant between two nodes, else
+    /// the secant between the bracket's ends.
+    fn start_between(
+        &self,
+        piece: Piece,
+        target: f64,
+        (lo, n_lo): (f64, Option<(f64, f64)>),
+        (hi, n_hi): (f64, Option<(f64, f64)>),
+    ) -> f64 {
+        let d_lo = n_lo.map_or_else(|| self.delta(piece, lo), |n| n.0);
+        let d_hi = n_hi.map_or_else(|| self.delta(piece, hi), |n| n.0);
+        let t = if d_hi > d_lo {
+            lo + (hi - lo) * ((target - d_lo) / (d_hi - d_lo)).clamp(0.0, 1.0)
+        } else {
+            0.5 * (lo + hi)
+        };
+        if let (Some((_, m0)), Some((_, m1)), true) = (n_lo, n_hi, d_hi > d_lo) {
+            // Between two nodes, Delta's cubic Hermite interpolant (values and slopes) puts
+            // the start within the cube of the node spacing: two Newton steps on it.
+            return hermite_root(lo, hi, (d_lo, m0), (d_hi, m1), target, t);
+        }
+        t
+    }
+
     /// Delta(t) = target on [lo, hi], where Delta rises: safeguarded Newton, with Delta and its
     /// slope at either end where they are known (a node's).
     fn solve_between(
@@ -448,18 +472,7 @@ impl SpringPath {
         if piece == Piece::Free {
             return (state(self.model, self.lambda, piece, target), target);
         }
-        let d_lo = n_lo.map_or_else(|| self.delta(piece, lo), |n| n.0);
-        let d_hi = n_hi.map_or_else(|| self.delta(piece, hi), |n| n.0);
-        let mut t = if d_hi > d_lo {
-            lo + (hi - lo) * ((target - d_lo) / (d_hi - d_lo)).clamp(0.0, 1.0)
-        } else {
-            0.5 * (lo + hi)
-        };
-        if let (Some((_, m0)), Some((_, m1)), true) = (n_lo, n_hi, d_hi > d_lo) {
-            // Between two nodes, Delta's cubic Hermite interpolant (values and slopes) puts
-            // the start within the cube of the node spacing: two Newton steps on it.
-            t = hermite_root(lo, hi, (d_lo, m0), (d_hi, m1), target, t);
-        }
+        let mut t = self.start_between(piece, target, (lo, n_lo), (hi, n_hi));
         for _ in 0..100 {
             let (p, d, s) = self.eval(piece, t);
             let r = d - target;
@@ -775,6 +788,23 @@ impl SpringPath {
         };
         let (p, t) = self.solve_between(seg.piece, delta, lo, hi);
         PathState::on(seg.piece, t, &p, false)
+    }
+
+    /// A retract point for a batch on the GPU (`fit::batch`): where [`SpringPath::at`] solves
+    /// it on the Maugis-Dugdale contact piece, its bracket there in mu = exp(-t) (low, high)
+    /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
+    /// model, or beyond the path's ends).
+    pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
+        if self.model != Model::Md {
+            return None;
+        }
+        let seg = containing(self.segments(Direction::Retract), delta)?;
+        if seg.piece != Piece::Contact {
+            return None;
+        }
+        let (lo, hi) = self.bracket(seg, delta);
+        let t = self.start_between(seg.piece, delta, lo, hi);
+        Some([(-hi.0).exp(), (-lo.0).exp(), (-t).exp()])
     }
 
     /// The nodes around `delta` inside a segment, with their Delta and its slope (None at the

@@ -196,3 +196,60 @@ impl Out64 {
         self.code >> 8
     }
 }
+
+/// One curve of a force-map batch (`shaders/fit_states.wgsl`). WGSL twin: `struct FitCurve64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct FitCurve64 {
+    /// The Maugis parameter.
+    pub lambda: f64,
+    /// The normalised spring stiffness.
+    pub kbar: f64,
+}
+
+/// One point of a force-map batch: its base displacement, its bracket on the contact piece in
+/// mu (Delta falls from `mu_lo` to `mu_hi`), the start and its curve. WGSL twin: `struct
+/// FitPoint64`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct FitPoint64 {
+    /// The base displacement Delta (normalised).
+    pub delta: f64,
+    /// The bracket's low end in mu.
+    pub mu_lo: f64,
+    /// The bracket's high end in mu.
+    pub mu_hi: f64,
+    /// Where the Newton steps start.
+    pub mu_start: f64,
+    /// The index of the point's curve.
+    pub curve: u32,
+    /// Padding to the WGSL alignment.
+    pub _pad: u32,
+}
+
+/// One point's state. WGSL twin: `struct FitOut64`. `code` = status | evaluations << 8.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
+pub struct FitOut64 {
+    /// mu = sqrt(m^2 - 1) at the state (t = -ln mu on the fit's contact piece).
+    pub mu: f64,
+    /// The load Pbar.
+    pub load: f64,
+    /// The approach Dbar.
+    pub approach: f64,
+    /// Status (0 converged, 2 not) in the low byte, curve-point evaluations above.
+    pub code: u32,
+    /// Padding to the WGSL alignment.
+    pub _pad: u32,
+}
+
+impl FitOut64 {
+    /// Converged to the path's tolerance.
+    pub fn converged(&self) -> bool {
+        self.code & 0xff == 0
+    }
+    /// The curve-point evaluations used.
+    pub fn evaluations(&self) -> u32 {
+        self.code >> 8
+    }
+}

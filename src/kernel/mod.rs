@@ -20,5 +20,17 @@ pub fn shader_source() -> String {
 /// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64), after the
 /// same prelude.
 pub fn polish64_source() -> String {
-    crate::physics::tolerances::wgsl_prelude() + include_str!("../../shaders/polish64.wgsl")
+    crate::physics::tolerances::wgsl_prelude()
+        + include_str!("../../shaders/curve64.wgsl")
+        + "\n"
+        + include_str!("../../shaders/polish64.wgsl")
+}
+
+/// The WGSL source of the force-map states (`shaders/fit_states.wgsl`, f64 like the refinement,
+/// whose curve point it shares), after the same prelude.
+pub fn fit_states_source() -> String {
+    crate::physics::tolerances::wgsl_prelude()
+        + include_str!("../../shaders/curve64.wgsl")
+        + "\n"
+        + include_str!("../../shaders/fit_states.wgsl")
 }

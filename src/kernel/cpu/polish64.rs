@@ -1,5 +1,5 @@
-//! The CPU mirror of `shaders/polish64.wgsl`: the f64 refinement of one f32 state, as the
-//! kernel does it (its own atan: three half-angle steps and a series, since WGSL has no f64
+//! The CPU mirror of `shaders/polish64.wgsl` and of the curve point it shares with the other f64
+//! module (`shaders/curve64.wgsl`): the f64 refinement of one f32 state, as the kernel does it (its own atan: three half-angle steps and a series, since WGSL has no f64
 //! transcendentals). Read it side by side with the shader.
 
 use crate::kernel::layout::{Lambda64, Out, Out64, Point64};
@@ -29,18 +29,19 @@ pub fn atan_parts64(mu: f64) -> (f64, f64) {
     }
 }
 
-/// The shader's curve point: A, Pbar, Pbar + 2, Dbar, m - 1 and the slopes in mu.
-struct Point {
-    a: f64,
-    load: f64,
-    load_plus_2: f64,
-    approach: f64,
-    m_minus_1: f64,
-    dload: f64,
-    dapproach: f64,
+/// The shader's curve point (`shaders/curve64.wgsl`): A, Pbar, Pbar + 2, Dbar, m - 1 and the
+/// slopes in mu.
+pub(crate) struct Point {
+    pub(crate) a: f64,
+    pub(crate) load: f64,
+    pub(crate) load_plus_2: f64,
+    pub(crate) approach: f64,
+    pub(crate) m_minus_1: f64,
+    pub(crate) dload: f64,
+    pub(crate) dapproach: f64,
 }
 
-fn curve_point64(lambda: f64, mu: f64) -> Point {
+pub(crate) fn curve_point64(lambda: f64, mu: f64) -> Point {
     let four_thirds = 4.0 / 3.0;
     let (at, mu_minus_at) = atan_parts64(mu);
     let mu2 = mu * mu;
