@@ -64,20 +64,25 @@ fn rust_structs_match_wgsl_layout() {
     }
 }
 
-/// The f64 refinement is its own module; it validates with the FLOAT64 capability, and its
-/// structs match the Rust ones.
-#[test]
-fn f64_module_validates_and_matches_rust_layout() {
-    let m = parse(&tabor::kernel::polish64_source());
+/// An f64 module (its own: the f32 one must build where f64 does not exist), parsed: it
+/// validates with the FLOAT64 capability and not without it.
+fn f64_module(source: &str) -> naga::Module {
+    let m = parse(source);
     Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
         .validate(&m)
         .unwrap_or_else(|e| panic!("{e:?}"));
-    // Without FLOAT64 it must not validate: it could not be part of the f32 module.
     assert!(
         Validator::new(ValidationFlags::all(), Capabilities::default())
             .validate(&m)
             .is_err()
     );
+    m
+}
+
+/// The f64 refinement's module validates as an f64 module, and its structs match the Rust ones.
+#[test]
+fn f64_module_validates_and_matches_rust_layout() {
+    let m = f64_module(&tabor::kernel::polish64_source());
     let size_of = |name: &str| wgsl_size(&m, name);
     assert_eq!(size_of("Lambda64"), std::mem::size_of::<Lambda64>());
     assert_eq!(size_of("Point64"), std::mem::size_of::<Point64>());
@@ -85,20 +90,11 @@ fn f64_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
 }
 
-/// The force-map states' module (f64, the refinement's curve point) validates with FLOAT64
-/// alone, and its structs match the Rust ones.
+/// The force-map states' module (the refinement's curve point, its own entry) likewise.
 #[test]
 fn fit_states_module_validates_and_matches_rust_layout() {
     use tabor::kernel::layout::{FitCurve64, FitOut64, FitPoint64};
-    let m = parse(&tabor::kernel::fit_states_source());
-    Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
-        .validate(&m)
-        .unwrap_or_else(|e| panic!("{e:?}"));
-    assert!(
-        Validator::new(ValidationFlags::all(), Capabilities::default())
-            .validate(&m)
-            .is_err()
-    );
+    let m = f64_module(&tabor::kernel::fit_states_source());
     let size_of = |name: &str| wgsl_size(&m, name);
     assert_eq!(size_of("FitCurve64"), std::mem::size_of::<FitCurve64>());
     assert_eq!(size_of("FitPoint64"), std::mem::size_of::<FitPoint64>());

@@ -29,7 +29,7 @@ pub fn pack(paths: &mut [SpringPath], deltas: &[Vec<f64>]) -> Batch {
     let curves = paths
         .iter()
         .map(|p| FitCurve64 {
-            lambda: p.lambda,
+            lambda: p.law.lambda,
             kbar: p.kbar,
         })
         .collect();
@@ -62,7 +62,7 @@ pub fn pack(paths: &mut [SpringPath], deltas: &[Vec<f64>]) -> Batch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fit::path::{Direction, Model};
+    use crate::fit::{Direction, Model};
     use crate::kernel::cpu::fit_states::fit_state;
 
     /// The kernel's arithmetic (its CPU mirror) from the packed brackets reaches the fit path's

@@ -14,6 +14,7 @@ pub mod batch;
 pub mod data;
 pub mod humidity;
 pub mod interval;
+pub mod law;
 mod options;
 pub mod path;
 mod prepare;
@@ -25,8 +26,9 @@ mod summary;
 pub mod synthetic;
 
 pub use data::{read_curves, Curve, CurveSet, DataError};
+pub use law::Model;
 pub use options::*;
-pub use path::{Direction, Model, SpringPath};
+pub use path::{Direction, SpringPath};
 pub use prepare::*;
 pub use problem::*;
 pub use result::*;
@@ -427,44 +429,6 @@ mod tests {
                 );
             }
         }
-    }
-
-    #[test]
-    fn lambda_slopes_of_the_pieces_match_differences() {
-        use path::{state, state_dlambda, Piece};
-        for &lambda in &[0.05, 0.7, 6.0] {
-            let c_end = crate::physics::md::zero_radius_end(lambda).c;
-            for (piece, t) in [
-                (Piece::NonContact, 0.3 * c_end),
-                (Piece::NonContact, 0.9 * c_end),
-                (Piece::Contact, -3.0),
-                (Piece::Contact, 0.5),
-                (Piece::Contact, 4.0),
-            ] {
-                let (dl, dd) = state_dlambda(Model::Md, lambda, piece, t);
-                let h = 1e-5 * lambda;
-                let (p, m) = (
-                    state(Model::Md, lambda + h, piece, t),
-                    state(Model::Md, lambda - h, piece, t),
-                );
-                let fl = (p.load - m.load) / (2.0 * h);
-                let fd = (p.approach - m.approach) / (2.0 * h);
-                let at = format!("{piece:?} at lambda {lambda}, t {t}");
-                assert!(
-                    (dl - fl).abs() <= 1e-7 * fl.abs().max(1.0),
-                    "{at}: {dl} {fl}"
-                );
-                assert!(
-                    (dd - fd).abs() <= 1e-7 * fd.abs().max(1.0),
-                    "{at}: {dd} {fd}"
-                );
-            }
-        }
-        assert_eq!(
-            state_dlambda(Model::Jkr, 1.0, Piece::Contact, 2.0),
-            (0.0, 0.0)
-        );
-        assert_eq!(state_dlambda(Model::Md, 1.0, Piece::Free, 2.0), (0.0, 0.0));
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //! Hertz, DMT, JKR) followed under a spring on the way in or out, evaluated exactly at any base
 //! displacement (normalised units, docs/PHYSICS.md sections 1 and 4).
 //!
-//! The path is cut into pieces, each parametrised by t with the state an explicit function of t:
+//! The path is cut into pieces (the law's, from `fit::law`, which holds every law-specific
+//! equation), each parametrised by t with the state an explicit function of t:
 //! the free piece (no force, t = Dbar), Maugis-Dugdale's non-contact piece (t = C) and the
 //! contact piece (t = -ln mu for Maugis-Dugdale, t = A for the closed forms). Under a spring of
 //! normalised stiffness kbar the base displacement is `Delta = Dbar + Pbar/kbar`, and a state is
@@ -12,75 +13,8 @@
 //! with t, so a measured Delta maps to one state, found by a safeguarded Newton iteration on the
 //! exact curve: the nodes only bracket it.
 
-use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
-use crate::physics::model::ContactModel;
-use crate::solver::context::x_at_radius_newton;
+use super::law::{Law, Model};
 use serde::{Deserialize, Serialize};
-use std::f64::consts::PI;
-
-/// The contact models a force curve is fitted with, from the simplest: those of
-/// [`ContactModel`] with an elastic path under a spring (not the rigid or two-zone ones). Names
-/// and labels are [`ContactModel`]'s.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Model {
-    /// Hertz: no adhesion.
-    Hertz,
-    /// DMT: Hertz plus the adhesive load `2 pi w R` outside the contact.
-    Dmt,
-    /// JKR: adhesion inside the contact, a crack at its edge.
-    Jkr,
-    /// Maugis-Dugdale, lambda fitted (or fixed by z0).
-    Md,
-}
-
-impl Model {
-    /// Every fitted model, from the simplest.
-    pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
-
-    /// The model in the common vocabulary.
-    pub fn contact_model(self) -> ContactModel {
-        match self {
-            Model::Hertz => ContactModel::Hertz,
-            Model::Dmt => ContactModel::Dmt,
-            Model::Jkr => ContactModel::Jkr,
-            Model::Md => ContactModel::Md,
-        }
-    }
-
-    /// The name in JSON and on the command line ([`ContactModel::name`]).
-    pub fn name(self) -> &'static str {
-        self.contact_model().name()
-    }
-
-    /// The name for people ([`ContactModel::label`]).
-    pub fn label(self) -> &'static str {
-        self.contact_model().label()
-    }
-}
-
-impl From<Model> for ContactModel {
-    fn from(m: Model) -> ContactModel {
-        m.contact_model()
-    }
-}
-
-impl TryFrom<ContactModel> for Model {
-    type Error = String;
-
-    /// The fitted model of a contact model; the rigid and two-zone ones are not fitted.
-    fn try_from(m: ContactModel) -> Result<Model, String> {
-        Model::ALL
-            .into_iter()
-            .find(|f| f.contact_model() == m)
-            .ok_or_else(|| {
-                format!(
-                    "the {} model is not fitted to force curves: use hertz, dmt, jkr or md",
-                    m.label()
-                )
-            })
-    }
-}
 
 /// Which way the base moves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -185,13 +119,6 @@ pub enum Side {
     AfterJump,
 }
 
-/// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
-/// to 1e-9; JKR: where its approach slope is still finite).
-const A_START: f64 = 1e-9;
-/// Nodes per piece: they only bracket folds and roots (folds closer than a node spacing, on a
-/// stretch shorter than that, are not resolved; such a stretch moves the force by less than it).
-const NODES: usize = 320;
-
 #[derive(Clone, Copy, Debug)]
 struct Node {
     t: f64,
@@ -216,10 +143,8 @@ struct Segment {
 /// The path of one model at one lambda under one spring, up to base displacement `delta_max`.
 #[derive(Clone, Debug)]
 pub struct SpringPath {
-    /// The model followed.
-    pub model: Model,
-    /// Its Maugis parameter (used by Maugis-Dugdale only).
-    pub lambda: f64,
+    /// The law followed: a model at its Maugis parameter.
+    pub law: Law,
     /// The normalised spring stiffness kbar.
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
@@ -232,94 +157,19 @@ pub struct SpringPath {
     approach: std::cell::OnceCell<(Vec<Segment>, Option<usize>)>,
 }
 
-/// The state at parameter t of a piece, for a model at lambda (ignored by the closed forms).
-pub fn state(model: Model, lambda: f64, piece: Piece, t: f64) -> Pt {
-    match piece {
-        Piece::Free => Pt {
-            load: 0.0,
-            approach: t,
-            a: 0.0,
-            dload: 0.0,
-            dapproach: 1.0,
-            da: 0.0,
-        },
-        Piece::NonContact => {
-            let (load, approach) = non_contact_point(lambda, t);
-            Pt {
-                load,
-                approach,
-                a: 0.0,
-                dload: -PI * lambda * t,
-                dapproach: t - 8.0 * lambda / (3.0 * PI),
-                da: 0.0,
-            }
-        }
-        Piece::Contact => match model {
-            Model::Md => {
-                let mu = (-t).exp();
-                let c = curve_point(lambda, mu);
-                Pt {
-                    load: c.load,
-                    approach: c.approach,
-                    a: c.a,
-                    dload: -mu * c.dload_dmu,
-                    dapproach: -mu * c.dapproach_dmu,
-                    da: -mu * c.da_dmu,
-                }
-            }
-            Model::Hertz | Model::Dmt => Pt {
-                load: t * t * t - if model == Model::Dmt { 2.0 } else { 0.0 },
-                approach: t * t,
-                a: t,
-                dload: 3.0 * t * t,
-                dapproach: 2.0 * t,
-                da: 1.0,
-            },
-            Model::Jkr => {
-                let s6 = (6.0 * t).sqrt();
-                Pt {
-                    load: t * t * t - t * s6,
-                    approach: t * t - 2.0 / 3.0 * s6,
-                    a: t,
-                    dload: 3.0 * t * t - 1.5 * s6,
-                    dapproach: 2.0 * t - s6 / (3.0 * t),
-                    da: 1.0,
-                }
-            }
-        },
-    }
-}
-
-/// The slopes of the load and the approach with respect to lambda at fixed t on `piece`
-/// (zero for the free piece and the closed forms, which have no lambda).
-pub fn state_dlambda(model: Model, lambda: f64, piece: Piece, t: f64) -> (f64, f64) {
-    match (piece, model) {
-        (Piece::NonContact, _) => (
-            -PI / 2.0 * t * t,
-            -8.0 / (3.0 * PI) * t + 2.0 / (PI * lambda * lambda),
-        ),
-        (Piece::Contact, Model::Md) => {
-            let (_, dload, dapproach) = curve_point_dlambda(lambda, (-t).exp());
-            (dload, dapproach)
-        }
-        _ => (0.0, 0.0),
-    }
-}
-
 impl SpringPath {
     /// `lambda` in the solver's domain (used by Maugis-Dugdale only), `kbar > 0`, and the largest
     /// base displacement the path must reach.
     pub fn new(model: Model, lambda: f64, kbar: f64, delta_max: f64) -> SpringPath {
-        let md = model == Model::Md;
-        let free_end = if md { -2.0 / (PI * lambda) } else { 0.0 };
+        let law = Law::new(model, lambda);
         let delta_of = |piece, t| {
-            let p = state(model, lambda, piece, t);
+            let p = law.state(piece, t);
             p.approach + p.load / kbar
         };
         // The states at the nodes do not depend on the spring: a fit at fixed lambda (the
         // profile, the intervals) evaluates them once and only rescales Delta with kbar.
         let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
-            node_states(model, lambda, piece, t0, t1)
+            law.nodes(piece, t0, t1)
                 .iter()
                 .map(|&(t, p)| Node {
                     t,
@@ -329,35 +179,22 @@ impl SpringPath {
                 .collect()
         };
         // The contact piece's top: the radius whose Delta passes delta_max (doubling).
-        let t_of_radius = |a: f64| {
-            if md {
-                -cached(Key::Radius(lambda.to_bits(), a.to_bits()), || {
-                    Cached::X(x_at_radius_newton(lambda, a))
-                })
-                .x()
-            } else {
-                a
-            }
-        };
         let mut a_max = 2.0;
-        while delta_of(Piece::Contact, t_of_radius(a_max)) < delta_max.max(1.0) * 1.05
+        while delta_of(Piece::Contact, law.t_of_radius(a_max)) < delta_max.max(1.0) * 1.05
             && a_max < 1e5
         {
             a_max *= 2.0;
         }
-        let (t0, t1) = (t_of_radius(A_START), t_of_radius(a_max));
-        let mut pieces = Vec::new();
-        if md {
-            let c_end = zero_radius_end(lambda).c;
-            pieces.push((Piece::NonContact, nodes(Piece::NonContact, 0.0, c_end)));
-        }
-        pieces.push((Piece::Contact, nodes(Piece::Contact, t0, t1)));
+        let pieces = law
+            .pieces(a_max)
+            .into_iter()
+            .map(|(piece, t0, t1)| (piece, nodes(piece, t0, t1)))
+            .collect();
         let mut path = SpringPath {
-            model,
-            lambda,
+            law,
             kbar,
             pieces,
-            free_end,
+            free_end: law.free_end(),
             retract: (Vec::new(), None),
             approach: std::cell::OnceCell::new(),
         };
@@ -380,7 +217,7 @@ impl SpringPath {
     }
 
     fn eval(&self, piece: Piece, t: f64) -> (Pt, f64, f64) {
-        let p = state(self.model, self.lambda, piece, t);
+        let p = self.law.state(piece, t);
         (
             p,
             p.approach + p.load / self.kbar,
@@ -470,7 +307,7 @@ impl SpringPath {
         (mut hi, n_hi): (f64, Option<(f64, f64)>),
     ) -> (Pt, f64) {
         if piece == Piece::Free {
-            return (state(self.model, self.lambda, piece, target), target);
+            return (self.law.state(piece, target), target);
         }
         let mut t = self.start_between(piece, target, (lo, n_lo), (hi, n_hi));
         for _ in 0..100 {
@@ -496,7 +333,7 @@ impl SpringPath {
             }
             t = next;
         }
-        (state(self.model, self.lambda, piece, t), t)
+        (self.law.state(piece, t), t)
     }
 
     /// The segments followed in one direction.
@@ -702,12 +539,7 @@ impl SpringPath {
     }
 
     fn state_at(&self, seg: &Segment, t: f64, clamped: bool) -> PathState {
-        PathState::on(
-            seg.piece,
-            t,
-            &state(self.model, self.lambda, seg.piece, t),
-            clamped,
-        )
+        PathState::on(seg.piece, t, &self.law.state(seg.piece, t), clamped)
     }
 
     /// The state at base displacement `delta` on the side of the first jump the data says.
@@ -758,7 +590,7 @@ impl SpringPath {
             return s;
         }
         let t = if retract { seg.t_hi } else { seg.t_lo };
-        near(self.model, self.lambda, self.kbar, delta, seg.piece, t)
+        near(self.law, self.kbar, delta, seg.piece, t)
             .unwrap_or_else(|| self.state_at(seg, t, true))
     }
 
@@ -770,7 +602,7 @@ impl SpringPath {
                 && h.t >= seg.t_lo
                 && h.t <= seg.t_hi
             {
-                if let Some(s) = near(self.model, self.lambda, self.kbar, delta, seg.piece, h.t) {
+                if let Some(s) = near(self.law, self.kbar, delta, seg.piece, h.t) {
                     if s.t >= seg.t_lo && s.t <= seg.t_hi {
                         return s;
                     }
@@ -795,7 +627,7 @@ impl SpringPath {
     /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
     /// model, or beyond the path's ends).
     pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
-        if self.model != Model::Md {
+        if self.law.model != Model::Md {
             return None;
         }
         let seg = containing(self.segments(Direction::Retract), delta)?;
@@ -925,94 +757,6 @@ fn hermite_root(
     t0 + s * h
 }
 
-/// What the per-thread cache holds: a radius's parameter on the contact piece, or the states at
-/// a piece's nodes.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Key {
-    Radius(u64, u64),
-    Nodes(Model, u64, Piece, u64, u64),
-}
-
-#[derive(Clone)]
-enum Cached {
-    X(f64),
-    Nodes(std::rc::Rc<Vec<(f64, Pt)>>),
-}
-
-impl Cached {
-    fn x(&self) -> f64 {
-        match self {
-            Cached::X(x) => *x,
-            Cached::Nodes(_) => unreachable!("a radius key holds a parameter"),
-        }
-    }
-}
-
-/// Entries kept per thread: a fit at fixed lambda needs a handful (the radii of the doubling
-/// and the two pieces' nodes); a free fit, whose lambda moves at every step, only cycles them.
-const CACHE: usize = 16;
-
-thread_local! {
-    static PATH_CACHE: std::cell::RefCell<(usize, Vec<(Key, Cached)>)> =
-        const { std::cell::RefCell::new((0, Vec::new())) };
-}
-
-/// The cached value of `key`, computed by `f` on a miss (the same value, bit for bit).
-fn cached(key: Key, f: impl FnOnce() -> Cached) -> Cached {
-    if let Some(v) = PATH_CACHE.with(|c| {
-        c.borrow()
-            .1
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, v)| v.clone())
-    }) {
-        return v;
-    }
-    let v = f();
-    PATH_CACHE.with(|c| {
-        let mut c = c.borrow_mut();
-        let (next, entries) = &mut *c;
-        if entries.len() < CACHE {
-            entries.push((key, v.clone()));
-        } else {
-            entries[*next] = (key, v.clone());
-            *next = (*next + 1) % CACHE;
-        }
-    });
-    v
-}
-
-/// The states at the nodes of a piece between t0 and t1.
-fn node_states(
-    model: Model,
-    lambda: f64,
-    piece: Piece,
-    t0: f64,
-    t1: f64,
-) -> std::rc::Rc<Vec<(f64, Pt)>> {
-    let key = Key::Nodes(model, lambda.to_bits(), piece, t0.to_bits(), t1.to_bits());
-    let v = cached(key, || {
-        // The non-contact piece is a quadratic in C: one fold at most.
-        let n = if piece == Piece::NonContact {
-            64
-        } else {
-            NODES
-        };
-        Cached::Nodes(std::rc::Rc::new(
-            (0..n)
-                .map(|i| {
-                    let t = t0 + (t1 - t0) * i as f64 / (n - 1) as f64;
-                    (t, state(model, lambda, piece, t))
-                })
-                .collect(),
-        ))
-    });
-    match v {
-        Cached::Nodes(n) => n,
-        Cached::X(_) => unreachable!("a node key holds nodes"),
-    }
-}
-
 /// The segment whose Delta range holds `delta`.
 fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
     segs.iter()
@@ -1021,14 +765,7 @@ fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
 
 /// The state on a given piece near parameter `t`: Newton steps from there. The Jacobian of a fit
 /// keeps each point on its branch this way, so that a finite difference never straddles a jump.
-pub fn near(
-    model: Model,
-    lambda: f64,
-    kbar: f64,
-    delta: f64,
-    piece: Piece,
-    t: f64,
-) -> Option<PathState> {
+pub fn near(law: Law, kbar: f64, delta: f64, piece: Piece, t: f64) -> Option<PathState> {
     if piece == Piece::Free {
         return Some(PathState {
             piece,
@@ -1043,7 +780,7 @@ pub fn near(
     }
     let mut t = t;
     for _ in 0..8 {
-        let p = state(model, lambda, piece, t);
+        let p = law.state(piece, t);
         let r = p.approach + p.load / kbar - delta;
         if r.abs() <= 1e-14 * delta.abs().max(1.0) {
             return Some(PathState::on(piece, t, &p, false));
@@ -1072,8 +809,7 @@ pub fn near(
 /// measured one where Delta rises with t. None where the iteration leaves the piece.
 #[allow(clippy::too_many_arguments)]
 pub fn fold_distance(
-    model: Model,
-    lambda: f64,
+    law: Law,
     kbar: f64,
     scale: f64,
     piece: Piece,
@@ -1084,14 +820,13 @@ pub fn fold_distance(
     if piece == Piece::Free {
         return None;
     }
-    let valid =
-        |t: f64| t.is_finite() && !(model == Model::Jkr && piece == Piece::Contact && t <= 0.0);
+    let valid = |t: f64| law.on_piece(piece, t);
     let mut t = t;
     for _ in 0..200 {
         if !valid(t) {
             return None;
         }
-        let p = state(model, lambda, piece, t);
+        let p = law.state(piece, t);
         let (ep, ed) = (p.load - load, scale * (p.approach + p.load / kbar - delta));
         let (tp, td) = (p.dload, scale * (p.dapproach + p.dload / kbar));
         let tt = tp * tp + td * td;
@@ -1102,7 +837,7 @@ pub fn fold_distance(
         // Gauss-Newton alone creeps where the residual is not small against the curve's speed.
         let h = 1e-5 * t.abs().max(1.0);
         let tangent = |t: f64| {
-            let q = state(model, lambda, piece, t);
+            let q = law.state(piece, t);
             (q.dload, scale * (q.dapproach + q.dload / kbar))
         };
         let (ap, ad) = tangent(t + h);

@@ -1,6 +1,7 @@
 //! The least-squares problem of one model on one curve (Levenberg-Marquardt), its Jacobian,
 //! and a fit's parameters, standard errors and pull-off.
 
+use super::law::Law;
 use super::*;
 
 /// Physical parameters of a model.
@@ -89,7 +90,7 @@ pub fn model_forces_from(
     if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
         return None;
     }
-    if model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+    if model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
         return None;
     }
     let deltas: Vec<f64> = height.iter().map(|h| (p.zc - h) / u.approach).collect();
@@ -168,10 +169,10 @@ impl Slides {
 
 impl Problem<'_> {
     pub(super) fn has_w(&self) -> bool {
-        self.model != Model::Hertz
+        self.model.adhesive()
     }
     pub(super) fn has_lambda(&self) -> bool {
-        self.model == Model::Md && self.z0.is_none() && self.fixed_lambda.is_none()
+        self.model.has_lambda() && self.z0.is_none() && self.fixed_lambda.is_none()
     }
     pub(super) fn n(&self) -> usize {
         2 + self.has_w() as usize + 1 + self.has_lambda() as usize
@@ -193,7 +194,7 @@ impl Problem<'_> {
             next().exp()
         } else if let Some(l) = self.fixed_lambda {
             l
-        } else if let (Model::Md, Some(z0)) = (self.model, self.z0) {
+        } else if let (true, Some(z0)) = (self.model.has_lambda(), self.z0) {
             lambda_from_z0(e_star, w, self.radius, z0)
         } else {
             1.0
@@ -264,7 +265,7 @@ impl Problem<'_> {
         if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
             return None;
         }
-        if self.model == Model::Md && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        if self.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
             return None;
         }
         Some((p, u))
@@ -291,7 +292,7 @@ impl Problem<'_> {
             let s = &base[i];
             let delta = (p.zc - d.height[i]) / u.approach;
             (!s.clamped)
-                .then(|| path::near(self.model, p.lambda, u.kbar, delta, s.piece, s.t))
+                .then(|| path::near(Law::new(self.model, p.lambda), u.kbar, delta, s.piece, s.t))
                 .flatten()
                 .unwrap_or_else(|| {
                     full.get_or_insert_with(|| SpringPath::new(self.model, p.lambda, u.kbar, top))
@@ -337,8 +338,7 @@ impl Problem<'_> {
         let delta = (p.zc - self.data.height[i]) / u.approach;
         let load = (self.data.force[i] - p.f0) / u.force;
         let (r, t) = path::fold_distance(
-            self.model,
-            p.lambda,
+            Law::new(self.model, p.lambda),
             u.kbar,
             FOLD_SCALE * u.kbar,
             s.piece,
@@ -364,7 +364,7 @@ impl Problem<'_> {
                 // is its analytic row.
                 continue;
             };
-            let q = path::state(self.model, p.lambda, s.piece, t);
+            let q = Law::new(self.model, p.lambda).state(s.piece, t);
             let (tp, td) = (q.dload, FOLD_SCALE * (u.kbar * q.dapproach + q.dload));
             let norm = tp.hypot(td);
             let (np, nd) = (td / norm, -tp / norm);
@@ -394,7 +394,7 @@ impl Problem<'_> {
                 k += 1;
             }
             if self.has_lambda() {
-                let (pl, dl) = path::state_dlambda(self.model, p.lambda, s.piece, t);
+                let (pl, dl) = Law::new(self.model, p.lambda).state_dlambda(s.piece, t);
                 let dp = p.lambda * pl;
                 j[(i, k)] = (np * dp + nd * FOLD_SCALE * (kb * p.lambda * dl + dp)) * to_res;
                 k += 1;
@@ -462,7 +462,7 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             Some(s) => s,
             None => self.eval(&self.x, None)?.1,
         };
-        if self.model == Model::Md && self.z0.is_some() {
+        if self.model.has_lambda() && self.z0.is_some() {
             // lambda moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
@@ -555,7 +555,7 @@ impl Problem<'_> {
         if s.piece == Piece::Free || s.clamped {
             return (0.0, 0.0);
         }
-        let (pl, dl) = path::state_dlambda(self.model, p.lambda, s.piece, s.t);
+        let (pl, dl) = Law::new(self.model, p.lambda).state_dlambda(s.piece, s.t);
         let g = s.dapproach + s.dload / u.kbar;
         if g.abs() > 0.0 {
             (
@@ -855,9 +855,9 @@ pub(super) fn fit_model_for(
         status,
         e_star_pa: p.e_star,
         e_star_pa_stderr: e_err,
-        work_of_adhesion_j_m2: if model == Model::Hertz { 0.0 } else { p.w },
+        work_of_adhesion_j_m2: if model.adhesive() { p.w } else { 0.0 },
         work_of_adhesion_j_m2_stderr: w_err,
-        lambda: (model == Model::Md).then_some(p.lambda),
+        lambda: model.has_lambda().then_some(p.lambda),
         lambda_stderr: lambda_err,
         contact_point_m: p.zc,
         contact_point_m_stderr: zc_err,
@@ -869,7 +869,7 @@ pub(super) fn fit_model_for(
         cov,
         jtj_inv,
         states: evaluated
-            .filter(|_| model == Model::Md)
+            .filter(|_| model.has_lambda())
             .map(|(_, s)| std::sync::Arc::new(s)),
     }
 }
@@ -895,9 +895,9 @@ pub(super) fn standard_errors(
     let lambda_err = if prob.has_lambda() {
         i += 1;
         Some(p.lambda * var(i - 1))
-    } else if model == Model::Md && fixed_lambda.is_some() {
+    } else if model.has_lambda() && fixed_lambda.is_some() {
         Some(0.0)
-    } else if model == Model::Md {
+    } else if model.has_lambda() {
         // Fixed z0: lambda follows E* and w, ln lambda = (2/3)(ln w - ln E*) + const.
         cov.as_ref().map(|c| {
             let v = (4.0 / 9.0) * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);

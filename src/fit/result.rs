@@ -313,10 +313,10 @@ impl ModelFit {
     pub fn params(&self) -> Params {
         Params {
             e_star: self.e_star_pa,
-            w: if self.model == Model::Hertz {
-                1e-3
-            } else {
+            w: if self.model.adhesive() {
                 self.work_of_adhesion_j_m2
+            } else {
+                1e-3
             },
             lambda: self.lambda.unwrap_or(1.0),
             zc: self.contact_point_m,

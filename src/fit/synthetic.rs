@@ -2,7 +2,8 @@
 //! what the fitter's recovery test, its benchmark and the gallery example are made of.
 
 use super::data::Curve;
-use super::path::{Direction, Model, SpringPath};
+use super::path::{Direction, SpringPath};
+use super::Model;
 use super::{model_forces, units, Params};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};

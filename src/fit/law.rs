@@ -1,0 +1,394 @@
+//! The laws a force curve is fitted with, as the path follower sees them: a law's path after
+//! the free piece is a list of pieces, each state an explicit function of its piece's parameter
+//! t, with its slopes in t and in lambda. Everything law-specific in a fit's path is here:
+//! `path` (the follower under the spring: folds, jumps, each point's state) and `problem` (the
+//! misfit and its Jacobian) take a law's states from [`Law`] and nothing else of it. A new law
+//! for fits is a [`Model`] variant with its arms here (its pieces, states and slopes) and its
+//! tests; the follower does not change.
+
+use super::path::{Piece, Pt};
+use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
+use crate::physics::model::ContactModel;
+use crate::solver::context::x_at_radius_newton;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// The contact models a force curve is fitted with, from the simplest: those of
+/// [`ContactModel`] with an elastic path under a spring (not the rigid or two-zone ones). Names
+/// and labels are [`ContactModel`]'s.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Model {
+    /// Hertz: no adhesion.
+    Hertz,
+    /// DMT: Hertz plus the adhesive load `2 pi w R` outside the contact.
+    Dmt,
+    /// JKR: adhesion inside the contact, a crack at its edge.
+    Jkr,
+    /// Maugis-Dugdale, lambda fitted (or fixed by z0).
+    Md,
+}
+
+impl Model {
+    /// Every fitted model, from the simplest.
+    pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
+
+    /// Whether the model has adhesion, so that a fit has a w (all but Hertz).
+    pub fn adhesive(self) -> bool {
+        self != Model::Hertz
+    }
+
+    /// Whether the model has a Maugis parameter, so that a fit has a lambda (Maugis-Dugdale).
+    pub fn has_lambda(self) -> bool {
+        self == Model::Md
+    }
+
+    /// The model in the common vocabulary.
+    pub fn contact_model(self) -> ContactModel {
+        match self {
+            Model::Hertz => ContactModel::Hertz,
+            Model::Dmt => ContactModel::Dmt,
+            Model::Jkr => ContactModel::Jkr,
+            Model::Md => ContactModel::Md,
+        }
+    }
+
+    /// The name in JSON and on the command line ([`ContactModel::name`]).
+    pub fn name(self) -> &'static str {
+        self.contact_model().name()
+    }
+
+    /// The name for people ([`ContactModel::label`]).
+    pub fn label(self) -> &'static str {
+        self.contact_model().label()
+    }
+}
+
+impl From<Model> for ContactModel {
+    fn from(m: Model) -> ContactModel {
+        m.contact_model()
+    }
+}
+
+impl TryFrom<ContactModel> for Model {
+    type Error = String;
+
+    /// The fitted model of a contact model; the rigid and two-zone ones are not fitted.
+    fn try_from(m: ContactModel) -> Result<Model, String> {
+        Model::ALL
+            .into_iter()
+            .find(|f| f.contact_model() == m)
+            .ok_or_else(|| {
+                format!(
+                    "the {} model is not fitted to force curves: use hertz, dmt, jkr or md",
+                    m.label()
+                )
+            })
+    }
+}
+
+/// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
+/// to 1e-9; JKR: where its approach slope is still finite).
+const A_START: f64 = 1e-9;
+/// Nodes per piece: they only bracket folds and roots (folds closer than a node spacing, on a
+/// stretch shorter than that, are not resolved; such a stretch moves the force by less than it).
+const NODES: usize = 320;
+
+/// A model at its Maugis parameter (ignored by the closed forms): the law whose path a curve is
+/// fitted on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Law {
+    /// The model.
+    pub model: Model,
+    /// Its Maugis parameter (Maugis-Dugdale only).
+    pub lambda: f64,
+}
+
+impl Law {
+    /// `model` at `lambda` (in the solver's domain where the model is Maugis-Dugdale).
+    pub fn new(model: Model, lambda: f64) -> Law {
+        Law { model, lambda }
+    }
+
+    /// The state at parameter t of a piece.
+    pub fn state(&self, piece: Piece, t: f64) -> Pt {
+        let (model, lambda) = (self.model, self.lambda);
+        match piece {
+            Piece::Free => Pt {
+                load: 0.0,
+                approach: t,
+                a: 0.0,
+                dload: 0.0,
+                dapproach: 1.0,
+                da: 0.0,
+            },
+            Piece::NonContact => {
+                let (load, approach) = non_contact_point(lambda, t);
+                Pt {
+                    load,
+                    approach,
+                    a: 0.0,
+                    dload: -PI * lambda * t,
+                    dapproach: t - 8.0 * lambda / (3.0 * PI),
+                    da: 0.0,
+                }
+            }
+            Piece::Contact => match model {
+                Model::Md => {
+                    let mu = (-t).exp();
+                    let c = curve_point(lambda, mu);
+                    Pt {
+                        load: c.load,
+                        approach: c.approach,
+                        a: c.a,
+                        dload: -mu * c.dload_dmu,
+                        dapproach: -mu * c.dapproach_dmu,
+                        da: -mu * c.da_dmu,
+                    }
+                }
+                Model::Hertz | Model::Dmt => Pt {
+                    load: t * t * t - if model == Model::Dmt { 2.0 } else { 0.0 },
+                    approach: t * t,
+                    a: t,
+                    dload: 3.0 * t * t,
+                    dapproach: 2.0 * t,
+                    da: 1.0,
+                },
+                Model::Jkr => {
+                    let s6 = (6.0 * t).sqrt();
+                    Pt {
+                        load: t * t * t - t * s6,
+                        approach: t * t - 2.0 / 3.0 * s6,
+                        a: t,
+                        dload: 3.0 * t * t - 1.5 * s6,
+                        dapproach: 2.0 * t - s6 / (3.0 * t),
+                        da: 1.0,
+                    }
+                }
+            },
+        }
+    }
+
+    /// The slopes of the load and the approach with respect to lambda at fixed t on `piece`
+    /// (zero for the free piece and the closed forms, which have no lambda).
+    pub fn state_dlambda(&self, piece: Piece, t: f64) -> (f64, f64) {
+        let (model, lambda) = (self.model, self.lambda);
+        match (piece, model) {
+            (Piece::NonContact, _) => (
+                -PI / 2.0 * t * t,
+                -8.0 / (3.0 * PI) * t + 2.0 / (PI * lambda * lambda),
+            ),
+            (Piece::Contact, Model::Md) => {
+                let (_, dload, dapproach) = curve_point_dlambda(lambda, (-t).exp());
+                (dload, dapproach)
+            }
+            _ => (0.0, 0.0),
+        }
+    }
+
+    /// The approach at which the free piece ends and a force first acts (Maugis-Dugdale: the
+    /// Dugdale zone's reach; the closed forms: touching).
+    pub fn free_end(&self) -> f64 {
+        if self.model == Model::Md {
+            -2.0 / (PI * self.lambda)
+        } else {
+            0.0
+        }
+    }
+
+    /// The contact piece's parameter at contact radius `a` (a Newton search for
+    /// Maugis-Dugdale, kept per thread: a fit at fixed lambda asks for the same radii again).
+    pub fn t_of_radius(&self, a: f64) -> f64 {
+        if self.model != Model::Md {
+            return a;
+        }
+        -cached(Key::Radius(self.lambda.to_bits(), a.to_bits()), || {
+            Cached::X(x_at_radius_newton(self.lambda, a))
+        })
+        .x()
+    }
+
+    /// The pieces after the free one, from the free end up, each with the parameter range it is
+    /// followed over: the contact piece from its start up to radius `a_max`.
+    pub fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
+        let contact = (
+            Piece::Contact,
+            self.t_of_radius(A_START),
+            self.t_of_radius(a_max),
+        );
+        if self.model == Model::Md {
+            let c_end = zero_radius_end(self.lambda).c;
+            vec![(Piece::NonContact, 0.0, c_end), contact]
+        } else {
+            vec![contact]
+        }
+    }
+
+    /// Whether a state exists at parameter `t` of `piece` (JKR's contact piece needs A > 0).
+    pub fn on_piece(&self, piece: Piece, t: f64) -> bool {
+        t.is_finite() && !(self.model == Model::Jkr && piece == Piece::Contact && t <= 0.0)
+    }
+
+    /// The states at the nodes of a piece between t0 and t1 (kept per thread: a fit at fixed
+    /// lambda evaluates them once).
+    pub(crate) fn nodes(&self, piece: Piece, t0: f64, t1: f64) -> std::rc::Rc<Vec<(f64, Pt)>> {
+        let key = Key::Nodes(
+            self.model,
+            self.lambda.to_bits(),
+            piece,
+            t0.to_bits(),
+            t1.to_bits(),
+        );
+        let v = cached(key, || {
+            // The non-contact piece is a quadratic in C: one fold at most.
+            let n = if piece == Piece::NonContact {
+                64
+            } else {
+                NODES
+            };
+            Cached::Nodes(std::rc::Rc::new(
+                (0..n)
+                    .map(|i| {
+                        let t = t0 + (t1 - t0) * i as f64 / (n - 1) as f64;
+                        (t, self.state(piece, t))
+                    })
+                    .collect(),
+            ))
+        });
+        match v {
+            Cached::Nodes(n) => n,
+            Cached::X(_) => unreachable!("a node key holds nodes"),
+        }
+    }
+}
+
+/// What the per-thread cache holds: a radius's parameter on the contact piece, or the states at
+/// a piece's nodes.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Key {
+    Radius(u64, u64),
+    Nodes(Model, u64, Piece, u64, u64),
+}
+
+#[derive(Clone)]
+enum Cached {
+    X(f64),
+    Nodes(std::rc::Rc<Vec<(f64, Pt)>>),
+}
+
+impl Cached {
+    fn x(&self) -> f64 {
+        match self {
+            Cached::X(x) => *x,
+            Cached::Nodes(_) => unreachable!("a radius key holds a parameter"),
+        }
+    }
+}
+
+/// Entries kept per thread: a fit at fixed lambda needs a handful (the radii of the doubling
+/// and the two pieces' nodes); a free fit, whose lambda moves at every step, only cycles them.
+const CACHE: usize = 16;
+
+thread_local! {
+    static PATH_CACHE: std::cell::RefCell<(usize, Vec<(Key, Cached)>)> =
+        const { std::cell::RefCell::new((0, Vec::new())) };
+}
+
+/// The cached value of `key`, computed by `f` on a miss (the same value, bit for bit).
+fn cached(key: Key, f: impl FnOnce() -> Cached) -> Cached {
+    if let Some(v) = PATH_CACHE.with(|c| {
+        c.borrow()
+            .1
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v.clone())
+    }) {
+        return v;
+    }
+    let v = f();
+    PATH_CACHE.with(|c| {
+        let mut c = c.borrow_mut();
+        let (next, entries) = &mut *c;
+        if entries.len() < CACHE {
+            entries.push((key, v.clone()));
+        } else {
+            entries[*next] = (key, v.clone());
+            *next = (*next + 1) % CACHE;
+        }
+    });
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lambda_slopes_of_the_pieces_match_differences() {
+        for &lambda in &[0.05, 0.7, 6.0] {
+            let c_end = crate::physics::md::zero_radius_end(lambda).c;
+            for (piece, t) in [
+                (Piece::NonContact, 0.3 * c_end),
+                (Piece::NonContact, 0.9 * c_end),
+                (Piece::Contact, -3.0),
+                (Piece::Contact, 0.5),
+                (Piece::Contact, 4.0),
+            ] {
+                let (dl, dd) = Law::new(Model::Md, lambda).state_dlambda(piece, t);
+                let h = 1e-5 * lambda;
+                let (p, m) = (
+                    Law::new(Model::Md, lambda + h).state(piece, t),
+                    Law::new(Model::Md, lambda - h).state(piece, t),
+                );
+                let fl = (p.load - m.load) / (2.0 * h);
+                let fd = (p.approach - m.approach) / (2.0 * h);
+                let at = format!("{piece:?} at lambda {lambda}, t {t}");
+                assert!(
+                    (dl - fl).abs() <= 1e-7 * fl.abs().max(1.0),
+                    "{at}: {dl} {fl}"
+                );
+                assert!(
+                    (dd - fd).abs() <= 1e-7 * fd.abs().max(1.0),
+                    "{at}: {dd} {fd}"
+                );
+            }
+        }
+        assert_eq!(
+            Law::new(Model::Jkr, 1.0).state_dlambda(Piece::Contact, 2.0),
+            (0.0, 0.0)
+        );
+        assert_eq!(
+            Law::new(Model::Md, 1.0).state_dlambda(Piece::Free, 2.0),
+            (0.0, 0.0)
+        );
+    }
+
+    /// Each law's pieces join: the free piece ends where the first starts (DMT's load apart:
+    /// its adhesion, -2, acts from the touch), and each piece's end is the next one's start
+    /// (the contact piece starts at A = 1e-9, where JKR's approach is -(2/3) sqrt(6 A), 5e-5:
+    /// joints within 1e-4).
+    #[test]
+    fn each_laws_pieces_join() {
+        for model in Model::ALL {
+            for lambda in [0.05, 0.7, 6.0, 40.0] {
+                let law = Law::new(model, lambda);
+                let pieces = law.pieces(4.0);
+                let at = format!("{model:?} at lambda {lambda}");
+                let first = law.state(pieces[0].0, pieces[0].1);
+                assert!((first.approach - law.free_end()).abs() <= 1e-4, "{at}");
+                let touch = if model == Model::Dmt { -2.0 } else { 0.0 };
+                assert!((first.load - touch).abs() <= 1e-6, "{at}: {}", first.load);
+                for w in pieces.windows(2) {
+                    let (end, start) = (law.state(w[0].0, w[0].2), law.state(w[1].0, w[1].1));
+                    assert!(
+                        (end.load - start.load).abs() <= 1e-4,
+                        "{at}: {end:?} {start:?}"
+                    );
+                    assert!((end.approach - start.approach).abs() <= 1e-4, "{at}");
+                }
+                let top = law.state(Piece::Contact, pieces.last().unwrap().2);
+                assert!((top.a - 4.0).abs() <= 1e-12 * 4.0, "{at}: {}", top.a);
+            }
+        }
+    }
+}
