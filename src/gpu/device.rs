@@ -664,13 +664,12 @@ impl Gpu {
             contents: bytemuck::cast_slice(lambdas),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        let mut in_words = input.to_vec();
-        if in_words.is_empty() {
-            in_words.push(0);
-        }
+        // A buffer cannot be empty: one word stands in for no input (not a copy of the input,
+        // which can be hundreds of megabytes).
+        let in_words: &[u32] = if input.is_empty() { &[0] } else { input };
         let in_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("input"),
-            contents: bytemuck::cast_slice(&in_words),
+            contents: bytemuck::cast_slice(in_words),
             usage: wgpu::BufferUsages::STORAGE,
         });
         // Points per dispatch: within the workgroup limit and the binding size of the output
