@@ -824,7 +824,8 @@ fn grids_on_one_engine_reuse_only_their_own_preparation() {
 
 /// A force map's curve points batched on the GPU (`shaders/fit_states.wgsl`, f64): on lavapipe
 /// the mirror's bits, elsewhere its loads to rounding; everywhere the fit path's own states
-/// (`SpringPath::at`) within the path's tolerance, every point converged.
+/// (`SpringPath::at`) within the path's tolerance (the kernel's "converged" is the path's own
+/// stop: the residual within tolerance or the bracket closed), in one dispatch or several.
 #[test]
 fn fit_states_match_the_mirror_and_the_path() {
     use tabor::fit::{batch, synthetic::map_curve, units, Direction, Model, SpringPath};
@@ -855,6 +856,12 @@ fn fit_states_match_the_mirror_and_the_path() {
         b.points.len()
     );
     let out = g.fit_states(&b.curves, &b.points).unwrap();
+    // Split into dispatches of 768 points (1000 rounded to whole 256s): the input's slices
+    // start at aligned offsets, and the results are the same bits.
+    g.limit_dispatch(1000);
+    let chunked = g.fit_states(&b.curves, &b.points).unwrap();
+    g.limit_dispatch(0);
+    assert!(out == chunked, "a chunked run differs");
     let (mut worst_mirror, mut worst_path, mut same) = (0f64, 0f64, 0usize);
     for ((o, p), &(c, i)) in out.iter().zip(&b.points).zip(&b.index) {
         let m = fit_state(&b.curves[c as usize], p);

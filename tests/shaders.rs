@@ -100,6 +100,53 @@ fn fit_states_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("FitPoint64"), std::mem::size_of::<FitPoint64>());
     assert_eq!(size_of("FitOut64"), std::mem::size_of::<FitOut64>());
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
+    // Member by member: fields of one size swapped would keep the sizes.
+    let offsets = |name: &str| -> Vec<(String, usize)> {
+        let (_, t) = m
+            .types
+            .iter()
+            .find(|(_, t)| t.name.as_deref() == Some(name))
+            .unwrap();
+        let naga::TypeInner::Struct { members, .. } = &t.inner else {
+            panic!("{name} is not a struct")
+        };
+        members
+            .iter()
+            .map(|mm| (mm.name.clone().unwrap(), mm.offset as usize))
+            .collect()
+    };
+    use std::mem::offset_of;
+    let named = |v: &[(&str, usize)]| -> Vec<(String, usize)> {
+        v.iter().map(|&(n, o)| (n.to_string(), o)).collect()
+    };
+    assert_eq!(
+        offsets("FitCurve64"),
+        named(&[
+            ("lambda", offset_of!(FitCurve64, lambda)),
+            ("kbar", offset_of!(FitCurve64, kbar)),
+        ])
+    );
+    assert_eq!(
+        offsets("FitPoint64"),
+        named(&[
+            ("delta", offset_of!(FitPoint64, delta)),
+            ("mu_lo", offset_of!(FitPoint64, mu_lo)),
+            ("mu_hi", offset_of!(FitPoint64, mu_hi)),
+            ("mu_start", offset_of!(FitPoint64, mu_start)),
+            ("curve", offset_of!(FitPoint64, curve)),
+            ("pad0", offset_of!(FitPoint64, _pad)),
+        ])
+    );
+    assert_eq!(
+        offsets("FitOut64"),
+        named(&[
+            ("mu", offset_of!(FitOut64, mu)),
+            ("load", offset_of!(FitOut64, load)),
+            ("approach", offset_of!(FitOut64, approach)),
+            ("code", offset_of!(FitOut64, code)),
+            ("pad0", offset_of!(FitOut64, _pad)),
+        ])
+    );
 }
 
 /// The value of a named WGSL `const` of `m` (a scalar literal).

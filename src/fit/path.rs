@@ -625,7 +625,7 @@ impl SpringPath {
     /// A retract point for a batch on the GPU (`fit::batch`): where [`SpringPath::at`] solves
     /// it on the Maugis-Dugdale contact piece, its bracket there in mu = exp(-t) (low, high)
     /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
-    /// model, or beyond the path's ends).
+    /// model). A point above the path's top is bracketed at the top, as the CPU holds it.
     pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
         if self.law.model != Model::Md {
             return None;

@@ -508,7 +508,7 @@ impl Problem<'_> {
         let mut dt = DMatrix::zeros(m, n);
         for (i, s) in base.iter().enumerate() {
             // 1/g = dt/dDelta at fixed kbar, the state's slide along its piece; the state's
-            // slopes at s.t, as stored with it (`path::state`'s there, or theirs one Newton step
+            // slopes at s.t, as stored with it (`Law::state`'s there, or theirs one Newton step
             // below 1e-8 away, where `path::near` stopped).
             let g = s.dapproach + s.dload / u.kbar;
             let slides = !(s.piece == Piece::Free || s.clamped) && g.abs() > 0.0;
@@ -868,8 +868,9 @@ pub(super) fn fit_model_for(
         stop: stop_text(&report.termination),
         cov,
         jtj_inv,
+        // Only the Maugis-Dugdale fit is restarted from its states (the search's full fits).
         states: evaluated
-            .filter(|_| model.has_lambda())
+            .filter(|_| model == Model::Md)
             .map(|(_, s)| std::sync::Arc::new(s)),
     }
 }

@@ -352,10 +352,8 @@ pub(super) fn adequate_by_test(
     let fixed = opt.z0.is_some();
     let mut notes = Vec::new();
     for f in models {
-        let n = match f.model {
-            Model::Hertz => 3.0,
-            _ => 4.0,
-        };
+        // E*, the contact point, the offset, and w where the model has one.
+        let n = if f.model.adhesive() { 4.0 } else { 3.0 };
         let q = (n_md - n).max(1.0);
         // chi^2's 95% points for 1 and 2 degrees of freedom.
         let crit = if q >= 2.0 {
@@ -487,7 +485,7 @@ pub(super) fn adequate_by_tolerance(
             && m.rms_residual_n <= (1.0 + opt.tolerance) * md.rms_residual_n + floor
         {
             // Its parameters are its own: say how far its w is from Maugis-Dugdale's.
-            let w_note = if m.model == Model::Hertz {
+            let w_note = if !m.model.adhesive() {
                 String::new()
             } else {
                 format!(
@@ -506,7 +504,7 @@ pub(super) fn adequate_by_tolerance(
         }
         let mp = Params {
             e_star: m.e_star_pa,
-            w: if m.model == Model::Hertz {
+            w: if !m.model.adhesive() {
                 p.w
             } else {
                 m.work_of_adhesion_j_m2

@@ -279,6 +279,8 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
 }
 
 const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
+/// Dispatches over an input bound in slices hold a multiple of this many points.
+const SLICE_POINTS: usize = 256;
 
 /// With `TABOR_GPU_TRACE=1` each GPU run prints where its time went (pipeline, upload, each
 /// dispatch's wait and read-back) on stderr: the way to see a host-side bottleneck on an
@@ -341,7 +343,9 @@ impl Gpu {
             .max_storage_buffer_binding_size
             .min(limits.max_buffer_size);
         let max_buffer = limits.max_buffer_size;
-        let by_workgroups = limits.max_compute_workgroups_per_dimension as usize * WORKGROUP;
+        // The device's limit, not the adapter's: the device was asked for the defaults.
+        let by_workgroups =
+            device.limits().max_compute_workgroups_per_dimension as usize * WORKGROUP;
         let gpu = Gpu {
             adapter: AdapterSummary::of(&info),
             device,
@@ -428,7 +432,8 @@ impl Gpu {
     }
 
     /// Splits every run into dispatches of at most `n` points (0: as the adapter's limits
-    /// allow). Results do not depend on it; tests use it to exercise the chunked path that
+    /// allow; runs whose input is bound in slices round `n` down to a multiple of 256 points,
+    /// and up to 256). Results do not depend on it; tests use it to exercise the chunked path that
     /// only huge inputs reach otherwise.
     pub fn limit_dispatch(&self, n: usize) {
         self.max_dispatch
@@ -675,11 +680,17 @@ impl Gpu {
         // Points per dispatch: within the workgroup limit and the binding size of the output
         // (and of the per-point input).
         let limit = self.max_dispatch.load(std::sync::atomic::Ordering::Relaxed);
-        let chunk = self
+        let mut chunk = self
             .by_workgroups
             .min(self.max_binding as usize / out_bytes.max(input_stride))
             .min(if limit > 0 { limit } else { usize::MAX })
             .min(total);
+        // An input bound in slices starts each at `offset * stride` bytes, which must be a
+        // multiple of the storage offset alignment (at most 256 bytes): chunks of whole
+        // multiples of 256 points are, whatever the stride.
+        if input_stride > 0 && chunk < total {
+            chunk = (chunk / SLICE_POINTS).max(1) * SLICE_POINTS;
+        }
         let out_size = (chunk * out_bytes) as u64;
         let out_buf = d.create_buffer(&wgpu::BufferDescriptor {
             label: Some("out"),

@@ -227,7 +227,7 @@ pub struct FitPoint64 {
     pub _pad: u32,
 }
 
-/// One point's state. WGSL twin: `struct FitOut64`. `code` = status | evaluations << 8.
+/// One point's state. WGSL twin: `struct FitOut64`. `code` = status | iterations << 8.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq, Default)]
 pub struct FitOut64 {
@@ -237,19 +237,21 @@ pub struct FitOut64 {
     pub load: f64,
     /// The approach Dbar.
     pub approach: f64,
-    /// Status (0 converged, 2 not) in the low byte, curve-point evaluations above.
+    /// Status (0: the path's stop, the residual within tolerance or the bracket closed; 2: out
+    /// of iterations) in the low byte, the iterations above.
     pub code: u32,
     /// Padding to the WGSL alignment.
     pub _pad: u32,
 }
 
 impl FitOut64 {
-    /// Converged to the path's tolerance.
+    /// Stopped as the CPU path stops (the residual within tolerance, or the bracket closed).
     pub fn converged(&self) -> bool {
         self.code & 0xff == 0
     }
-    /// The curve-point evaluations used.
-    pub fn evaluations(&self) -> u32 {
+    /// The iterations taken: the curve-point evaluations, but for a search out of iterations
+    /// (one more).
+    pub fn iterations(&self) -> u32 {
         self.code >> 8
     }
 }

@@ -8,7 +8,8 @@ use crate::kernel::layout::{FitCurve64, FitOut64, FitPoint64};
 /// The state of `pt` on curve `c`'s path (`fit_states` in the shader).
 pub fn fit_state(c: &FitCurve64, pt: &FitPoint64) -> FitOut64 {
     let (mut lo, mut hi) = (pt.mu_lo, pt.mu_hi);
-    // WGSL's clamp: max, then min (no panic on a reversed bracket).
+    // WGSL's clamp for an ordered bracket (the host's always is), without Rust's panic on a
+    // reversed one.
     let mut mu = pt.mu_start.max(lo).min(hi);
     let (mut code, mut steps) = (2u32, 0u32);
     let mut p = curve_point64(c.lambda, mu);

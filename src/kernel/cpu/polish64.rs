@@ -1,6 +1,7 @@
 //! The CPU mirror of `shaders/polish64.wgsl` and of the curve point it shares with the other f64
-//! module (`shaders/curve64.wgsl`): the f64 refinement of one f32 state, as the kernel does it (its own atan: three half-angle steps and a series, since WGSL has no f64
-//! transcendentals). Read it side by side with the shader.
+//! module (`shaders/curve64.wgsl`): the f64 refinement of one f32 state, as the kernel does it
+//! (its own atan: three half-angle steps and a series, since WGSL has no f64 transcendentals).
+//! Read it side by side with the shaders.
 
 use crate::kernel::layout::{Lambda64, Out, Out64, Point64};
 use crate::solver::{Control, Status};
