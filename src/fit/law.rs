@@ -224,6 +224,17 @@ impl Law {
         }
     }
 
+    /// The load-controlled pull-off's magnitude, |Pbar_c| in units of `pi w R` (Hertz: 0): a
+    /// fit starts each model's w from the measured pull-off with it.
+    pub fn pulloff(&self) -> f64 {
+        match self.model {
+            Model::Hertz => 0.0,
+            Model::Dmt => 2.0,
+            Model::Jkr => 1.5,
+            Model::Md => crate::physics::closed::cos_pulloff(self.lambda).abs(),
+        }
+    }
+
     /// Whether a state exists at parameter `t` of `piece` (JKR's contact piece needs A > 0).
     pub fn on_piece(&self, piece: Piece, t: f64) -> bool {
         t.is_finite() && !(self.model == Model::Jkr && piece == Piece::Contact && t <= 0.0)

@@ -149,17 +149,33 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     };
     let w_ref = w_of(1.75);
     let hertz = fit_model(Model::Hertz, &d, opt, start(w_ref, 1.0), w_ref, None);
-    let dmt = fit_model(Model::Dmt, &d, opt, start(w_of(2.0), 1.0), w_ref, None);
-    let jkr = fit_model(Model::Jkr, &d, opt, start(w_of(1.5), 1.0), w_ref, None);
-    // Maugis-Dugdale from the closed forms' answers and from the middle.
-    let from = |m: &ModelFit, lambda: f64, pc_bar: f64, pc_md: f64| Params {
+    let pulloff = |model: Model, lambda: f64| law::Law::new(model, lambda).pulloff();
+    let dmt = fit_model(
+        Model::Dmt,
+        &d,
+        opt,
+        start(w_of(pulloff(Model::Dmt, 1.0)), 1.0),
+        w_ref,
+        None,
+    );
+    let jkr = fit_model(
+        Model::Jkr,
+        &d,
+        opt,
+        start(w_of(pulloff(Model::Jkr, 1.0)), 1.0),
+        w_ref,
+        None,
+    );
+    // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
+    // of the pull-offs, and from the middle where that failed.
+    let from = |m: &ModelFit, lambda: f64, pc_md: f64| Params {
         e_star: if m.status == FitStatus::Ok {
             m.e_star_pa
         } else {
             est.e_star
         },
         w: if m.status == FitStatus::Ok {
-            m.work_of_adhesion_j_m2 * pc_bar / pc_md
+            m.work_of_adhesion_j_m2 * pulloff(m.model, 1.0) / pc_md
         } else {
             w_of(pc_md)
         },
@@ -186,11 +202,11 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
         None => {
             let profile: Vec<ModelFit> = profile_lambdas()
                 .map(|l| {
-                    let pc = crate::physics::closed::cos_pulloff(l).abs();
+                    let pc = pulloff(Model::Md, l);
                     let s = if l < 1.0 {
-                        from(&dmt, l, 2.0, pc)
+                        from(&dmt, l, pc)
                     } else {
-                        from(&jkr, l, 1.5, pc)
+                        from(&jkr, l, pc)
                     };
                     fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
                 })
@@ -245,12 +261,12 @@ fn fixed_z0_fit(
     opt: &FitOptions,
     z0: f64,
     (dmt, jkr): (&ModelFit, &ModelFit),
-    from: &dyn Fn(&ModelFit, f64, f64, f64) -> Params,
+    from: &dyn Fn(&ModelFit, f64, f64) -> Params,
     w_ref: f64,
 ) -> Result<(ModelFit, interval::Intervals), Box<CurveFit>> {
     let best = better(dmt.clone(), jkr.clone());
-    let pc = if best.model == Model::Dmt { 2.0 } else { 1.5 };
-    let mut s = from(&best, 1.0, pc, pc);
+    let pc = law::Law::new(best.model, 1.0).pulloff();
+    let mut s = from(&best, 1.0, pc);
     s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
     if crate::solver::domain::check_lambda(s.lambda).is_err() {
         let mut out = fail(
