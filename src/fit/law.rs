@@ -224,8 +224,9 @@ impl Law {
         }
     }
 
-    /// The load-controlled pull-off's magnitude, |Pbar_c| in units of `pi w R` (Hertz: 0): a
-    /// fit starts each model's w from the measured pull-off with it.
+    /// The load-controlled pull-off's magnitude, |Pbar_c| in units of `pi w R` (Hertz: 0;
+    /// Maugis-Dugdale: the Johnson-Greenwood fit, within 2% of the exact): a fit starts
+    /// each model's w from the measured pull-off with it.
     pub fn pulloff(&self) -> f64 {
         match self.model {
             Model::Hertz => 0.0,
@@ -372,6 +373,33 @@ mod tests {
             Law::new(Model::Md, 1.0).state_dlambda(Piece::Free, 2.0),
             (0.0, 0.0)
         );
+    }
+
+    /// The pull-offs the starts take w from: DMT's and JKR's are Maugis-Dugdale's limits and
+    /// their paths' most tensile loads; Maugis-Dugdale's is within 2% of its path's.
+    #[test]
+    fn pulloffs_are_the_models_and_the_limits() {
+        let md = |lambda: f64| Law::new(Model::Md, lambda).pulloff();
+        assert!((md(1e-4) - Law::new(Model::Dmt, 1.0).pulloff()).abs() < 1e-3);
+        assert!((md(1e4) - Law::new(Model::Jkr, 1.0).pulloff()).abs() < 1e-3);
+        assert_eq!(Law::new(Model::Hertz, 1.0).pulloff(), 0.0);
+        for law in [
+            Law::new(Model::Jkr, 1.0),
+            Law::new(Model::Md, 0.3),
+            Law::new(Model::Md, 3.0),
+        ] {
+            let contact = law.pieces(4.0).pop().unwrap();
+            let lowest = (0..20001)
+                .map(|i| contact.1 + (contact.2 - contact.1) * i as f64 / 20000.0)
+                .map(|t| law.state(Piece::Contact, t).load)
+                .fold(f64::INFINITY, f64::min);
+            let tol = if law.model == Model::Md { 0.02 } else { 1e-6 };
+            assert!(
+                (-lowest / law.pulloff() - 1.0).abs() < tol,
+                "{law:?}: {lowest} {}",
+                law.pulloff()
+            );
+        }
     }
 
     /// Each law's pieces join: the free piece ends where the first starts (DMT's load apart:
