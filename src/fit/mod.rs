@@ -150,22 +150,12 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     let w_ref = w_of(1.75);
     let hertz = fit_model(Model::Hertz, &d, opt, start(w_ref, 1.0), w_ref, None);
     let pulloff = |model: Model, lambda: f64| law::Law::new(model, lambda).pulloff();
-    let dmt = fit_model(
-        Model::Dmt,
-        &d,
-        opt,
-        start(w_of(pulloff(Model::Dmt, 1.0)), 1.0),
-        w_ref,
-        None,
-    );
-    let jkr = fit_model(
-        Model::Jkr,
-        &d,
-        opt,
-        start(w_of(pulloff(Model::Jkr, 1.0)), 1.0),
-        w_ref,
-        None,
-    );
+    // A closed form with adhesion, its w started from the measured pull-off with its own.
+    let closed = |model| {
+        let s = start(w_of(pulloff(model, 1.0)), 1.0);
+        fit_model(model, &d, opt, s, w_ref, None)
+    };
+    let (dmt, jkr) = (closed(Model::Dmt), closed(Model::Jkr));
     // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
     // of the pull-offs, and from the middle where that failed.
     let from = |m: &ModelFit, lambda: f64, pc_md: f64| Params {

@@ -148,7 +148,6 @@ pub struct SpringPath {
     /// The normalised spring stiffness kbar.
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
-    free_end: f64,
     /// Retract segments from the top down, and the retract's first jump (the last segment
     /// before it).
     retract: (Vec<Segment>, Option<usize>),
@@ -194,7 +193,6 @@ impl SpringPath {
             law,
             kbar,
             pieces,
-            free_end: law.free_end(),
             retract: (Vec::new(), None),
             approach: std::cell::OnceCell::new(),
         };
@@ -386,7 +384,7 @@ impl SpringPath {
                     segs.push(Segment {
                         piece: Piece::Free,
                         t_lo: f64::NEG_INFINITY,
-                        t_hi: delta_lo.min(self.free_end),
+                        t_hi: delta_lo.min(self.law.free_end()),
                         delta_lo: f64::NEG_INFINITY,
                         delta_hi: delta_lo,
                     });
@@ -401,13 +399,13 @@ impl SpringPath {
     fn follow_approach(&self) -> Vec<Segment> {
         let mut segs = Vec::new();
         // Free up to its end, then jump up.
-        let mut delta_lo = self.free_end;
+        let mut delta_lo = self.law.free_end();
         segs.push(Segment {
             piece: Piece::Free,
             t_lo: f64::NEG_INFINITY,
-            t_hi: self.free_end,
+            t_hi: self.law.free_end(),
             delta_lo: f64::NEG_INFINITY,
-            delta_hi: self.free_end,
+            delta_hi: self.law.free_end(),
         });
         let (mut k, mut t_from) = (0usize, f64::NEG_INFINITY);
         loop {
@@ -676,7 +674,7 @@ impl SpringPath {
             .chain(self.segments(Direction::Approach))
             .filter(|s| s.piece != Piece::Free)
             .map(|s| s.delta_lo)
-            .fold(self.free_end, f64::min)
+            .fold(self.law.free_end(), f64::min)
     }
 
     /// The most tensile load on the path followed in a direction (the pull-off a cantilever

@@ -677,20 +677,7 @@ impl Gpu {
             contents: bytemuck::cast_slice(in_words),
             usage: wgpu::BufferUsages::STORAGE,
         });
-        // Points per dispatch: within the workgroup limit and the binding size of the output
-        // (and of the per-point input).
-        let limit = self.max_dispatch.load(std::sync::atomic::Ordering::Relaxed);
-        let mut chunk = self
-            .by_workgroups
-            .min(self.max_binding as usize / out_bytes.max(input_stride))
-            .min(if limit > 0 { limit } else { usize::MAX })
-            .min(total);
-        // An input bound in slices starts each at `offset * stride` bytes, which must be a
-        // multiple of the storage offset alignment (at most 256 bytes): chunks of whole
-        // multiples of 256 points are, whatever the stride.
-        if input_stride > 0 && chunk < total {
-            chunk = (chunk / SLICE_POINTS).max(1) * SLICE_POINTS;
-        }
+        let chunk = self.chunk_points(total, out_bytes, input_stride);
         let out_size = (chunk * out_bytes) as u64;
         let out_buf = d.create_buffer(&wgpu::BufferDescriptor {
             label: Some("out"),
@@ -734,6 +721,25 @@ impl Gpu {
             );
         }
         Ok(result)
+    }
+
+    /// Points per dispatch of a run of `total`: within the workgroup limit, the binding size of
+    /// the output (and of the per-point input) and `limit_dispatch`'s.
+    fn chunk_points(&self, total: usize, out_bytes: usize, input_stride: usize) -> usize {
+        let limit = self.max_dispatch.load(std::sync::atomic::Ordering::Relaxed);
+        let chunk = self
+            .by_workgroups
+            .min(self.max_binding as usize / out_bytes.max(input_stride))
+            .min(if limit > 0 { limit } else { usize::MAX })
+            .min(total);
+        // An input bound in slices starts each at `offset * stride` bytes, which must be a
+        // multiple of the storage offset alignment (at most 256 bytes): chunks of whole
+        // multiples of 256 points are, whatever the stride.
+        if input_stride > 0 && chunk < total {
+            (chunk / SLICE_POINTS).max(1) * SLICE_POINTS
+        } else {
+            chunk
+        }
     }
 
     /// One dispatch of `p.count` points from `p.offset`, its results appended to `result`.
