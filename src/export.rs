@@ -216,12 +216,9 @@ pub fn write_fit_npy(
         grid.iter().map(|i| {
             ok(i)
                 .and_then(|r| r.adequate_model)
-                .map_or(-1i8, |m| match m {
-                    crate::fit::Model::Hertz => 0,
-                    crate::fit::Model::Dmt => 1,
-                    crate::fit::Model::Jkr => 2,
-                    crate::fit::Model::Md => 3,
-                })
+                // The ladder's index (Hertz 0, DMT 1, JKR 2, MD 3).
+                .and_then(|m| crate::fit::Model::ALL.iter().position(|x| *x == m))
+                .map_or(-1i8, |i| i as i8)
         }),
     )?;
     outs.push(out);

@@ -556,7 +556,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     ``temperature_k``), each fitted curve's dict has a ``humidity`` dict, as ``tabor fit
     --relative-humidity`` gives: the ``meniscus``, the fitted model's load-controlled pull-off
     and ``solid_work_of_adhesion_j_m2``, the solid's w with the meniscus taken out of it (None,
-    with the reason in ``note``, where the meniscus alone pulls off harder)."""
+    with the reason in ``note``, where the meniscus alone pulls off harder). Where that reading
+    is doubtful (``fair_reading`` False: the meniscus reaches beyond the one zone's range),
+    ``shape_fit`` is the two-zone law fitted to the curve's shape: ``fit`` (E*, the solid's w
+    and lambda, ``model`` "solid_and_meniscus"), ``z0_m``, ``lambda_profile``, ``lambda_95``,
+    ``lambda_bounded`` and ``solid_w_95``; None where the reading is fair."""
     h = np.ascontiguousarray(height_m, dtype=float).ravel()
     f = np.ascontiguousarray(force_n, dtype=float).ravel()
     seg = np.asarray(segment).ravel()

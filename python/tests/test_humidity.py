@@ -151,6 +151,32 @@ def test_fit_in_humid_air_gives_the_solid_w_of_infer_on_the_fitted_pulloff():
     assert dry["solid_work_of_adhesion_j_m2"] == r["work_of_adhesion_j_m2"]
 
 
+# Two zones (examples/wet_curve.rs): E* 1.5 GPa, solid w 0.03 J/m^2, lambda 0.5, RH 0.7, 10 deg.
+WET_CURVE = ROOT / "tests" / "data" / "wet_curve.csv"
+
+
+def test_a_curve_beyond_one_zone_is_fitted_with_two_zones_as_on_the_command_line():
+    rows = np.genfromtxt(WET_CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    r = tabor.fit_curve(rows["height_m"], rows["force_n"], rows["segment"], radius_m=20e-9,
+                        spring_n_m=2.0, relative_humidity=0.7, contact_angle_deg=10)
+    h = r["humidity"]
+    assert h["fair_reading"] is False
+    s = h["shape_fit"]
+    f = s["fit"]
+    assert f["model"] == "solid_and_meniscus"
+    assert f["e_star_pa"] == pytest.approx(1.5e9, rel=1e-6)
+    assert f["work_of_adhesion_j_m2"] == pytest.approx(0.03, rel=1e-6)
+    assert f["lambda"] == pytest.approx(0.5, rel=1e-5)
+    assert s["lambda_bounded"] is True
+    out = subprocess.run([tabor_bin(), "fit", "-i", str(WET_CURVE), "--radius", "20e-9", "--spring-n-m",
+                          "2", "--relative-humidity", "0.7", "--contact-angle-deg", "10"],
+                         capture_output=True, text=True)
+    cli = json.loads(out.stdout)["curves"][0]["humidity"]["shape_fit"]
+    for k in ("e_star_pa", "work_of_adhesion_j_m2", "lambda", "rms_residual_n"):
+        assert f[k] == pytest.approx(cli["fit"][k], rel=1e-12), k
+    assert s["lambda_95"] == pytest.approx(cli["lambda_95"], rel=1e-12)
+
+
 @pytest.mark.parametrize("kw,flags", [
     ({"relative_humidity": 1.5}, ["--relative-humidity", "1.5"]),
     ({"relative_humidity": -0.1}, ["--relative-humidity", "-0.1"]),

@@ -389,7 +389,7 @@ fn humidity_line(h: &fit::humidity::FitHumidity) -> String {
 }
 
 /// The humidity columns of the CSV table.
-const HUMIDITY_COLUMNS: [&str; 14] = [
+const HUMIDITY_COLUMNS: [&str; 25] = [
     "relative_humidity",
     "contact_angle_deg",
     "kelvin_radius_m",
@@ -404,6 +404,17 @@ const HUMIDITY_COLUMNS: [&str; 14] = [
     "meniscus_range_over_fitted_range",
     "fair_reading",
     "humidity_note",
+    "shape_fit_status",
+    "shape_e_star_pa",
+    "shape_solid_work_of_adhesion_j_m2",
+    "shape_solid_lambda",
+    "shape_solid_z0_m",
+    "shape_rms_residual_n",
+    "shape_lambda_95_low",
+    "shape_lambda_95_high",
+    "shape_lambda_bounded",
+    "shape_solid_w_95_low",
+    "shape_solid_w_95_high",
 ];
 
 fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
@@ -412,7 +423,7 @@ fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
         return vec![String::new(); HUMIDITY_COLUMNS.len()];
     };
     let m = h.meniscus.as_ref();
-    vec![
+    let mut cells = vec![
         f(Some(h.relative_humidity)),
         f(Some(h.contact_angle_deg)),
         f(m.map(|m| m.kelvin_radius_m)),
@@ -427,7 +438,26 @@ fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
         f(h.meniscus_range_over_fitted_range),
         h.fair_reading.to_string(),
         h.note.clone(),
-    ]
+    ];
+    let sf = h.shape_fit.as_ref();
+    let fit = sf.map(|s| &s.fit);
+    let end = |k: usize, r: Option<[f64; 2]>| f(r.map(|r| r[k]));
+    cells.extend([
+        fit.and_then(|f| serde_json::to_value(f.status).ok())
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default(),
+        f(fit.map(|f| f.e_star_pa)),
+        f(fit.map(|f| f.work_of_adhesion_j_m2)),
+        f(fit.and_then(|f| f.lambda)),
+        f(sf.map(|s| s.z0_m)),
+        f(fit.map(|f| f.rms_residual_n)),
+        end(0, sf.and_then(|s| s.lambda_95)),
+        end(1, sf.and_then(|s| s.lambda_95)),
+        sf.map_or(String::new(), |s| s.lambda_bounded.to_string()),
+        end(0, sf.and_then(|s| s.solid_w_95)),
+        end(1, sf.and_then(|s| s.solid_w_95)),
+    ]);
+    cells
 }
 
 fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {

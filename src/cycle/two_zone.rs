@@ -8,7 +8,9 @@
 use super::{check_drive, control_of, run, Branch, Cycle, Drive, Jump, Md, PathLaw};
 use super::{PathPoint, Phase};
 use crate::physics::two_zone::Zones;
-use crate::physics::two_zone::{non_contact_both, non_contact_single, NonContactPoint, Shape};
+use crate::physics::two_zone::{
+    non_contact_both, non_contact_ends, non_contact_single, NonContactPoint, Shape,
+};
 use crate::solver::two_zone::{TwoZoneContext, TwoZoneState, ZonesError};
 use crate::solver::Status;
 
@@ -80,33 +82,6 @@ fn failed(what: &str, s: Status) -> ZonesError {
     ))
 }
 
-/// The largest `x` in `[0, hi]` (hi doubled until `below(x)` holds) with `below(x)` false, by
-/// bisection: where a monotone quantity crosses its limit.
-fn crossing(below: impl Fn(f64) -> bool, start: f64) -> Option<f64> {
-    let mut hi = start;
-    let mut n = 0;
-    while !below(hi) {
-        hi *= 2.0;
-        n += 1;
-        if n > 60 {
-            return None;
-        }
-    }
-    let mut lo = 0.0;
-    for _ in 0..200 {
-        let m = 0.5 * (lo + hi);
-        if below(m) {
-            hi = m;
-        } else {
-            lo = m;
-        }
-        if hi - lo <= 1e-15 * hi {
-            break;
-        }
-    }
-    Some(lo)
-}
-
 fn nc_point(p: &NonContactPoint, long: usize) -> PathPoint {
     PathPoint {
         branch: Branch::NonContact,
@@ -127,36 +102,15 @@ fn contact_point(s: &TwoZoneState, long: usize) -> PathPoint {
     }
 }
 
-/// The ends of the non-contact branch's two stretches: the longer zone's disc radius where the
-/// axis gap falls to the shorter range, and the shorter zone's disc radius where the axis gap
-/// closes (the A -> 0 end of the contact curve).
-pub(crate) fn non_contact_ends(ctx: &TwoZoneContext) -> Result<(f64, f64), ZonesError> {
-    let z = &ctx.zones;
-    let Shape::Two { long } = z.shape() else {
-        return Err(ZonesError(
-            "one zone: no two-disc non-contact branch".into(),
-        ));
-    };
-    let h_short = z.range[1 - long];
-    let scale = z.range[long].sqrt();
-    let c1 = crossing(|c| non_contact_single(z, c).axis_gap < h_short, scale)
-        .ok_or_else(|| failed("the longer zone's disc", Status::NotConverged))?;
-    let both_gap = |c: f64| non_contact_both(z, c).map_or(f64::NAN, |p| p.axis_gap);
-    let c2 = crossing(|c| !(both_gap(c) >= 0.0), c1.max(scale))
-        .ok_or_else(|| failed("the two discs", Status::NotConverged))?;
-    Ok((c1, c2))
+/// The ends of the non-contact branch's two stretches ([`non_contact_ends`] of its zones).
+pub(crate) fn non_contact_ends_of(ctx: &TwoZoneContext) -> Result<(f64, f64), ZonesError> {
+    non_contact_ends(&ctx.zones).ok_or_else(|| failed("the discs", Status::NotConverged))
 }
 
 /// The non-contact branch: the longer zone's disc alone, then both discs.
 fn non_contact_path(ctx: &TwoZoneContext, long: usize) -> Result<Vec<PathPoint>, ZonesError> {
     let z = &ctx.zones;
-    let h_short = z.range[1 - long];
-    let scale = z.range[long].sqrt();
-    let c1 = crossing(|c| non_contact_single(z, c).axis_gap < h_short, scale)
-        .ok_or_else(|| failed("the longer zone's disc", Status::NotConverged))?;
-    let both_gap = |c: f64| non_contact_both(z, c).map_or(f64::NAN, |p| p.axis_gap);
-    let c2 = crossing(|c| !(both_gap(c) >= 0.0), c1.max(scale))
-        .ok_or_else(|| failed("the two discs", Status::NotConverged))?;
+    let (c1, c2) = non_contact_ends_of(ctx)?;
     let mut path: Vec<PathPoint> = (0..N)
         .map(|i| nc_point(&non_contact_single(z, c1 * i as f64 / (N - 1) as f64), long))
         .collect();

@@ -9,7 +9,11 @@
 use super::path::{Piece, Pt};
 use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
 use crate::physics::model::ContactModel;
+use crate::physics::two_zone::{
+    non_contact_both, non_contact_ends, non_contact_single, point_with_slopes, Shape, Zones,
+};
 use crate::solver::context::x_at_radius_newton;
+use crate::solver::two_zone::{x_at_radius, TwoZoneContext};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -27,10 +31,15 @@ pub enum Model {
     Jkr,
     /// Maugis-Dugdale, lambda fitted (or fixed by z0).
     Md,
+    /// The solid's Dugdale zone (its w and lambda fitted, or lambda fixed by z0) plus the water
+    /// meniscus of a given humidity (docs/PHYSICS.md section 10): fitted to a humid curve's
+    /// shape beside the ladder of [`Model::ALL`].
+    SolidAndMeniscus,
 }
 
 impl Model {
-    /// Every fitted model, from the simplest.
+    /// The ladder of fitted models, from the simplest: every curve is fitted with these, and
+    /// the adequate model is one of them.
     pub const ALL: [Model; 4] = [Model::Hertz, Model::Dmt, Model::Jkr, Model::Md];
 
     /// Whether the model has adhesion, so that a fit has a w (all but Hertz).
@@ -40,7 +49,14 @@ impl Model {
 
     /// Whether the model has a Maugis parameter, so that a fit has a lambda (Maugis-Dugdale).
     pub fn has_lambda(self) -> bool {
-        self == Model::Md
+        matches!(self, Model::Md | Model::SolidAndMeniscus)
+    }
+
+    /// Whether the model's normalised path depends on lambda alone, so that E* and w only
+    /// scale it (the analytic Jacobian's premise). The two-zone law's does not: its meniscus is
+    /// fixed in SI units, so its ratios to the solid's zone move with E* and w.
+    pub fn scales(self) -> bool {
+        self != Model::SolidAndMeniscus
     }
 
     /// The model in the common vocabulary.
@@ -50,6 +66,7 @@ impl Model {
             Model::Dmt => ContactModel::Dmt,
             Model::Jkr => ContactModel::Jkr,
             Model::Md => ContactModel::Md,
+            Model::SolidAndMeniscus => ContactModel::SolidAndMeniscus,
         }
     }
 
@@ -73,7 +90,8 @@ impl From<Model> for ContactModel {
 impl TryFrom<ContactModel> for Model {
     type Error = String;
 
-    /// The fitted model of a contact model; the rigid and two-zone ones are not fitted.
+    /// The ladder's model of a contact model; the rigid and two-zone ones are not on it (the
+    /// two-zone law is fitted beside it, with a humidity).
     fn try_from(m: ContactModel) -> Result<Model, String> {
         Model::ALL
             .into_iter()
@@ -85,6 +103,26 @@ impl TryFrom<ContactModel> for Model {
                 )
             })
     }
+}
+
+/// The two-zone law of a fitted solid (E* in Pa, its w in J/m^2 and its Maugis parameter
+/// lambda) on a tip of radius `radius` (m) in a meniscus of stress `s2` (Pa, the Laplace
+/// pressure) and range `h2` (m), and the total w (J/m^2) whose units its path is in. The solid's
+/// zone is lambda's Dugdale zone, `s1 = (lambda / 2) (pi w K^2 / R)^(1/3)` over `h1 = w / s1`.
+pub fn solid_and_meniscus_of(
+    e_star: f64,
+    w: f64,
+    lambda: f64,
+    radius: f64,
+    (s2, h2): (f64, f64),
+) -> (Law, f64) {
+    let k = 4.0 / 3.0 * e_star;
+    let s1 = 0.5 * lambda * (PI * w * k * k / radius).cbrt();
+    let h1 = w / s1;
+    (
+        Law::solid_and_meniscus(lambda, s2 / s1, h2 / h1),
+        w + s2 * h2,
+    )
 }
 
 /// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
@@ -100,18 +138,84 @@ const NODES: usize = 320;
 pub struct Law {
     /// The model.
     pub model: Model,
-    /// Its Maugis parameter (Maugis-Dugdale only).
+    /// Its Maugis parameter (Maugis-Dugdale; the solid's for the two-zone law).
     pub lambda: f64,
+    /// The two-zone law's second zone: its stress and range over the solid's (0 otherwise).
+    pub second: [f64; 2],
+}
+
+/// How a law's path is computed: a one-zone law (a two-zone law whose zones share one range, or
+/// whose meniscus is absent, is Maugis-Dugdale at its summed lambda), or two zones of two ranges
+/// (the longer one's index, and the non-contact branch's two stretches' ends, `C_L` and `C_S`).
+enum Zoned {
+    One(Law),
+    Two(Zones, usize, (f64, f64)),
+    Unsolvable,
 }
 
 impl Law {
     /// `model` at `lambda` (in the solver's domain where the model is Maugis-Dugdale).
     pub fn new(model: Model, lambda: f64) -> Law {
-        Law { model, lambda }
+        Law {
+            model,
+            lambda,
+            second: [0.0; 2],
+        }
+    }
+
+    /// The two-zone law: the solid's zone at its own Maugis parameter `lambda_s` and a second
+    /// zone of `stress_ratio` and `range_ratio` times its stress and range, in the total-w units
+    /// of docs/PHYSICS.md section 10 ([`Zones::from_ratios`]).
+    pub fn solid_and_meniscus(lambda_s: f64, stress_ratio: f64, range_ratio: f64) -> Law {
+        Law {
+            model: Model::SolidAndMeniscus,
+            lambda: lambda_s,
+            second: [stress_ratio, range_ratio],
+        }
+    }
+
+    /// The law's zones: one (itself, or the two-zone law that is one zone) or two.
+    fn zoned(&self) -> Zoned {
+        if self.model != Model::SolidAndMeniscus {
+            return Zoned::One(*self);
+        }
+        let Ok(z) = Zones::from_ratios(self.lambda, self.second[0], self.second[1]) else {
+            return Zoned::Unsolvable;
+        };
+        match z.shape() {
+            Shape::Single { lambda } => Zoned::One(Law::new(Model::Md, lambda)),
+            Shape::Two { long } => {
+                let key = Key::Ends(self.bits());
+                match cached(key, || {
+                    Cached::Ends(non_contact_ends(&z).unwrap_or((f64::NAN, f64::NAN)))
+                }) {
+                    Cached::Ends(e) if e.0.is_finite() && e.1.is_finite() => Zoned::Two(z, long, e),
+                    _ => Zoned::Unsolvable,
+                }
+            }
+        }
+    }
+
+    fn bits(&self) -> [u64; 3] {
+        [
+            self.lambda.to_bits(),
+            self.second[0].to_bits(),
+            self.second[1].to_bits(),
+        ]
     }
 
     /// The state at parameter t of a piece.
     pub fn state(&self, piece: Piece, t: f64) -> Pt {
+        match self.zoned() {
+            Zoned::One(l) => l.one_zone_state(piece, t),
+            Zoned::Two(z, _, ends) if piece != Piece::Free => two_zone_state(&z, ends, piece, t),
+            Zoned::Two(..) => Law::new(Model::Md, 1.0).one_zone_state(piece, t),
+            Zoned::Unsolvable => Pt::nan(),
+        }
+    }
+
+    /// The state of a one-zone law (Maugis-Dugdale or a closed form).
+    fn one_zone_state(&self, piece: Piece, t: f64) -> Pt {
         let (model, lambda) = (self.model, self.lambda);
         match piece {
             Piece::Free => Pt {
@@ -134,7 +238,7 @@ impl Law {
                 }
             }
             Piece::Contact => match model {
-                Model::Md => {
+                Model::Md | Model::SolidAndMeniscus => {
                     let mu = (-t).exp();
                     let c = curve_point(lambda, mu);
                     Pt {
@@ -174,6 +278,8 @@ impl Law {
     pub fn state_dlambda(&self, piece: Piece, t: f64) -> (f64, f64) {
         let (model, lambda) = (self.model, self.lambda);
         match (piece, model) {
+            // The two-zone law's Jacobian is taken by differences (`Model::scales`).
+            (_, Model::SolidAndMeniscus) => (f64::NAN, f64::NAN),
             (Piece::NonContact, _) => (
                 -PI / 2.0 * t * t,
                 -8.0 / (3.0 * PI) * t + 2.0 / (PI * lambda * lambda),
@@ -187,52 +293,72 @@ impl Law {
     }
 
     /// The approach at which the free piece ends and a force first acts (Maugis-Dugdale: the
-    /// Dugdale zone's reach; the closed forms: touching).
+    /// Dugdale zone's reach; two zones: the longer one's; the closed forms: touching).
     pub fn free_end(&self) -> f64 {
-        if self.model == Model::Md {
-            -2.0 / (PI * self.lambda)
-        } else {
-            0.0
+        match self.zoned() {
+            Zoned::One(l) if l.model == Model::Md => -2.0 / (PI * l.lambda),
+            Zoned::One(_) => 0.0,
+            Zoned::Two(z, long, _) => -z.range[long],
+            Zoned::Unsolvable => f64::NAN,
         }
     }
 
     /// The contact piece's parameter at contact radius `a` (a Newton search for
-    /// Maugis-Dugdale, kept per thread: a fit at fixed lambda asks for the same radii again).
+    /// Maugis-Dugdale, a bisection for two zones, kept per thread: a fit at fixed lambda asks
+    /// for the same radii again).
     pub fn t_of_radius(&self, a: f64) -> f64 {
-        if self.model != Model::Md {
-            return a;
-        }
-        -cached(Key::Radius(self.lambda.to_bits(), a.to_bits()), || {
-            Cached::X(x_at_radius_newton(self.lambda, a))
+        let zoned = self.zoned();
+        let law = match &zoned {
+            Zoned::One(l) if l.model != Model::Md => return a,
+            Zoned::One(l) => *l,
+            Zoned::Two(..) => *self,
+            Zoned::Unsolvable => return f64::NAN,
+        };
+        -cached(Key::Radius(law.model, law.bits(), a.to_bits()), || {
+            Cached::X(match &zoned {
+                Zoned::Two(z, ..) => x_at_radius(z, a),
+                _ => x_at_radius_newton(law.lambda, a),
+            })
         })
         .x()
     }
 
     /// The pieces after the free one, from the free end up, each with the parameter range it is
-    /// followed over: the contact piece from its start up to radius `a_max`.
+    /// followed over: the contact piece from its start up to radius `a_max`. Two zones'
+    /// non-contact piece is both of its stretches, the parameter `C_L` of the longer zone's disc
+    /// up to its end, then `C_L` plus the shorter zone's `C_S`.
     pub fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
         let contact = (
             Piece::Contact,
             self.t_of_radius(A_START),
             self.t_of_radius(a_max),
         );
-        if self.model == Model::Md {
-            let c_end = zero_radius_end(self.lambda).c;
-            vec![(Piece::NonContact, 0.0, c_end), contact]
-        } else {
-            vec![contact]
+        match self.zoned() {
+            Zoned::One(l) if l.model == Model::Md => {
+                let c_end = zero_radius_end(l.lambda).c;
+                vec![(Piece::NonContact, 0.0, c_end), contact]
+            }
+            Zoned::Two(_, _, (c_l, c_s)) => vec![(Piece::NonContact, 0.0, c_l + c_s), contact],
+            _ => vec![contact],
         }
     }
 
     /// The load-controlled pull-off's magnitude, |Pbar_c| in units of `pi w R` (Hertz: 0;
-    /// Maugis-Dugdale: the Johnson-Greenwood fit, within 2% of the exact): a fit starts
-    /// each model's w from the measured pull-off with it.
+    /// Maugis-Dugdale: the Johnson-Greenwood fit, within 2% of the exact; two zones: the
+    /// exact, in their total w's units): a fit starts each model's w from the measured
+    /// pull-off with it.
     pub fn pulloff(&self) -> f64 {
         match self.model {
             Model::Hertz => 0.0,
             Model::Dmt => 2.0,
             Model::Jkr => 1.5,
             Model::Md => crate::physics::closed::cos_pulloff(self.lambda).abs(),
+            Model::SolidAndMeniscus => {
+                Zones::from_ratios(self.lambda, self.second[0], self.second[1])
+                    .ok()
+                    .and_then(|z| TwoZoneContext::new(z).ok())
+                    .map_or(f64::NAN, |c| c.load_pulloff.load.abs())
+            }
         }
     }
 
@@ -244,16 +370,10 @@ impl Law {
     /// The states at the nodes of a piece between t0 and t1 (kept per thread: a fit at fixed
     /// lambda evaluates them once).
     pub(crate) fn nodes(&self, piece: Piece, t0: f64, t1: f64) -> std::rc::Rc<Vec<(f64, Pt)>> {
-        let key = Key::Nodes(
-            self.model,
-            self.lambda.to_bits(),
-            piece,
-            t0.to_bits(),
-            t1.to_bits(),
-        );
+        let key = Key::Nodes(self.model, self.bits(), piece, t0.to_bits(), t1.to_bits());
         let v = cached(key, || {
-            // The non-contact piece is a quadratic in C: one fold at most.
-            let n = if piece == Piece::NonContact {
+            // One zone's non-contact piece is a quadratic in C: one fold at most.
+            let n = if piece == Piece::NonContact && self.model != Model::SolidAndMeniscus {
                 64
             } else {
                 NODES
@@ -269,31 +389,83 @@ impl Law {
         });
         match v {
             Cached::Nodes(n) => n,
-            Cached::X(_) => unreachable!("a node key holds nodes"),
+            _ => unreachable!("a node key holds nodes"),
         }
     }
 }
 
-/// What the per-thread cache holds: a radius's parameter on the contact piece, or the states at
-/// a piece's nodes.
+/// What the per-thread cache holds: a radius's parameter on the contact piece, the states at
+/// a piece's nodes, or two zones' non-contact ends (keyed by the law's bits).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Key {
-    Radius(u64, u64),
-    Nodes(Model, u64, Piece, u64, u64),
+    Radius(Model, [u64; 3], u64),
+    Nodes(Model, [u64; 3], Piece, u64, u64),
+    Ends([u64; 3]),
 }
 
 #[derive(Clone)]
 enum Cached {
     X(f64),
     Nodes(std::rc::Rc<Vec<(f64, Pt)>>),
+    Ends((f64, f64)),
 }
 
 impl Cached {
     fn x(&self) -> f64 {
         match self {
             Cached::X(x) => *x,
-            Cached::Nodes(_) => unreachable!("a radius key holds a parameter"),
+            _ => unreachable!("a radius key holds a parameter"),
         }
+    }
+}
+
+/// A two-zone state at parameter t of the non-contact piece (`C_L` up to `c_l`, then `c_l +
+/// C_S`) or of the contact piece (`t = -ln mu_L`): the shorter zone's radius is an inner root,
+/// so the curve is not explicit. The contact piece's slopes come from the root's implicit
+/// slope, the non-contact piece's by differences (one-sided at a stretch's ends). NaN where no
+/// state is found.
+fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt {
+    if piece == Piece::Contact {
+        // The slopes in x = -t from the inner root's implicit slope.
+        return match point_with_slopes(z, -t) {
+            Some((p, [dload, dapproach, da])) => Pt {
+                load: p.load,
+                approach: p.approach,
+                a: p.a,
+                dload: -dload,
+                dapproach: -dapproach,
+                da: -da,
+            },
+            None => Pt::nan(),
+        };
+    }
+    let at = |t: f64| -> Option<[f64; 3]> {
+        match piece {
+            Piece::NonContact if t <= c_l => {
+                let p = non_contact_single(z, t.max(0.0));
+                Some([p.load, p.approach, 0.0])
+            }
+            _ => non_contact_both(z, (t - c_l).min(c_s)).map(|p| [p.load, p.approach, 0.0]),
+        }
+    };
+    let (lo, hi) = if t <= c_l {
+        (0.0, c_l)
+    } else {
+        (c_l, c_l + c_s)
+    };
+    let h = 1e-6 * (1.0 + t.abs());
+    let (Some(v), Some(up), Some(down)) = (at(t), at((t + h).min(hi)), at((t - h).max(lo))) else {
+        return Pt::nan();
+    };
+    let span = (t + h).min(hi) - (t - h).max(lo);
+    let d = |k: usize| (up[k] - down[k]) / span;
+    Pt {
+        load: v[0],
+        approach: v[1],
+        a: v[2],
+        dload: d(0),
+        dapproach: d(1),
+        da: d(2),
     }
 }
 
@@ -429,5 +601,72 @@ mod tests {
                 assert!((top.a - 4.0).abs() <= 1e-12 * 4.0, "{at}: {}", top.a);
             }
         }
+    }
+
+    /// Two zones (meniscus longer, much longer, and shorter than the solid's): the pieces join
+    /// at the contact curve's A -> 0 end, the free end is the longer range, the contact piece
+    /// reaches the asked radius, and every state's slopes in t are the central differences of
+    /// the states. A meniscus without stress is Maugis-Dugdale itself.
+    #[test]
+    fn two_zone_pieces_join_and_their_slopes_are_the_differences() {
+        for (lambda, rho, eta) in [(0.5, 0.2, 5.0), (2.0, 0.05, 10.0), (1.0, 3.0, 0.3)] {
+            let law = Law::solid_and_meniscus(lambda, rho, eta);
+            let at = format!("lambda {lambda}, ratios {rho} {eta}");
+            let pieces = law.pieces(3.0);
+            assert_eq!(pieces.len(), 2, "{at}");
+            let z = Zones::from_ratios(lambda, rho, eta).unwrap();
+            let h_long = z.range[0].max(z.range[1]);
+            assert_eq!(law.free_end(), -h_long, "{at}");
+            let first = law.state(Piece::NonContact, 0.0);
+            assert!(
+                (first.approach + h_long).abs() <= 1e-12 && first.load == 0.0,
+                "{at}"
+            );
+            let (end, start) = (
+                law.state(Piece::NonContact, pieces[0].2),
+                law.state(Piece::Contact, pieces[1].1),
+            );
+            assert!(
+                (end.load - start.load).abs() <= 1e-8,
+                "{at}: {end:?} {start:?}"
+            );
+            assert!((end.approach - start.approach).abs() <= 1e-8, "{at}");
+            let top = law.state(Piece::Contact, pieces[1].2);
+            assert!((top.a / 3.0 - 1.0).abs() <= 1e-12, "{at}: {}", top.a);
+            for (piece, t0, t1) in pieces {
+                for k in 1..20 {
+                    let t = t0 + (t1 - t0) * k as f64 / 20.0;
+                    let h = 1e-5 * (1.0 + t.abs());
+                    let (p, up, down) = (
+                        law.state(piece, t),
+                        law.state(piece, t + h),
+                        law.state(piece, t - h),
+                    );
+                    for (name, slope, diff) in [
+                        ("load", p.dload, (up.load - down.load) / (2.0 * h)),
+                        (
+                            "approach",
+                            p.dapproach,
+                            (up.approach - down.approach) / (2.0 * h),
+                        ),
+                        ("a", p.da, (up.a - down.a) / (2.0 * h)),
+                    ] {
+                        let scale = diff.abs().max(1e-3);
+                        assert!(
+                            (slope - diff).abs() <= 1e-5 * scale,
+                            "{at}, {piece:?} t {t}: d{name}/dt {slope} against {diff}"
+                        );
+                    }
+                }
+            }
+        }
+        // No meniscus stress: one zone, Maugis-Dugdale at the solid's lambda.
+        let (dry, md) = (
+            Law::solid_and_meniscus(0.8, 0.0, 3.0),
+            Law::new(Model::Md, 0.8),
+        );
+        assert_eq!(dry.pieces(2.0), md.pieces(2.0));
+        let t = md.t_of_radius(1.3);
+        assert_eq!(dry.state(Piece::Contact, t), md.state(Piece::Contact, t));
     }
 }

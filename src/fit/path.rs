@@ -39,7 +39,7 @@ pub enum Piece {
 }
 
 /// A state and its slopes with respect to the piece's parameter.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pt {
     /// The load Pbar.
     pub load: f64,
@@ -56,6 +56,18 @@ pub struct Pt {
 }
 
 impl Pt {
+    /// No state: every number NaN.
+    pub(crate) fn nan() -> Pt {
+        Pt {
+            load: f64::NAN,
+            approach: f64::NAN,
+            a: f64::NAN,
+            dload: f64::NAN,
+            dapproach: f64::NAN,
+            da: f64::NAN,
+        }
+    }
+
     /// The state a small step `dt` along the piece, to first order (the slopes are not moved):
     /// its error is about half the second derivative times dt^2, 1e-16 of the parameter's scale
     /// squared where dt is below 1e-8 of it.
@@ -160,7 +172,11 @@ impl SpringPath {
     /// `lambda` in the solver's domain (used by Maugis-Dugdale only), `kbar > 0`, and the largest
     /// base displacement the path must reach.
     pub fn new(model: Model, lambda: f64, kbar: f64, delta_max: f64) -> SpringPath {
-        let law = Law::new(model, lambda);
+        SpringPath::of(Law::new(model, lambda), kbar, delta_max)
+    }
+
+    /// The path of any law ([`SpringPath::new`] of a model at its lambda).
+    pub fn of(law: Law, kbar: f64, delta_max: f64) -> SpringPath {
         let delta_of = |piece, t| {
             let p = law.state(piece, t);
             p.approach + p.load / kbar

@@ -87,15 +87,36 @@ pub fn model_forces_from(
     hints: Option<&[PathState]>,
 ) -> Option<Evaluated> {
     let u = units(p, radius, spring);
-    if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
-        return None;
-    }
     if model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
         return None;
     }
-    let deltas: Vec<f64> = height.iter().map(|h| (p.zc - h) / u.approach).collect();
+    forces_on(
+        Law::new(model, p.lambda),
+        &u,
+        p.zc,
+        height,
+        dir,
+        side,
+        hints,
+    )
+}
+
+/// [`model_forces_from`] of any law in its units `u`, with the contact point `zc` (m).
+pub(super) fn forces_on(
+    law: Law,
+    u: &Units,
+    zc: f64,
+    height: &[f64],
+    dir: &[Direction],
+    side: Option<&[Side]>,
+    hints: Option<&[PathState]>,
+) -> Option<Evaluated> {
+    if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0) {
+        return None;
+    }
+    let deltas: Vec<f64> = height.iter().map(|h| (zc - h) / u.approach).collect();
     let top = deltas.iter().cloned().fold(1.0, f64::max);
-    let path = SpringPath::new(model, p.lambda, u.kbar, top);
+    let path = SpringPath::of(law, u.kbar, top);
     let states: Vec<PathState> = deltas
         .iter()
         .zip(dir)
@@ -117,6 +138,8 @@ pub fn model_forces_from(
 /// The least-squares problem of one model on one prepared curve.
 pub(super) struct Problem<'a> {
     pub(super) model: Model,
+    /// The two-zone law's meniscus: its stress (Pa) and range (m).
+    pub(super) meniscus: Option<(f64, f64)>,
     pub(super) data: &'a Prepared,
     pub(super) radius: f64,
     pub(super) spring: f64,
@@ -174,6 +197,21 @@ impl Problem<'_> {
     pub(super) fn has_lambda(&self) -> bool {
         self.model.has_lambda() && self.z0.is_none() && self.fixed_lambda.is_none()
     }
+    /// The law and its units at p: the model at its lambda, or the solid's zone with the
+    /// meniscus, in the units of their total w.
+    pub(super) fn law_units(&self, p: &Params) -> (Law, Units) {
+        match self.meniscus {
+            Some(m) if self.model == Model::SolidAndMeniscus => {
+                let (law, w) = law::solid_and_meniscus_of(p.e_star, p.w, p.lambda, self.radius, m);
+                (law, units(&Params { w, ..*p }, self.radius, self.spring))
+            }
+            _ => (
+                Law::new(self.model, p.lambda),
+                units(p, self.radius, self.spring),
+            ),
+        }
+    }
+
     pub(super) fn n(&self) -> usize {
         2 + self.has_w() as usize + 1 + self.has_lambda() as usize
     }
@@ -235,11 +273,10 @@ impl Problem<'_> {
             Some(base) => self.states_near(&p, &u, base, 0..base.len()),
             None => {
                 let hints = self.hints.borrow();
-                model_forces_from(
-                    self.model,
-                    &p,
-                    self.radius,
-                    self.spring,
+                forces_on(
+                    self.law_units(&p).0,
+                    &u,
+                    p.zc,
                     &d.height,
                     &d.dir,
                     Some(&d.side),
@@ -261,7 +298,7 @@ impl Problem<'_> {
     /// The parameters and units at x; None where they leave the models' domain.
     fn checked(&self, x: &DVector<f64>) -> Option<(Params, Units)> {
         let p = self.params(x);
-        let u = units(&p, self.radius, self.spring);
+        let u = self.law_units(&p).1;
         if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
             return None;
         }
@@ -288,14 +325,15 @@ impl Problem<'_> {
             .map(|h| (p.zc - h) / u.approach)
             .fold(1.0, f64::max);
         let mut full: Option<SpringPath> = None;
+        let law = self.law_units(p).0;
         rows.map(|i| {
             let s = &base[i];
             let delta = (p.zc - d.height[i]) / u.approach;
             (!s.clamped)
-                .then(|| path::near(Law::new(self.model, p.lambda), u.kbar, delta, s.piece, s.t))
+                .then(|| path::near(law, u.kbar, delta, s.piece, s.t))
                 .flatten()
                 .unwrap_or_else(|| {
-                    full.get_or_insert_with(|| SpringPath::new(self.model, p.lambda, u.kbar, top))
+                    full.get_or_insert_with(|| SpringPath::of(law, u.kbar, top))
                         .at_side(delta, d.dir[i], d.side[i])
                 })
         })
@@ -338,7 +376,7 @@ impl Problem<'_> {
         let delta = (p.zc - self.data.height[i]) / u.approach;
         let load = (self.data.force[i] - p.f0) / u.force;
         let (r, t) = path::fold_distance(
-            Law::new(self.model, p.lambda),
+            self.law_units(p).0,
             u.kbar,
             FOLD_SCALE * u.kbar,
             s.piece,
@@ -357,14 +395,14 @@ impl Problem<'_> {
     /// `(P - L, 10 (kbar (D - Delta) + P))` with the measured load `L = (F - f0) / (pi w R)`.
     pub(super) fn fold_rows(&self, j: &mut DMatrix<f64>, base: &[PathState]) {
         let p = self.params(&self.x);
-        let u = units(&p, self.radius, self.spring);
+        let (law, u) = self.law_units(&p);
         for (i, s) in base.iter().enumerate() {
             let Some((r, t, delta, load)) = self.nearest_fold(&p, &u, i, s) else {
                 // Not before a jump, or no nearest state: the residual is the force's, and so
                 // is its analytic row.
                 continue;
             };
-            let q = Law::new(self.model, p.lambda).state(s.piece, t);
+            let q = law.state(s.piece, t);
             let (tp, td) = (q.dload, FOLD_SCALE * (u.kbar * q.dapproach + q.dload));
             let norm = tp.hypot(td);
             let (np, nd) = (td / norm, -tp / norm);
@@ -394,7 +432,7 @@ impl Problem<'_> {
                 k += 1;
             }
             if self.has_lambda() {
-                let (pl, dl) = Law::new(self.model, p.lambda).state_dlambda(s.piece, t);
+                let (pl, dl) = law.state_dlambda(s.piece, t);
                 let dp = p.lambda * pl;
                 j[(i, k)] = (np * dp + nd * FOLD_SCALE * (kb * p.lambda * dl + dp)) * to_res;
                 k += 1;
@@ -412,7 +450,7 @@ impl Problem<'_> {
                 let mut x = self.x.clone();
                 x[k] += dx;
                 let p = self.params(&x);
-                let u = units(&p, self.radius, self.spring);
+                let u = self.law_units(&p).1;
                 self.fold_residual(&p, &u, i, s)
             };
             if let (Some(a), Some(b)) = (at(h), at(-h)) {
@@ -462,8 +500,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
             Some(s) => s,
             None => self.eval(&self.x, None)?.1,
         };
-        if self.model.has_lambda() && self.z0.is_some() {
-            // lambda moves with E* and w: every column by differences.
+        if (self.model.has_lambda() && self.z0.is_some()) || !self.model.scales() {
+            // lambda (or the law's path) moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
         let (mut j, dt_dx) = self.analytic_jacobian(&base);
@@ -502,7 +540,7 @@ impl Problem<'_> {
     /// slide `dt/dx` along its piece (zero for free and held points), from the same slopes.
     pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> (DMatrix<f64>, DMatrix<f64>) {
         let p = self.params(&self.x);
-        let u = units(&p, self.radius, self.spring);
+        let u = self.law_units(&p).1;
         let (m, n) = (base.len(), self.n());
         let mut j = DMatrix::zeros(m, n);
         let mut dt = DMatrix::zeros(m, n);
@@ -555,7 +593,7 @@ impl Problem<'_> {
         if s.piece == Piece::Free || s.clamped {
             return (0.0, 0.0);
         }
-        let (pl, dl) = Law::new(self.model, p.lambda).state_dlambda(s.piece, s.t);
+        let (pl, dl) = self.law_units(p).0.state_dlambda(s.piece, s.t);
         let g = s.dapproach + s.dload / u.kbar;
         if g.abs() > 0.0 {
             (
@@ -760,6 +798,9 @@ impl<'a> Problem<'a> {
         let (f_scale, z_scale) = scales(d);
         Problem {
             model,
+            meniscus: (model == Model::SolidAndMeniscus)
+                .then(|| opt.humidity.as_ref().and_then(|h| h.stress_and_range()))
+                .flatten(),
             data: d,
             radius: opt.radius,
             spring: opt.spring,
@@ -846,10 +887,10 @@ pub(super) fn fit_model_for(
         _ => (FitStatus::NotConverged, f64::NAN, None, None),
     };
     let (e_err, w_err, lambda_err, zc_err) = standard_errors(&prob, &cov, &p, fixed_lambda);
-    let pulloff = evaluated
-        .as_ref()
-        .filter(|_| !scout)
-        .map_or(f64::NAN, |_| model_pulloff(model, &p, d, opt));
+    let pulloff = evaluated.as_ref().filter(|_| !scout).map_or(f64::NAN, |_| {
+        let (law, u) = prob.law_units(&p);
+        model_pulloff(law, &u, p.zc, d, opt)
+    });
     ModelFit {
         model,
         status,
@@ -911,22 +952,19 @@ pub(super) fn standard_errors(
     (e_err, w_err, lambda_err, zc_err)
 }
 
-/// The most tensile load of a model's path under the cantilever (N, positive), along the
-/// fitted segment's direction: the path alone, not the states at the points.
-pub(super) fn model_pulloff(model: Model, p: &Params, d: &Prepared, opt: &FitOptions) -> f64 {
-    let u = units(p, opt.radius, opt.spring);
+/// The most tensile load of a law's path (in its units `u`, contact point `zc`) under the
+/// cantilever (N, positive), along the fitted segment's direction: the path alone, not the
+/// states at the points.
+pub(super) fn model_pulloff(law: Law, u: &Units, zc: f64, d: &Prepared, opt: &FitOptions) -> f64 {
     let top = d
         .height
         .iter()
-        .map(|h| (p.zc - h) / u.approach)
+        .map(|h| (zc - h) / u.approach)
         .fold(1.0, f64::max);
     let dir = if opt.segments == Segments::Approach {
         Direction::Approach
     } else {
         Direction::Retract
     };
-    -SpringPath::new(model, p.lambda, u.kbar, top)
-        .min_load(dir)
-        .0
-        * u.force
+    -SpringPath::of(law, u.kbar, top).min_load(dir).0 * u.force
 }

@@ -91,7 +91,7 @@ pub(super) fn summarize(
     }
     let mut warn = warnings(&out, d, opt, &p, &md, amax, in_contact);
     if let Some(h) = &opt.humidity {
-        out.humidity = humidity::solid_work(&out, opt.radius, h);
+        out.humidity = humidity::in_humid_air(&out, d, opt, &md, h);
         if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
             warn.push(format!("humidity: {}", fh.note));
         }

@@ -2,9 +2,11 @@
 //! what the fitter's recovery test, its benchmark and the gallery example are made of.
 
 use super::data::Curve;
+use super::law::{solid_and_meniscus_of, Law};
 use super::path::{Direction, SpringPath};
+use super::problem::forces_on;
 use super::Model;
-use super::{model_forces, units, Params};
+use super::{units, Params};
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -63,6 +65,34 @@ pub fn synthetic(s: &Synthetic) -> Curve {
 
 /// [`synthetic`], or why the parameters give no curve.
 pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
+    checked(s)?;
+    let p = s.params;
+    let u = units(&p, s.radius, s.spring);
+    if s.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        return Err(out_of_domain(p.lambda));
+    }
+    noisy(s, Law::new(s.model, p.lambda), &u)
+}
+
+/// A curve of the two-zone law (`s.model` [`Model::SolidAndMeniscus`], `s.params` the solid's
+/// E*, w and lambda) in a meniscus of stress `s2` (Pa) and range `h2` (m): what the two-zone
+/// shape fit is tested on.
+pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, String> {
+    checked(s)?;
+    let p = s.params;
+    if s.model != Model::SolidAndMeniscus {
+        return Err(format!(
+            "a wet synthetic curve is of the two-zone law, not {}",
+            s.model.name()
+        ));
+    }
+    let (law, w) = solid_and_meniscus_of(p.e_star, p.w, p.lambda, s.radius, meniscus);
+    let u = units(&Params { w, ..p }, s.radius, s.spring);
+    noisy(s, law, &u)
+}
+
+/// Why the numbers of `s` give no curve, if they do not.
+fn checked(s: &Synthetic) -> Result<(), String> {
     let p = s.params;
     let finite = [
         p.e_star, p.w, p.lambda, p.zc, p.f0, s.radius, s.spring, s.depth,
@@ -80,8 +110,20 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
             s.noise
         ));
     }
-    let u = units(&p, s.radius, s.spring);
-    let path = SpringPath::new(s.model, p.lambda, u.kbar, s.depth);
+    Ok(())
+}
+
+fn out_of_domain(lambda: f64) -> String {
+    format!(
+        "lambda {} is outside the models' domain 1e-26..1e26, or the units overflow",
+        crate::physics::domain::short(lambda)
+    )
+}
+
+/// The curve of `s` on the path of `law` in its units `u`, with its noise.
+fn noisy(s: &Synthetic, law: Law, u: &super::Units) -> Result<Curve, String> {
+    let p = s.params;
+    let path = SpringPath::of(law, u.kbar, s.depth);
     let reach = path.force_reach().min(0.0);
     // Delta from `low` (free) to `depth`: the force begins at `reach`.
     let span = s.depth - reach;
@@ -95,13 +137,8 @@ pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
     height.extend(deltas.iter().rev().map(|d| p.zc - d * u.approach));
     let mut segment = vec![Direction::Approach; n];
     segment.extend(vec![Direction::Retract; n]);
-    let (f, _, _, _) = model_forces(s.model, &p, s.radius, s.spring, &height, &segment, None)
-        .ok_or_else(|| {
-            format!(
-                "lambda {} is outside the models' domain 1e-26..1e26, or the units overflow",
-                crate::physics::domain::short(p.lambda)
-            )
-        })?;
+    let (f, _, _, _) = forces_on(law, u, p.zc, &height, &segment, None, None)
+        .ok_or_else(|| out_of_domain(p.lambda))?;
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);
     let normal = Normal::new(0.0, s.noise).map_err(|e| format!("force noise: {e}"))?;
     let force = f

@@ -277,69 +277,111 @@ pub fn point(zones: &Zones, x: f64) -> Option<TwoZonePoint> {
     match zones.shape() {
         Shape::Single { lambda } => Some(from_md(curve_point(lambda, x.exp()), zones)),
         Shape::Two { long } => {
-            let short = 1 - long;
-            let mu_l = x.exp();
-            let mus = |u: f64| {
-                let mut mu = [0.0; 2];
-                mu[long] = mu_l;
-                mu[short] = u.exp();
-                mu
-            };
-            // A_S - A_L: +inf as mu_S -> 0, negative at mu_S = mu_L (shorter range there).
-            let phi = |u: f64| {
-                let mu = mus(u);
-                radius_of_condition(zones, short, mu) - radius_of_condition(zones, long, mu)
-            };
-            let hi = x;
-            let f_hi = phi(hi);
-            let mut lo = x - 4.0;
-            let mut f_lo = phi(lo);
-            let mut n = 0;
-            while !(f_lo > 0.0) {
-                if !f_lo.is_nan() && f_lo <= 0.0 {
-                    lo -= 8.0;
-                } else {
-                    return None;
-                }
-                f_lo = phi(lo);
-                n += 1;
-                if n > 40 {
-                    return None;
-                }
-            }
-            if !(f_hi < 0.0) {
-                return None;
-            }
-            let r = crate::solver::root::secant_bracketed(
-                phi,
-                (lo, f_lo),
-                (hi, f_hi),
-                0.5 * (lo + hi),
-                1e-16,
-                300,
-            );
-            let mu = mus(r.x);
-            let a = radius_of_condition(zones, long, mu);
-            let g = |m: f64| {
-                let (at, _) = m.atan_parts();
-                m + (1.0 + m * m) * at
-            };
-            let adh_load = zones.lambda[0] * g(mu[0]) + zones.lambda[1] * g(mu[1]);
-            let adh_app = zones.lambda[0] * mu[0] + zones.lambda[1] * mu[1];
-            let load = a * a * (a - adh_load);
-            let approach = a * (a - 4.0 / 3.0 * adh_app);
-            let c = [
-                a * (1.0 + mu[0] * mu[0]).sqrt(),
-                a * (1.0 + mu[1] * mu[1]).sqrt(),
-            ];
-            Some(TwoZonePoint {
-                a,
-                mu,
-                c,
-                load,
-                approach,
-            })
+            let u = inner_root(zones, long, x)?;
+            Some(at_mus(zones, long, x, u))
         }
+    }
+}
+
+/// [`point`] of two ranges with the slopes of its load, approach and contact radius in x: the
+/// inner root `u = ln(mu_S)` moves by `du/dx = -phi_x / phi_u`, so that the slopes are the
+/// explicit state's partial derivatives (central differences of explicit functions, relative
+/// error about 1e-10) instead of differences of whole root searches. `None` for one zone or
+/// where the inner root is not found.
+pub fn point_with_slopes(zones: &Zones, x: f64) -> Option<(TwoZonePoint, [f64; 3])> {
+    let Shape::Two { long } = zones.shape() else {
+        return None;
+    };
+    let u = inner_root(zones, long, x)?;
+    let p = at_mus(zones, long, x, u);
+    const H: f64 = 1e-6;
+    let phi = |x: f64, u: f64| condition_gap(zones, long, x, u);
+    let phi_x = (phi(x + H, u) - phi(x - H, u)) / (2.0 * H);
+    let phi_u = (phi(x, u + H) - phi(x, u - H)) / (2.0 * H);
+    let du = -phi_x / phi_u;
+    let g = |x: f64, u: f64| {
+        let q = at_mus(zones, long, x, u);
+        [q.load, q.approach, q.a]
+    };
+    let (gxp, gxm, gup, gum) = (g(x + H, u), g(x - H, u), g(x, u + H), g(x, u - H));
+    let slope = |k: usize| ((gxp[k] - gxm[k]) + (gup[k] - gum[k]) * du) / (2.0 * H);
+    let slopes = [slope(0), slope(1), slope(2)];
+    slopes.iter().all(|v| v.is_finite()).then_some((p, slopes))
+}
+
+/// The zones' mu at `x = ln(mu_L)` and `u = ln(mu_S)`.
+fn mus_at(long: usize, x: f64, u: f64) -> [f64; 2] {
+    let mut mu = [0.0; 2];
+    mu[long] = x.exp();
+    mu[1 - long] = u.exp();
+    mu
+}
+
+/// `A_S - A_L`: the contact radii that the two gap conditions give at (x, u), zero on the
+/// curve.
+fn condition_gap(zones: &Zones, long: usize, x: f64, u: f64) -> f64 {
+    let mu = mus_at(long, x, u);
+    radius_of_condition(zones, 1 - long, mu) - radius_of_condition(zones, long, mu)
+}
+
+/// The shorter zone's `u = ln(mu_S)` at `x = ln(mu_L)`: the root of [`condition_gap`], which is
+/// +inf as mu_S -> 0 and negative at mu_S = mu_L (the shorter range there).
+fn inner_root(zones: &Zones, long: usize, x: f64) -> Option<f64> {
+    let phi = |u: f64| condition_gap(zones, long, x, u);
+    let hi = x;
+    let f_hi = phi(hi);
+    let mut lo = x - 4.0;
+    let mut f_lo = phi(lo);
+    let mut n = 0;
+    while !(f_lo > 0.0) {
+        if !f_lo.is_nan() && f_lo <= 0.0 {
+            lo -= 8.0;
+        } else {
+            return None;
+        }
+        f_lo = phi(lo);
+        n += 1;
+        if n > 40 {
+            return None;
+        }
+    }
+    if !(f_hi < 0.0) {
+        return None;
+    }
+    let r = crate::solver::root::secant_bracketed(
+        phi,
+        (lo, f_lo),
+        (hi, f_hi),
+        0.5 * (lo + hi),
+        1e-16,
+        300,
+    );
+    Some(r.x)
+}
+
+/// The state at (x, u) with the contact radius of the longer zone's condition: on the curve
+/// where u is the inner root.
+fn at_mus(zones: &Zones, long: usize, x: f64, u: f64) -> TwoZonePoint {
+    let mu = mus_at(long, x, u);
+    let a = radius_of_condition(zones, long, mu);
+    let g = |m: f64| {
+        let (at, _) = m.atan_parts();
+        m + (1.0 + m * m) * at
+    };
+    let adh_load = zones.lambda[0] * g(mu[0]) + zones.lambda[1] * g(mu[1]);
+    let adh_app = zones.lambda[0] * mu[0] + zones.lambda[1] * mu[1];
+    let load = a * a * (a - adh_load);
+    let approach = a * (a - 4.0 / 3.0 * adh_app);
+    let c = [
+        a * (1.0 + mu[0] * mu[0]).sqrt(),
+        a * (1.0 + mu[1] * mu[1]).sqrt(),
+    ];
+    TwoZonePoint {
+        a,
+        mu,
+        c,
+        load,
+        approach,
     }
 }
 
@@ -465,6 +507,49 @@ pub fn non_contact_both(zones: &Zones, c_short: f64) -> Option<NonContactPoint> 
     c[long] = r.x;
     c[short] = c_short;
     Some(nc_from(zones, c, long))
+}
+
+/// The ends of the non-contact branch's two stretches (two ranges only): the longer zone's disc
+/// radius where the axis gap falls to the shorter range, and the shorter zone's disc radius
+/// where the axis gap closes (the A -> 0 end of the contact curve). `None` for one zone or
+/// where a crossing was not bracketed.
+pub fn non_contact_ends(z: &Zones) -> Option<(f64, f64)> {
+    let Shape::Two { long } = z.shape() else {
+        return None;
+    };
+    let h_short = z.range[1 - long];
+    let scale = z.range[long].sqrt();
+    let c1 = crossing(|c| non_contact_single(z, c).axis_gap < h_short, scale)?;
+    let both_gap = |c: f64| non_contact_both(z, c).map_or(f64::NAN, |p| p.axis_gap);
+    let c2 = crossing(|c| !(both_gap(c) >= 0.0), c1.max(scale))?;
+    Some((c1, c2))
+}
+
+/// The largest `x` in `[0, hi]` (hi doubled until `below(x)` holds) with `below(x)` false, by
+/// bisection: where a monotone quantity crosses its limit.
+fn crossing(below: impl Fn(f64) -> bool, start: f64) -> Option<f64> {
+    let mut hi = start;
+    let mut n = 0;
+    while !below(hi) {
+        hi *= 2.0;
+        n += 1;
+        if n > 60 {
+            return None;
+        }
+    }
+    let mut lo = 0.0;
+    for _ in 0..200 {
+        let m = 0.5 * (lo + hi);
+        if below(m) {
+            hi = m;
+        } else {
+            lo = m;
+        }
+        if hi - lo <= 1e-15 * hi {
+            break;
+        }
+    }
+    Some(lo)
 }
 
 /// The non-contact state with discs `c`, its approach from zone `j`'s gap condition.

@@ -1262,6 +1262,7 @@ fn fitted_models<'a>(
             Model::Dmt => ORANGE_,
             Model::Jkr => BLUE_,
             Model::Md => GREEN_,
+            Model::SolidAndMeniscus => RGBColor(0x88, 0x22, 0x88),
         };
         (m, c, m.model.label())
     });

@@ -208,7 +208,7 @@ impl WetSummit {
                 s.name()
             ))
         })?;
-        let (c1, c2) = crate::cycle::two_zone::non_contact_ends(&ctx).map_err(zones_failed)?;
+        let (c1, c2) = crate::cycle::two_zone::non_contact_ends_of(&ctx).map_err(zones_failed)?;
         let z = &ctx.zones;
         let long = match z.shape() {
             Shape::Two { long } => long,

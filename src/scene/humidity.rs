@@ -180,23 +180,41 @@ impl HumidityInput {
         Ok(())
     }
 
-    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
-    /// contact angle of 90 degrees or more: water does not bridge the gap).
-    pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
-        self.validate()?;
-        let (rh, theta) = (self.relative_humidity, self.contact_angle_deg);
+    /// The meniscus' Dugdale zone at Kelvin radius `r_k`: the Laplace pressure `gamma / r_K`
+    /// over the range `2 r_K cos(theta)`.
+    fn zone(&self, r_k: f64) -> (f64, f64) {
+        let cos = (self.contact_angle_deg * PI / 180.0).cos();
+        (self.surface_tension() / r_k, 2.0 * r_k * cos)
+    }
+
+    /// The meniscus' stress (Pa) and range (m), or `None` where there is none (see
+    /// [`HumidityInput::meniscus`]; the values are checked).
+    pub fn stress_and_range(&self) -> Option<(f64, f64)> {
+        self.validate().ok()?;
+        (self.relative_humidity > 0.0 && self.contact_angle_deg < 90.0)
+            .then(|| self.zone(self.kelvin_radius()))
+    }
+
+    /// The Kelvin radius `gamma V_m / (R T ln(1/RH))` (m).
+    fn kelvin_radius(&self) -> f64 {
         let (gamma, vm, t) = (
             self.surface_tension(),
             self.molar_volume(),
             self.temperature(),
         );
+        gamma * vm / (R_GAS * t * (1.0 / self.relative_humidity).ln())
+    }
+
+    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
+    /// contact angle of 90 degrees or more: water does not bridge the gap).
+    pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
+        self.validate()?;
+        let (rh, theta) = (self.relative_humidity, self.contact_angle_deg);
         if rh == 0.0 || theta >= 90.0 {
             return Ok(None);
         }
-        let r_k = gamma * vm / (R_GAS * t * (1.0 / rh).ln());
-        let cos = (theta * PI / 180.0).cos();
-        let stress = gamma / r_k;
-        let range = 2.0 * r_k * cos;
+        let r_k = self.kelvin_radius();
+        let (stress, range) = self.zone(r_k);
         let w = stress * range;
         let k = c.k();
         Ok(Some(Meniscus {

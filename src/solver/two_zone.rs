@@ -217,6 +217,16 @@ impl TwoZonePullOff {
     }
 }
 
+/// The curve's parameter `x = ln(mu_L)` at contact radius `a > 0` (two ranges), by bisection
+/// (the radius falls as x grows).
+pub fn x_at_radius(zones: &Zones, a: f64) -> f64 {
+    bisect_sign(
+        |x| a - point(zones, x).map_or(f64::NAN, |p| p.a),
+        X_FAR,
+        X_END,
+    )
+}
+
 /// The curve of one pair of zones with its pull-offs, for many states.
 #[derive(Clone, Debug)]
 pub struct TwoZoneContext {
@@ -411,13 +421,7 @@ impl TwoZoneContext {
         if self.md.is_some() || !(k > 0.0 && k.is_finite() && a_near > 0.0) {
             return None;
         }
-        let x_of = |a: f64| {
-            bisect_sign(
-                |x| a - point(&self.zones, x).map_or(f64::NAN, |p| p.a),
-                X_FAR,
-                X_END,
-            )
-        };
+        let x_of = |a: f64| x_at_radius(&self.zones, a);
         let control = |x: f64| point(&self.zones, x).map_or(f64::NAN, |p| p.approach + p.load / k);
         const H: f64 = 1e-5;
         // Negative on the stable side (the control falls as x grows and the contact shrinks).
@@ -461,12 +465,7 @@ impl TwoZoneContext {
                 status: Status::Ok,
             };
         }
-        let x = bisect_sign(
-            |x| a - point(&self.zones, x).map_or(f64::NAN, |p| p.a),
-            X_FAR,
-            X_END,
-        );
-        let s = self.state_at_x(x);
+        let s = self.state_at_x(x_at_radius(&self.zones, a));
         if s.status == Status::Ok && (s.a / a - 1.0).abs() < 1e-10 {
             TwoZoneState { a, ..s }
         } else {
