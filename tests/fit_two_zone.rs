@@ -114,6 +114,55 @@ fn rel(x: f64, t: f64) -> f64 {
     (x / t - 1.0).abs()
 }
 
+/// The curve the fit's forward model makes in SI units is the dimensional two-zone solver's,
+/// with the solid's zone from the textbook Maugis parameter, `lambda = 2 s1 (R / (pi w
+/// K^2))^(1/3)` over `h1 = w / s1`, and the meniscus's zone: at each compressive retract
+/// point, the contact radius whose load is the measured force gives the tip's approach, the
+/// base's displacement less the cantilever's deflection. This checks the fit's units and its
+/// ratios of the zones (`law::solid_and_meniscus_of`), which the curves made and fitted with
+/// them cannot.
+#[test]
+fn the_wet_curve_is_the_dimensional_solvers() {
+    use tabor::solver::two_zone::state_at_radius_dimensional;
+    let (rh, angle, w, lambda) = (0.7, 10.0, 0.03, 0.5);
+    let c = wet_curve(rh, angle, w, lambda, 0.0);
+    let (s2, h2) = HumidityInput::water(rh, angle).stress_and_range().unwrap();
+    let k = 4.0 / 3.0 * 1.5e9;
+    let s1 = 0.5 * lambda * (std::f64::consts::PI * w * k * k / R).cbrt();
+    let h1 = w / s1;
+    let load_at = |a: f64| {
+        let s = state_at_radius_dimensional(k, R, s1, h1, s2, h2, a).unwrap();
+        assert_eq!(s.status, Status::Ok);
+        s
+    };
+    let mut compared = 0;
+    for i in 0..c.len() {
+        let f = c.force[i];
+        if c.segment[i] != Direction::Retract || f <= 1e-9 || i % 3 != 0 {
+            continue;
+        }
+        // The load rises with the radius on the compressive part: bisection in a.
+        let (mut lo, mut hi) = (1e-12, R);
+        for _ in 0..64 {
+            let mid = 0.5 * (lo + hi);
+            if load_at(mid).load < f {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        let s = load_at(0.5 * (lo + hi));
+        let tip = (40e-9 - c.height[i]) - f / SPRING;
+        assert!(
+            (s.approach - tip).abs() <= 1e-9 * tip.abs().max(1e-9),
+            "point {i}: force {f}: solver's approach {} against the curve's {tip}",
+            s.approach
+        );
+        compared += 1;
+    }
+    assert!(compared > 15, "{compared} points compared");
+}
+
 /// Noise-free wet curves where the meniscus reaches beyond the one zone's range (the pull-off's
 /// reading is doubtful, and off): the shape fit gives back E*, the solid's w and lambda, and its
 /// profile fixes lambda.
