@@ -491,11 +491,12 @@ fn tsv_with_comment_lines_reads_as_csv_does() {
     assert_eq!(a.stdout, b.stdout);
 }
 
-/// Curves made near the JKR end with a soft spring: lambda is not determined, its 95% interval
-/// is open towards JKR (large lambda) and holds the truth, and w's interval spans what the
-/// lambdas the data cannot tell apart give.
+/// Curves made near the JKR end with a soft spring, which show little but the pull-off: lambda
+/// is not determined (the DMT-like models, whose retract runs on along the Dugdale zone's
+/// non-contact branch, fit them as well), its 95% interval holds the truth and holds the 68%
+/// one, and w's interval spans what the lambdas the data cannot tell apart give.
 #[test]
-fn lambda_near_the_jkr_end_with_a_soft_spring_is_bounded_from_below_only() {
+fn lambda_near_the_jkr_end_with_a_soft_spring_is_not_determined() {
     let cases = [(20.0, 3), (50.0, 4), (30.0, 5)];
     cases.par_iter().for_each(|&(lambda, seed)| {
         let noise = 0.01 * 1.5 * std::f64::consts::PI * 0.05 * 20e-9;
@@ -506,7 +507,6 @@ fn lambda_near_the_jkr_end_with_a_soft_spring_is_bounded_from_below_only() {
         assert_eq!(r.lambda_determined, Some(false), "lambda {lambda}: {l:?}");
         assert!(l[1].is_none(), "lambda {lambda}: {l:?} closed towards JKR");
         assert!(holds(Some(l), lambda), "lambda {lambda}: {l:?}");
-        assert!(r.lambda_bound.as_deref().unwrap().starts_with("lambda"));
         let w = r.work_of_adhesion_j_m2_interval_95.unwrap();
         assert!(holds(Some(w), 0.05), "lambda {lambda}: w {w:?}");
         // Bounded by what the DMT-like and JKR-like fits give (their pull-offs differ by 4/3),
@@ -517,7 +517,8 @@ fn lambda_near_the_jkr_end_with_a_soft_spring_is_bounded_from_below_only() {
             "lambda {lambda}: w {w:?}"
         );
         let l68 = r.lambda_interval_68.unwrap();
-        assert!(l68[1].is_none() && l68[0].unwrap_or(0.0) >= l[0].unwrap_or(0.0));
+        let (lo68, lo95) = (l68[0].unwrap_or(0.0), l[0].unwrap_or(0.0));
+        assert!(lo68 >= lo95, "lambda {lambda}: 68% {l68:?} 95% {l:?}");
     });
 }
 

@@ -75,6 +75,77 @@ fn the_path_under_a_spring_is_the_solvers_states_and_jumps_at_its_fold() {
     }
 }
 
+/// Where the retract leaves the contact branch, the path lands where the cycle does (its
+/// landing at the jump's control on the stable branch below: the meniscus' stretch of the
+/// non-contact branch, or free), for the two-zone laws and Maugis-Dugdale; and where the
+/// contact branch runs out without a fold (a stiff spring), Maugis-Dugdale's path goes on along
+/// the non-contact branch, `Delta = (1/2 - pi lambda / (2 kbar)) C^2 - 8 lambda C / (3 pi) - 2 /
+/// (pi lambda)` with the load `-(pi lambda / 2) C^2` in closed form, down to its fold.
+#[test]
+fn retract_landings_are_the_cycles() {
+    let mut laws: Vec<(Law, f64)> = LAWS
+        .iter()
+        .flat_map(|&(l, r, e)| [0.5, 2.0].map(|k| (Law::solid_and_meniscus(l, r, e), k)))
+        .collect();
+    laws.extend([(0.3, 5.0), (1.0, 20.0), (3.0, 2.0)].map(|(l, k)| (Law::new(Model::Md, l), k)));
+    let mut landed_on_the_meniscus = 0;
+    for (law, kbar) in laws {
+        let at = format!("{law:?}, kbar {kbar}");
+        let path = SpringPath::of(law, kbar, 8.0);
+        let cycle = match law.model {
+            Model::Md => tabor::cycle(law.lambda, Drive::Spring(kbar), 30.0).unwrap(),
+            _ => two_zone::cycle(
+                law.lambda,
+                law.second[0],
+                law.second[1],
+                Drive::Spring(kbar),
+                30.0,
+            )
+            .unwrap(),
+        };
+        for j in cycle.jumps.iter().filter(|j| j.phase == Phase::Retract) {
+            if j.from.branch != tabor::cycle::Branch::Contact {
+                continue;
+            }
+            let to = j.to.unwrap();
+            let control = j.from.approach + j.from.load / kbar;
+            let p = path.at(control - 1e-9, Direction::Retract);
+            assert!(
+                (p.load - to.load).abs() <= 1e-6 * to.load.abs().max(1.0),
+                "{at}: path {p:?}, cycle {to:?}"
+            );
+            if to.load < -1e-3 {
+                assert_eq!(p.piece, Piece::NonContact, "{at}");
+                landed_on_the_meniscus += 1;
+            }
+        }
+    }
+    assert!(landed_on_the_meniscus >= 2, "{landed_on_the_meniscus}");
+    // Maugis-Dugdale at lambda 0.5 under kbar 50: no fold on the contact branch.
+    let (lambda, kbar) = (0.5, 50.0);
+    let path = SpringPath::of(Law::new(Model::Md, lambda), kbar, 8.0);
+    let pi = std::f64::consts::PI;
+    let (a2, a1, a0) = (
+        0.5 - pi * lambda / (2.0 * kbar),
+        -8.0 * lambda / (3.0 * pi),
+        -2.0 / (pi * lambda),
+    );
+    let c_fold = -a1 / (2.0 * a2);
+    let c_end = tabor::physics::md::zero_radius_end(lambda).c;
+    for k in 1..20 {
+        let c = c_fold + (c_end - c_fold) * k as f64 / 20.0;
+        let delta = a2 * c * c + a1 * c + a0;
+        let p = path.at(delta, Direction::Retract);
+        assert_eq!(p.piece, Piece::NonContact, "C {c}");
+        let load = -(pi * lambda / 2.0) * c * c;
+        assert!(
+            (p.load - load).abs() <= 1e-9,
+            "C {c}: {} against {load}",
+            p.load
+        );
+    }
+}
+
 const R: f64 = 20e-9;
 const SPRING: f64 = 2.0;
 
@@ -194,7 +265,7 @@ fn noise_free_wet_curves_give_back_their_solid() {
             "{at}: lambda {:?}",
             f.lambda
         );
-        assert!(s.lambda_bounded, "{at}: {:?}", s.lambda_profile);
+        assert_eq!(s.lambda_bounded, Some(true), "{at}: {:?}", s.lambda_profile);
         let [lo, hi] = s.lambda_95.unwrap();
         let near = |l: f64| rel(l, lambda) < 1e-5;
         assert!(
@@ -219,7 +290,7 @@ fn a_noisy_curve_that_cannot_fix_lambda_brackets_its_solid() {
     let r = fit_curve(&wet_curve(rh, angle, w, lambda, 1e-11), &options(rh, angle));
     let h = r.humidity.as_ref().unwrap();
     let s = h.shape_fit.as_ref().unwrap_or_else(|| panic!("{}", h.note));
-    assert!(!s.lambda_bounded, "{:?}", s.lambda_profile);
+    assert_eq!(s.lambda_bounded, Some(false), "{:?}", s.lambda_profile);
     let [lo, hi] = s.lambda_95.unwrap();
     assert!(lo <= lambda && lambda <= hi, "lambda 95%: {lo} {hi}");
     let [wlo, whi] = s.solid_w_95.unwrap();

@@ -453,7 +453,8 @@ fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
         f(fit.map(|f| f.rms_residual_n)),
         end(0, sf.and_then(|s| s.lambda_95)),
         end(1, sf.and_then(|s| s.lambda_95)),
-        sf.map_or(String::new(), |s| s.lambda_bounded.to_string()),
+        sf.and_then(|s| s.lambda_bounded)
+            .map_or(String::new(), |b| b.to_string()),
         end(0, sf.and_then(|s| s.solid_w_95)),
         end(1, sf.and_then(|s| s.solid_w_95)),
     ]);

@@ -209,10 +209,11 @@ pub struct ShapeFit {
     /// The smallest and largest lambda of the profile and the fit within Delta chi^2 = 3.84
     /// of the fit's misfit (95%, the noise from its residual): null where z0 is held.
     pub lambda_95: Option<[f64; 2]>,
-    /// Whether the curve fixes the solid's lambda: the profile's smallest and largest lambdas
-    /// both lie outside that set (false: lambda_95 reaches the profile's end, and the curve
-    /// allows lambdas beyond it).
-    pub lambda_bounded: bool,
+    /// Whether the curve fixes the solid's lambda: the profile's smallest and largest lambdas lie
+    /// outside that set, on either side of the fitted lambda (false: the set reaches the
+    /// profile's end, and the curve allows lambdas beyond it). Null where z0 is held (z0 fixes
+    /// lambda, not the curve) or the fit did not converge.
+    pub lambda_bounded: Option<bool>,
     /// The smallest and largest solid w (J/m^2) of the fits in that set: where lambda is not
     /// fixed, w moves with it along the misfit's valley, farther than its linearised standard
     /// error says. Null where z0 is held.
@@ -332,8 +333,8 @@ fn shape_of(
         .filter_map(|f| Some([f.lambda?, f.rms_residual_n, f.work_of_adhesion_j_m2]))
         .collect();
     points.sort_by(|a, b| a[0].total_cmp(&b[0]));
-    let (mut lambda_95, mut solid_w_95, mut lambda_bounded) = (None, None, true);
-    if let (Some(first), Some(last)) = (points.first(), points.last()) {
+    let (mut lambda_95, mut solid_w_95, mut lambda_bounded) = (None, None, None);
+    if !points.is_empty() && fit.status == FitStatus::Ok {
         // Delta chi^2 = m (rms^2 - rms_fit^2) / s^2, s^2 from the fit's residual (5 parameters)
         // with the floor of a noise-free curve, as the Maugis-Dugdale fit's profile.
         let m = d.force.len() as f64;
@@ -354,7 +355,11 @@ fn shape_of(
         };
         lambda_95 = Some(range(0));
         solid_w_95 = Some(range(2));
-        lambda_bounded = !inside(first[1]) && !inside(last[1]);
+        // The profile's ends outside the set, on either side of the fit's lambda (a set with
+        // several basins may have gaps: its ends are what bound it).
+        let (first, last) = (points[0], points[points.len() - 1]);
+        lambda_bounded =
+            Some(!inside(first[1]) && !inside(last[1]) && first[0] < lambda && lambda < last[0]);
     }
     ShapeFit {
         fit,

@@ -10,7 +10,7 @@ use super::path::{Piece, Pt};
 use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
 use crate::physics::model::ContactModel;
 use crate::physics::two_zone::{
-    non_contact_both, non_contact_ends, non_contact_single, point_with_slopes, Shape, Zones,
+    non_contact_both, non_contact_ends, non_contact_single, point, point_with_slopes, Shape, Zones,
 };
 use crate::solver::context::x_at_radius_newton;
 use crate::solver::two_zone::{x_at_radius, TwoZoneContext};
@@ -316,7 +316,10 @@ impl Law {
         };
         -cached(Key::Radius(law.model, law.bits(), a.to_bits()), || {
             Cached::X(match &zoned {
-                Zoned::Two(z, ..) => x_at_radius(z, a),
+                // The bisection ends at its bracket's end where no radius matches: NaN then.
+                Zoned::Two(z, ..) => Some(x_at_radius(z, a))
+                    .filter(|&x| point(z, x).is_some_and(|p| (p.a / a - 1.0).abs() <= 1e-9))
+                    .unwrap_or(f64::NAN),
                 _ => x_at_radius_newton(law.lambda, a),
             })
         })
@@ -470,7 +473,8 @@ fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt
 }
 
 /// Entries kept per thread: a fit at fixed lambda needs a handful (the radii of the doubling
-/// and the two pieces' nodes); a free fit, whose lambda moves at every step, only cycles them.
+/// and the two pieces' nodes); a free fit, whose lambda moves at every step, only cycles them,
+/// as does every fit of the two-zone law (its zones' ratios move with E* and w).
 const CACHE: usize = 16;
 
 thread_local! {
@@ -660,6 +664,34 @@ mod tests {
                 }
             }
         }
+        // The single stretch of the non-contact piece: the longer zone's disc alone, its load
+        // -(pi/2) lambda_L C^2 in closed form, its slope -pi lambda_L C.
+        let z = Zones::from_ratios(0.5, 0.2, 5.0).unwrap();
+        let (law, long) = (Law::solid_and_meniscus(0.5, 0.2, 5.0), 1);
+        let c_l = law.pieces(3.0)[0].2 - non_contact_ends(&z).unwrap().1;
+        for c in [0.0, 0.3 * c_l, c_l] {
+            let p = law.state(Piece::NonContact, c);
+            let l = z.lambda[long];
+            assert!((p.load + PI / 2.0 * l * c * c).abs() <= 1e-15, "C {c}");
+            assert!(
+                (p.dload + PI * l * c).abs() <= 1e-6 * (1.0 + c),
+                "C {c}: {}",
+                p.dload
+            );
+        }
+        // The load-controlled pull-off: within the two-zone bounds [3/2, 2] for two ranges, and
+        // Maugis-Dugdale's exact one where the zones share a range (the summed lambda).
+        for (lambda, rho, eta) in [(0.5, 0.2, 5.0), (2.0, 0.05, 10.0), (1.0, 3.0, 0.3)] {
+            let p = Law::solid_and_meniscus(lambda, rho, eta).pulloff();
+            assert!((1.5..=2.0).contains(&p), "{lambda} {rho} {eta}: {p}");
+        }
+        let z = Zones::from_ratios(0.8, 0.5, 1.0).unwrap();
+        let exact = crate::solver::LambdaContext::new(z.lambda[0] + z.lambda[1])
+            .unwrap()
+            .load_pulloff
+            .load;
+        let p = Law::solid_and_meniscus(0.8, 0.5, 1.0).pulloff();
+        assert!((p + exact).abs() <= 1e-12, "{p} against {exact}");
         // No meniscus stress: one zone, Maugis-Dugdale at the solid's lambda.
         let (dry, md) = (
             Law::solid_and_meniscus(0.8, 0.0, 3.0),

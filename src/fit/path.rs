@@ -181,8 +181,9 @@ impl SpringPath {
             let p = law.state(piece, t);
             p.approach + p.load / kbar
         };
-        // The states at the nodes do not depend on the spring: a fit at fixed lambda (the
-        // profile, the intervals) evaluates them once and only rescales Delta with kbar.
+        // The states at the nodes do not depend on the spring: a fit of a one-zone law at
+        // fixed lambda (the profile, the intervals) evaluates them once and only rescales
+        // Delta with kbar (the two-zone law's nodes move with E* and w).
         let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
             law.nodes(piece, t0, t1)
                 .iter()
@@ -497,7 +498,9 @@ impl SpringPath {
                 for kk in (0..=k).rev() {
                     let (piece, nodes) = (self.pieces[kk].0, &self.pieces[kk].1);
                     for w in nodes.windows(2).rev() {
-                        if w[1].t > t_from || (kk == k && w[1].t >= t_from) {
+                        // Below t_from on its own piece; every node of a piece below it (each
+                        // piece has its own parameter).
+                        if kk == k && w[1].t >= t_from {
                             continue;
                         }
                         if let Some(t) = crosses(piece, &w[0], &w[1]) {

@@ -135,6 +135,44 @@ pub(super) fn forces_on(
     Some((f, a, states, path))
 }
 
+/// The law of `model` at the parameters `p` and its units, with the tip radius and the spring
+/// constant: the model at its lambda in the units of its w, or (the two-zone law with a
+/// `meniscus`, its stress in Pa and range in m) the solid's zone with the meniscus in the units
+/// of their total w.
+pub fn law_units(
+    model: Model,
+    p: &Params,
+    radius: f64,
+    spring: f64,
+    meniscus: Option<(f64, f64)>,
+) -> (Law, Units) {
+    match meniscus {
+        Some(m) if model == Model::SolidAndMeniscus => {
+            let (law, w) = law::solid_and_meniscus_of(p.e_star, p.w, p.lambda, radius, m);
+            (law, units(&Params { w, ..*p }, radius, spring))
+        }
+        _ => (Law::new(model, p.lambda), units(p, radius, spring)),
+    }
+}
+
+/// [`model_forces`] of a fit with the options it was made with (the two-zone law takes its
+/// meniscus from their humidity).
+pub fn fitted_forces(
+    m: &ModelFit,
+    opt: &FitOptions,
+    height: &[f64],
+    dir: &[Direction],
+    side: Option<&[Side]>,
+) -> Option<Evaluated> {
+    let p = m.params();
+    if m.model != Model::SolidAndMeniscus {
+        return model_forces(m.model, &p, opt.radius, opt.spring, height, dir, side);
+    }
+    let meniscus = opt.humidity.as_ref().and_then(|h| h.stress_and_range());
+    let (law, u) = law_units(m.model, &p, opt.radius, opt.spring, meniscus);
+    forces_on(law, &u, p.zc, height, dir, side, None)
+}
+
 /// The least-squares problem of one model on one prepared curve.
 pub(super) struct Problem<'a> {
     pub(super) model: Model,
@@ -197,19 +235,9 @@ impl Problem<'_> {
     pub(super) fn has_lambda(&self) -> bool {
         self.model.has_lambda() && self.z0.is_none() && self.fixed_lambda.is_none()
     }
-    /// The law and its units at p: the model at its lambda, or the solid's zone with the
-    /// meniscus, in the units of their total w.
+    /// The law and its units at p ([`law_units`]).
     pub(super) fn law_units(&self, p: &Params) -> (Law, Units) {
-        match self.meniscus {
-            Some(m) if self.model == Model::SolidAndMeniscus => {
-                let (law, w) = law::solid_and_meniscus_of(p.e_star, p.w, p.lambda, self.radius, m);
-                (law, units(&Params { w, ..*p }, self.radius, self.spring))
-            }
-            _ => (
-                Law::new(self.model, p.lambda),
-                units(p, self.radius, self.spring),
-            ),
-        }
+        law_units(self.model, p, self.radius, self.spring, self.meniscus)
     }
 
     pub(super) fn n(&self) -> usize {

@@ -4,6 +4,10 @@
 
 use super::*;
 
+/// The longest Lennard-Jones range a fitted zone may have and still be read as surface forces
+/// (m): a water meniscus's height reaches about this at high humidity.
+const SURFACE_FORCE_RANGE: f64 = 1e-8;
+
 pub(super) fn summarize(
     curve: &Curve,
     opt: &FitOptions,
@@ -272,11 +276,21 @@ pub(super) fn warnings(
     // wrong model, not a fit).
     let floor = 1e-8 * d.force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     if md.rms_residual_n > 10.0 * d.noise + floor {
+        let against = if d.noise > 0.0 {
+            format!(
+                "{:.0} times the baseline's noise {:.3e} N",
+                md.rms_residual_n / d.noise,
+                d.noise
+            )
+        } else {
+            format!(
+                "{:.1e} of the largest force, on a noise-free baseline",
+                md.rms_residual_n / (1e8 * floor)
+            )
+        };
         warn.push(format!(
-            "the fit does not describe this curve: its rms residual {:.3e} N is {:.0} times the baseline's noise {:.3e} N (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
+            "the fit does not describe this curve: its rms residual {:.3e} N is {against} (drift, ringing, a wrong model, wrong units or a wrong spring constant); its parameters are doubtful",
             md.rms_residual_n,
-            md.rms_residual_n / d.noise,
-            d.noise
         ));
     }
     if amax / opt.radius > 0.1 {
@@ -305,6 +319,15 @@ pub(super) fn warnings(
             warn.push(format!(
                 "lambda is not determined by this curve (standard error {e:.3} against {:.3}: the misfit barely changes over the lambda profile); fix it by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever",
                 p.lambda
+            ));
+        }
+    }
+    // A fitted zone far beyond surface forces (their range is about a nanometre, a water
+    // meniscus's up to about ten) stands for something else that pulls as the tip leaves.
+    if out.lambda_determined == Some(true) && opt.z0.is_none() {
+        if let Some(z0) = out.z0_m.filter(|&z| z > SURFACE_FORCE_RANGE) {
+            warn.push(format!(
+                "the fitted Dugdale zone reaches z0 = {z0:.3e} m, beyond the range of surface forces (about 1e-9 m; a water meniscus up to about 1e-8 m): the zone stands for what pulls as the tip leaves (tethers, viscoelastic peeling, drift), and w and lambda describe it, not the surfaces' adhesion"
             ));
         }
     }

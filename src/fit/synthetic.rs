@@ -2,9 +2,9 @@
 //! what the fitter's recovery test, its benchmark and the gallery example are made of.
 
 use super::data::Curve;
-use super::law::{solid_and_meniscus_of, Law};
+use super::law::Law;
 use super::path::{Direction, SpringPath};
-use super::problem::forces_on;
+use super::problem::{forces_on, law_units};
 use super::Model;
 use super::{units, Params};
 use rand::SeedableRng;
@@ -86,8 +86,7 @@ pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, S
             s.model.name()
         ));
     }
-    let (law, w) = solid_and_meniscus_of(p.e_star, p.w, p.lambda, s.radius, meniscus);
-    let u = units(&Params { w, ..p }, s.radius, s.spring);
+    let (law, u) = law_units(s.model, &p, s.radius, s.spring, Some(meniscus));
     noisy(s, law, &u)
 }
 
@@ -139,6 +138,13 @@ fn noisy(s: &Synthetic, law: Law, u: &super::Units) -> Result<Curve, String> {
     segment.extend(vec![Direction::Retract; n]);
     let (f, _, _, _) = forces_on(law, u, p.zc, &height, &segment, None, None)
         .ok_or_else(|| out_of_domain(p.lambda))?;
+    if let Some(i) = f.iter().position(|f| !f.is_finite()) {
+        return Err(format!(
+            "the {} path could not be solved at lambda {} (point {i}): use a lambda in the solver's domain",
+            s.model.label(),
+            crate::physics::domain::short(p.lambda)
+        ));
+    }
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);
     let normal = Normal::new(0.0, s.noise).map_err(|e| format!("force noise: {e}"))?;
     let force = f

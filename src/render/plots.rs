@@ -69,6 +69,7 @@ pub(crate) const BLUE_: RGBColor = RGBColor(0, 114, 178);
 pub(crate) const ORANGE_: RGBColor = RGBColor(213, 94, 0);
 pub(crate) const GREEN_: RGBColor = RGBColor(0, 158, 115);
 pub(crate) const GRAY_: RGBColor = RGBColor(120, 120, 120);
+pub(crate) const PURPLE_: RGBColor = RGBColor(204, 121, 167);
 
 /// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
 /// JKR limits and the Carpick-Ogletree-Salmeron fit.
@@ -1092,8 +1093,7 @@ where
     for (m, col, label) in fitted_models(md, r).iter().rev() {
         let p = m.params();
         let model = |h: &[f64], dir: &[crate::fit::Direction], side| {
-            crate::fit::model_forces(m.model, &p, opt.radius, opt.spring, h, dir, side)
-                .map(|(f, _, _, _)| f)
+            crate::fit::fitted_forces(m, opt, h, dir, side).map(|(f, _, _, _)| f)
         };
         let Some(f) = model(&hs, &dirs, None) else {
             continue;
@@ -1256,15 +1256,22 @@ fn fitted_models<'a>(
         .models
         .iter()
         .filter(|m| m.status == crate::fit::FitStatus::Ok);
-    let closed = ok.map(|m| {
-        let c = match m.model {
-            Model::Hertz => GRAY_,
-            Model::Dmt => ORANGE_,
-            Model::Jkr => BLUE_,
-            Model::Md => GREEN_,
-            Model::SolidAndMeniscus => RGBColor(0x88, 0x22, 0x88),
+    // The two-zone law fitted to a humid curve's shape, where it was.
+    let wet = r
+        .humidity
+        .as_ref()
+        .and_then(|h| h.shape_fit.as_ref())
+        .map(|s| &s.fit)
+        .filter(|m| m.status == crate::fit::FitStatus::Ok);
+    let closed = ok.chain(wet).map(|m| {
+        let (c, label) = match m.model {
+            Model::Hertz => (GRAY_, m.model.label()),
+            Model::Dmt => (ORANGE_, m.model.label()),
+            Model::Jkr => (BLUE_, m.model.label()),
+            Model::Md => (GREEN_, m.model.label()),
+            Model::SolidAndMeniscus => (PURPLE_, "two zones (solid + meniscus)"),
         };
-        (m, c, m.model.label())
+        (m, c, label)
     });
     std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
         .chain(closed)
