@@ -206,6 +206,10 @@ impl Law {
 
     /// The state at parameter t of a piece.
     pub fn state(&self, piece: Piece, t: f64) -> Pt {
+        if self.model != Model::SolidAndMeniscus {
+            // The hot path of every fit: no zones to look at.
+            return self.one_zone_state(piece, t);
+        }
         match self.zoned() {
             Zoned::One(l) => l.one_zone_state(piece, t),
             Zoned::Two(z, _, ends) if piece != Piece::Free => two_zone_state(&z, ends, piece, t),

@@ -568,7 +568,7 @@ impl Problem<'_> {
     /// slide `dt/dx` along its piece (zero for free and held points), from the same slopes.
     pub(super) fn analytic_jacobian(&self, base: &[PathState]) -> (DMatrix<f64>, DMatrix<f64>) {
         let p = self.params(&self.x);
-        let u = self.law_units(&p).1;
+        let (law, u) = self.law_units(&p);
         let (m, n) = (base.len(), self.n());
         let mut j = DMatrix::zeros(m, n);
         let mut dt = DMatrix::zeros(m, n);
@@ -602,7 +602,7 @@ impl Problem<'_> {
                 k += 1;
             }
             if self.has_lambda() {
-                let (dp, slide) = self.dload_dlambda(&p, &u, s);
+                let (dp, slide) = self.dload_dlambda(&law, &u, s);
                 j[(i, k)] = u.force * p.lambda * dp / self.f_scale;
                 dt[(i, k)] = p.lambda * slide;
                 k += 1;
@@ -617,11 +617,11 @@ impl Problem<'_> {
     /// dPbar/dlambda at the point's Delta (fixed) and kbar, and the state's slide along its
     /// piece, `dt/dlambda = -(D_lambda + P_lambda / kbar) / g`. Zero on the free piece and for
     /// held points (their rows are taken by differences).
-    fn dload_dlambda(&self, p: &Params, u: &Units, s: &PathState) -> (f64, f64) {
+    fn dload_dlambda(&self, law: &Law, u: &Units, s: &PathState) -> (f64, f64) {
         if s.piece == Piece::Free || s.clamped {
             return (0.0, 0.0);
         }
-        let (pl, dl) = self.law_units(p).0.state_dlambda(s.piece, s.t);
+        let (pl, dl) = law.state_dlambda(s.piece, s.t);
         let g = s.dapproach + s.dload / u.kbar;
         if g.abs() > 0.0 {
             (
