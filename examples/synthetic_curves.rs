@@ -27,10 +27,7 @@ fn main() {
             w.write_record([
                 (i % side).to_string(),
                 (i / side).to_string(),
-                match c.segment[k] {
-                    tabor::fit::Direction::Approach => "approach".into(),
-                    tabor::fit::Direction::Retract => "retract".into(),
-                },
+                c.segment[k].name().to_string(),
                 format!("{:.9e}", c.height[k]),
                 format!("{:.9e}", c.force[k]),
             ])

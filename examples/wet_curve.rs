@@ -44,10 +44,7 @@ fn main() {
     w.write_record(["segment", "height_m", "force_n"]).unwrap();
     for k in 0..c.len() {
         w.write_record([
-            match c.segment[k] {
-                tabor::fit::Direction::Approach => "approach".to_string(),
-                tabor::fit::Direction::Retract => "retract".to_string(),
-            },
+            c.segment[k].name().to_string(),
             format!("{:e}", c.height[k]),
             format!("{:e}", c.force[k]),
         ])

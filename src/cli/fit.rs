@@ -417,6 +417,14 @@ const HUMIDITY_COLUMNS: [&str; 25] = [
     "shape_solid_w_95_high",
 ];
 
+/// A fit status as JSON names it.
+fn status_name(s: fit::FitStatus) -> String {
+    serde_json::to_value(s)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default()
+}
+
 fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
     let Some(h) = h else {
@@ -443,9 +451,7 @@ fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
     let fit = sf.map(|s| &s.fit);
     let end = |k: usize, r: Option<[f64; 2]>| f(r.map(|r| r[k]));
     cells.extend([
-        fit.and_then(|f| serde_json::to_value(f.status).ok())
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default(),
+        fit.map_or(String::new(), |f| status_name(f.status)),
         f(fit.map(|f| f.e_star_pa)),
         f(fit.map(|f| f.work_of_adhesion_j_m2)),
         f(fit.and_then(|f| f.lambda)),
@@ -513,10 +519,7 @@ fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
             r.curve.clone(),
             r.x.map_or(String::new(), |v| v.to_string()),
             r.y.map_or(String::new(), |v| v.to_string()),
-            serde_json::to_value(r.status)?
-                .as_str()
-                .unwrap_or("")
-                .to_string(),
+            status_name(r.status),
             f(r.e_star_pa),
             f(r.e_star_pa_stderr),
             f(r.work_of_adhesion_j_m2),

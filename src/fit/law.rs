@@ -174,12 +174,17 @@ impl Law {
         }
     }
 
+    /// The two-zone law's zones in its total-w units (None where the ratios are refused).
+    fn zones(&self) -> Option<Zones> {
+        Zones::from_ratios(self.lambda, self.second[0], self.second[1]).ok()
+    }
+
     /// The law's zones: one (itself, or the two-zone law that is one zone) or two.
     fn zoned(&self) -> Zoned {
         if self.model != Model::SolidAndMeniscus {
             return Zoned::One(*self);
         }
-        let Ok(z) = Zones::from_ratios(self.lambda, self.second[0], self.second[1]) else {
+        let Some(z) = self.zones() else {
             return Zoned::Unsolvable;
         };
         match z.shape() {
@@ -213,7 +218,8 @@ impl Law {
         match self.zoned() {
             Zoned::One(l) => l.one_zone_state(piece, t),
             Zoned::Two(z, _, ends) if piece != Piece::Free => two_zone_state(&z, ends, piece, t),
-            Zoned::Two(..) => Law::new(Model::Md, 1.0).one_zone_state(piece, t),
+            // The free piece is every law's.
+            Zoned::Two(..) => self.one_zone_state(piece, t),
             Zoned::Unsolvable => Pt::nan(),
         }
     }
@@ -360,12 +366,10 @@ impl Law {
             Model::Dmt => 2.0,
             Model::Jkr => 1.5,
             Model::Md => crate::physics::closed::cos_pulloff(self.lambda).abs(),
-            Model::SolidAndMeniscus => {
-                Zones::from_ratios(self.lambda, self.second[0], self.second[1])
-                    .ok()
-                    .and_then(|z| TwoZoneContext::new(z).ok())
-                    .map_or(f64::NAN, |c| c.load_pulloff.load.abs())
-            }
+            Model::SolidAndMeniscus => self
+                .zones()
+                .and_then(|z| TwoZoneContext::new(z).ok())
+                .map_or(f64::NAN, |c| c.load_pulloff.load.abs()),
         }
     }
 
@@ -446,14 +450,14 @@ fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt
             None => Pt::nan(),
         };
     }
-    let at = |t: f64| -> Option<[f64; 3]> {
-        match piece {
-            Piece::NonContact if t <= c_l => {
-                let p = non_contact_single(z, t.max(0.0));
-                Some([p.load, p.approach, 0.0])
-            }
-            _ => non_contact_both(z, (t - c_l).min(c_s)).map(|p| [p.load, p.approach, 0.0]),
-        }
+    // The non-contact piece: (load, approach) on its stretch, A = 0.
+    let at = |t: f64| -> Option<[f64; 2]> {
+        let p = if t <= c_l {
+            non_contact_single(z, t.max(0.0))
+        } else {
+            non_contact_both(z, (t - c_l).min(c_s))?
+        };
+        Some([p.load, p.approach])
     };
     let (lo, hi) = if t <= c_l {
         (0.0, c_l)
@@ -469,10 +473,10 @@ fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt
     Pt {
         load: v[0],
         approach: v[1],
-        a: v[2],
+        a: 0.0,
         dload: d(0),
         dapproach: d(1),
-        da: d(2),
+        da: 0.0,
     }
 }
 

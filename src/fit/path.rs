@@ -26,6 +26,16 @@ pub enum Direction {
     Retract,
 }
 
+impl Direction {
+    /// The name in files (CSV `segment` columns, JSON): `approach` or `retract`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Direction::Approach => "approach",
+            Direction::Retract => "retract",
+        }
+    }
+}
+
 /// A piece of a model's equilibrium path, each with its own parameter t.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -168,9 +168,16 @@ pub fn fitted_forces(
     if m.model != Model::SolidAndMeniscus {
         return model_forces(m.model, &p, opt.radius, opt.spring, height, dir, side);
     }
-    let meniscus = opt.humidity.as_ref().and_then(|h| h.stress_and_range());
-    let (law, u) = law_units(m.model, &p, opt.radius, opt.spring, meniscus);
+    let (law, u) = law_units(m.model, &p, opt.radius, opt.spring, meniscus(m.model, opt));
     forces_on(law, &u, p.zc, height, dir, side, None)
+}
+
+/// The meniscus (stress in Pa, range in m) a model's law takes from the options: the humidity's
+/// for the two-zone law, none for the others.
+fn meniscus(model: Model, opt: &FitOptions) -> Option<(f64, f64)> {
+    (model == Model::SolidAndMeniscus)
+        .then(|| opt.humidity.as_ref()?.stress_and_range())
+        .flatten()
 }
 
 /// The least-squares problem of one model on one prepared curve.
@@ -295,14 +302,14 @@ impl Problem<'_> {
         x: &DVector<f64>,
         near: Option<&[PathState]>,
     ) -> Option<(DVector<f64>, Vec<PathState>)> {
-        let (p, u) = self.checked(x)?;
+        let (p, law, u) = self.checked(x)?;
         let d = self.data;
         let states: Vec<PathState> = match near {
-            Some(base) => self.states_near(&p, &u, base, 0..base.len()),
+            Some(base) => self.states_near(&p, law, &u, base, 0..base.len()),
             None => {
                 let hints = self.hints.borrow();
                 forces_on(
-                    self.law_units(&p).0,
+                    law,
                     &u,
                     p.zc,
                     &d.height,
@@ -323,17 +330,17 @@ impl Problem<'_> {
         r.iter().all(|v| v.is_finite()).then_some((r, states))
     }
 
-    /// The parameters and units at x; None where they leave the models' domain.
-    fn checked(&self, x: &DVector<f64>) -> Option<(Params, Units)> {
+    /// The parameters, the law and its units at x; None where they leave the models' domain.
+    fn checked(&self, x: &DVector<f64>) -> Option<(Params, Law, Units)> {
         let p = self.params(x);
-        let u = self.law_units(&p).1;
+        let (law, u) = self.law_units(&p);
         if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
             return None;
         }
         if self.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
             return None;
         }
-        Some((p, u))
+        Some((p, law, u))
     }
 
     /// The states of the points `rows` at (p, u), each on the piece its `base` state had: Newton
@@ -342,6 +349,7 @@ impl Problem<'_> {
     fn states_near(
         &self,
         p: &Params,
+        law: Law,
         u: &Units,
         base: &[PathState],
         rows: impl Iterator<Item = usize>,
@@ -353,7 +361,6 @@ impl Problem<'_> {
             .map(|h| (p.zc - h) / u.approach)
             .fold(1.0, f64::max);
         let mut full: Option<SpringPath> = None;
-        let law = self.law_units(p).0;
         rows.map(|i| {
             let s = &base[i];
             let delta = (p.zc - d.height[i]) / u.approach;
@@ -636,8 +643,8 @@ impl Problem<'_> {
     /// The residuals of the points `rows` at parameters x, each on the piece its `base` state had:
     /// [`Problem::eval`] with `near`, for those rows alone.
     fn eval_rows(&self, x: &DVector<f64>, base: &[PathState], rows: &[usize]) -> Option<Vec<f64>> {
-        let (p, u) = self.checked(x)?;
-        let states = self.states_near(&p, &u, base, rows.iter().copied());
+        let (p, law, u) = self.checked(x)?;
+        let states = self.states_near(&p, law, &u, base, rows.iter().copied());
         let r: Vec<f64> = rows
             .iter()
             .zip(&states)
@@ -826,9 +833,7 @@ impl<'a> Problem<'a> {
         let (f_scale, z_scale) = scales(d);
         Problem {
             model,
-            meniscus: (model == Model::SolidAndMeniscus)
-                .then(|| opt.humidity.as_ref().and_then(|h| h.stress_and_range()))
-                .flatten(),
+            meniscus: meniscus(model, opt),
             data: d,
             radius: opt.radius,
             spring: opt.spring,

@@ -6,7 +6,7 @@ use super::law::Law;
 use super::path::{Direction, SpringPath};
 use super::problem::{forces_on, law_units};
 use super::Model;
-use super::{units, Params};
+use super::Params;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -65,33 +65,24 @@ pub fn synthetic(s: &Synthetic) -> Curve {
 
 /// [`synthetic`], or why the parameters give no curve.
 pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
-    checked(s)?;
-    let p = s.params;
-    let u = units(&p, s.radius, s.spring);
-    if s.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
-        return Err(out_of_domain(p.lambda));
-    }
-    noisy(s, Law::new(s.model, p.lambda), &u)
+    made(s, None)
 }
 
 /// A curve of the two-zone law (`s.model` [`Model::SolidAndMeniscus`], `s.params` the solid's
 /// E*, w and lambda) in a meniscus of stress `s2` (Pa) and range `h2` (m): what the two-zone
 /// shape fit is tested on.
 pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, String> {
-    checked(s)?;
-    let p = s.params;
     if s.model != Model::SolidAndMeniscus {
         return Err(format!(
             "a wet synthetic curve is of the two-zone law, not {}",
             s.model.name()
         ));
     }
-    let (law, u) = law_units(s.model, &p, s.radius, s.spring, Some(meniscus));
-    noisy(s, law, &u)
+    made(s, Some(meniscus))
 }
 
-/// Why the numbers of `s` give no curve, if they do not.
-fn checked(s: &Synthetic) -> Result<(), String> {
+/// The curve of `s` (with the two-zone law's `meniscus`), or why its numbers give none.
+fn made(s: &Synthetic, meniscus: Option<(f64, f64)>) -> Result<Curve, String> {
     let p = s.params;
     let finite = [
         p.e_star, p.w, p.lambda, p.zc, p.f0, s.radius, s.spring, s.depth,
@@ -109,7 +100,11 @@ fn checked(s: &Synthetic) -> Result<(), String> {
             s.noise
         ));
     }
-    Ok(())
+    if s.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        return Err(out_of_domain(p.lambda));
+    }
+    let (law, u) = law_units(s.model, &p, s.radius, s.spring, meniscus);
+    noisy(s, law, &u)
 }
 
 fn out_of_domain(lambda: f64) -> String {

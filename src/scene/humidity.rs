@@ -191,8 +191,13 @@ impl HumidityInput {
     /// [`HumidityInput::meniscus`]; the values are checked).
     pub fn stress_and_range(&self) -> Option<(f64, f64)> {
         self.validate().ok()?;
-        (self.relative_humidity > 0.0 && self.contact_angle_deg < 90.0)
-            .then(|| self.zone(self.kelvin_radius()))
+        self.forms().then(|| self.zone(self.kelvin_radius()))
+    }
+
+    /// Whether a meniscus forms: RH above 0 and a contact angle below 90 degrees (water
+    /// bridges the gap).
+    fn forms(&self) -> bool {
+        self.relative_humidity > 0.0 && self.contact_angle_deg < 90.0
     }
 
     /// The Kelvin radius `gamma V_m / (R T ln(1/RH))` (m).
@@ -209,8 +214,7 @@ impl HumidityInput {
     /// contact angle of 90 degrees or more: water does not bridge the gap).
     pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
         self.validate()?;
-        let (rh, theta) = (self.relative_humidity, self.contact_angle_deg);
-        if rh == 0.0 || theta >= 90.0 {
+        if !self.forms() {
             return Ok(None);
         }
         let r_k = self.kelvin_radius();
