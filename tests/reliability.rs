@@ -546,6 +546,33 @@ fn closed_pipes_end_quietly_and_full_disks_are_errors() {
     }
 }
 
+/// `tabor solve ... >&-`: stdout closed before tabor starts. The results would vanish, so it
+/// must not exit 0; a plain `> /dev/null` is the user's choice and succeeds.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_closed_stdout_is_an_error_and_dev_null_is_not() {
+    let exe = env!("CARGO_BIN_EXE_tabor");
+    for (redirect, code) in [(">&-", Some(1)), ("> /dev/null", Some(0))] {
+        let o = Command::new("sh")
+            .arg("-c")
+            .arg(format!(
+                "exec \"$0\" solve --lambda 1 --load 0.5 --format csv {redirect}"
+            ))
+            .arg(exe)
+            .stderr(Stdio::piped())
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), code, "{redirect}: {}", stderr(&o));
+        if code == Some(1) {
+            let e = stderr(&o);
+            assert!(
+                e.contains("stdout is closed") && e.trim().lines().count() == 1,
+                "{e}"
+            );
+        }
+    }
+}
+
 #[test]
 fn sizes_beyond_the_memory_bound_are_refused_up_front() {
     refused(&["map", "--nx", "16384", "--ny", "16384"], "4096 x 4096");
@@ -556,6 +583,34 @@ fn sizes_beyond_the_memory_bound_are_refused_up_front() {
     let o = run(&["solve", "-i", "/dev/zero"]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("not a CSV table"), "{}", stderr(&o));
+}
+
+/// `rough-map --json-full` streams its per-point arrays: a 1024 x 1024 map's held as JSON values
+/// and one string took over 600 MB; streamed, the map's own arrays (about 60 MB) are the bulk.
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_rough_map_json_streams_in_bounded_memory() {
+    if Command::new("prlimit").arg("--version").output().is_err() {
+        eprintln!("SKIPPED: no prlimit");
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let json = dir.path().join("rough.json");
+    let o = Command::new("prlimit")
+        .arg(format!("--as={}", 400 << 20))
+        .arg(env!("CARGO_BIN_EXE_tabor"))
+        .args(["rough-map", "--nx", "1024", "--ny", "1024", "--check", "0", "--backend", "cpu"])
+        .args(["--json-full", "--json", json.to_str().unwrap()])
+        .args(["--out", dir.path().join("rough.png").to_str().unwrap()])
+        .stderr(Stdio::piped())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    for key in ["pulloff", "relative_pulloff", "region", "jkr_error"] {
+        assert_eq!(j[key].as_array().map(|a| a.len()), Some(1 << 20), "{key}");
+    }
 }
 
 /// A solve whose input and output are several times the memory it may use: it streams.

@@ -979,3 +979,69 @@ fn erfc_own(x: f64) -> f64 {
     }
     (-x * x).exp() / (f * std::f64::consts::PI.sqrt())
 }
+
+#[test]
+fn one_radius_ensembles_run_and_their_pulloff_is_searched() {
+    // Every summit of one radius (the plain Greenwood-Williamson ensemble) once indexed past the
+    // end of a one-lambda table. Its tables must give the exact summits' cycle, and the pull-off
+    // must be the retract's minimum, not its least sample: the same at 2, 40 and 400 points.
+    use tabor::engine::Engine;
+    use tabor::physics::params::{Contact, ForceRange};
+    use tabor::rough::ensemble::{cycle_with, Asperity, Materials, SummitSolver};
+    let m = Materials {
+        e_star_pa: 87.2e9,
+        work_of_adhesion_j_m2: 0.1,
+        range: ForceRange::LennardJones(0.3e-9),
+    };
+    for asp in [
+        vec![Asperity {
+            height_m: 0.0,
+            radius_m: 5e-7,
+        }],
+        (0..200)
+            .map(|i| Asperity {
+                height_m: ((i as f64 * 0.618034) % 1.0 - 0.5) * 2e-9,
+                radius_m: 5e-7,
+            })
+            .collect(),
+    ] {
+        let d_min = -1e-9;
+        let run = |points, solver| {
+            cycle_with(&asp, &m, d_min, None, points, solver, &Engine::Cpu).unwrap()
+        };
+        let exact = run(400, SummitSolver::Exact);
+        let tables = run(400, SummitSolver::Tables);
+        let scale = exact.pulloff_force_n.abs();
+        for (a, b) in tables.retract.force_n.iter().zip(&exact.retract.force_n) {
+            assert!((a - b).abs() <= 2e-6 * scale, "{a} against {b}");
+        }
+        let least = exact
+            .retract
+            .force_n
+            .iter()
+            .fold(f64::INFINITY, |a, &b| a.min(b));
+        assert!(exact.pulloff_force_n <= least);
+        for points in [2, 40] {
+            let c = run(points, SummitSolver::Exact);
+            assert!(
+                (c.pulloff_force_n - exact.pulloff_force_n).abs() <= 1e-9 * scale,
+                "{} summits, {points} points: {} against {}",
+                asp.len(),
+                c.pulloff_force_n,
+                exact.pulloff_force_n
+            );
+        }
+        if asp.len() == 1 {
+            // One summit: its grips retract passes the load-controlled pull-off (the most
+            // tensile state of its path) before it jumps out or reaches zero radius.
+            let s = Contact::new(5e-7, m.e_star_pa, 0.1, m.range).unwrap();
+            let ctx = LambdaContext::new(s.lambda()).unwrap();
+            let want = ctx.load_pulloff.load * s.force_scale();
+            assert!(
+                (exact.pulloff_force_n - want).abs() <= 1e-9 * want.abs(),
+                "{} against {want}",
+                exact.pulloff_force_n
+            );
+        }
+    }
+}

@@ -140,6 +140,8 @@ struct Json<'a> {
     fuller_tabor_parameter: f64,
     quadrature_error: f64,
     model: &'a str,
+    #[serde(skip_serializing_if = "<[String]>::is_empty")]
+    warnings: &'a [String],
 }
 
 use crate::rough::scene::MODEL;
@@ -195,6 +197,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
                 fuller_tabor_parameter: c.fuller_tabor_parameter,
                 quadrature_error: c.quadrature_error,
                 model: if wet.is_some() { MODEL_WET } else { MODEL },
+                warnings: &c.warnings,
             };
             serde_json::to_string_pretty(&j)? + "\n"
         }
@@ -222,6 +225,9 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         short(c.smooth_pulloff),
         short(c.hysteresis)
     );
+    for w in &c.warnings {
+        eprintln!("warning: {w}");
+    }
     Ok(())
 }
 
@@ -596,7 +602,7 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
             SummitsArg::Exact => SummitSolver::Exact,
         },
     };
-    spec.validate()?;
+    spec.validate(sc)?;
     let engine = match spec.solver {
         SummitSolver::Exact => crate::engine::Engine::Cpu,
         SummitSolver::Tables => table_engine(a.backend, &a.adapter, a.precision)?,

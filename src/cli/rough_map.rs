@@ -96,9 +96,10 @@ impl RoughMapArgs {
 }
 
 /// How a region is decided, for the JSON and the figure.
-pub const REGION_RULE: &str = "each point takes the first of Hertz (no adhesion), Bradley (rigid summits: Dugdale attraction -2(1 + delta/h0) at a gap, -2 in contact), DMT (delta^(3/2) - 2 in contact, the same attraction at a gap), JKR (Fuller and Tabor: in at delta = 0, out at JKR's rigid-grip jump-out) whose rough pull-off differs from the exact MD summits' by at most the tolerance times the smooth summit's pull-off, and whose retract curve (at 20 separations from the smallest to where the summits are free) differs by at most the tolerance times the MD curve's largest |load|; else MD";
+pub const REGION_RULE: &str = "each point takes the first of Hertz (no adhesion), Bradley (rigid summits: Dugdale attraction -2(1 + delta/h0) at a gap, -2 in contact), DMT (delta^(3/2) - 2 in contact, the same attraction at a gap), JKR (Fuller and Tabor: in at delta = 0, out at JKR's rigid-grip jump-out) whose rough pull-off differs from the exact MD summits' by at most the tolerance times the smooth summit's pull-off, and whose retract curve (at 20 separations from the smallest to where the summits are free, and at each curve's pull-off separation) differs by at most the tolerance times the MD curve's largest |load| (its pull-off included); else MD";
 
-pub fn json(m: &RoughMap, full: bool, timings: bool) -> serde_json::Value {
+/// The map's metadata as JSON (everything but the per-point arrays).
+pub fn json(m: &RoughMap, timings: bool) -> serde_json::Value {
     use crate::io::json_num;
     let nums = |v: &[f64]| -> Vec<serde_json::Value> { v.iter().map(|&x| json_num(x)).collect() };
     let mut j = serde_json::json!({
@@ -125,30 +126,57 @@ pub fn json(m: &RoughMap, full: bool, timings: bool) -> serde_json::Value {
     if timings {
         j["seconds"] = json_num(m.seconds);
     }
-    if full {
-        j["pulloff"] = nums(&m.pulloff).into();
-        j["relative_pulloff"] = nums(&m.relative_pulloff).into();
-        j["pulloff_separation"] = nums(&m.pulloff_separation).into();
-        j["region"] = m
-            .regions
-            .iter()
-            .map(|r| r.name())
-            .collect::<Vec<_>>()
-            .into();
-        for (k, name) in crate::rough::map::MODEL_REGIONS
-            .map(|r| r.name())
-            .iter()
-            .enumerate()
-        {
-            j[format!("{name}_error")] = m
-                .model_error
-                .iter()
-                .map(|e| json_num(e[k]))
-                .collect::<Vec<_>>()
-                .into();
-        }
-    }
     j
+}
+
+/// Writes the JSON document; with `full`, the per-point arrays (row-major, rows = sigma)
+/// follow the metadata, streamed a row a line: a 4096 x 4096 map's arrays never exist as JSON
+/// values or one string (as `tabor map --json-full`).
+pub fn write_json(
+    out: &mut dyn std::io::Write,
+    m: &RoughMap,
+    full: bool,
+    timings: bool,
+) -> anyhow::Result<()> {
+    let text = serde_json::to_string_pretty(&json(m, timings))?;
+    if !full {
+        out.write_all(text.as_bytes())?;
+        out.write_all(b"\n")?;
+        return Ok(());
+    }
+    // Reopen the document's closing brace and append the arrays.
+    let body = text.trim_end().strip_suffix('}').unwrap_or(&text).trim_end();
+    out.write_all(body.as_bytes())?;
+    let value = |x: f64| crate::io::json_num(x).to_string();
+    let errors = crate::rough::map::MODEL_REGIONS.map(|r| format!("{}_error", r.name()));
+    let mut fields: Vec<(&str, Box<dyn Fn(usize) -> String + '_>)> = vec![
+        ("pulloff", Box::new(|i| value(m.pulloff[i]))),
+        ("relative_pulloff", Box::new(|i| value(m.relative_pulloff[i]))),
+        ("pulloff_separation", Box::new(|i| value(m.pulloff_separation[i]))),
+        ("region", Box::new(|i| format!("\"{}\"", m.regions[i].name()))),
+    ];
+    for (k, name) in errors.iter().enumerate() {
+        fields.push((name, Box::new(move |i| value(m.model_error[i][k]))));
+    }
+    let nx = m.spec.nx;
+    let mut line = String::new();
+    for (name, f) in &fields {
+        write!(out, ",\n  \"{name}\": [")?;
+        for iy in 0..m.spec.ny {
+            line.clear();
+            line.push_str(if iy > 0 { ",\n    " } else { "\n    " });
+            for ix in 0..nx {
+                if ix > 0 {
+                    line.push(',');
+                }
+                line.push_str(&f(iy * nx + ix));
+            }
+            out.write_all(line.as_bytes())?;
+        }
+        out.write_all(b"\n  ]")?;
+    }
+    out.write_all(b"\n}\n")?;
+    Ok(())
 }
 
 pub fn write_npy(m: &RoughMap, outs: &mut [Output]) -> anyhow::Result<()> {
@@ -222,8 +250,8 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
         }
     }
     if let Some(o) = json_out.as_mut() {
-        let text = serde_json::to_string_pretty(&json(&m, a.json_full, a.timings))? + "\n";
-        put(o, text.as_bytes())?;
+        let shown = o.name().display().to_string();
+        write_json(o, &m, a.json_full, a.timings).with_context(|| format!("cannot write {shown}"))?;
     }
     if !npy.is_empty() {
         write_npy(&m, &mut npy)?;

@@ -287,6 +287,28 @@ where
     Ok(())
 }
 
+/// True if the process was started with stdout closed (`tabor ... >&-`). The Rust runtime then
+/// puts /dev/null, opened read-write, on descriptor 1, and every result written there would be
+/// lost with exit status 0; a shell's `> /dev/null` opens it write-only. Linux only (elsewhere
+/// false).
+pub fn stdout_was_closed() -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        let null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|t| t == Path::new("/dev/null"));
+        // fdinfo's flags are octal; O_ACCMODE is 3 and O_RDWR 2.
+        let read_write = || {
+            let info = std::fs::read_to_string("/proc/self/fdinfo/1").unwrap_or_default();
+            info.lines()
+                .find_map(|l| l.strip_prefix("flags:"))
+                .and_then(|f| u32::from_str_radix(f.trim(), 8).ok())
+                .is_some_and(|f| f & 3 == 2)
+        };
+        null && read_write()
+    }
+    #[cfg(not(target_os = "linux"))]
+    false
+}
+
 /// True if the error comes from writing into a closed pipe (`tabor ... | head`): the reader has
 /// what it wanted, and the command ends quietly.
 pub fn is_broken_pipe(e: &anyhow::Error) -> bool {

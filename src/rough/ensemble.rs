@@ -63,8 +63,8 @@ pub struct EnsembleCycle {
     pub approach: EnsembleLeg,
     /// The retract, back up.
     pub retract: EnsembleLeg,
-    /// The most tensile retract force among the separations (a sample: the ensemble's force
-    /// jumps wherever one summit does).
+    /// The most tensile retract force (N), searched beyond the reported separations: the
+    /// least of them, refined between its neighbours to 1e-13 of the cycle's span.
     pub pulloff_force_n: f64,
     /// The separation of that pull-off (m).
     pub pulloff_separation_m: f64,
@@ -210,6 +210,7 @@ fn add_summit(
     seps: &[f64],
     d_min: f64,
     tables: Option<&LambdaTables>,
+    retract_only: bool,
 ) -> Result<(), RoughError> {
     let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
         .map_err(|e| RoughError::Scene(e.to_string()))?;
@@ -223,10 +224,8 @@ fn add_summit(
     let delta_max = (a.height_m - d_min) / unit;
     for (k, &d) in seps.iter().enumerate() {
         let delta = (a.height_m - d) / unit;
-        for (leg, b) in [
-            (0, s.approach_branch(delta)),
-            (4, s.retract_branch(delta, delta_max)),
-        ] {
+        let approach = (!retract_only).then(|| (0, s.approach_branch(delta)));
+        for (leg, b) in approach.into_iter().chain([(4, s.retract_branch(delta, delta_max))]) {
             let slot = &mut acc.v[k];
             match b {
                 SummitBranch::Free => {}
@@ -244,6 +243,78 @@ fn add_summit(
         }
     }
     Ok(())
+}
+
+/// Every summit's force, area and branch counts summed at each separation (the retract's
+/// alone with `retract_only`), on all cores. Fixed chunks summed in order: the same bytes
+/// whatever the threads' schedule.
+fn sum_summits(
+    asp: &[Asperity],
+    m: &Materials,
+    seps: &[f64],
+    d_min: f64,
+    tables: Option<&LambdaTables>,
+    retract_only: bool,
+) -> Result<Sums, RoughError> {
+    use rayon::prelude::*;
+    let n = seps.len();
+    let chunk = (asp.len() / 64).max(1024);
+    let parts: Vec<Sums> = asp
+        .par_chunks(chunk)
+        .map(|part| -> Result<Sums, RoughError> {
+            let mut acc = Sums::new(n);
+            for a in part {
+                add_summit(&mut acc, a, m, seps, d_min, tables, retract_only)?;
+            }
+            Ok(acc)
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(parts.into_iter().fold(Sums::new(n), Sums::add))
+}
+
+/// Separations of each refining pass of an ensemble's pull-off, and the most passes.
+const REFINE_POINTS: usize = 65;
+const REFINE_PASSES: usize = 6;
+
+/// The most tensile retract force and its separation: the least sample of the retract, then
+/// passes of [`REFINE_POINTS`] separations between the neighbours of the least so far, until
+/// the bracket is 1e-13 of the cycle's span. The force jumps up wherever a summit jumps out,
+/// so the minimum is often the limit just before a jump: the search closes in on it from the
+/// side where it is attained.
+fn pulloff(
+    asp: &[Asperity],
+    m: &Materials,
+    retract: &EnsembleLeg,
+    d_min: f64,
+    tables: Option<&LambdaTables>,
+) -> Result<(f64, f64), RoughError> {
+    let mut pts: Vec<(f64, f64)> = retract
+        .separation_m
+        .iter()
+        .copied()
+        .zip(retract.force_n.iter().copied())
+        .collect();
+    let span = pts.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max) - d_min;
+    let mut best = (f64::NAN, f64::INFINITY);
+    for _ in 0..=REFINE_PASSES {
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let Some(i) = (0..pts.len()).min_by(|&a, &b| pts[a].1.total_cmp(&pts[b].1)) else {
+            break;
+        };
+        if pts[i].1 < best.1 {
+            best = pts[i];
+        }
+        let (lo, hi) = (pts[i.saturating_sub(1)].0, pts[(i + 1).min(pts.len() - 1)].0);
+        if !(hi - lo > 1e-13 * span) {
+            break;
+        }
+        let seps: Vec<f64> = (0..REFINE_POINTS)
+            .map(|k| lo + (hi - lo) * k as f64 / (REFINE_POINTS - 1) as f64)
+            .collect();
+        let sums = sum_summits(asp, m, &seps, d_min, tables, true)?;
+        pts = seps.into_iter().zip(sums.v.iter().map(|v| v[4])).collect();
+    }
+    Ok(best)
 }
 
 /// The tables an ensemble's summits need: their lambdas' range, and approaches up to the
@@ -299,7 +370,6 @@ pub fn cycle_with(
     solver: SummitSolver,
     engine: &Engine,
 ) -> Result<EnsembleCycle, RoughError> {
-    use rayon::prelude::*;
     check(asp)?;
     let seps = separations(asp, m, d_min, d_max, points)?;
     let t = std::time::Instant::now();
@@ -308,19 +378,7 @@ pub fn cycle_with(
         SummitSolver::Tables => Some(tables_for(asp, m, d_min, engine)?),
     };
     let n = seps.len();
-    // Fixed chunks summed in order: the same bytes whatever the threads' schedule.
-    let chunk = (asp.len() / 64).max(1024);
-    let parts: Vec<Sums> = asp
-        .par_chunks(chunk)
-        .map(|part| -> Result<Sums, RoughError> {
-            let mut acc = Sums::new(n);
-            for a in part {
-                add_summit(&mut acc, a, m, &seps, d_min, tables.as_ref())?;
-            }
-            Ok(acc)
-        })
-        .collect::<Result<_, _>>()?;
-    let sums = parts.into_iter().fold(Sums::new(n), Sums::add);
+    let sums = sum_summits(asp, m, &seps, d_min, tables.as_ref(), false)?;
     let total = asp.len() as f64;
     let leg = |off: usize, order: &mut dyn Iterator<Item = usize>| {
         let mut l = EnsembleLeg::default();
@@ -336,18 +394,12 @@ pub fn cycle_with(
     };
     let approach = leg(0, &mut (0..n));
     let retract = leg(4, &mut (0..n).rev());
-    let (i, f) = retract
-        .force_n
-        .iter()
-        .enumerate()
-        .fold(
-            (0, f64::INFINITY),
-            |b, (i, &f)| if f < b.1 { (i, f) } else { b },
-        );
+    let (pulloff_separation_m, pulloff_force_n) =
+        pulloff(asp, m, &retract, d_min, tables.as_ref())?;
     Ok(EnsembleCycle {
         summits: asp.len(),
-        pulloff_force_n: f,
-        pulloff_separation_m: retract.separation_m[i],
+        pulloff_force_n,
+        pulloff_separation_m,
         approach,
         retract,
         summit_states: 2 * (asp.len() * n) as u64,
@@ -359,6 +411,17 @@ pub fn cycle_with(
         table_check: tables.and_then(|t| t.check),
         seconds: t.elapsed().as_secs_f64(),
     })
+}
+
+/// Explicit ensembles' summits are dry Maugis-Dugdale spheres: a scene's meniscus silently left
+/// out would change the pull-off by orders of magnitude without a word.
+fn dry_scene(scene: &super::scene::RoughScene) -> Result<(), RoughError> {
+    if scene.humidity.is_some() {
+        return Err(RoughError::Scene(
+            "the scene's \"humidity\" is not modelled for an explicit ensemble (--asperities, --topography; Python's rough_asperities, rough_topography): its summits are dry. Remove \"humidity\" for the dry ensemble, or drop the ensemble for the statistical model, whose summits carry the meniscus".into(),
+        ));
+    }
+    Ok(())
 }
 
 /// An ensemble's cycle with a rough scene's materials (its summit radius, density, sigma and
@@ -373,6 +436,7 @@ pub fn scene_cycle(
     engine: &Engine,
 ) -> Result<EnsembleCycle, RoughError> {
     check(asp)?;
+    dry_scene(scene)?;
     let c = scene.summit()?;
     let m = Materials {
         e_star_pa: c.e_star,
@@ -401,9 +465,10 @@ pub struct EnsembleSpec {
 }
 
 impl EnsembleSpec {
-    /// Checks the options, before any engine is chosen: the number of separations, and the
-    /// smallest separation where one is given.
-    pub fn validate(&self) -> Result<(), RoughError> {
+    /// Checks the options and the scene, before any engine is chosen: the number of
+    /// separations, the smallest separation where one is given, and a dry scene.
+    pub fn validate(&self, scene: &super::scene::RoughScene) -> Result<(), RoughError> {
+        dry_scene(scene)?;
         check_points(self.points)?;
         match self.min_separation_m {
             Some(d) if !d.is_finite() => Err(bad(
@@ -423,7 +488,7 @@ impl EnsembleSpec {
         asp: &[Asperity],
         engine: &Engine,
     ) -> Result<EnsembleCycle, RoughError> {
-        self.validate()?;
+        self.validate(scene)?;
         scene_cycle(
             scene,
             asp,

@@ -170,8 +170,10 @@ impl LambdaTables {
         let failed = |l: f64| RoughError::Failed(f64::NAN, l);
         // One node below the smallest lambda and two above the largest: every summit has the
         // four nodes of its stencil, with its lambda between the middle two.
+        // At least four nodes: one lambda (every summit of one radius, the plain
+        // Greenwood-Williamson ensemble) has x = 1 up to rounding, which may floor to 0.
         let x0 = lambda_lo.ln() - step;
-        let nodes = ((lambda_hi.ln() - x0) / step).floor() as usize + 3;
+        let nodes = (((lambda_hi.ln() - x0) / step).floor() as usize + 3).max(4);
         let node_l: Vec<f64> = (0..nodes).map(|k| (x0 + k as f64 * step).exp()).collect();
         // Midpoints between nodes k and k+1 with a full stencil: k in 1..=nodes-3.
         let mid_l: Vec<f64> = (1..nodes - 2)
@@ -301,5 +303,27 @@ mod tests {
         // interpolation and the lambda interpolation add).
         assert!(worst < 2.0 * TARGET, "largest difference {worst}");
         assert!(worst > 0.0, "the interpolant is exercised");
+    }
+
+    #[test]
+    fn a_table_over_one_lambda_gives_its_states() {
+        // Every summit of one radius (the plain Greenwood-Williamson ensemble): the range is a
+        // single lambda, for which the node count once floored to three and indexed past the end.
+        for l in [0.05, 0.3, 1.0, 7.0, 1.0 / 3.0, std::f64::consts::PI] {
+            let t = LambdaTables::new(l, l, 20.0, &Engine::Cpu).unwrap();
+            assert!(t.nodes >= 4 && t.error <= TARGET, "lambda {l}: {t:?}");
+            let s = Summit::new(l).unwrap();
+            let st = t.stencil(l);
+            for k in 0..40 {
+                let delta = s.delta_out + 1e-9 + (k as f64 * 0.1).powi(2);
+                let (p, a) = t.contact(&s, &st, delta).unwrap();
+                let (pe, ae) = s.contact(delta).unwrap();
+                assert!(
+                    (p - pe).abs() <= 2.0 * TARGET * pe.abs().max(1.0)
+                        && (a - ae).abs() <= 2.0 * TARGET * ae.abs().max(1.0),
+                    "lambda {l}, delta {delta}: ({p}, {a}) against ({pe}, {ae})"
+                );
+            }
+        }
     }
 }

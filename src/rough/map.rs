@@ -1233,7 +1233,8 @@ fn point(
         .map(|k| d_min + (d_max - d_min) * k as f64 / (CURVE_SAMPLES - 1) as f64)
         .collect();
     let md = retract(quad, &ms.list[4], sigma, d_min, &seps, true);
-    let scale = md.curve.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    // The largest |load| of MD's curve, its pull-off included (a sample may miss a narrow dip).
+    let scale = md.curve.iter().fold(md.pulloff.abs(), |m, v| m.max(v.abs()));
     let scale = scale.max(f64::MIN_POSITIVE);
     let order = sample_order(&md.curve);
     let mut errs = [f64::NAN; 4];
@@ -1261,7 +1262,15 @@ fn point(
         // needed).
         let r = refined(quad, m, sigma, d_min, &seps, curve, k > 0);
         let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
-        errs[k] = curve_err.max(pull_err);
+        // Each curve also at the other's pull-off: at small sigma both fall steeply within a
+        // few sigma of their jump-outs, a window the uniform samples hit or miss as lambda
+        // varies (which drew the MD/JKR border as one-pixel spikes). Where the jump-outs differ
+        // by more than that window, one curve has risen at the other's pull-off.
+        let across = (quad.retract(m, sigma, d_min, md.separation) - md.pulloff)
+            .abs()
+            .max((quad.retract(&ms.list[4], sigma, d_min, r.separation) - r.pulloff).abs())
+            / scale;
+        errs[k] = curve_err.max(pull_err).max(across);
         if errs[k] <= spec.tolerance {
             return (md.pulloff, md.separation, MODEL_REGIONS[k], errs);
         }

@@ -457,6 +457,97 @@ pub(crate) fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     go(f, a, b, scale, 6)
 }
 
+/// The fewest retract separations a cycle's pull-off search starts from: a cycle reported at
+/// fewer is sampled at this many more, so that the search brackets the true minimum and not
+/// the least of a few samples.
+pub(crate) const PULLOFF_SAMPLES: usize = 64;
+
+/// The most tensile retract load: the least of the `samples` (and, where they are fewer than
+/// `at_least`, of that many uniform samples over `[d_min, d_max]` of `load`), then a
+/// golden-section search for the minimum between its neighbours. Returns the separation and
+/// the load. One search for every rough model: the statistical ones (dry and wet) and the
+/// explicit ensembles.
+pub(crate) fn pulloff_search(
+    samples: &[Mean],
+    d_min: f64,
+    d_max: f64,
+    at_least: usize,
+    load: &dyn Fn(f64) -> Result<f64, RoughError>,
+) -> Result<(f64, f64), RoughError> {
+    let mut pts: Vec<(f64, f64)> = samples.iter().map(|m| (m.separation, m.load)).collect();
+    if pts.len() < at_least && d_max > d_min {
+        for i in 0..at_least {
+            let d = d_min + (d_max - d_min) * i as f64 / (at_least - 1) as f64;
+            pts.push((d, load(d)?));
+        }
+    }
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let Some(i) = (0..pts.len()).min_by(|&a, &b| pts[a].1.total_cmp(&pts[b].1)) else {
+        return Err(RoughError::Scene("the retract has no separation".into()));
+    };
+    let lo = pts[i.saturating_sub(1)].0;
+    let hi = pts[(i + 1).min(pts.len() - 1)].0;
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut a, mut b) = (lo, hi);
+    let (mut c, mut e) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fe) = (load(c)?, load(e)?);
+    for _ in 0..200 {
+        if (b - a) <= 1e-15 * (1.0 + a.abs().max(b.abs())) {
+            break;
+        }
+        if fc < fe {
+            (b, e, fe) = (e, c, fc);
+            c = b - g * (b - a);
+            fc = load(c)?;
+        } else {
+            (a, c, fc) = (c, e, fe);
+            e = a + g * (b - a);
+            fe = load(e)?;
+        }
+    }
+    let best = [(c, fc), (e, fe), pts[i]]
+        .into_iter()
+        .min_by(|x, y| x.1.total_cmp(&y.1))
+        .unwrap_or(pts[i]);
+    Ok(best)
+}
+
+/// What a statistical cycle's range and sampling cannot show: summits still held at its largest
+/// separation `d_max` (their `reach` is how far beyond a summit's height it feels the flat), a
+/// pull-off at that end, and a pull-off that the reported separations miss.
+pub(crate) fn cycle_warnings(
+    sigma: f64,
+    reach: f64,
+    d_max: f64,
+    retract: &[Mean],
+    pulloff: (f64, f64),
+) -> Vec<String> {
+    let mut w = Vec::new();
+    let held = upper_tail((d_max - reach) / sigma);
+    if held > 1e-9 {
+        w.push(format!(
+            "the largest separation {} is inside the summits' force range (a fraction {} of them still feel the flat there; all are free beyond {}): the retract ends before the surfaces separate, so its pull-off and energy loss are this partial cycle's; give a larger --max-separation, or none",
+            short(d_max),
+            short(held),
+            short(reach + Z_FREE * sigma)
+        ));
+        if (d_max - pulloff.0).abs() <= 1e-9 * (1.0 + d_max.abs()) {
+            w.push("the most tensile retract load is at the largest separation: the true pull-off lies beyond it".into());
+        }
+    }
+    let least = retract.iter().map(|m| m.load).fold(f64::INFINITY, f64::min);
+    if pulloff.1 < 0.0 && least > pulloff.1 + 0.01 * pulloff.1.abs() {
+        w.push(format!(
+            "the {} reported separations miss the pull-off's dip (their most tensile load, {}, is {}% above the pull-off {}, found between them): give more --points to draw it",
+            retract.len(),
+            short(least),
+            short(100.0 * (least - pulloff.1) / pulloff.1.abs()),
+            short(pulloff.1)
+        ));
+    }
+    w
+}
+
 /// An approach from `d_max` down to `d_min` and the retract back (`tabor rough`).
 #[derive(Clone, Debug, Serialize)]
 pub struct RoughCycle {
@@ -483,6 +574,9 @@ pub struct RoughCycle {
     /// The largest error estimate of the quadrature over every reported load, the pull-off's
     /// included (pi w R per summit): the sum over the pieces of the tanh-sinh estimates.
     pub quadrature_error: f64,
+    /// What the cycle's range or sampling cannot show (empty when it shows everything).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 impl Rough {
@@ -509,7 +603,8 @@ impl Rough {
         let seps = separations(d_min, d_max, points)?;
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
-        let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
+        let (pulloff_separation, pulloff_load) =
+            self.pulloff(&retract, d_min, d_max, PULLOFF_SAMPLES)?;
         let hysteresis = self.hysteresis(d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
         let quadrature_error = approach
@@ -520,14 +615,21 @@ impl Rough {
         Ok(RoughCycle {
             lambda: self.summit.lambda,
             sigma: self.sigma,
-            approach,
-            retract,
             pulloff_load,
             pulloff_separation,
             hysteresis,
             smooth_pulloff: self.summit.ctx.load_pulloff.load,
             fuller_tabor_parameter: 0.75 * PI * self.sigma.powf(1.5),
             quadrature_error,
+            warnings: cycle_warnings(
+                self.sigma,
+                self.free_separation() - Z_FREE * self.sigma,
+                d_max,
+                &retract,
+                (pulloff_separation, pulloff_load),
+            ),
+            approach,
+            retract,
         })
     }
 
@@ -545,42 +647,22 @@ impl Rough {
                 )
             })
             .collect::<Result<_, _>>()?;
-        self.pulloff(&retract, d_min)
+        self.pulloff(&retract, d_min, d_max, 0)
     }
 
-    /// The minimum of the retract load: golden-section search between the neighbours of the
-    /// smallest sample.
-    fn pulloff(&self, retract: &[Mean], d_min: f64) -> Result<(f64, f64), RoughError> {
-        let i = (0..retract.len())
-            .min_by(|&a, &b| retract[a].load.total_cmp(&retract[b].load))
-            .unwrap_or(0);
-        let lo = retract[i.saturating_sub(1)].separation;
-        let hi = retract[(i + 1).min(retract.len() - 1)].separation;
+    /// The minimum of the retract load after pressing to `d_min`, from the samples `retract`
+    /// (and, where those are fewer than `at_least`, from that many more up to `d_max`).
+    fn pulloff(
+        &self,
+        retract: &[Mean],
+        d_min: f64,
+        d_max: f64,
+        at_least: usize,
+    ) -> Result<(f64, f64), RoughError> {
         let leg = Leg::Retract { d_min };
-        let load = |d: f64| self.mean(leg, d).map(|m| m.load);
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut a, mut b) = (lo, hi);
-        let (mut c, mut e) = (b - g * (b - a), a + g * (b - a));
-        let (mut fc, mut fe) = (load(c)?, load(e)?);
-        for _ in 0..200 {
-            if (b - a) <= 1e-15 * (1.0 + a.abs().max(b.abs())) {
-                break;
-            }
-            if fc < fe {
-                (b, e, fe) = (e, c, fc);
-                c = b - g * (b - a);
-                fc = load(c)?;
-            } else {
-                (a, c, fc) = (c, e, fe);
-                e = a + g * (b - a);
-                fe = load(e)?;
-            }
-        }
-        let best = [(c, fc), (e, fe), (retract[i].separation, retract[i].load)]
-            .into_iter()
-            .min_by(|x, y| x.1.total_cmp(&y.1))
-            .unwrap_or((c, fc));
-        Ok(best)
+        pulloff_search(retract, d_min, d_max, at_least, &|d| {
+            self.mean(leg, d).map(|m| m.load)
+        })
     }
 
     /// Integral of P_approach - P_retract over [d_min, d_max]. Swapping the order of integration,
@@ -651,7 +733,12 @@ impl Rough {
         if failed.get() {
             return Err(RoughError::Failed(d_min, sm.lambda));
         }
-        Ok(total)
+        // Each summit's loop encloses a non-negative area: a negative sum is rounding.
+        Ok(if total < 0.0 && total >= -1e-12 * sm.ctx.load_pulloff.load.abs() * s {
+            0.0
+        } else {
+            total
+        })
     }
 }
 

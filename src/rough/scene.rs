@@ -293,6 +293,7 @@ impl RoughScene {
             .fold(0.0f64, |m, a| m.max(*a))
             / area;
         let mut warnings = stretched(sigma_m, self.summit_radius_m, n, densest);
+        warnings.extend(cyc.warnings.iter().cloned());
         let mut dry_pulloff_force_n = None;
         if let Some(m) = &meniscus {
             warnings.extend(crate::scene::humidity::meniscus_warnings(m, &c));

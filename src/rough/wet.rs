@@ -22,6 +22,8 @@ use crate::solver::Status;
 use std::cell::Cell;
 use std::f64::consts::PI;
 
+/// Absolute error aimed at for each piece of one summit's loop (pi w R times the approach unit).
+const LOOP_TOL: f64 = 1e-11;
 /// Samples of each non-contact stretch of the path used to locate its folds.
 const SAMPLES: usize = 2000;
 
@@ -414,6 +416,107 @@ impl WetSummit {
         }
     }
 
+    /// The work lost by one summit whose approach runs from `lo` up to `hi` and back:
+    /// the integral of its approach load less its retract load over `[lo, hi]` (each stretch
+    /// smooth between the marks), and the error estimate; None where a load failed.
+    fn loop_area(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
+        let failed = Cell::new(false);
+        let f = |delta: f64| {
+            let up = self.load(self.approach_stretch(delta), delta);
+            let down = self.load(self.retract_stretch(delta, hi), delta);
+            match (up, down) {
+                (Some(u), Some(d)) => u - d,
+                _ => {
+                    failed.set(true);
+                    0.0
+                }
+            }
+        };
+        let mut cuts: Vec<f64> = self.marks();
+        cuts.extend([lo, hi]);
+        cuts.retain(|c| (lo..=hi).contains(c));
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let (mut area, mut error) = (0.0, 0.0);
+        for w in cuts.windows(2) {
+            // Up and down one stretch enclose nothing: no quadrature of rounding noise.
+            let mid = 0.5 * (w[0] + w[1]);
+            if self.approach_stretch(mid) == self.retract_stretch(mid, hi) {
+                continue;
+            }
+            // An absolute tolerance (loads and approaches are of order one): a relative one
+            // chases rounding where approach and retract nearly agree (small lambda).
+            let o = quadrature::double_exponential::integrate(&f, w[0], w[1], LOOP_TOL);
+            area += o.integral;
+            error += o.error_estimate;
+        }
+        (!failed.get()).then_some((area, error))
+    }
+
+    /// The energy lost per summit in a cycle from `d_max` down to `d_min` and back, heights
+    /// N(0, sigma^2): the order of integration swapped (docs/PHYSICS.md section 10.1), the mean
+    /// over the heights of each summit's own loop over its window of approaches
+    /// `[z - d_max, z - d_min]`. Where the window starts below every mark (the summit comes from
+    /// free), the loop depends only on the stretch its top reaches (up and down one stretch
+    /// enclose nothing), so it is constant between the heights where the top crosses a mark: one
+    /// loop times the Gaussian mass there. Elsewhere the heights' integral is taken by
+    /// quadrature. A loss that is zero within rounding is reported as 0, never below.
+    fn hysteresis(&self, sigma: f64, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
+        let marks = self.marks();
+        let (Some(&m_lo), true) = (marks.first(), d_max > d_min) else {
+            return Ok(0.0);
+        };
+        let mut cuts: Vec<f64> = marks
+            .iter()
+            .flat_map(|m| [(d_min + m) / sigma, (d_max + m) / sigma])
+            .collect();
+        cuts.extend([-Z_CUT, Z_CUT]);
+        cuts.retain(|x| x.is_finite() && x.abs() <= Z_CUT);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        // Each piece of heights on its own core; (loss, error estimate), None where a load failed.
+        let piece = |t0: f64, t1: f64| -> Option<(f64, f64)> {
+            if t1 * sigma - d_min <= m_lo {
+                return Some((0.0, 0.0)); // never reaches a mark: free throughout
+            }
+            if t1 * sigma - d_max <= m_lo {
+                let z = 0.5 * (t0 + t1) * sigma;
+                let (a, e) = self.loop_area(z - d_max, z - d_min)?;
+                let mass = upper_tail(t0) - upper_tail(t1);
+                return Some((a * mass, e * mass));
+            }
+            let failed = Cell::new(false);
+            let g = |t: f64| {
+                let z = t * sigma;
+                match self.loop_area(z - d_max, z - d_min) {
+                    Some((a, _)) => (-0.5 * t * t).exp() / (2.0 * PI).sqrt() * a,
+                    None => {
+                        failed.set(true);
+                        0.0
+                    }
+                }
+            };
+            let v = integrate(&g, t0, t1);
+            (!failed.get()).then_some(v)
+        };
+        use rayon::prelude::*;
+        let parts: Option<Vec<(f64, f64)>> = cuts
+            .par_windows(2)
+            .map(|w| piece(w[0], w[1]))
+            .collect();
+        let Some(parts) = parts else {
+            return Err(RoughError::Failed(d_min, self.ctx.zones.lambda[0]));
+        };
+        let (mut total, error) = parts
+            .iter()
+            .fold((0.0, 0.0), |(v, e), p| (v + p.0, e + p.1));
+        // Each summit's loop encloses a non-negative area: a negative sum is rounding.
+        if total < 0.0 && total >= -(error + 1e-12 * self.ctx.load_pulloff.load.abs() * sigma) {
+            total = 0.0;
+        }
+        Ok(total)
+    }
+
     /// The approaches where a summit's load jumps, folds or changes stretch.
     fn marks(&self) -> Vec<f64> {
         let mut m: Vec<f64> = self
@@ -639,9 +742,8 @@ impl WetRough {
         }
     }
 
-    /// The cycle from `d_max` (default [`WetRough::free_separation`]) down to `d_min` and back.
-    /// The loss is the trapezoid sum of the approach's and the retract's mean loads over the
-    /// reported separations (the dry model's is exact).
+    /// The cycle from `d_max` (default [`WetRough::free_separation`]) down to `d_min` and back;
+    /// its pull-off and energy loss are found exactly, whatever the number of separations.
     pub fn cycle(
         &self,
         lambda_s: f64,
@@ -661,16 +763,9 @@ impl WetRough {
         let seps = separations(d_min, d_max, points)?;
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
-        let (pulloff_separation, pulloff_load) = self.pulloff(&retract, d_min)?;
-        // Trapezoids: the approach runs down in d, the retract up.
-        let n = seps.len();
-        let mut hysteresis = 0.0;
-        for i in 0..n - 1 {
-            let da = approach[i].separation - approach[i + 1].separation;
-            let ga = 0.5 * (approach[i].load + approach[i + 1].load);
-            let gr = 0.5 * (retract[n - 1 - i].load + retract[n - 2 - i].load);
-            hysteresis += (ga - gr) * da;
-        }
+        let (pulloff_separation, pulloff_load) =
+            self.pulloff(&retract, d_min, d_max, super::PULLOFF_SAMPLES)?;
+        let hysteresis = summit.hysteresis(sigma, d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
         let quadrature_error = approach
             .iter()
@@ -680,14 +775,21 @@ impl WetRough {
         Ok(RoughCycle {
             lambda: lambda_s,
             sigma,
-            approach,
-            retract,
             pulloff_load,
             pulloff_separation,
             hysteresis,
             smooth_pulloff: summit.ctx.load_pulloff.load,
             fuller_tabor_parameter: 0.75 * PI * sigma.powf(1.5),
             quadrature_error,
+            warnings: super::cycle_warnings(
+                sigma,
+                self.free_separation() - Z_FREE * sigma,
+                d_max,
+                &retract,
+                (pulloff_separation, pulloff_load),
+            ),
+            approach,
+            retract,
         })
     }
 
@@ -700,35 +802,20 @@ impl WetRough {
         let retract: Vec<Mean> = (0..m)
             .map(|i| self.mean(leg, d_min + (d_max - d_min) * i as f64 / (m - 1) as f64))
             .collect::<Result<_, _>>()?;
-        self.pulloff(&retract, d_min)
+        self.pulloff(&retract, d_min, d_max, 0)
     }
 
-    /// The minimum of the retract load: golden-section search between the neighbours of the
-    /// smallest sample.
-    fn pulloff(&self, retract: &[Mean], d_min: f64) -> Result<(f64, f64), RoughError> {
-        let i = (0..retract.len())
-            .min_by(|&a, &b| retract[a].load.total_cmp(&retract[b].load))
-            .unwrap_or(0);
-        let lo = retract[i.saturating_sub(1)].separation;
-        let hi = retract[(i + 1).min(retract.len() - 1)].separation;
+    /// The most tensile retract load after pressing to `d_min` (the shared search).
+    fn pulloff(
+        &self,
+        retract: &[Mean],
+        d_min: f64,
+        d_max: f64,
+        at_least: usize,
+    ) -> Result<(f64, f64), RoughError> {
         let leg = Leg::Retract { d_min };
-        let failed = Cell::new(None);
-        let load = |d: f64| match self.mean(leg, d) {
-            Ok(m) => m.load,
-            Err(e) => {
-                failed.set(Some(e.to_string()));
-                f64::INFINITY
-            }
-        };
-        let d = golden(load, lo.min(hi), lo.max(hi), 1.0);
-        let fd = load(d);
-        if let Some(e) = failed.take() {
-            return Err(RoughError::Scene(e));
-        }
-        Ok(if fd < retract[i].load {
-            (d, fd)
-        } else {
-            (retract[i].separation, retract[i].load)
+        super::pulloff_search(retract, d_min, d_max, at_least, &|d| {
+            self.mean(leg, d).map(|m| m.load)
         })
     }
 }
