@@ -122,6 +122,7 @@ pub mod export;
 pub mod figure_data;
 pub mod fit;
 pub mod gpu;
+pub mod interrupt;
 pub mod io;
 // The WGSL kernels' sources, buffer layouts and CPU mirrors: the GPU host and the engine use
 // them; public only so that the shader and GPU tests can compare each kernel with its mirror

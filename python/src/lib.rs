@@ -1,24 +1,92 @@
 //! The Python binding: thin wrappers over tabor's library API on flat float64 arrays (the
 //! Python layer in `tabor/__init__.py` broadcasts and reshapes). Every call releases the GIL
-//! while it works, turns tabor's errors into ValueError with tabor's own message, and a panic
-//! into RuntimeError instead of an abort.
+//! while it works, turns tabor's errors into ValueError with tabor's own message, a panic into
+//! RuntimeError instead of an abort, and a Ctrl-C into KeyboardInterrupt within 50 ms (the
+//! library's work stopped through `tabor::interrupt`).
 
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1};
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::panic::AssertUnwindSafe;
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use tabor::engine::{Backend, Engine, Precision};
 use tabor::solver::{Control, LambdaContext, State, Status};
 
 mod rough;
 
-/// Runs `f` without the GIL; errors become ValueError, panics RuntimeError.
-fn run<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
+/// How often a call waiting for its work checks for Ctrl-C.
+const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// Runs `f` on a worker thread while this one waits without the GIL, checking for Ctrl-C every
+/// 50 ms: a Ctrl-C raises KeyboardInterrupt at once (the work is told to stop, and whatever it
+/// still returns is dropped). Errors become ValueError, panics RuntimeError.
+fn run<T: Send + 'static>(
+    py: Python<'_>,
+    f: impl FnOnce() -> anyhow::Result<T> + Send + 'static,
+) -> PyResult<T> {
+    // Work interrupted before is still ending (at its next checkpoint): wait for it, so that its
+    // request does not stop this one.
+    while tabor::interrupt::requested() {
+        py.detach(|| std::thread::sleep(SIGNAL_POLL / 5));
+        py.check_signals()?;
+    }
+    let (tx, rx) = std::sync::mpsc::channel();
+    let token = tabor::interrupt::Token::new();
+    let worker = token.clone();
+    std::thread::Builder::new()
+        .name("tabor".into())
+        .stack_size(8 << 20) // a main thread's, where the work ran before
+        .spawn(move || {
+            let r = worker.run(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
+            let _ = tx.send(r);
+        })
+        .map_err(|e| PyRuntimeError::new_err(format!("cannot start a thread: {e}")))?;
+    // The receiver goes into each wait and back (it is Send, not Sync).
+    let wait = |rx: Receiver<_>, t| py.detach(move || (rx.recv_timeout(t), rx));
+    let mut rx = rx;
+    loop {
+        let (r, back) = wait(rx, SIGNAL_POLL);
+        rx = back;
+        match r {
+            Ok(r) => {
+                py.check_signals()?;
+                return outcome(r);
+            }
+            Err(RecvTimeoutError::Timeout) => {
+                if let Err(e) = py.check_signals() {
+                    token.interrupt();
+                    // Usually ends within milliseconds; a slow end goes on in the background.
+                    let _ = wait(rx, 20 * SIGNAL_POLL);
+                    return Err(e);
+                }
+            }
+            Err(RecvTimeoutError::Disconnected) => {
+                return Err(PyRuntimeError::new_err(
+                    "internal error in tabor (please report): the work ended without a result",
+                ))
+            }
+        }
+    }
+}
+
+/// As [`run`], on this thread, for work on borrowed data (a chunk of the caller's arrays, a map
+/// being saved): a Ctrl-C during it raises KeyboardInterrupt when it ends, before any array is
+/// made.
+fn run_here<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Send) -> PyResult<T> {
     let r = py.detach(|| std::panic::catch_unwind(AssertUnwindSafe(f)));
+    py.check_signals()?;
+    outcome(r)
+}
+
+/// A result of the library as Python's: its error a ValueError, a panic a RuntimeError.
+fn outcome<T>(r: std::thread::Result<anyhow::Result<T>>) -> PyResult<T> {
     match r {
         Ok(Ok(v)) => Ok(v),
         Ok(Err(e)) => Err(PyValueError::new_err(python_names(&format!("{e:#}")))),
+        Err(p) if p.is::<tabor::interrupt::Interrupted>() => Err(PyKeyboardInterrupt::new_err(
+            "interrupted (Ctrl-C): the work was stopped and nothing returned",
+        )),
         Err(p) => {
             let msg = p
                 .downcast_ref::<String>()
@@ -107,9 +175,9 @@ fn arr<'py>(py: Python<'py>, v: Vec<f64>) -> Bound<'py, PyArray1<f64>> {
 }
 
 /// `run`, its result handed to Python as objects (`to_py`).
-fn run_py<'py, T: serde::Serialize + Send>(
+fn run_py<'py, T: serde::Serialize + Send + 'static>(
     py: Python<'py>,
-    f: impl FnOnce() -> anyhow::Result<T> + Send,
+    f: impl FnOnce() -> anyhow::Result<T> + Send + 'static,
 ) -> PyResult<Bound<'py, PyAny>> {
     let r = run(py, f)?;
     to_py(py, &r)
@@ -231,7 +299,7 @@ fn solve_points<'py>(
             &mut sm[start..end],
             &mut sc[start..end],
         );
-        let report = run(py, move || {
+        let report = run_here(py, move || {
             let points: Vec<(f64, f64)> = lam.iter().copied().zip(value.iter().copied()).collect();
             let (s, report) = engine.solve_points_checked(&points, control, check)?;
             for (i, st) in s.iter().enumerate() {
@@ -309,7 +377,7 @@ fn solve_radius<'py>(
             &mut sm[r.clone()],
         );
         let (ls, ds, c) = (&mut sls[r.clone()], &mut sds[r.clone()], &mut sc[r]);
-        run(py, move || {
+        run_here(py, move || {
             let points: Vec<(f64, f64)> = lam.iter().copied().zip(radius.iter().copied()).collect();
             for (i, st) in tabor::solver::solve_radius_points(&points)
                 .iter()
@@ -332,6 +400,28 @@ fn solve_radius<'py>(
     d.set_item("displacement_stable", out_ds)?;
     d.set_item("status_code", out_code)?;
     Ok(d)
+}
+
+/// Per lambda, how `solve` answers a load or an approach (`tabor::physics::domain::method`):
+/// 1 the exact solver, 2 the DMT limit, 3 the JKR limit, 0 none.
+#[pyfunction]
+fn method_codes<'py>(
+    py: Python<'py>,
+    lam: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyArray1<u8>>> {
+    use tabor::physics::domain::{method, Method};
+    let code = |l: f64| match method(l) {
+        Some(Method::Md) => 1,
+        Some(Method::DmtLimit) => 2,
+        Some(Method::JkrLimit) => 3,
+        None => 0,
+    };
+    Ok(lam
+        .as_slice()?
+        .iter()
+        .map(|&l| code(l))
+        .collect::<Vec<u8>>()
+        .into_pyarray(py))
 }
 
 /// The status names, indexed by code.
@@ -603,7 +693,10 @@ fn fit_curves<'py>(
         use rayon::prelude::*;
         let results: Vec<tabor::fit::CurveFit> = curves
             .par_iter()
-            .map(|cv| tabor::fit::fit_curve(cv, &opt))
+            .map(|cv| {
+                tabor::interrupt::checkpoint();
+                tabor::fit::fit_curve(cv, &opt)
+            })
             .collect();
         Ok(results)
     })
@@ -837,13 +930,13 @@ impl AdhesionMap {
         let out = tabor::render::Outputs::from_path(std::path::Path::new(&path))
             .map_err(PyValueError::new_err)?;
         let data = &self.data;
-        run(py, move || tabor::render::map::save(data, q, &print, &out))
+        run_here(py, move || tabor::render::map::save(data, q, &print, &out))
     }
 
     /// Writes the JSON document as `tabor map --json` (with the per-point arrays if `full`).
     fn save_json(&self, py: Python<'_>, path: String, full: bool) -> PyResult<()> {
         let (data, engine, check) = (&self.data, &self.engine, self.check.as_ref());
-        run(py, move || {
+        run_here(py, move || {
             let mut o = tabor::io::Output::create(&path)?;
             tabor::export::write_map_json(&mut o, data, engine, check, full, false)?;
             o.commit()
@@ -853,7 +946,7 @@ impl AdhesionMap {
     /// Writes PREFIX_lambda.npy, ... as `tabor map --npy PREFIX`.
     fn save_npy(&self, py: Python<'_>, prefix: String) -> PyResult<()> {
         let data = &self.data;
-        run(py, move || {
+        run_here(py, move || {
             let mut outs = tabor::export::NPY_FILES
                 .iter()
                 .map(|n| tabor::io::Output::create(format!("{prefix}_{n}")))
@@ -882,6 +975,9 @@ impl AdhesionMap {
 
 #[pymodule]
 fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // NumPy's C API loaded now, not at a call's first array: a Ctrl-C pending then would
+    // interrupt that import inside rust-numpy, which panics.
+    PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("LAMBDA_MIN", tabor::physics::domain::LAMBDA_MIN)?;
     m.add(
@@ -893,6 +989,11 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("LIMIT_LAMBDA_MIN", tabor::physics::domain::LIMIT_LAMBDA_MIN)?;
     m.add("LIMIT_LAMBDA_MAX", tabor::physics::domain::LIMIT_LAMBDA_MAX)?;
     m.add("LAMBDA_D", tabor::physics::md::LAMBDA_D)?;
+    m.add("LOAD_MAX", tabor::physics::domain::LOAD_MAX)?;
+    m.add("APPROACH_MAX", tabor::physics::domain::APPROACH_MAX)?;
+    m.add("RADIUS_MAX", tabor::physics::domain::RADIUS_MAX)?;
+    m.add_function(wrap_pyfunction!(method_codes, m)?)?;
+    m.add_function(wrap_pyfunction!(rough::rough_scene, m)?)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
     m.add_function(wrap_pyfunction!(python_names, m)?)?;
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;

@@ -160,9 +160,17 @@ pub fn rough_ensemble<'py>(
             None => tabor::rough::Leg::Approach,
             Some(d_min) => tabor::rough::Leg::Retract { d_min },
         };
+        // The library's refusals named as rough_ensemble's arguments.
         separations
             .iter()
-            .map(|&d| Ok(r.ensemble_mean(leg, &heights, d)?))
+            .map(|&d| {
+                r.ensemble_mean(leg, &heights, d).map_err(|e| {
+                    anyhow::anyhow!(e
+                        .to_string()
+                        .replace("the smallest separation =", "min_separation =")
+                        .replace("the separation =", "separations:"))
+                })
+            })
             .collect::<anyhow::Result<Vec<Mean>>>()
     })?;
     leg(py, &v)
@@ -188,7 +196,7 @@ fn ensemble_leg<'py>(
 }
 
 /// A rough scene from its JSON text or a preset's name.
-fn rough_scene(
+fn scene_of(
     scene_json: Option<String>,
     preset: Option<String>,
 ) -> anyhow::Result<tabor::rough::scene::RoughScene> {
@@ -241,7 +249,7 @@ pub fn rough_asperities<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::rough::ensemble::{asperities, EnsembleSpec};
     let c = run(py, move || {
-        let scene = rough_scene(scene_json, preset)?;
+        let scene = scene_of(scene_json, preset)?;
         let asp = asperities(&heights_m, &radii_m)?;
         let spec = EnsembleSpec {
             min_separation_m,
@@ -271,7 +279,7 @@ pub fn rough_topography<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::rough::ensemble::{topography_summits, EnsembleSpec};
     let c = run(py, move || {
-        let scene = rough_scene(scene_json, preset)?;
+        let scene = scene_of(scene_json, preset)?;
         let asp = topography_summits(&z, nx, pixel_m)?;
         let spec = EnsembleSpec {
             min_separation_m,
@@ -303,4 +311,18 @@ pub fn rough_pulloff<'py>(
         press_sigmas,
     };
     run_py(py, move || Ok(sweep.compute()?))
+}
+
+/// A rough scene in SI units (JSON text, or a preset's name) through its cycle, as `tabor rough
+/// --scene FILE` or `--preset NAME` computes it (dry, or wet with the scene's humidity): the
+/// report `--format json` writes, as Python objects.
+#[pyfunction]
+#[pyo3(signature = (scene_json, preset, points))]
+pub fn rough_scene<'py>(
+    py: Python<'py>,
+    scene_json: Option<String>,
+    preset: Option<String>,
+    points: usize,
+) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || Ok(scene_of(scene_json, preset)?.solve(points)?))
 }

@@ -20,7 +20,7 @@ Results that could not be computed are NaN, and the ``status`` array says why: `
 ``no_contact`` (below the pull-off), ``not_converged``, ``invalid_input`` (outside the domain);
 ``message`` gives the reason per point. A single value outside the domain (a scalar ``lam`` or
 ``load``) raises ``ValueError`` with tabor's own message; what is not real numbers (complex,
-dates, strings, masked arrays) raises ``TypeError``. Ctrl-C interrupts a long solve.
+dates, strings, masked arrays) raises ``TypeError``. Ctrl-C interrupts any long call.
 """
 
 import json
@@ -47,7 +47,7 @@ __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
     "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
-    "rough_map", "rough_pulloff", "rough_topography",
+    "rough_map", "rough_pulloff", "rough_scene", "rough_topography",
 ]
 
 
@@ -126,28 +126,40 @@ def _finite(x, name):
     return v
 
 
+#: The largest |load|, |approach| and contact radius the solver takes (the library's limits).
+LOAD_MAX = _tabor.LOAD_MAX
+APPROACH_MAX = _tabor.APPROACH_MAX
+RADIUS_MAX = _tabor.RADIUS_MAX
+
+
+def _e(x):
+    """A power of ten as tabor writes it in messages: 1e12, 1e-26."""
+    m, e = f"{x:.0e}".split("e")
+    return f"{m}e{int(e)}"
+
+
 #: The solver's domain per input: (name in messages, the test of a valid value, the range).
 _DOMAIN = {
-    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX), "1e-26..1e26"),
+    "lam": ("lambda", lambda x: (x >= LAMBDA_MIN) & (x <= LAMBDA_MAX),
+            f"{_e(LAMBDA_MIN)}..{_e(LAMBDA_MAX)}"),
     # Loads and approaches: the exact solver's range and the closed-form limits' beyond it.
     "lam_any": ("lambda", lambda x: _method_code(x) != 0,
-                "1e-300..1e-26 (DMT limit), 1e-26..1e26 (exact), 1e26..1e150 (JKR limit)"),
-    "load": ("load", lambda x: np.abs(x) <= 1e12, "-1e12..1e12"),
-    "approach": ("approach", lambda x: np.abs(x) <= 1e8, "-1e8..1e8"),
-    "radius": ("radius", lambda x: (x > 0) & (x <= 1e4), "(0, 1e4]"),
+                f"{_e(LIMIT_LAMBDA_MIN)}..{_e(DMT_LIMIT_MAX)} (DMT limit), "
+                f"{_e(LAMBDA_MIN)}..{_e(LAMBDA_MAX)} (exact), "
+                f"{_e(LAMBDA_MAX)}..{_e(LIMIT_LAMBDA_MAX)} (JKR limit)"),
+    "load": ("load", lambda x: np.abs(x) <= LOAD_MAX, f"-{_e(LOAD_MAX)}..{_e(LOAD_MAX)}"),
+    "approach": ("approach", lambda x: np.abs(x) <= APPROACH_MAX,
+                 f"-{_e(APPROACH_MAX)}..{_e(APPROACH_MAX)}"),
+    "radius": ("radius", lambda x: (x > 0) & (x <= RADIUS_MAX), f"(0, {_e(RADIUS_MAX)}]"),
 }
 
 
 def _method_code(lam):
     """Per lambda, how ``solve`` answers a load or an approach, as a small code: 1 the exact
-    solver, 2 the DMT limit, 3 the JKR limit (beyond the exact solver's range), 0 none."""
+    solver, 2 the DMT limit, 3 the JKR limit (beyond the exact solver's range), 0 none (the
+    library's ``physics::domain::method``)."""
     lam = np.asarray(lam, dtype=float)
-    code = np.zeros(lam.shape, dtype=np.uint8)
-    with np.errstate(invalid="ignore"):
-        code[(lam >= LIMIT_LAMBDA_MIN) & (lam <= DMT_LIMIT_MAX)] = 2
-        code[(lam > LAMBDA_MAX) & (lam <= LIMIT_LAMBDA_MAX)] = 3
-        code[(lam >= LAMBDA_MIN) & (lam <= LAMBDA_MAX)] = 1
-    return code
+    return _tabor.method_codes(np.ascontiguousarray(lam.ravel())).reshape(lam.shape)
 
 
 #: The names of the codes of ``_method_code``.
@@ -561,9 +573,11 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     ``shape_fit`` is the two-zone law fitted to the curve's shape: ``fit`` (E*, the solid's w
     and lambda, ``model`` "solid_and_meniscus"), ``z0_m``, ``lambda_profile``, ``lambda_95``,
     ``lambda_bounded`` and ``solid_w_95``; None where the reading is fair."""
-    h = np.ascontiguousarray(height_m, dtype=float).ravel()
-    f = np.ascontiguousarray(force_n, dtype=float).ravel()
+    h = np.ascontiguousarray(_numbers(height_m, "height_m")).ravel()
+    f = np.ascontiguousarray(_numbers(force_n, "force_n")).ravel()
     seg = np.asarray(segment).ravel()
+    if seg.dtype.kind in "cmMO":  # complex, dates and objects refused as the others are
+        seg = _numbers(seg, "segment")
     if seg.dtype.kind in "US":
         names = {"approach": 0, "retract": 1}
         try:
@@ -646,7 +660,10 @@ def fit_curve(height_m, force_n, segment, **options):
     return fit_curves(height_m, force_n, segment, **options)[0]
 
 
-def fit_afmformats(data, radius_m, spring_n_m=None, **options):
+def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment="retract",
+                   z0_m=None, tilt=False, tolerance=_tabor.DEFAULT_TOLERANCE,
+                   relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
+                   molar_volume_m3_mol=None, temperature_k=None):
     """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum/Igor,
     NT-MDT, ...): one ``AFMForceDistance`` or a list of them, each with its own spring constant
     from its metadata, or ``spring_n_m`` for all of them where given (a file without one needs
@@ -655,8 +672,19 @@ def fit_afmformats(data, radius_m, spring_n_m=None, **options):
     ``height (piezo)``. Approach and retract are taken from the heights, whatever the file's
     segment numbers: a pause or a dwell (stress relaxation, creep) is left out, and a curve
     kept in one segment is split where the base turns (each said in ``warnings``); a curve
-    without a clear turn gets the status ``invalid_input``. Returns a list of dicts as
-    :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
+    without a clear turn, or whose file gives a spring constant out of range, gets the status
+    ``invalid_input``. The options are :func:`fit_curves`' (``fit_segment="approach"`` fits the
+    approach); a bad option raises ``ValueError`` naming it before any curve is fitted, as
+    :func:`fit_curves` does. Returns a list of dicts as :func:`fit_curves` does, each with
+    ``path`` and ``enum`` from the data."""
+    options = dict(radius_m=radius_m, poisson=poisson, fit_segment=fit_segment, z0_m=z0_m,
+                   tilt=tilt, tolerance=tolerance, relative_humidity=relative_humidity,
+                   contact_angle_deg=contact_angle_deg,
+                   surface_tension_n_m=surface_tension_n_m,
+                   molar_volume_m3_mol=molar_volume_m3_mol, temperature_k=temperature_k)
+    # The options checked once, on no data (with a valid stand-in for a spring read per file):
+    # options wrong for every curve raise, a file's own bad spring constant is its curve's status.
+    fit_curves([], [], [], spring_n_m=1.0 if spring_n_m is None else spring_n_m, **options)
     items = [data] if hasattr(data, "columns") else list(data)
     springs = []
     for d in items:  # every curve's spring first: a missing one stops before any fit
@@ -674,11 +702,12 @@ def fit_afmformats(data, radius_m, spring_n_m=None, **options):
         try:
             code, notes = _tabor.plan_segments(h, np.asarray(d["segment"], dtype=np.int64))
             keep = np.asarray(code) >= 0
-            r = fit_curve(h[keep], f[keep], np.asarray(code)[keep], radius_m=radius_m,
-                          spring_n_m=k, **options)
+            r = fit_curve(h[keep], f[keep], np.asarray(code)[keep], spring_n_m=k, **options)
             r["warnings"] = list(notes) + list(r.get("warnings", []))
-        except ValueError as e:
-            r = _refused(str(e))
+        except ValueError as e:  # the file's segments or its own spring constant
+            why = str(e)
+            r = _refused(f"the file's spring constant: {why}" if why.startswith("spring_n_m")
+                         else why)
         r["path"] = str(d.metadata.get("path", ""))
         r["enum"] = int(d.metadata.get("enum", 0))
         out.append(r)
@@ -772,9 +801,9 @@ def rough_ensemble(lam, heights, separations, min_separation=None):
     approach, or with ``min_separation`` on the retract after pressing to it."""
     h = _numbers(heights, "heights").ravel()
     d = _numbers(separations, "separations").ravel()
-    d_min = None if min_separation is None else _finite(min_separation, "min_separation")
+    d_min = _optional(min_separation, "min_separation")  # the library checks both
     # Each separation's state depends only on it and min_separation: solved in chunks of about
-    # 2e6 summit-states (a fraction of a second), so Ctrl-C interrupts between them.
+    # 2e6 summit-states (a fraction of a second each).
     step = max(1, 2_000_000 // max(1, len(h)))
     hl = h.tolist()
     parts = [_tabor.rough_ensemble(_real(lam, "lam"), hl, d[i:i + step].tolist(), d_min)
@@ -794,6 +823,28 @@ def _rough_scene(scene, preset):
         return json.dumps(scene, allow_nan=False)
     except ValueError:
         raise ValueError("scene: a value is not a finite number; give finite values") from None
+
+
+def rough_scene(scene=None, preset=None, points=400):
+    """A rough scene in SI units through an approach and a retract, as ``tabor rough --scene
+    FILE`` or ``tabor rough --preset NAME`` computes it (dry, or with the scene's ``humidity`` a
+    water meniscus on every summit): ``scene`` a dict or the path of a JSON file (the keys of
+    ``tabor rough --scene``), or ``preset`` one of ``mems-polysilicon``, ``pdms-rough-glass``,
+    ``colloidal-probe-wafer``; ``points`` separations each way. Returns the dict ``tabor rough
+    --scene --format json`` writes, the same numbers to the last bit: ``approach`` and
+    ``retract`` (arrays ``separation_m``, ``force_n``, ``nominal_pressure_pa``,
+    ``real_contact_area_m2``, ``contact_fraction``, ``noncontact_fraction``),
+    ``pulloff_force_n``, ``pulloff_stress_pa``, ``pulloff_separation_m``, ``hysteresis_j``,
+    ``lambda``, ``summits``, ``warnings``, ... and, with a humidity, ``meniscus`` and
+    ``dry_pulloff_force_n``."""
+    if isinstance(scene, (str, os.PathLike)) and preset is None:
+        with open(scene) as f:
+            text = f.read()
+    else:
+        text = _rough_scene(scene, preset)
+    if isinstance(points, bool) or not isinstance(points, (int, np.integer)) or points < 0:
+        raise ValueError(f"points = {points!r}: give a count >= 2")
+    return _tabor.rough_scene(text, None if preset is None else str(preset), int(points))
 
 
 def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation_m=None,

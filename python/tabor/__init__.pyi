@@ -18,6 +18,9 @@ LAMBDA_MAX: float
 LAMBDA_D: float
 DMT_LIMIT_MAX: float
 LIMIT_LAMBDA_MIN: float
+LOAD_MAX: float
+APPROACH_MAX: float
+RADIUS_MAX: float
 LIMIT_LAMBDA_MAX: float
 STATUS_NAMES: Tuple[str, ...]
 __all__: List[str]
@@ -136,7 +139,20 @@ def fit_curves(
 ) -> List[Dict[str, Any]]: ...
 def fit_curve(height_m: ArrayLike, force_n: ArrayLike, segment: ArrayLike, **options: Any) -> Dict[str, Any]: ...
 def fit_afmformats(
-    data: Any, radius_m: float, spring_n_m: Optional[float] = None, **options: Any
+    data: Any,
+    radius_m: float,
+    spring_n_m: Optional[float] = None,
+    *,
+    poisson: Optional[float] = None,
+    fit_segment: Literal["retract", "approach", "both"] = "retract",
+    z0_m: Optional[float] = None,
+    tilt: bool = False,
+    tolerance: float = 0.05,
+    relative_humidity: Optional[float] = None,
+    contact_angle_deg: float = 0.0,
+    surface_tension_n_m: Optional[float] = None,
+    molar_volume_m3_mol: Optional[float] = None,
+    temperature_k: Optional[float] = None,
 ) -> List[Dict[str, Any]]: ...
 def cycle(
     lam: float,
@@ -169,6 +185,11 @@ def rough_ensemble(
     heights: ArrayLike,
     separations: ArrayLike,
     min_separation: Optional[float] = None,
+) -> Dict[str, Any]: ...
+def rough_scene(
+    scene: Union[Dict[str, Any], str, PathLike[str], None] = None,
+    preset: Optional[str] = None,
+    points: int = 400,
 ) -> Dict[str, Any]: ...
 def rough_asperities(
     heights_m: ArrayLike,

@@ -189,6 +189,43 @@ def test_ctrl_c_interrupts_a_long_solve_within_a_second_or_two(given):
     assert waited < 2.5, (waited, out)
 
 
+@pytest.mark.parametrize("call", [
+    "tabor.rough_map(nx=1024, ny=1024, check=0)",
+    "tabor.rough(1, .63, -1.89, points=10000)",
+    "tabor.rough_ensemble(1.0, np.linspace(-2, 2, 400_000), np.linspace(-1, 3, 2000))",
+    "tabor.rough_pulloff(lambdas=[0.01, 0.1, 1.0, 10.0, 100.0, 1000.0], points=400)",
+    "tabor.rough_asperities(np.random.default_rng(1).normal(0, 5e-9, 200_000), "
+    "np.full(200_000, 2e-6), preset='mems-polysilicon', points=4000, summits='exact')",
+])
+def test_ctrl_c_interrupts_every_long_call_in_a_fresh_process(call):
+    # Once a PanicException out of rust-numpy (the first array of the process made while a
+    # Ctrl-C was pending), not caught by `except Exception`; now KeyboardInterrupt at once, and
+    # the library's work stops: the next call in the process runs and gives its numbers.
+    code = textwrap.dedent(f"""
+        import os, signal, sys, threading, time, numpy as np, tabor
+        sent = []
+        def interrupt():
+            sent.append(time.monotonic())
+            os.kill(os.getpid(), signal.SIGINT)
+        threading.Timer(1.0, interrupt).start()
+        try:
+            {call}
+        except KeyboardInterrupt:
+            print("interrupted", time.monotonic() - sent[0], flush=True)
+            r = tabor.rough(1.0, 0.63, -1.89, points=20)
+            print("then", r["pulloff_load"] < 0, flush=True)
+            sys.exit(3)
+        print("finished", time.monotonic() - sent[0], flush=True)
+    """)
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 3, (p.stdout, p.stderr[-2000:])
+    lines = p.stdout.split("\n")
+    waited = float(lines[0].split()[1])
+    assert waited < 2.0, (waited, p.stdout)
+    assert lines[1] == "then True", p.stdout
+    assert "panicked" not in p.stderr and "Panic" not in p.stderr, p.stderr
+
+
 def test_chunks_join_without_a_seam():
     # More than one chunk (262144 points), several lambdas: each point as solved alone.
     n = 262144 + 1000

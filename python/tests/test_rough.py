@@ -210,3 +210,71 @@ def test_topography_equals_the_command_line(tmp_path):
                          capture_output=True, text=True)
     assert out.returncode == 1
     assert str(refused.value) in out.stderr and str(flat) in out.stderr
+
+
+def _same(got, want, path="report"):
+    """The CLI's JSON (parsed) and Python's objects, equal to the last bit: numbers exactly,
+    NaN (JSON's null in a number array) as NaN."""
+    if isinstance(want, dict):
+        assert isinstance(got, dict) and set(got) == set(want), (path, set(got) ^ set(want))
+        for k in want:
+            _same(got[k], want[k], f"{path}.{k}")
+    elif isinstance(got, np.ndarray):
+        w = np.array([np.nan if v is None else v for v in want], dtype=float)
+        assert got.dtype == np.float64 and got.shape == w.shape, path
+        assert np.array_equal(got, w, equal_nan=True), path
+    elif isinstance(want, list):
+        assert isinstance(got, list) and len(got) == len(want), path
+        for i, (g, w) in enumerate(zip(got, want)):
+            _same(g, w, f"{path}[{i}]")
+    else:
+        assert type(got) is type(want) and got == want, (path, got, want)
+
+
+_SI_SCENE = {"e_star_pa": 8.4e10, "work_of_adhesion_j_m2": 0.05, "z0_m": 0.3e-9,
+             "summit_radius_m": 0.5e-6, "summit_density_m2": 2e12, "sigma_m": 1e-9,
+             "nominal_area_m2": 2e-9}
+
+
+@pytest.mark.parametrize("how", ["preset", "dry dict", "wet dict", "wet file"])
+def test_rough_scenes_equal_the_command_line_to_the_last_bit(how, tmp_path):
+    wet = dict(_SI_SCENE, humidity={"relative_humidity": 0.6, "contact_angle_deg": 20.0})
+    scene = {"preset": None, "dry dict": _SI_SCENE, "wet dict": wet, "wet file": wet}[how]
+    path = tmp_path / "scene.json"
+    path.write_text(json.dumps(scene))
+    args = ["--preset", "mems-polysilicon"] if scene is None else ["--scene", str(path)]
+    out = subprocess.run([str(TABOR), "rough", *args, "--points", "40"],
+                         capture_output=True, text=True, check=True)
+    want = json.loads(out.stdout)
+    if scene is None:
+        got = tabor.rough_scene(preset="mems-polysilicon", points=40)
+    else:
+        got = tabor.rough_scene(str(path) if how == "wet file" else scene, points=40)
+    _same(got, want)
+    assert ("meniscus" in got) == how.startswith("wet")
+    assert isinstance(got["approach"]["force_n"], np.ndarray)
+
+
+def test_rough_scenes_refuse_as_the_command_line_does():
+    with pytest.raises(ValueError, match="one of them"):
+        tabor.rough_scene()
+    with pytest.raises(ValueError, match="one of them"):
+        tabor.rough_scene(_SI_SCENE, preset="mems-polysilicon")
+    with pytest.raises(ValueError, match="presets are mems-polysilicon"):
+        tabor.rough_scene(preset="granite")
+    bad = dict(_SI_SCENE, humidity={"relative_humidity": 1.5, "contact_angle_deg": 20.0})
+    with pytest.raises(ValueError, match="relative_humidity"):
+        tabor.rough_scene(bad)
+
+
+@pytest.mark.parametrize("kw, says", [
+    (dict(separations=[0.0, float("nan")]), "separations: NaN is outside the supported domain"),
+    (dict(separations=[float("inf")]), "separations: inf is outside the supported domain"),
+    (dict(separations=[0.0], min_separation=float("nan")),
+     "min_separation = NaN is outside the supported domain"),
+])
+def test_an_ensemble_refuses_a_separation_that_is_not_a_number(kw, says):
+    # A NaN separation left every summit free: a load of 0 instead of a refusal.
+    with pytest.raises(ValueError) as e:
+        tabor.rough_ensemble(1.0, [0.0, 0.5], **kw)
+    assert says in str(e.value)

@@ -457,6 +457,7 @@ pub fn compute_with(
     let mut progress = crate::progress::Progress::new("solving", n as u64, "points");
     let (mut solve_s, mut classify_s) = (t0.elapsed().as_secs_f64(), 0.0);
     for (b, r) in rows.chunks(band).enumerate() {
+        crate::interrupt::checkpoint();
         let t = std::time::Instant::now();
         let states = solve(r)?;
         solve_s += t.elapsed().as_secs_f64();

@@ -212,6 +212,7 @@ fn add_summit(
     tables: Option<&LambdaTables>,
     retract_only: bool,
 ) -> Result<(), RoughError> {
+    crate::interrupt::checkpoint();
     let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
         .map_err(|e| RoughError::Scene(e.to_string()))?;
     let s = Summit::new(c.lambda())?;

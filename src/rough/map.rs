@@ -1077,6 +1077,7 @@ fn tables(
         let t = summits
             .par_iter()
             .map(|s| {
+                crate::interrupt::checkpoint();
                 BranchTable::new(s.delta_out, delta_hi, |d| s.contact(d).map(|c| c.0))
                     .ok_or_else(|| failed(s))
             })
@@ -1227,6 +1228,7 @@ fn point(
     sigma: f64,
     spec: &RoughMapSpec,
 ) -> (f64, f64, Region, [f64; 4]) {
+    crate::interrupt::checkpoint();
     let d_min = -spec.press_sigmas * sigma;
     let d_max = 6.0 * sigma + reach;
     let seps: Vec<f64> = (0..CURVE_SAMPLES)

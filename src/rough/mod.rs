@@ -262,6 +262,14 @@ pub(crate) fn legs(
     Ok((approach, retract))
 }
 
+/// A separation given by the caller: finite, within 1e6 approach units (as a cycle's).
+pub(crate) fn separation_in_range(name: &'static str, d: f64) -> Result<(), RoughError> {
+    if d.is_finite() && d.abs() <= 1e6 {
+        return Ok(());
+    }
+    Err(domain(name, d, "-1e6..1e6 approach units", "give a finite separation").into())
+}
+
 pub(crate) fn domain(
     name: &'static str,
     value: f64,
@@ -323,6 +331,12 @@ impl Rough {
     /// The mean state of an explicit ensemble of summits of heights `z` (approach units), all of
     /// this surface's lambda, at separation `d`: each summit on its own branch.
     pub fn ensemble_mean(&self, leg: Leg, z: &[f64], d: f64) -> Result<Mean, RoughError> {
+        crate::interrupt::checkpoint();
+        // A NaN separation would leave every summit free: a load of 0, not an answer.
+        separation_in_range("the separation", d)?;
+        if let Leg::Retract { d_min } = leg {
+            separation_in_range("the smallest separation", d_min)?;
+        }
         let (mut load, mut contact, mut noncontact) = (0.0, 0.0, 0.0);
         let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for &zi in z {
@@ -385,6 +399,7 @@ impl Rough {
 
     /// The mean load and branch fractions at separation `d`.
     pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
+        crate::interrupt::checkpoint();
         let s = self.sigma;
         let cuts = self.pieces(leg, d);
         let failed = Cell::new(false);

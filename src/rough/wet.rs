@@ -610,6 +610,7 @@ impl WetRough {
 
     /// The mean load and branch fractions at separation `d`.
     pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
+        crate::interrupt::checkpoint();
         let (summit, s) = match self {
             WetRough::Dry(r) => return r.mean(leg, d),
             WetRough::Wet { summit, sigma } => (summit, *sigma),
@@ -730,6 +731,10 @@ impl WetRough {
         match self {
             WetRough::Dry(r) => Ok(r.ensemble_mean(leg, z, d)?.load),
             WetRough::Wet { summit, .. } => {
+                super::separation_in_range("the separation", d)?;
+                if let Leg::Retract { d_min } = leg {
+                    super::separation_in_range("the smallest separation", d_min)?;
+                }
                 let mut total = 0.0;
                 for &zi in z {
                     let k = Self::stretch(summit, leg, zi, d);
