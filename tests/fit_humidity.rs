@@ -178,6 +178,23 @@ fn no_meniscus_above_90_degrees_leaves_the_fitted_w_and_a_strong_one_leaves_none
     assert_eq!(h["solid_work_of_adhesion_j_m2"], c["work_of_adhesion_j_m2"]);
     assert!(h["meniscus"].is_null());
     assert_eq!(num(&h["meniscus_share"]), 0.0);
+    // RH = 1e-10: a Kelvin radius of 23 pm, below one molecule: no meniscus is counted (the
+    // fitted w is the solid's, as a dry fit's) and the fit warns as `scene` does.
+    let c = fit(
+        &csv,
+        &["--relative-humidity", "1e-10", "--contact-angle-deg", "20"],
+    );
+    let h = &c["humidity"];
+    assert_eq!(h["solid_work_of_adhesion_j_m2"], c["work_of_adhesion_j_m2"]);
+    assert!(h["meniscus"].is_null());
+    let note = h["note"].as_str().unwrap();
+    assert!(note.starts_with("no meniscus (the Kelvin radius 0.023 nm"), "{note}");
+    let warned = c["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|w| w.as_str().unwrap().starts_with("humidity: the Kelvin radius 0.023 nm"));
+    assert!(warned, "{}", c["warnings"]);
     // Water wetting fully at 90% RH: its w = 0.144 J/m^2 is nearly three times the fit's.
     let c = fit(
         &csv,

@@ -522,6 +522,8 @@ fn humidity_sweep_of_a_soft_sphere_is_jkr_with_the_summed_work() {
         "pdms-glass",
         "--contact-angle-deg",
         "30",
+        "--rh-min",
+        "0.2",
         "--points",
         "4",
         "--format",
@@ -639,7 +641,7 @@ fn infer_takes_the_meniscus_out_of_a_wet_pull_off() {
         let w = got.solid_work_of_adhesion_j_m2.unwrap();
         assert!(rel(w, w1) < 1e-8, "w1 {w1}: got {w}");
         // A dry analysis of the same force credits the solid with the meniscus' work.
-        let wm = got.meniscus.work_of_adhesion_j_m2;
+        let wm = got.meniscus.unwrap().work_of_adhesion_j_m2;
         assert!(
             got.dry_md_work_of_adhesion_j_m2.unwrap() > w1 + 0.5 * wm,
             "{got:?}"
@@ -656,7 +658,13 @@ fn infer_takes_the_meniscus_out_of_a_wet_pull_off() {
         "{}",
         got.verdict
     );
-    assert_eq!(got.meniscus, m);
+    // A larger contact angle weakens the meniscus: that is the advice (as `fit` gives it).
+    assert!(
+        got.verdict.contains("a larger contact angle or a lower humidity than given"),
+        "{}",
+        got.verdict
+    );
+    assert_eq!(got.meniscus, Some(m));
     let e = tabor::scene::infer_wet(-20e-9, r, e_star, z0, &HumidityInput::water(0.0, 20.0))
         .unwrap_err()
         .to_string();
@@ -871,4 +879,210 @@ fn solve_table_of_two_zone_points_equals_the_single_state_form() {
     assert!(err.contains("stress ratio = -1"), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
     assert!(!out.exists());
+}
+
+/// Below one molecule's Kelvin radius (RH_mol = exp(-gamma V_m / (R T d)), d = (V_m/N_A)^(1/3),
+/// docs/PHYSICS.md section 10) no meniscus is counted: at RH = 1e-10 the scene, the sweep and
+/// `infer` give the dry contact's numbers exactly, and each says why; just above RH_mol the
+/// meniscus is there.
+#[test]
+fn below_one_molecule_no_meniscus_is_counted_and_every_front_end_says_so() {
+    let d = (1.8e-5f64 / 6.022_140_76e23).cbrt();
+    let rh_mol = (-0.072 * 1.8e-5 / (8.314_462_618 * 298.15 * d)).exp();
+    let h = HumidityInput::water(0.4, 20.0);
+    assert!(rel(h.molecule_size(), d) < 1e-15 && rel(h.molecular_rh(), rh_mol) < 1e-14);
+    assert!((rh_mol - 0.1855).abs() < 1e-3, "{rh_mol}");
+    let dry = solve_scene(&preset("afm-si").unwrap()).unwrap();
+    let mut s = preset("afm-si").unwrap();
+    for (rh, counted) in [(1e-10, false), (0.999 * rh_mol, false), (1.001 * rh_mol, true)] {
+        s.humidity = Some(HumidityInput::water(rh, 20.0));
+        let r = solve_scene(&s).unwrap();
+        assert_eq!(r.meniscus.is_some(), counted, "RH {rh}");
+        let below = r
+            .meniscus_warnings
+            .iter()
+            .any(|w| w.contains("below one molecule of the liquid (0.310 nm"));
+        assert_eq!(below, !counted, "{:?}", r.meniscus_warnings);
+        if !counted {
+            assert_eq!(
+                r.pulloff_force_load_control_N,
+                dry.pulloff_force_load_control_N
+            );
+            assert!(r.no_meniscus.unwrap().contains("below one molecule"));
+        }
+    }
+    // The command line: scene text, the sweep and infer give the same warning.
+    let dir = std::env::temp_dir().join(format!("tabor-molecule-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("dry_air.json");
+    let mut j = serde_json::to_value(preset("afm-si").unwrap()).unwrap();
+    j["humidity"] = serde_json::json!({"relative_humidity": 1e-10, "contact_angle_deg": 20});
+    std::fs::write(&f, j.to_string()).unwrap();
+    let o = tabor_cli(&["scene", f.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success());
+    assert!(
+        text.contains("  RH = 1e-10: no meniscus: the dry contact\n")
+            && text.contains("  warning: the Kelvin radius 0.023 nm at RH = 1e-10 is below one molecule of the liquid (0.310 nm, reached at RH = 0.186): no continuum meniscus, so none is counted"),
+        "{text}"
+    );
+    let o = tabor_cli(&["humidity", "--preset", "afm-si", "--format", "json"]);
+    let sweep: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let pts = sweep["points"].as_array().unwrap();
+    for p in pts {
+        let counted = p["relative_humidity"].as_f64().unwrap() >= rh_mol;
+        assert_eq!(!p["meniscus_lambda"].is_null(), counted, "{p}");
+        if !counted {
+            assert_eq!(p["pulloff_total_N"], p["pulloff_solid_N"]);
+            assert_eq!(p["pulloff_meniscus_N"].as_f64(), Some(0.0));
+        }
+    }
+    let warnings = sweep["warnings"].as_array().unwrap();
+    assert!(
+        warnings[0].as_str().unwrap().starts_with(
+            "below RH = 0.186 the Kelvin radius is below one molecule of the liquid (0.310 nm): no continuum meniscus, so none is counted at 3 of the 19 points (RH = 0.05 to 0.15)"
+        ),
+        "{warnings:?}"
+    );
+    // The bisection finds where the meniscus starts to dominate: at RH_mol itself.
+    let above = sweep["meniscus_dominates_above_rh"].as_f64().unwrap();
+    assert!((above - rh_mol).abs() < 1e-6, "{above}");
+    let infer = |rh: &str| {
+        let mut a = vec![
+            "infer", "--pulloff", "-28.8155e-9", "--radius", "20e-9", "--e-star", "91.1444e9",
+        ];
+        if !rh.is_empty() {
+            a.extend(["--relative-humidity", rh, "--contact-angle-deg", "20"]);
+        }
+        a.extend(["--format", "json"]);
+        let o = tabor_cli(&a);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
+    };
+    let (wet, dry) = (infer("1e-10"), infer(""));
+    assert_eq!(wet["solid_work_of_adhesion_j_m2"], dry["w_md_j_m2"]);
+    assert!(wet["meniscus"].is_null());
+    assert!(wet["warnings"][0]
+        .as_str()
+        .unwrap()
+        .contains("below one molecule of the liquid"));
+}
+
+/// Near saturation: `tabor humidity` warns where the meniscus height exceeds a tenth of R, as
+/// `scene` does; a humidity beyond the solver's reach is refused naming the value given.
+#[test]
+fn flooding_warning_and_saturation_refusal_name_the_humidity() {
+    let o = tabor_cli(&["humidity", "--preset", "afm-si", "--contact-angle-deg", "20"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success());
+    // 2 r_K cos(theta) = 0.1 R at RH = 0.612 for R = 20 nm: the points 0.65..0.95.
+    assert!(
+        text.contains("warning: the meniscus height 2 r_K cos(theta) exceeds 10% of R (up to 96%) at 7 of the 19 points (RH = 0.65 to 0.95)"),
+        "{text}"
+    );
+    let mut s = preset("afm-si").unwrap();
+    s.humidity = Some(HumidityInput::water(0.95, 20.0));
+    let r = solve_scene(&s).unwrap();
+    assert!(
+        r.meniscus_warnings[0].starts_with("the meniscus height 2 r_K cos(theta) = 1.916e-8 m at RH = 0.95 is 96% of R"),
+        "{:?}",
+        r.meniscus_warnings
+    );
+    s.humidity = Some(HumidityInput::water(0.9999999, 20.0));
+    let e = solve_scene(&s).unwrap_err().to_string();
+    assert!(
+        e.starts_with("humidity.relative_humidity = 0.9999999: the meniscus (Kelvin radius")
+            && e.contains("give a relative humidity below 0.99"),
+        "{e}"
+    );
+    let o = tabor_cli(&["humidity", "--preset", "afm-si", "--rh-max", "0.9999999"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(err.contains("--rh-max = 0.9999999: the meniscus"), "{err}");
+    // An extreme liquid names the liquid's values.
+    let mut h = HumidityInput::water(0.5, 20.0);
+    h.surface_tension_n_m = Some(1e30);
+    s.humidity = Some(h);
+    let e = solve_scene(&s).unwrap_err().to_string();
+    assert!(
+        e.starts_with("humidity (relative humidity 0.5, contact angle 20 deg, surface tension 1e30 N/m")
+            && e.contains("check the liquid's values"),
+        "{e}"
+    );
+}
+
+/// `tabor infer` of an implausible force: the plausible ranges of `tabor fit`, no "Trust".
+#[test]
+fn infer_bounds_w_as_fit_does() {
+    let r = tabor::scene::infer(1.0, 20e-9, 91.1444e9, 0.3e-9).unwrap();
+    assert!(!r.verdict.contains("Trust"), "{}", r.verdict);
+    assert!(
+        r.verdict.starts_with("no w to trust: E* = 9.11444e10 Pa (plausible 10..1e12 Pa), w = ")
+            && r.verdict.contains("(plausible up to 10 J/m^2): outside physical sense"),
+        "{}",
+        r.verdict
+    );
+    assert_eq!(r.warnings.len(), 1);
+    let o = tabor_cli(&["infer", "--pulloff", "1", "--radius", "20e-9", "--e-star", "91.1444e9"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("warning: E* = 9.11444e10 Pa"));
+    // A plausible force has no warning.
+    let r = tabor::scene::infer(-12.2e-9, 20e-9, 91.1444e9, 0.3e-9).unwrap();
+    assert!(r.warnings.is_empty() && r.verdict.contains("Trust"), "{}", r.verdict);
+}
+
+/// A wet scene under a cantilever and its cycle name the w their kbar is built on: the total w
+/// of solid and meniscus, the same number in both; a dry scene says the solid's.
+#[test]
+fn scene_and_cycle_label_the_w_of_their_kbar() {
+    let dir = std::env::temp_dir().join(format!("tabor-kbar-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let f = dir.join("wet_k.json");
+    let mut j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string("examples/si_tip_40rh.json").unwrap())
+            .unwrap();
+    j["control"] = serde_json::json!({"cantilever_n_m": 2.0});
+    std::fs::write(&f, j.to_string()).unwrap();
+    let mut s: tabor::scene::SceneInput = serde_json::from_value(j.clone()).unwrap();
+    let r = solve_scene(&s).unwrap();
+    let c = contact_of(&s).unwrap();
+    let m = r.meniscus.unwrap();
+    let (_, _, u) = tabor::scene::humidity::wet_ratios(&c, &m).unwrap();
+    let label = format!(
+        "kbar = {:.4e} in the units of the total w (solid and meniscus)",
+        2.0 * u.approach / u.load
+    );
+    assert!(r.control.ends_with(&label), "{} / {label}", r.control);
+    let o = tabor_cli(&[
+        "cycle", "--scene", f.to_str().unwrap(), "--control", "spring", "--spring-n-m", "2",
+        "-o", dir.join("c.csv").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success() && err.contains(&label), "{err}");
+    s.humidity = None;
+    let r = solve_scene(&s).unwrap();
+    let kbar = tabor::cycle::normalised_stiffness(2.0, &c);
+    assert!(
+        r.control
+            .ends_with(&format!("kbar = {kbar:.4e} in the units of the solid's w")),
+        "{}",
+        r.control
+    );
+}
+
+/// `tabor profile --scene` of a wet scene prints a summary line as the dry scene does.
+#[test]
+fn wet_profile_prints_its_summary() {
+    let o = tabor_cli(&[
+        "profile", "--scene", "examples/si_tip_40rh.json", "--load-n", "0", "-o",
+        std::env::temp_dir().join("tabor-wet-profile.csv").to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("(solid), meniscus lambda = 0.0371")
+            && err.contains("zone edges c1 = ")
+            && err.contains("J/(w1 + w2) = 1.0000000000"),
+        "{err}"
+    );
 }

@@ -507,19 +507,50 @@ fn scene<'py>(
     preset: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     run_py(py, move || {
-        let input: tabor::scene::SceneInput = match (scene_json, preset) {
-            (Some(j), None) => {
-                serde_json::from_str(&j).map_err(|e| anyhow::anyhow!("not a valid scene: {e}"))?
-            }
-            (None, Some(p)) => tabor::scene::preset(&p).ok_or_else(|| {
-                anyhow::anyhow!(
-                    "no preset {p:?}; the presets are {}",
-                    tabor::scene::preset_names().join(", ")
-                )
-            })?,
-            _ => anyhow::bail!("give a scene or a preset name"),
-        };
-        Ok(tabor::scene::solve_scene(&input)?)
+        Ok(tabor::scene::solve_scene(&scene_input(scene_json, preset)?)?)
+    })
+}
+
+/// A scene from its JSON text or a preset's name.
+fn scene_input(
+    scene_json: Option<String>,
+    preset: Option<String>,
+) -> anyhow::Result<tabor::scene::SceneInput> {
+    Ok(match (scene_json, preset) {
+        (Some(j), None) => {
+            serde_json::from_str(&j).map_err(|e| anyhow::anyhow!("not a valid scene: {e}"))?
+        }
+        (None, Some(p)) => tabor::scene::preset(&p).ok_or_else(|| {
+            anyhow::anyhow!(
+                "no preset {p:?}; the presets are {}",
+                tabor::scene::preset_names().join(", ")
+            )
+        })?,
+        _ => anyhow::bail!("give a scene or a preset name"),
+    })
+}
+
+/// `tabor humidity`: the pull-off against relative humidity of a scene (JSON) or a preset.
+#[pyfunction]
+#[pyo3(signature = (scene_json, preset, rh_min, rh_max, points, contact_angle_deg=None))]
+fn humidity<'py>(
+    py: Python<'py>,
+    scene_json: Option<String>,
+    preset: Option<String>,
+    rh_min: f64,
+    rh_max: f64,
+    points: usize,
+    contact_angle_deg: Option<f64>,
+) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || {
+        let input = scene_input(scene_json, preset)?;
+        Ok(tabor::scene::humidity::sweep_scene(
+            &input,
+            contact_angle_deg,
+            rh_min,
+            rh_max,
+            points,
+        )?)
     })
 }
 
@@ -550,18 +581,25 @@ fn infer_pulloff_wet<'py>(
     radius: f64,
     e_star: f64,
     z0: f64,
-    relative_humidity: f64,
-    contact_angle_deg: f64,
+    relative_humidity: Option<f64>,
+    contact_angle_deg: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let h = tabor::scene::humidity::HumidityInput::water(relative_humidity, contact_angle_deg);
     run_py(py, move || {
-        // Named as infer_pulloff's keywords, where a scene names its keys.
-        tabor::scene::infer_wet(force, radius, e_star, z0, &h).map_err(|e| {
-            anyhow::anyhow!(e
-                .to_string()
-                .replace("humidity.relative_humidity", "relative_humidity")
-                .replace("humidity.contact_angle_deg", "contact_angle_deg"))
-        })
+        // The library's check of the two options, as the command line's flags require.
+        tabor::scene::wet_options(relative_humidity, contact_angle_deg)
+            .and_then(|h| {
+                let h = h.ok_or(tabor::physics::params::ParamError::Missing(
+                    "give relative_humidity",
+                ))?;
+                tabor::scene::infer_wet(force, radius, e_star, z0, &h)
+            })
+            // Named as infer_pulloff's keywords, where a scene names its keys.
+            .map_err(|e| {
+                anyhow::anyhow!(e
+                    .to_string()
+                    .replace("humidity.relative_humidity", "relative_humidity")
+                    .replace("humidity.contact_angle_deg", "contact_angle_deg"))
+            })
     })
 }
 
@@ -1003,6 +1041,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(curve, m)?)?;
     m.add_function(wrap_pyfunction!(scene, m)?)?;
     m.add_function(wrap_pyfunction!(presets, m)?)?;
+    m.add_function(wrap_pyfunction!(humidity, m)?)?;
     m.add_function(wrap_pyfunction!(infer_pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(fit_curves, m)?)?;
     m.add_function(wrap_pyfunction!(plan_segments, m)?)?;

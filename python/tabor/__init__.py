@@ -45,7 +45,7 @@ STATUS_NAMES = tuple(_tabor.status_names())
 
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
-    "AdhesionMap", "Scene", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
+    "AdhesionMap", "Scene", "humidity", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
     "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
     "rough_map", "rough_pulloff", "rough_scene", "rough_topography",
 ]
@@ -473,6 +473,18 @@ def _leaves(d, prefix=""):
             yield key, v
 
 
+def _scene_text(scene):
+    """A scene dict as JSON text; ValueError naming non-finite values."""
+    try:
+        return json.dumps(scene, allow_nan=False)
+    except ValueError:
+        bad = [k for k, v in _leaves(scene) if isinstance(v, float) and not np.isfinite(v)]
+        raise ValueError(f"scene: {', '.join(bad)} is not a finite number; give "
+                         "finite values") from None
+    except TypeError as e:
+        raise TypeError(f"scene: {e}; give numbers, strings, lists and dicts") from None
+
+
 class Scene:
     """A real contact in SI units, solved as ``tabor scene`` does.
 
@@ -488,16 +500,7 @@ class Scene:
         if _report is None:
             if not isinstance(scene, dict):
                 raise TypeError("Scene(...) takes a dict; use Scene.from_file or Scene.preset")
-            try:
-                text = json.dumps(scene, allow_nan=False)
-            except ValueError:
-                bad = [k for k, v in _leaves(scene)
-                       if isinstance(v, float) and not np.isfinite(v)]
-                raise ValueError(f"scene: {', '.join(bad)} is not a finite number; give "
-                                 "finite values") from None
-            except TypeError as e:
-                raise TypeError(f"scene: {e}; give numbers, strings, lists and dicts") from None
-            _report = _tabor.scene(text, None)
+            _report = _tabor.scene(_scene_text(scene), None)
         self.report = _report
         self.lam = _report["lambda"]
         self.recommended_model = _report["recommended_model"]
@@ -525,20 +528,47 @@ class Scene:
                 f"recommended model {self.recommended_model!r})")
 
 
+def humidity(scene=None, preset=None, rh_min=0.05, rh_max=0.95, points=19,
+             contact_angle_deg=None):
+    """The pull-off against relative humidity of a scene (a dict as :class:`Scene` takes) or a
+    preset (``tabor humidity``): ``points`` humidities from ``rh_min`` to ``rh_max``, with the
+    scene's liquid and contact angle (``contact_angle_deg`` replaces the scene's; water at 0
+    degrees where the scene has no ``"humidity"``). Returns the dict of ``tabor humidity
+    --format json``: ``points`` (per RH ``kelvin_radius_m``, ``meniscus_range_m``,
+    ``meniscus_lambda`` (None where no meniscus is counted), ``pulloff_solid_N``,
+    ``pulloff_meniscus_N``, ``pulloff_total_N``, ``meniscus_share``),
+    ``meniscus_dominates_above_rh`` and ``warnings`` (where the meniscus model does not hold:
+    a Kelvin radius below one molecule, where no meniscus is counted, or a meniscus height
+    above a tenth of R)."""
+    if (scene is None) == (preset is None):
+        raise ValueError("give scene (a dict) or preset (a name), one of them")
+    if scene is not None and not isinstance(scene, dict):
+        raise TypeError("scene: give a dict (the scene JSON keys); or preset=NAME")
+    if int(points) < 0:
+        raise ValueError(f"points = {points}: give a count in 2..10000")
+    return _tabor.humidity(None if scene is None else _scene_text(scene),
+                           None if preset is None else str(preset),
+                           _real(rh_min, "rh_min"), _real(rh_max, "rh_max"), int(points),
+                           _optional(contact_angle_deg, "contact_angle_deg"))
+
+
 def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9, relative_humidity=None,
-                  contact_angle_deg=0.0):
+                  contact_angle_deg=None):
     """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
     the Tabor self-consistency verdict (``tabor infer``). Returns a dict.
 
     With ``relative_humidity`` (the force measured in air; water at ``contact_angle_deg``), the
     dict is ``tabor infer --relative-humidity``'s: ``solid_work_of_adhesion_j_m2`` with the
     meniscus taken out (None where the meniscus alone pulls off harder), ``meniscus``,
-    ``meniscus_only_pulloff_n``, ``dry_md_work_of_adhesion_j_m2`` and ``verdict``."""
-    if relative_humidity is not None:
+    ``meniscus_only_pulloff_n``, ``dry_md_work_of_adhesion_j_m2``, ``verdict`` and ``warnings``
+    (where the meniscus model does not hold: below one molecule's Kelvin radius no meniscus is
+    counted and the solid's w is the dry one). ``contact_angle_deg`` (default 0) goes only with
+    ``relative_humidity``."""
+    if relative_humidity is not None or contact_angle_deg is not None:
         return _tabor.infer_pulloff_wet(_finite(force_n, "force_n"), _finite(radius_m, "radius_m"),
                                         _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"),
-                                        _real(relative_humidity, "relative_humidity"),
-                                        _real(contact_angle_deg, "contact_angle_deg"))
+                                        _optional(relative_humidity, "relative_humidity"),
+                                        _optional(contact_angle_deg, "contact_angle_deg"))
     return _tabor.infer_pulloff(_finite(force_n, "force_n"),
                                            _finite(radius_m, "radius_m"),
                                            _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"))

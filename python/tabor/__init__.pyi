@@ -109,13 +109,21 @@ class Scene:
     @classmethod
     def preset(cls, name: str) -> "Scene": ...
 
+def humidity(
+    scene: Optional[Dict[str, Any]] = None,
+    preset: Optional[str] = None,
+    rh_min: float = 0.05,
+    rh_max: float = 0.95,
+    points: int = 19,
+    contact_angle_deg: Optional[float] = None,
+) -> Dict[str, Any]: ...
 def infer_pulloff(
     force_n: float,
     radius_m: float,
     e_star_pa: float,
     z0_m: float = 0.3e-9,
     relative_humidity: Optional[float] = None,
-    contact_angle_deg: float = 0.0,
+    contact_angle_deg: Optional[float] = None,
 ) -> Dict[str, Any]: ...
 def fit_pairs(loads_n: ArrayLike, radii_m: ArrayLike, radius_m: float, z0_m: float = 0.3e-9) -> Dict[str, Any]: ...
 def fit_curves(

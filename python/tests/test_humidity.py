@@ -108,6 +108,66 @@ def test_infer_in_humid_air_equals_the_command_line():
         tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=1.5)
 
 
+def _cli_json(*args):
+    return json.loads(subprocess.run([tabor_bin(), *args], capture_output=True, text=True,
+                                     check=True).stdout)
+
+
+@pytest.mark.parametrize("kw,args", [
+    ({"preset": "afm-si"}, ["--preset", "afm-si"]),
+    ({"preset": "pdms-glass", "contact_angle_deg": 30.0, "points": 31},
+     ["--preset", "pdms-glass", "--contact-angle-deg", "30", "--points", "31"]),
+    ({"scene": json.loads(WET.read_text()), "rh_min": 0.1, "rh_max": 0.99, "points": 7},
+     ["--scene", str(WET), "--rh-min", "0.1", "--rh-max", "0.99", "--points", "7"]),
+])
+def test_humidity_sweep_equals_the_command_line_to_the_last_bit(kw, args):
+    r = tabor.humidity(**kw)
+    cli = _cli_json("humidity", *args, "--format", "json")
+    assert r == cli
+    # The CSV table carries the same numbers (17 significant digits round-trip).
+    csv = subprocess.run([tabor_bin(), "humidity", *args, "--format", "csv"],
+                         capture_output=True, text=True, check=True).stdout.splitlines()
+    for row, p in zip(csv[1:], r["points"]):
+        v = row.split(",")
+        assert float(v[0]) == p["relative_humidity"]
+        assert float(v[6]) == p["pulloff_total_N"]
+        assert (v[3] == "") == (p["meniscus_lambda"] is None)
+
+
+def test_humidity_sweep_refuses_as_the_command_line():
+    with pytest.raises(ValueError, match="rh_max"):
+        tabor.humidity(preset="afm-si", rh_max=1.0)
+    with pytest.raises(ValueError, match="points"):
+        tabor.humidity(preset="afm-si", points=-3)
+    with pytest.raises(ValueError, match="scene"):
+        tabor.humidity()
+
+
+def test_below_one_molecule_python_warns_and_gives_the_dry_answer():
+    """RH = 1e-10: a Kelvin radius of 23 pm, below one molecule: no meniscus is counted, and
+    the warning is the command line's."""
+    r = tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=1e-10,
+                            contact_angle_deg=20)
+    dry = tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9)
+    cli = _cli_json("infer", "--pulloff", "-28.8155e-9", "--radius", "20e-9", "--e-star",
+                    "91.1444e9", "--relative-humidity", "1e-10", "--contact-angle-deg", "20",
+                    "--format", "json")
+    assert r["solid_work_of_adhesion_j_m2"] == dry["w_md_j_m2"]
+    assert r["meniscus"] is None
+    assert r["warnings"] == cli["warnings"]
+    assert "below one molecule of the liquid (0.310 nm" in r["warnings"][0]
+    scene = json.loads(WET.read_text())
+    scene["humidity"]["relative_humidity"] = 1e-10
+    rep = tabor.Scene(scene).report
+    assert rep["meniscus_warnings"][0].startswith("the Kelvin radius 0.023 nm at RH = 1e-10")
+    assert "meniscus" not in rep
+
+
+def test_contact_angle_without_humidity_is_refused():
+    with pytest.raises(ValueError, match="contact_angle_deg is given without relative_humidity"):
+        tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, contact_angle_deg=20)
+
+
 CURVE = ROOT / "gallery" / "fit_curve.csv"  # E* = 2 GPa, w = 0.04 J/m^2, lambda = 0.3, R = 20 nm
 
 

@@ -97,10 +97,12 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
             (l, g)
         }
     };
+    let mut humid_warnings = Vec::new();
     if let (Some(s), Some(c)) = (&scene, &contact) {
         if let Some(h) = &s.humidity {
+            humid_warnings = h.warnings(c.radius);
             if let Some(m) = h.meniscus(c)? {
-                return run_wet(&a, c, &m, given, &figure, &print);
+                return run_wet(&a, c, h, &m, given, &figure, &print);
             }
         }
     }
@@ -113,6 +115,7 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     if let Some(c) = &contact {
         p = p.to_si(c);
     }
+    p.warnings.extend(humid_warnings);
     let text = match a.format {
         Format::Csv => profile_csv(&p)?,
         _ => serde_json::to_string_pretty(&p)? + "\n",
@@ -190,6 +193,7 @@ fn run_two_zone(
 fn run_wet(
     a: &ProfileArgs,
     c: &crate::physics::params::Contact,
+    h: &crate::scene::humidity::HumidityInput,
     m: &crate::scene::humidity::Meniscus,
     given: Given,
     figure: &crate::render::Outputs,
@@ -206,9 +210,22 @@ fn run_wet(
     let p = crate::profile_two_zone::two_zone_profile(c.lambda(), rho, eta, given, a.points)
         .context("--load-n")?;
     let mut p = p.to_si(&u);
-    p.warnings
-        .extend(crate::scene::humidity::meniscus_warnings(m, c));
-    write_two_zone(a, &p, figure, print)
+    p.warnings.extend(h.warnings(c.radius));
+    write_two_zone(a, &p, figure, print)?;
+    // The summary line of a dry scene's profile, for solid and meniscus together.
+    let s = &p.models[0];
+    let si = crate::solver::domain::short;
+    eprintln!(
+        "lambda = {} (solid), meniscus lambda = {}, load {} N: contact radius a = {} m, zone edges c1 = {} m (solid), c2 = {} m (meniscus), J/(w1 + w2) = {:.12}",
+        si(c.lambda()),
+        si(m.lambda),
+        si(s.load),
+        s.a.map_or("-".into(), si),
+        si(p.zone_edges[0]),
+        si(p.zone_edges[1]),
+        p.energy_release_rate_over_w
+    );
+    Ok(())
 }
 
 /// JSON or CSV, and the plot, of a two-zone profile.

@@ -201,15 +201,16 @@ pub fn scene_text(r: &SceneResult) -> String {
             si(r.dry_pulloff_force_load_control_N.unwrap_or(f64::NAN), "N"),
             si(r.dry_pulloff_force_displacement_control_N.unwrap_or(f64::NAN), "N")
         );
-        for w in &r.meniscus_warnings {
-            let _ = writeln!(t, "  warning: {w}");
-        }
     } else if let Some(rh) = r.relative_humidity {
-        let _ = writeln!(
-            t,
-            "  RH = {:.1}%: no meniscus (contact angle 90 degrees or more, or RH = 0): the dry contact",
-            100.0 * rh
-        );
+        // The reason, unless a warning below gives it.
+        let why = match (&r.no_meniscus, r.meniscus_warnings.is_empty()) {
+            (Some(w), true) => format!(" ({w})"),
+            _ => String::new(),
+        };
+        let _ = writeln!(t, "  RH = {rh:?}: no meniscus{why}: the dry contact");
+    }
+    for w in &r.meniscus_warnings {
+        let _ = writeln!(t, "  warning: {w}");
     }
     let _ = writeln!(
         t,
@@ -306,21 +307,29 @@ fn infer_wet_cmd(a: &InferArgs, pulloff: f64, e_star: f64, rh: f64) -> anyhow::R
     if a.format == Format::Json {
         return write_output("-", (serde_json::to_string_pretty(&r)? + "\n").as_bytes());
     }
-    let m = &r.meniscus;
-    let t = format!(
-        "pull-off force {} with R = {}, E* = {}, z0 = {}, in air at RH = {:.1}% (water, contact angle {} deg)\n  water meniscus: Kelvin radius {}, height {}, w = {:.4e} J/m^2; alone it pulls off at {}\n  {}\n",
+    let mut t = format!(
+        "pull-off force {} with R = {}, E* = {}, z0 = {}, in air at RH = {:.1}% (water, contact angle {} deg)\n",
         si(r.pulloff_force_n, "N"),
         si(a.radius, "m"),
         si(e_star, "Pa"),
         si(a.z0, "m"),
         100.0 * rh,
         a.contact_angle_deg,
-        si(m.kelvin_radius_m, "m"),
-        si(m.range_m, "m"),
-        m.work_of_adhesion_j_m2,
-        si(r.meniscus_only_pulloff_n, "N"),
-        r.verdict
     );
+    if let Some(m) = &r.meniscus {
+        let _ = writeln!(
+            t,
+            "  water meniscus: Kelvin radius {}, height {}, w = {:.4e} J/m^2; alone it pulls off at {}",
+            si(m.kelvin_radius_m, "m"),
+            si(m.range_m, "m"),
+            m.work_of_adhesion_j_m2,
+            si(r.meniscus_only_pulloff_n, "N"),
+        );
+    }
+    let _ = writeln!(t, "  {}", r.verdict);
+    for w in &r.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
     write_output("-", t.as_bytes())
 }
 
@@ -413,6 +422,9 @@ pub fn infer_cmd(a: InferArgs) -> anyhow::Result<()> {
         }
     }
     let _ = writeln!(t, "  {}", r.verdict);
+    for w in &r.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
     write_output("-", t.as_bytes())
 }
 
@@ -492,6 +504,7 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         },
         _ => None,
     };
+    warn_humidity(scene.as_ref(), contact.as_ref());
     if contact.is_some() && a.stress_ratio.is_some() {
         bail!("--stress-ratio and --range-ratio go with --lambda; a scene takes its meniscus from its \"humidity\" key");
     }
@@ -568,6 +581,15 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The limits of a scene's meniscus model on stderr, as `tabor scene` reports them.
+fn warn_humidity(scene: Option<&SceneInput>, c: Option<&crate::physics::params::Contact>) {
+    if let (Some(h), Some(c)) = (scene.and_then(|s| s.humidity.as_ref()), c) {
+        for w in h.warnings(c.radius) {
+            eprintln!("warning: {w}");
+        }
+    }
+}
+
 /// A cycle as JSON, or as CSV with one row per step.
 fn cycle_text(c: &crate::cycle::Cycle, format: Format) -> anyhow::Result<String> {
     Ok(match format {
@@ -603,12 +625,18 @@ fn cycle_summary(
     ratios: Option<(f64, f64)>,
     units: Option<(f64, f64)>,
 ) {
+    // A spring's kbar with the w its units are built on, as `tabor scene` says it.
+    let drive = match c.drive {
+        crate::cycle::Drive::Spring(k) => {
+            format!("Spring, {}", crate::cycle::kbar_text(k, ratios.is_some()))
+        }
+        d => format!("{d:?}"),
+    };
     match ratios {
         Some((rho, eta)) => eprintln!(
-            "lambda = {lambda:.4} (solid), stress ratio {rho:.4}, range ratio {eta:.4} (units of the total w), {:?}",
-            c.drive
+            "lambda = {lambda:.4} (solid), stress ratio {rho:.4}, range ratio {eta:.4} (units of the total w), {drive}"
         ),
-        None => eprintln!("lambda = {lambda:.4}, {:?}", c.drive),
+        None => eprintln!("lambda = {lambda:.4}, {drive}"),
     }
     for j in &c.jumps {
         match &j.to {
@@ -679,20 +707,14 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
-    let c = crate::scene::contact_of(&input)?;
-    let mut base = input
-        .humidity
-        .clone()
-        .unwrap_or_else(|| crate::scene::humidity::HumidityInput::water(0.5, 0.0));
-    if let Some(t) = a.contact_angle_deg {
-        base.contact_angle_deg = t;
-    }
-    // The liquid's values are checked once here, at a humidity inside the range.
-    base.relative_humidity = 0.5;
-    base.meniscus(&c)?;
-    let name = input.name.clone().unwrap_or_else(|| "scene".into());
-    let r = crate::scene::humidity::sweep(&name, &c, &base, a.rh_min, a.rh_max, a.points)
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::HUMIDITY_FLAGS)))?;
+    let r = crate::scene::humidity::sweep_scene(
+        &input,
+        a.contact_angle_deg,
+        a.rh_min,
+        a.rh_max,
+        a.points,
+    )
+    .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::HUMIDITY_FLAGS)))?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         Format::Csv => humidity_csv(&r),
@@ -707,6 +729,12 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
         &|root| crate::render::plots::humidity(root, &r),
     )
     .context("writing the humidity sweep")?;
+    // The text carries its warnings; a table or JSON output gets them here too.
+    if a.format == Format::Csv {
+        for w in &r.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
     if !figure.is_empty() {
         eprintln!("wrote the figure");
     }
@@ -722,7 +750,7 @@ fn humidity_csv(r: &crate::scene::humidity::HumiditySweep) -> String {
             p.relative_humidity,
             p.kelvin_radius_m,
             p.meniscus_range_m,
-            p.meniscus_lambda,
+            p.meniscus_lambda.map_or(String::new(), |l| l.to_string()),
             p.pulloff_solid_N,
             p.pulloff_meniscus_N,
             p.pulloff_total_N,
@@ -741,6 +769,9 @@ fn humidity_text(r: &crate::scene::humidity::HumiditySweep) -> String {
         r.work_of_adhesion_solid_j_m2, r.work_of_adhesion_meniscus_j_m2, r.contact_angle_deg
     );
     let _ = writeln!(t, "  {}", r.meniscus_dominates);
+    for w in &r.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
     let _ = writeln!(
         t,
         "  {:>6} {:>12} {:>12} {:>14} {:>14} {:>14} {:>7}",

@@ -567,6 +567,20 @@ pub fn normalised_stiffness(k: f64, c: &crate::physics::params::Contact) -> f64 
     k * c.approach_scale() / c.force_scale()
 }
 
+/// A normalised spring stiffness in words, with the w its units are built on: the solid's
+/// (`wet` false) or the total w of solid and meniscus (docs/PHYSICS.md section 10), so that a
+/// scene and its cycle say the same.
+pub fn kbar_text(kbar: f64, wet: bool) -> String {
+    format!(
+        "kbar = {kbar:.4e} in the units of {}",
+        if wet {
+            "the total w (solid and meniscus)"
+        } else {
+            "the solid's w"
+        }
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -29,7 +29,7 @@ pub struct FitHumidity {
     /// Temperature (K), the default filled in.
     pub temperature_k: f64,
     /// The meniscus as a Dugdale zone; null where none forms (a contact angle of 90 degrees or
-    /// more).
+    /// more, or a Kelvin radius below one molecule of the liquid).
     pub meniscus: Option<Meniscus>,
     /// The fitted Maugis-Dugdale model's load-controlled pull-off, `Pbar_c(lambda) pi w R` with
     /// the fitted E*, w, lambda and the curve's tip radius (N, its magnitude): the force the
@@ -115,8 +115,8 @@ pub fn solid_work(r: &CurveFit, radius: f64, h: &HumidityInput) -> Option<FitHum
         out.meniscus_share = Some(0.0);
         out.fair_reading = true;
         out.note = format!(
-            "no meniscus forms at a contact angle of {} degrees (90 or more): the solid's w is the fitted w",
-            crate::physics::domain::short(h.contact_angle_deg)
+            "no meniscus ({}): the solid's w is the fitted w",
+            h.no_meniscus().as_deref().unwrap_or("none forms")
         );
         return Some(out);
     };

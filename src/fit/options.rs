@@ -81,6 +81,23 @@ pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
 /// The largest plausible work of adhesion w (J/m^2); see [`E_STAR_RANGE`].
 pub const W_MAX: f64 = 10.0;
 
+/// Whether a modulus E* (Pa) and a work of adhesion w (J/m^2) lie in the plausible ranges
+/// ([`E_STAR_RANGE`], [`W_MAX`]), and both values with their ranges in words: the one check of
+/// `fit` and `infer`.
+pub fn plausibility(e_star: f64, w: f64) -> (bool, String) {
+    let short = crate::physics::domain::short;
+    let ok = (E_STAR_RANGE.0..=E_STAR_RANGE.1).contains(&e_star) && w <= W_MAX;
+    let text = format!(
+        "E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2)",
+        short(e_star),
+        short(E_STAR_RANGE.0),
+        short(E_STAR_RANGE.1),
+        short(w),
+        short(W_MAX)
+    );
+    (ok, text)
+}
+
 impl FitOptions {
     /// Checks the options (those of every curve, the tip radius and the spring constant among
     /// them): one message naming the quantity, its value and its limits. The command line and

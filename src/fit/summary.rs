@@ -99,6 +99,8 @@ pub(super) fn summarize(
         if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
             warn.push(format!("humidity: {}", fh.note));
         }
+        // The limits of the meniscus model at the tip, as every front end reports them.
+        warn.extend(h.warnings(opt.radius).into_iter().map(|w| format!("humidity: {w}")));
     }
     out.status = FitStatus::Ok;
     out.message = "ok".into();
@@ -135,19 +137,13 @@ pub(super) fn implausible(
     // A modulus or adhesion above physical sense first: that is the cause to name (forces in
     // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
     // no point in contact is a curve that does not press (no contact).
-    let inside = |v: f64, r: (f64, f64)| v >= r.0 && v <= r.1;
-    let beyond = !inside(p.e_star, E_STAR_RANGE) || !(p.w <= W_MAX);
+    let (plausible, values) = super::options::plausibility(p.e_star, p.w);
     let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
-    if beyond && (above || in_contact > 0) {
+    if !plausible && (above || in_contact > 0) {
         return Some((
             FitStatus::NotConverged,
             format!(
-                "the fit ended outside physical sense: E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2){}",
-                short(p.e_star),
-                short(E_STAR_RANGE.0),
-                short(E_STAR_RANGE.1),
-                short(p.w),
-                short(W_MAX),
+                "the fit ended outside physical sense: {values}{}",
                 unit_hints(d, opt)
             ),
         ));

@@ -18,6 +18,9 @@ pub enum ParamError {
     #[error("{0}")]
     /// A needed input is absent (the message says which).
     Missing(&'static str),
+    #[error("{0}")]
+    /// Inputs that do not go together, the message naming them, their values and what to do.
+    Conflict(String),
     #[error(transparent)]
     /// A normalised value outside the solver's domain.
     Domain(#[from] super::domain::DomainError),

@@ -295,8 +295,10 @@ impl RoughScene {
         let mut warnings = stretched(sigma_m, self.summit_radius_m, n, densest);
         warnings.extend(cyc.warnings.iter().cloned());
         let mut dry_pulloff_force_n = None;
+        if let Some(h) = &self.humidity {
+            warnings.extend(h.warnings(c.radius));
+        }
         if let Some(m) = &meniscus {
-            warnings.extend(crate::scene::humidity::meniscus_warnings(m, &c));
             warnings.extend(merging(m.range_m, self.summit_radius_m, density, sigma_m));
             let dry_unit = c.approach_scale();
             let dry = Rough::new(c.lambda(), sigma_m / dry_unit)?;

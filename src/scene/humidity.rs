@@ -10,6 +10,22 @@ use std::f64::consts::PI;
 /// The gas constant (J/(mol K)).
 pub const R_GAS: f64 = 8.314_462_618;
 
+/// Avogadro's constant (1/mol).
+pub const AVOGADRO: f64 = 6.022_140_76e23;
+
+/// The meniscus height `2 r_K cos(theta)`, as a fraction of R, beyond which the thin-annulus
+/// meniscus fails (it floods the sphere near saturation).
+pub const FLOODING: f64 = 0.1;
+
+/// Where the continuum meniscus does not hold (docs/PHYSICS.md section 10).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    /// The Kelvin radius is below one molecule of the liquid: no meniscus is counted.
+    Molecular,
+    /// The meniscus height exceeds [`FLOODING`] R: the meniscus is counted, but its model fails.
+    Flooding,
+}
+
 /// The scene's `"humidity"` object (SI units).
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -194,14 +210,96 @@ impl HumidityInput {
         self.forms().then(|| self.zone(self.kelvin_radius()))
     }
 
-    /// Whether a meniscus forms: RH above 0 and a contact angle below 90 degrees (water
-    /// bridges the gap).
+    /// Whether a meniscus forms: RH above 0, a contact angle below 90 degrees (water bridges
+    /// the gap) and a Kelvin radius of at least one molecule of the liquid (docs/PHYSICS.md
+    /// section 10: below it there is no continuum meniscus, and none is counted).
     fn forms(&self) -> bool {
-        self.relative_humidity > 0.0 && self.contact_angle_deg < 90.0
+        self.relative_humidity > 0.0
+            && self.contact_angle_deg < 90.0
+            && self.kelvin_radius() >= self.molecule_size()
+    }
+
+    /// The size of one molecule of the liquid, `(V_m / N_A)^(1/3)` (m): 0.31 nm for water.
+    pub fn molecule_size(&self) -> f64 {
+        (self.molar_volume() / AVOGADRO).cbrt()
+    }
+
+    /// The relative humidity at which the Kelvin radius is one molecule's size: below it no
+    /// meniscus is counted.
+    pub fn molecular_rh(&self) -> f64 {
+        let (gamma, vm, t) = (
+            self.surface_tension(),
+            self.molar_volume(),
+            self.temperature(),
+        );
+        (-gamma * vm / (R_GAS * t * self.molecule_size())).exp()
+    }
+
+    /// Why no meniscus forms, in words; `None` where one does (the values are checked).
+    pub fn no_meniscus(&self) -> Option<String> {
+        let short = crate::physics::domain::short;
+        if self.forms() {
+            None
+        } else if self.relative_humidity <= 0.0 {
+            Some("RH = 0: no water condenses".into())
+        } else if self.contact_angle_deg >= 90.0 {
+            Some(format!(
+                "a contact angle of {} degrees (90 or more): water does not bridge the gap",
+                short(self.contact_angle_deg)
+            ))
+        } else {
+            Some(format!(
+                "the Kelvin radius {:.3} nm at RH = {:?} is below one molecule of the liquid ({:.3} nm, reached at RH = {:.3}): no continuum meniscus",
+                self.kelvin_radius() * 1e9,
+                self.relative_humidity,
+                self.molecule_size() * 1e9,
+                self.molecular_rh()
+            ))
+        }
+    }
+
+    /// Where the continuum meniscus does not hold at this humidity on a sphere of radius
+    /// `radius` (m): the one check every front end reports (see [`Limit`]).
+    pub fn limits(&self, radius: f64) -> Vec<Limit> {
+        let mut out = Vec::new();
+        if self.validate().is_err()
+            || self.relative_humidity <= 0.0
+            || self.contact_angle_deg >= 90.0
+        {
+            return out;
+        }
+        if !self.forms() {
+            out.push(Limit::Molecular);
+        } else if self.zone(self.kelvin_radius()).1 > FLOODING * radius {
+            out.push(Limit::Flooding);
+        }
+        out
+    }
+
+    /// [`HumidityInput::limits`] in words, one sentence each.
+    pub fn warnings(&self, radius: f64) -> Vec<String> {
+        self.limits(radius)
+            .into_iter()
+            .map(|l| match l {
+                Limit::Molecular => format!(
+                    "{}, so none is counted (the dry contact; docs/PHYSICS.md section 10)",
+                    self.no_meniscus().unwrap_or_default()
+                ),
+                Limit::Flooding => {
+                    let h = self.zone(self.kelvin_radius()).1;
+                    format!(
+                        "the meniscus height 2 r_K cos(theta) = {:.3e} m at RH = {:?} is {:.0}% of R: the thin-annulus model fails near saturation",
+                        h,
+                        self.relative_humidity,
+                        100.0 * h / radius
+                    )
+                }
+            })
+            .collect()
     }
 
     /// The Kelvin radius `gamma V_m / (R T ln(1/RH))` (m).
-    fn kelvin_radius(&self) -> f64 {
+    pub fn kelvin_radius(&self) -> f64 {
         let (gamma, vm, t) = (
             self.surface_tension(),
             self.molar_volume(),
@@ -210,8 +308,10 @@ impl HumidityInput {
         gamma * vm / (R_GAS * t * (1.0 / self.relative_humidity).ln())
     }
 
-    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, or a
-    /// contact angle of 90 degrees or more: water does not bridge the gap).
+    /// Checks every value and returns the meniscus, or `None` where there is none (RH = 0, a
+    /// contact angle of 90 degrees or more, or a Kelvin radius below one molecule: see
+    /// [`HumidityInput::no_meniscus`]). A meniscus whose stress beside the solid's is beyond
+    /// the two-zone solver's reach is refused, naming the humidity's values.
     pub fn meniscus(&self, c: &Contact) -> Result<Option<Meniscus>, ParamError> {
         self.validate()?;
         if !self.forms() {
@@ -221,6 +321,7 @@ impl HumidityInput {
         let (stress, range) = self.zone(r_k);
         let w = stress * range;
         let k = c.k();
+        self.within_reach(c, stress, w)?;
         Ok(Some(Meniscus {
             kelvin_radius_m: r_k,
             laplace_pressure_pa: stress,
@@ -231,23 +332,55 @@ impl HumidityInput {
     }
 }
 
-/// Where the continuum meniscus is doubtful, one sentence each.
-pub fn meniscus_warnings(m: &Meniscus, c: &Contact) -> Vec<String> {
-    let mut w = Vec::new();
-    if m.kelvin_radius_m < 0.25e-9 {
-        w.push(format!(
-            "the Kelvin radius is {:.2} nm, below a water molecule's size: the continuum meniscus is questionable",
-            m.kelvin_radius_m * 1e9
-        ));
+impl HumidityInput {
+    /// Whether the solid's and the meniscus' stress numbers (in the units of the total w,
+    /// docs/PHYSICS.md section 10) lie in the two-zone solver's domain; if not, one line naming
+    /// the humidity's values and what to give instead.
+    fn within_reach(&self, c: &Contact, stress: f64, w: f64) -> Result<(), ParamError> {
+        use crate::solver::two_zone::{LAMBDA_MAX, LAMBDA_MIN};
+        let short = crate::physics::domain::short;
+        // lambda_i = 2 s_i (R / (pi w K^2))^(1/3), w the total work.
+        let unit = 2.0 * (c.radius / (PI * (c.work + w) * c.k() * c.k())).cbrt();
+        let (solid, liquid) = (c.s0 * unit, stress * unit);
+        let inside = |l: f64| (LAMBDA_MIN..=LAMBDA_MAX).contains(&l);
+        if inside(solid) && inside(liquid) {
+            return Ok(());
+        }
+        let what = format!(
+            "the meniscus (Kelvin radius {} m, Laplace pressure {} Pa) has the stress number {} beside the solid's {}, outside {LAMBDA_MIN:e}..{LAMBDA_MAX:e} where the two-zone law is solved",
+            short(self.kelvin_radius()),
+            short(stress),
+            short(liquid),
+            short(solid)
+        );
+        // Near saturation the Kelvin radius, and so the meniscus' stress, is what fails.
+        let r_max = self.surface_tension() * unit / LAMBDA_MIN;
+        let rh_max = (-self.surface_tension() * self.molar_volume()
+            / (R_GAS * self.temperature() * r_max))
+            .exp();
+        // Shown rounded down in 1 - RH to two digits, so that the value shown is taken.
+        let gap = 1.0 - rh_max;
+        let step = 10f64.powf(gap.log10().floor() - 1.0);
+        let digits = (-step.log10()).round().max(0.0) as usize;
+        let shown = 1.0 - (gap / step).ceil() * step;
+        // Name the humidity where a lower one gives a meniscus the solver takes, else the liquid.
+        let lower_helps = shown > self.molecular_rh();
+        Err(ParamError::Conflict(if liquid < LAMBDA_MIN && lower_helps && inside(solid) {
+            format!(
+                "humidity.relative_humidity = {:?}: {what}: give a relative humidity below {shown:.digits$} (the meniscus model fails already where its height nears a tenth of R)",
+                self.relative_humidity,
+            )
+        } else {
+            format!(
+                "humidity (relative humidity {:?}, contact angle {} deg, surface tension {} N/m, molar volume {} m^3/mol, temperature {} K): {what}: check the liquid's values and their units",
+                self.relative_humidity,
+                short(self.contact_angle_deg),
+                short(self.surface_tension()),
+                short(self.molar_volume()),
+                short(self.temperature())
+            )
+        }))
     }
-    if m.range_m > 0.1 * c.radius {
-        w.push(format!(
-            "the meniscus height 2 r_K cos(theta) = {:.3e} m is {:.0}% of R: the thin-annulus model fails near saturation",
-            m.range_m,
-            100.0 * m.range_m / c.radius
-        ));
-    }
-    w
 }
 
 /// The contact of the solid plus the meniscus: the two-zone context and its units.
@@ -259,12 +392,14 @@ pub fn wet_context(c: &Contact, m: &Meniscus) -> Result<(TwoZoneContext, Units),
         [c.s0, m.laplace_pressure_pa],
         [h0, m.range_m],
     )
-    .map_err(|_| {
-        bad(
-            "humidity",
-            m.work_of_adhesion_j_m2,
-            "a meniscus the two-zone solver accepts",
-        )
+    .map_err(|e| {
+        ParamError::Conflict(format!(
+            "the meniscus (Laplace pressure {} Pa, height {} m) beside the solid (stress {} Pa, range {} m) is beyond the two-zone solver ({e}): check the humidity's values and the scene's units",
+            crate::physics::domain::short(m.laplace_pressure_pa),
+            crate::physics::domain::short(m.range_m),
+            crate::physics::domain::short(c.s0),
+            crate::physics::domain::short(h0)
+        ))
     })?;
     let ctx = TwoZoneContext::new(zones).map_err(|_| {
         bad(
@@ -298,8 +433,9 @@ pub struct HumidityPoint {
     pub kelvin_radius_m: f64,
     /// The meniscus height 2 r_K cos(theta) (m).
     pub meniscus_range_m: f64,
-    /// The meniscus zone's own Maugis parameter.
-    pub meniscus_lambda: f64,
+    /// The meniscus zone's own Maugis parameter; null where no meniscus is counted (a Kelvin
+    /// radius below one molecule: the dry contact, and the meniscus' pull-off 0).
+    pub meniscus_lambda: Option<f64>,
     /// The dry contact (solid adhesion alone).
     pub pulloff_solid_N: f64,
     /// The meniscus alone (no solid adhesion).
@@ -328,6 +464,9 @@ pub struct HumiditySweep {
     pub meniscus_dominates_above_rh: Option<f64>,
     /// The same, in words.
     pub meniscus_dominates: String,
+    /// Where the continuum meniscus does not hold in the sweep ([`HumidityInput::limits`] at
+    /// each point), one sentence each.
+    pub warnings: Vec<String>,
 }
 
 /// Most points of a sweep.
@@ -344,7 +483,20 @@ fn point_at(
         ..base.clone()
     };
     let Some(m) = h.meniscus(c)? else {
-        return Ok(None);
+        if h.limits(c.radius) != [Limit::Molecular] {
+            return Ok(None);
+        }
+        // Below one molecule: the dry contact, the Kelvin radius kept to show why.
+        return Ok(Some(HumidityPoint {
+            relative_humidity: rh,
+            kelvin_radius_m: h.kelvin_radius(),
+            meniscus_range_m: 0.0,
+            meniscus_lambda: None,
+            pulloff_solid_N: dry,
+            pulloff_meniscus_N: 0.0,
+            pulloff_total_N: dry,
+            meniscus_share: 0.0,
+        }));
     };
     let (ctx, u) = wet_context(c, &m)?;
     let alone = crate::solver::LambdaContext::new(m.lambda).map_err(|_| {
@@ -359,7 +511,7 @@ fn point_at(
         relative_humidity: rh,
         kelvin_radius_m: m.kelvin_radius_m,
         meniscus_range_m: m.range_m,
-        meniscus_lambda: m.lambda,
+        meniscus_lambda: Some(m.lambda),
         pulloff_solid_N: dry,
         pulloff_meniscus_N: alone.load_pulloff.load * PI * m.work_of_adhesion_j_m2 * c.radius,
         pulloff_total_N: total,
@@ -394,6 +546,7 @@ pub fn sweep(
         )
     })?;
     let dry = dry_ctx.load_pulloff.load * c.force_scale();
+    reach_at(c, base, rh_max)?;
     let mut points = Vec::with_capacity(n);
     for i in 0..n {
         let rh = rh_min + (rh_max - rh_min) * i as f64 / (n - 1) as f64;
@@ -448,6 +601,7 @@ pub fn sweep(
         )
     };
     let w2 = points_w(base);
+    let warnings = sweep_warnings(c, base, &points);
     Ok(HumiditySweep {
         name: name.to_string(),
         contact_angle_deg: base.contact_angle_deg,
@@ -456,7 +610,88 @@ pub fn sweep(
         points,
         meniscus_dominates_above_rh: above,
         meniscus_dominates: text,
+        warnings,
     })
+}
+
+/// The meniscus at a sweep's largest humidity, where one beyond the solver's reach fails
+/// first: refused naming `rh_max`.
+fn reach_at(c: &Contact, base: &HumidityInput, rh_max: f64) -> Result<(), ParamError> {
+    let top = HumidityInput {
+        relative_humidity: rh_max,
+        ..base.clone()
+    };
+    top.meniscus(c).map(|_| ()).map_err(|e| match e {
+        ParamError::Conflict(m) => {
+            ParamError::Conflict(m.replace("humidity.relative_humidity", "rh_max"))
+        }
+        e => e,
+    })
+}
+
+/// `tabor humidity` of a scene: the pull-off against relative humidity with the scene's liquid
+/// and contact angle (`contact_angle_deg` replacing the scene's; water at 0 degrees where the
+/// scene has no humidity), the liquid's values checked first. Every front end calls this.
+pub fn sweep_scene(
+    s: &super::SceneInput,
+    contact_angle_deg: Option<f64>,
+    rh_min: f64,
+    rh_max: f64,
+    n: usize,
+) -> Result<HumiditySweep, ParamError> {
+    let c = super::contact_of(s)?;
+    let mut base = s
+        .humidity
+        .clone()
+        .unwrap_or_else(|| HumidityInput::water(0.5, 0.0));
+    if let Some(t) = contact_angle_deg {
+        base.contact_angle_deg = t;
+    }
+    // The sweep replaces the scene's humidity; the liquid is checked at one inside (0, 1).
+    base.relative_humidity = 0.5;
+    base.validate()?;
+    let name = s.name.clone().unwrap_or_else(|| "scene".into());
+    sweep(&name, &c, &base, rh_min, rh_max, n)
+}
+
+/// The limits of the continuum meniscus over a sweep's points, one sentence per limit with
+/// the points it applies to.
+fn sweep_warnings(c: &Contact, base: &HumidityInput, points: &[HumidityPoint]) -> Vec<String> {
+    let short = crate::physics::domain::short;
+    let at = |p: &HumidityPoint| HumidityInput {
+        relative_humidity: p.relative_humidity,
+        ..base.clone()
+    };
+    let mut out = Vec::new();
+    for limit in [Limit::Molecular, Limit::Flooding] {
+        let hit: Vec<&HumidityPoint> = points
+            .iter()
+            .filter(|p| at(p).limits(c.radius).contains(&limit))
+            .collect();
+        let (Some(first), Some(last)) = (hit.first(), hit.last()) else {
+            continue;
+        };
+        let span = format!(
+            "{} of the {} points (RH = {} to {})",
+            hit.len(),
+            points.len(),
+            short(first.relative_humidity),
+            short(last.relative_humidity)
+        );
+        out.push(match limit {
+            Limit::Molecular => format!(
+                "below RH = {:.3} the Kelvin radius is below one molecule of the liquid ({:.3} nm): no continuum meniscus, so none is counted at {span} (the dry contact; docs/PHYSICS.md section 10)",
+                base.molecular_rh(),
+                base.molecule_size() * 1e9
+            ),
+            Limit::Flooding => format!(
+                "the meniscus height 2 r_K cos(theta) exceeds {:.0}% of R (up to {:.0}%) at {span}: the thin-annulus model fails near saturation",
+                100.0 * FLOODING,
+                100.0 * last.meniscus_range_m / c.radius
+            ),
+        });
+    }
+    out
 }
 
 fn points_w(base: &HumidityInput) -> f64 {

@@ -23,6 +23,16 @@ pub struct Inference {
     pub lambda_md: Option<f64>,
     /// Which model the data support, in words.
     pub verdict: String,
+    /// A w outside physical sense (the plausible ranges of `tabor fit`).
+    pub warnings: Vec<String>,
+}
+
+/// A w (J/m^2) outside physical sense beside E* (Pa), as `tabor fit` bounds them, in words.
+fn implausible_w(w: f64, e_star: f64) -> Option<String> {
+    let (ok, values) = crate::fit::plausibility(e_star, w);
+    (!ok).then(|| {
+        format!("{values}: outside physical sense; check the units of the force (N), the radius (m) and E* (Pa)")
+    })
 }
 
 /// From a pull-off force (N, positive or negative), R, E* and the LJ range z0: w under JKR
@@ -76,7 +86,14 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
             String::new()
         }
     };
+    let trusted = match (mt_j > 5.0, mt_d < 0.1) {
+        (true, false) => w_jkr,
+        (false, true) => w_dmt,
+        _ => w_md,
+    };
+    let warnings: Vec<String> = implausible_w(trusted, e_star).into_iter().collect();
     let verdict = match (mt_j > 5.0, mt_d < 0.1) {
+        _ if !warnings.is_empty() => format!("no w to trust: {}", warnings[0]),
         (true, false) => format!("JKR is self-consistent (Tabor parameter {mt_j:.2} > 5 with its own w); DMT is not ({mt_d:.2}). Trust w = {w_jkr:.4e} J/m^2{}.", off(w_jkr)),
         (false, true) => format!("DMT is self-consistent (Tabor parameter {mt_d:.3} < 0.1 with its own w); JKR is not ({mt_j:.2}). Trust w = {w_dmt:.4e} J/m^2{}.", off(w_dmt)),
         _ => format!("neither closed form is self-consistent (Tabor parameter {mt_d:.3} with the DMT w, {mt_j:.3} with the JKR w): use the Maugis-Dugdale value w = {w_md:.4e} J/m^2 (lambda = {lam:.3})."),
@@ -90,7 +107,27 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
         w_md_j_m2: ok.then_some(w_md),
         lambda_md: ok.then_some(lam),
         verdict,
+        warnings,
     })
+}
+
+/// The humidity of a pull-off inference from its options (water at `contact_angle_deg`,
+/// default 0): none without a relative humidity, where a contact angle alone is refused rather
+/// than ignored.
+pub fn wet_options(
+    relative_humidity: Option<f64>,
+    contact_angle_deg: Option<f64>,
+) -> Result<Option<super::humidity::HumidityInput>, ParamError> {
+    match (relative_humidity, contact_angle_deg) {
+        (None, None) => Ok(None),
+        (None, Some(_)) => Err(ParamError::Missing(
+            "humidity.contact_angle_deg is given without humidity.relative_humidity, and would be ignored: give the relative humidity the pull-off was measured in, or leave the contact angle out",
+        )),
+        (Some(rh), t) => Ok(Some(super::humidity::HumidityInput::water(
+            rh,
+            t.unwrap_or(0.0),
+        ))),
+    }
 }
 
 /// The solid's work of adhesion from a pull-off force measured in humid air.
@@ -103,14 +140,21 @@ pub struct WetInference {
     pub solid_work_of_adhesion_j_m2: Option<f64>,
     /// The solid's Maugis parameter with that w.
     pub solid_lambda: Option<f64>,
-    /// The meniscus of the humidity given.
-    pub meniscus: super::humidity::Meniscus,
-    /// The load-controlled pull-off of the meniscus alone (N, its magnitude).
+    /// The meniscus of the humidity given; null where none forms (a contact angle of 90
+    /// degrees or more, or a Kelvin radius below one molecule: the solid's w is then the dry
+    /// one, and `no_meniscus` says why).
+    pub meniscus: Option<super::humidity::Meniscus>,
+    /// The load-controlled pull-off of the meniscus alone (N, its magnitude; 0 without one).
     pub meniscus_only_pulloff_n: f64,
     /// The w a dry analysis (exact MD) would report for the same force (J/m^2).
     pub dry_md_work_of_adhesion_j_m2: Option<f64>,
     /// What to conclude, in one sentence.
     pub verdict: String,
+    /// Why no meniscus forms, where none does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub no_meniscus: Option<String>,
+    /// Where the meniscus model is stretched or does not apply, and an implausible w.
+    pub warnings: Vec<String>,
 }
 
 /// From a pull-off force (N) measured in humid air, R, E*, the Lennard-Jones range z0 of the
@@ -131,10 +175,34 @@ pub fn infer_wet(
     let dry = infer(pulloff_n, radius, e_star, z0)?;
     let contact = |w: f64| Contact::new(radius, e_star, w, ForceRange::LennardJones(z0));
     let w_hi = f / (1.5 * std::f64::consts::PI * radius);
-    let Some(meniscus) = humidity.meniscus(&contact(w_hi)?)? else {
+    if humidity.relative_humidity == 0.0 {
         return Err(ParamError::Missing(
-            "no meniscus forms at this humidity and contact angle (RH = 0 or an angle of 90 degrees or more): use the dry inference",
+            "humidity.relative_humidity = 0 is dry air, where no meniscus forms: leave the humidity out for the dry inference",
         ));
+    }
+    let mut out = WetInference {
+        pulloff_force_n: f,
+        solid_work_of_adhesion_j_m2: None,
+        solid_lambda: None,
+        meniscus: humidity.meniscus(&contact(w_hi)?)?,
+        meniscus_only_pulloff_n: 0.0,
+        dry_md_work_of_adhesion_j_m2: dry.w_md_j_m2,
+        verdict: String::new(),
+        no_meniscus: humidity.no_meniscus(),
+        warnings: humidity.warnings(radius),
+    };
+    let Some(meniscus) = out.meniscus else {
+        // No meniscus: the solid holds the whole force, as in dry air.
+        out.solid_work_of_adhesion_j_m2 = dry.w_md_j_m2;
+        out.solid_lambda = dry.lambda_md;
+        out.verdict = format!(
+            "no meniscus ({}): the solid's w is the dry Maugis-Dugdale w, {}",
+            out.no_meniscus.as_deref().unwrap_or("none forms"),
+            dry.w_md_j_m2
+                .map_or("not found".into(), |d| format!("{d:.4e} J/m^2"))
+        );
+        out.warnings.extend(dry.warnings);
+        return Ok(out);
     };
     let pulloff = |w: f64| -> Result<f64, ParamError> {
         let c = contact(w)?;
@@ -146,7 +214,7 @@ pub fn infer_wet(
     let alone = pulloff(w_lo)?;
     let (w, lam, verdict) = if alone >= f {
         let v = format!(
-            "the meniscus alone pulls off at {:.4e} N, more than the {f:.4e} N measured: no solid adhesion is left to infer (a smaller contact angle, a lower humidity, or a meniscus not in equilibrium)",
+            "the meniscus alone pulls off at {:.4e} N, more than the {f:.4e} N measured: no solid adhesion is left to infer (a larger contact angle or a lower humidity than given, or a meniscus not in equilibrium)",
             alone
         );
         (None, None, v)
@@ -162,13 +230,12 @@ pub fn infer_wet(
         );
         (ok.then_some(w), ok.then_some(lam), v)
     };
+    out.warnings.extend(w.and_then(|w| implausible_w(w, e_star)));
     Ok(WetInference {
-        pulloff_force_n: f,
         solid_work_of_adhesion_j_m2: w,
         solid_lambda: lam,
-        meniscus,
         meniscus_only_pulloff_n: alone,
-        dry_md_work_of_adhesion_j_m2: dry.w_md_j_m2,
         verdict,
+        ..out
     })
 }

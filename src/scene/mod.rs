@@ -11,7 +11,7 @@ mod input;
 mod presets;
 
 pub use fit::{fit_pairs, PairsFit};
-pub use infer::{infer, infer_wet, Inference, WetInference};
+pub use infer::{infer, infer_wet, wet_options, Inference, WetInference};
 pub use input::{contact_of, SceneControl, SceneInput};
 pub use presets::{preset, preset_names};
 
@@ -113,8 +113,11 @@ pub struct SceneResult {
     /// The dry contact's displacement-controlled pull-off (N).
     pub dry_pulloff_force_displacement_control_N: Option<f64>,
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    /// Where the meniscus model is stretched.
+    /// Where the meniscus model is stretched or does not apply.
     pub meniscus_warnings: Vec<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    /// With a humidity but no meniscus: why, in words (the results are the dry contact's).
+    pub no_meniscus: Option<String>,
 }
 
 fn opt(x: f64) -> Option<f64> {
@@ -203,17 +206,25 @@ pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
         dry_pulloff_force_load_control_N: None,
         dry_pulloff_force_displacement_control_N: None,
         meniscus_warnings: Vec::new(),
+        no_meniscus: None,
     };
-    match &s.humidity {
-        None => Ok(dry),
-        Some(h) => match h.meniscus(&c)? {
-            None => Ok(SceneResult {
-                relative_humidity: Some(h.relative_humidity),
-                ..dry
-            }),
-            Some(m) => wet_scene(s, &c, m, h.relative_humidity, dry),
+    let Some(h) = &s.humidity else {
+        return Ok(dry);
+    };
+    // The limits of the meniscus model, checked once for every front end.
+    let meniscus_warnings = h.warnings(c.radius);
+    let r = match h.meniscus(&c)? {
+        None => SceneResult {
+            relative_humidity: Some(h.relative_humidity),
+            no_meniscus: h.no_meniscus(),
+            ..dry
         },
-    }
+        Some(m) => wet_scene(s, &c, m, h.relative_humidity, dry)?,
+    };
+    Ok(SceneResult {
+        meniscus_warnings,
+        ..r
+    })
 }
 
 /// The pull-off (normalised, total w) of solid and meniscus under a cantilever of `k` N/m: the
@@ -224,7 +235,7 @@ fn wet_cantilever_pulloff(
     m: &humidity::Meniscus,
     k: f64,
     no_jump: f64,
-) -> Result<f64, ParamError> {
+) -> Result<(f64, f64), ParamError> {
     if !(k > 0.0 && k.is_finite()) {
         return Err(ParamError::OutOfRange {
             field: "control.cantilever_n_m",
@@ -244,14 +255,15 @@ fn wet_cantilever_pulloff(
     }
             })?;
     // As for the dry scene: the load where the retract leaves the contact curve by a jump.
-    Ok(cyc
+    let out = cyc
         .jumps
         .iter()
         .find(|j| {
             j.phase == crate::cycle::Phase::Retract
                 && j.from.branch == crate::cycle::Branch::Contact
         })
-        .map_or(no_jump, |j| j.from.load))
+        .map_or(no_jump, |j| j.from.load);
+    Ok((out, kbar))
 }
 
 /// The scene's results for the solid plus the meniscus (the two-zone law), the dry pull-offs
@@ -307,11 +319,12 @@ fn wet_scene(
             ));
         }
     }
-    let under = match &s.control {
-        None | Some(SceneControl::Load) => ctx.load_pulloff.load * fs,
-        Some(SceneControl::Displacement) => ctx.disp_pulloff.load * fs,
+    let (under, control) = match &s.control {
+        None | Some(SceneControl::Load) => (ctx.load_pulloff.load * fs, dry.control.clone()),
+        Some(SceneControl::Displacement) => (ctx.disp_pulloff.load * fs, dry.control.clone()),
         Some(SceneControl::CantileverNM(k)) => {
-            wet_cantilever_pulloff(c, &m, *k, ctx.disp_pulloff.load)? * fs
+            let (p, kbar) = wet_cantilever_pulloff(c, &m, *k, ctx.disp_pulloff.load)?;
+            (p * fs, cantilever_text(*k, kbar, true))
         }
     };
     let zero = ctx.state_at_load(0.0);
@@ -333,7 +346,7 @@ fn wet_scene(
         relative_humidity: Some(rh),
         dry_pulloff_force_load_control_N: Some(dry.pulloff_force_load_control_N),
         dry_pulloff_force_displacement_control_N: Some(dry.pulloff_force_displacement_control_N),
-        meniscus_warnings: humidity::meniscus_warnings(&m, c),
+        control,
         ..dry
     })
 }
@@ -529,15 +542,18 @@ fn pulloff_under_control(
                 .iter()
                 .find(|j| j.phase == crate::cycle::Phase::Retract)
                 .map_or(ctx.disp_pulloff().load, |j| j.from.load);
-            (
-                out * fs,
-                format!(
-                    "cantilever k = {} N/m (normalised {kbar:.4e})",
-                    crate::physics::domain::short(*k)
-                ),
-            )
+            (out * fs, cantilever_text(*k, kbar, false))
         }
     })
+}
+
+/// The scene's cantilever in words: k and its normalised value, with the w it is built on.
+fn cantilever_text(k: f64, kbar: f64, wet: bool) -> String {
+    format!(
+        "cantilever k = {} N/m, {}",
+        crate::physics::domain::short(k),
+        crate::cycle::kbar_text(kbar, wet)
+    )
 }
 
 #[cfg(test)]
