@@ -546,7 +546,8 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
     (``tabor fit``). ``height_m``: piezo height of the cantilever base (larger is farther from
     the sample); ``force_n``: force on the tip, positive when repulsive; ``segment``: 0 approach,
-    1 retract (or the strings); ``curve``: an id per point where the arrays hold many curves.
+    1 retract, -1 a dwell between them, left out of the fit (or the strings "approach",
+    "retract", "dwell"); ``curve``: an id per point where the arrays hold many curves.
     Returns a list of dicts, one per curve in order of first appearance, with the keys of
     ``tabor fit --format json`` (SI units, ``_stderr`` standard errors, ``status`` and
     ``message``, ``adequate_model`` and ``why``, ``warnings``).
@@ -565,16 +566,16 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     f = np.ascontiguousarray(force_n, dtype=float).ravel()
     seg = np.asarray(segment).ravel()
     if seg.dtype.kind in "US":
-        names = {"approach": 0, "retract": 1}
+        names = {"approach": 0, "retract": 1, "dwell": -1}
         try:
             seg = np.array([names[str(v)] for v in seg])
         except KeyError as e:
-            raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
-    # 0 or 1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
-    bad = ~np.isin(seg, (0, 1))
+            raise ValueError(f"segment {e}: use approach/retract/dwell or 0/1/-1") from None
+    # 0, 1 or -1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
+    bad = ~np.isin(seg, (0, 1, -1))
     if bad.any():
         raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
-                         "use 0 (or \"approach\") and 1 (or \"retract\")")
+                         "use 0 (or \"approach\"), 1 (or \"retract\") and -1 (or \"dwell\")")
     seg = np.ascontiguousarray(seg, dtype=np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
@@ -655,8 +656,11 @@ def fit_afmformats(data, radius_m, spring_n_m=None, **options):
     ``height (piezo)``. Approach and retract are taken from the heights, whatever the file's
     segment numbers: a pause or a dwell (stress relaxation, creep) is left out, and a curve
     kept in one segment is split where the base turns (each said in ``warnings``); a curve
-    without a clear turn gets the status ``invalid_input``. Returns a list of dicts as
-    :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
+    without a clear turn gets the status ``invalid_input``. A dwell between approach and retract
+    is reported in ``dwell`` (its forces, relaxation and creep); where the force relaxed during
+    it, the retract is no loading curve and the approach is fitted instead (said in
+    ``message``). Returns a list of dicts as :func:`fit_curves` does, each with ``path`` and
+    ``enum`` from the data."""
     items = [data] if hasattr(data, "columns") else list(data)
     springs = []
     for d in items:  # every curve's spring first: a missing one stops before any fit
@@ -673,9 +677,8 @@ def fit_afmformats(data, radius_m, spring_n_m=None, **options):
         f = np.asarray(d["force"], dtype=float)
         try:
             code, notes = _tabor.plan_segments(h, np.asarray(d["segment"], dtype=np.int64))
-            keep = np.asarray(code) >= 0
-            r = fit_curve(h[keep], f[keep], np.asarray(code)[keep], radius_m=radius_m,
-                          spring_n_m=k, **options)
+            # -1 (a pause, a dwell) left out by the fit, which reports the dwell at the turn.
+            r = fit_curve(h, f, np.asarray(code), radius_m=radius_m, spring_n_m=k, **options)
             r["warnings"] = list(notes) + list(r.get("warnings", []))
         except ValueError as e:
             r = _refused(str(e))
