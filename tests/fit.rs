@@ -585,6 +585,188 @@ fn instrument_segment_numbers_with_a_pause_and_a_dwell_give_the_same_fit() {
     );
 }
 
+/// A curve's rows with a dwell at its turn, numbered as a JPK creep or stress-relaxation file
+/// does (0 the approach, 1 the dwell, 2 the retract): the dwell's (height, force) given.
+fn with_dwell(c: &tabor::fit::Curve, dwell: &[(f64, f64)]) -> String {
+    let turn = c
+        .segment
+        .iter()
+        .position(|&d| d == tabor::fit::Direction::Retract)
+        .unwrap();
+    let mut rows = String::from("segment,height_m,force_n\n");
+    for i in 0..c.len() {
+        if i == turn {
+            for (h, f) in dwell {
+                rows += &format!("1,{h:e},{f:e}\n");
+            }
+        }
+        let id = if i < turn { 0 } else { 2 };
+        rows += &format!("{id},{:e},{:e}\n", c.height[i], c.force[i]);
+    }
+    rows
+}
+
+/// 0 over the first 5 of n points, 1 over the last 5, rising smoothly between: a dwell's
+/// course, its ends (the medians of 5 points) exact.
+fn course(k: usize, n: usize) -> f64 {
+    let x = ((k as f64 - 4.0) / (n - 9) as f64).clamp(0.0, 1.0);
+    1.0 - (1.0 - x).powi(3)
+}
+
+/// Stress relaxation: the base held at the turn while the force relaxes to 40% of its start.
+/// The retract then unloads a relaxed contact, no loading curve of the one the approach made:
+/// the approach is fitted (the same fit as the approach alone), the message says so, and the
+/// dwell's forces, relaxation and creep (the tip's advance as the cantilever unbends, 0.6 F/k)
+/// are reported, by the library and by `tabor fit` in JSON and CSV.
+#[test]
+fn after_a_dwell_that_relaxed_the_force_the_approach_is_fitted_and_the_dwell_reported() {
+    let (s, opt) = case(Model::Md, 1.0, 2.0, 0.0, 1);
+    let c = synthetic(&s);
+    let turn = c
+        .segment
+        .iter()
+        .position(|&d| d == tabor::fit::Direction::Retract)
+        .unwrap();
+    let (h, f0) = (c.height[turn - 1], c.force[turn - 1]);
+    let dwell: Vec<(f64, f64)> = (0..100)
+        .map(|k| (h, f0 * (1.0 - 0.6 * course(k, 100))))
+        .collect();
+    let rows = with_dwell(&c, &dwell);
+    let read = tabor::fit::data::parse_csv("relaxation.csv", rows.as_bytes()).unwrap();
+    let r = fit_curve(&read[0], &opt);
+    let approach = fit_curve(
+        &c,
+        &FitOptions {
+            segments: tabor::fit::Segments::Approach,
+            ..opt.clone()
+        },
+    );
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    assert_eq!(approach.status, FitStatus::Ok, "{}", approach.message);
+    let note = format!(
+        "the approach was fitted, not the retract: the retract follows a dwell (points {turn}..{}) in which the force relaxed from {:.3e} N to {:.3e} N (60%), so it unloads a relaxed contact and is not a loading curve of the one the approach made",
+        turn + 99,
+        f0,
+        0.4 * f0
+    );
+    assert_eq!(r.message, format!("ok: {note}"));
+    assert_eq!(r.warnings[0], note);
+    for (x, y, what) in [
+        (r.e_star_pa, approach.e_star_pa, "E*"),
+        (r.work_of_adhesion_j_m2, approach.work_of_adhesion_j_m2, "w"),
+        (r.lambda, approach.lambda, "lambda"),
+    ] {
+        assert!(
+            rel(x.unwrap(), y.unwrap()) < 1e-10,
+            "{what}: {x:?} against {y:?}"
+        );
+    }
+    assert_eq!(r.points_fitted, approach.points_fitted);
+    // Both segments asked: the retract is still no loading curve.
+    let both = fit_curve(
+        &read[0],
+        &FitOptions {
+            segments: tabor::fit::Segments::Both,
+            ..opt.clone()
+        },
+    );
+    assert_eq!(both.points_fitted, approach.points_fitted);
+    // The synthetic baseline is exactly 0: the dwell's forces as given.
+    let w = r.dwell.as_ref().unwrap();
+    assert_eq!((w.first_point, w.last_point), (turn, turn + 99));
+    assert!(
+        rel(w.force_start_n, f0) < 1e-12 && rel(w.force_end_n, 0.4 * f0) < 1e-12,
+        "{w:?}"
+    );
+    assert!(rel(w.relaxation.unwrap(), 0.6) < 1e-12, "{w:?}");
+    assert_eq!(w.base_advance_m, 0.0);
+    assert!(rel(w.indentation_creep_m, 0.6 * f0 / 2.0) < 1e-12, "{w:?}");
+    assert!(w.relaxed);
+    // The command line: the same reading, the dwell in JSON and in CSV columns.
+    let args = ["fit", "-i", "-", "--radius", "20e-9", "--spring-n-m", "2"];
+    let out = tabor(&args, &rows);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let cv = &v["curves"][0];
+    assert_eq!(cv["status"], "ok");
+    assert_eq!(cv["message"], r.message.as_str());
+    assert_eq!(cv["e_star_pa"].as_f64(), r.e_star_pa);
+    assert_eq!(cv["dwell"]["relaxed"], true);
+    assert_eq!(cv["dwell"]["first_point"], turn);
+    assert_eq!(cv["dwell"]["force_end_n"].as_f64(), Some(w.force_end_n));
+    assert_eq!(
+        cv["dwell"]["indentation_creep_m"].as_f64(),
+        Some(w.indentation_creep_m)
+    );
+    let out = tabor(&[&args[..], &["--format", "csv"]].concat(), &rows);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut rd = csv::Reader::from_reader(text.as_bytes());
+    let head = rd.headers().unwrap().clone();
+    let row = rd.records().next().unwrap().unwrap();
+    let cell = |k: &str| row[head.iter().position(|h| h == k).unwrap()].to_string();
+    assert_eq!(cell("dwell_first_point"), turn.to_string());
+    assert_eq!(cell("dwell_relaxed"), "true");
+    assert!(rel(cell("dwell_relaxation").parse().unwrap(), 0.6) < 1e-9);
+    assert!(rel(cell("dwell_force_start_n").parse().unwrap(), f0) < 1e-9);
+    // Without a dwell, no dwell columns: the CSV of other curves as before.
+    let plain = tabor(
+        &[&args[..], &["--format", "csv"]].concat(),
+        &csv_of(&[("c", c.clone())]),
+    );
+    assert!(!String::from_utf8_lossy(&plain.stdout).contains("dwell_"));
+}
+
+/// Creep: the force held at the turn while the base advances (the indentation creeps). The
+/// retract unloads the contact from the load the approach reached: it is fitted (the same fit
+/// as the two segments without the dwell), and the creep is the base's advance.
+#[test]
+fn after_a_creep_at_a_held_force_the_retract_is_fitted_and_the_creep_reported() {
+    let (s, opt) = case(Model::Md, 1.0, 2.0, 0.0, 1);
+    let c = synthetic(&s);
+    let turn = c
+        .segment
+        .iter()
+        .position(|&d| d == tabor::fit::Direction::Retract)
+        .unwrap();
+    let (h, f0) = (c.height[turn - 1], c.force[turn - 1]);
+    // 2% of the approach's span: a dwell, not a segment of the curve.
+    let a = 0.02 * (c.height[0] - h);
+    let dwell: Vec<(f64, f64)> = (0..100).map(|k| (h - a * course(k, 100), f0)).collect();
+    let rows = with_dwell(&c, &dwell);
+    let read = tabor::fit::data::parse_csv("creep.csv", rows.as_bytes()).unwrap();
+    let r = fit_curve(&read[0], &opt);
+    let want = fit_curve(&c, &opt);
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    assert_eq!(r.message, "ok");
+    assert!(rel(r.e_star_pa.unwrap(), want.e_star_pa.unwrap()) < 1e-10);
+    assert!(
+        rel(
+            r.work_of_adhesion_j_m2.unwrap(),
+            want.work_of_adhesion_j_m2.unwrap()
+        ) < 1e-10
+    );
+    let w = r.dwell.as_ref().unwrap();
+    assert!(!w.relaxed && w.relaxation == Some(0.0), "{w:?}");
+    assert!(
+        rel(w.base_advance_m, a) < 1e-9 && rel(w.indentation_creep_m, a) < 1e-9,
+        "{w:?}"
+    );
+    assert!(
+        r.warnings.iter().any(|x| x.contains("a dwell, left out")),
+        "{:?}",
+        r.warnings
+    );
+}
+
 /// Curve i of the force-map benchmark's map of n curves (`bench/fit_map.sh`: 500 points a
 /// segment, a 40 N/m cantilever, 20 pN noise) and its options.
 fn map_case(i: usize, n: usize) -> (Synthetic, tabor::fit::Curve, FitOptions) {

@@ -443,3 +443,33 @@ fn the_generator_says_why_parameters_give_no_curve() {
         .unwrap_err()
         .contains("must be positive"));
 }
+
+/// "No contact" only where no segment of the curve shows contact: a retract that never rises
+/// above the baseline while the approach does is refused naming the segment and what to fit.
+#[test]
+fn a_retract_without_contact_beside_an_approach_with_it_is_not_no_contact() {
+    let (c, opt) = clean();
+    let far = c.force[0];
+    let mut lifted = c.clone();
+    for (f, d) in lifted.force.iter_mut().zip(&c.segment) {
+        if *d == Direction::Retract {
+            *f = far;
+        }
+    }
+    refused(
+        &fit_curve(&lifted, &opt),
+        FitStatus::InvalidInput,
+        &[
+            "the retract never rises above five times the baseline's noise (largest ",
+            ") while the approach does (up to ",
+            "fit the approach segment instead",
+        ],
+    );
+    let mut flat = lifted.clone();
+    flat.force.fill(far);
+    refused(
+        &fit_curve(&flat, &opt),
+        FitStatus::NoContact,
+        &["no contact: no segment of the curve rises above the baseline"],
+    );
+}

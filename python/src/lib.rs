@@ -710,6 +710,8 @@ fn fit_curves<'py>(
             anyhow::bail!("{kw}: {}", e.message);
         }
         let mut curves: Vec<Curve> = Vec::new();
+        // Each curve's directions, None for a point of a dwell (-1).
+        let mut dirs: Vec<Vec<Option<Direction>>> = Vec::new();
         let mut index = std::collections::HashMap::new();
         for i in 0..h.len() {
             let k = *index.entry(c[i]).or_insert_with(|| {
@@ -717,17 +719,32 @@ fn fit_curves<'py>(
                     id: c[i].to_string(),
                     ..Curve::default()
                 });
+                dirs.push(Vec::new());
                 curves.len() - 1
             });
-            let cv = &mut curves[k];
-            cv.segment.push(match s[i] {
-                0 => Direction::Approach,
-                1 => Direction::Retract,
-                v => anyhow::bail!("segment[{i}] = {v}: use 0 for approach and 1 for retract"),
+            dirs[k].push(match s[i] {
+                0 => Some(Direction::Approach),
+                1 => Some(Direction::Retract),
+                -1 => None,
+                v => anyhow::bail!(
+                    "segment[{i}] = {v}: use 0 for approach, 1 for retract, -1 for a dwell"
+                ),
             });
-            cv.height.push(h[i]);
-            cv.force.push(f[i]);
+            curves[k].height.push(h[i]);
+            curves[k].force.push(f[i]);
         }
+        // Dwell points out, the dwell at the turn kept for the fit's report (the library's
+        // reading, as the command line's).
+        let curves: Vec<Curve> = curves
+            .into_iter()
+            .zip(dirs)
+            .map(|(cv, direction)| {
+                cv.with_plan(tabor::fit::segments::SegmentPlan {
+                    direction,
+                    notes: Vec::new(),
+                })
+            })
+            .collect();
         use rayon::prelude::*;
         let results: Vec<tabor::fit::CurveFit> = curves
             .par_iter()

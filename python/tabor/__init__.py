@@ -588,7 +588,8 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
     (``tabor fit``). ``height_m``: piezo height of the cantilever base (larger is farther from
     the sample); ``force_n``: force on the tip, positive when repulsive; ``segment``: 0 approach,
-    1 retract (or the strings); ``curve``: an id per point where the arrays hold many curves.
+    1 retract, -1 a dwell between them, left out of the fit (or the strings "approach",
+    "retract", "dwell"); ``curve``: an id per point where the arrays hold many curves.
     Returns a list of dicts, one per curve in order of first appearance, with the keys of
     ``tabor fit --format json`` (SI units, ``_stderr`` standard errors, ``status`` and
     ``message``, ``adequate_model`` and ``why``, ``warnings``).
@@ -609,16 +610,16 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     if seg.dtype.kind in "cmMO":  # complex, dates and objects refused as the others are
         seg = _numbers(seg, "segment")
     if seg.dtype.kind in "US":
-        names = {"approach": 0, "retract": 1}
+        names = {"approach": 0, "retract": 1, "dwell": -1}
         try:
             seg = np.array([names[str(v)] for v in seg])
         except KeyError as e:
-            raise ValueError(f"segment {e}: use approach/retract or 0/1") from None
-    # 0 or 1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
-    bad = ~np.isin(seg, (0, 1))
+            raise ValueError(f"segment {e}: use approach/retract/dwell or 0/1/-1") from None
+    # 0, 1 or -1 exactly: a cast to integers would read 0.5 as approach and 1.5 as retract.
+    bad = ~np.isin(seg, (0, 1, -1))
     if bad.any():
         raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
-                         "use 0 (or \"approach\") and 1 (or \"retract\")")
+                         "use 0 (or \"approach\"), 1 (or \"retract\") and -1 (or \"dwell\")")
     seg = np.ascontiguousarray(seg, dtype=np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
@@ -703,10 +704,12 @@ def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment
     segment numbers: a pause or a dwell (stress relaxation, creep) is left out, and a curve
     kept in one segment is split where the base turns (each said in ``warnings``); a curve
     without a clear turn, or whose file gives a spring constant out of range, gets the status
-    ``invalid_input``. The options are :func:`fit_curves`' (``fit_segment="approach"`` fits the
-    approach); a bad option raises ``ValueError`` naming it before any curve is fitted, as
-    :func:`fit_curves` does. Returns a list of dicts as :func:`fit_curves` does, each with
-    ``path`` and ``enum`` from the data."""
+    ``invalid_input``. A dwell between approach and retract is reported in ``dwell`` (its
+    forces, relaxation and creep); where the force relaxed during it, the retract is no loading
+    curve and the approach is fitted instead (said in ``message``). The options are
+    :func:`fit_curves`' (``fit_segment="approach"`` fits the approach); a bad option raises
+    ``ValueError`` naming it before any curve is fitted, as :func:`fit_curves` does. Returns a
+    list of dicts as :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
     options = dict(radius_m=radius_m, poisson=poisson, fit_segment=fit_segment, z0_m=z0_m,
                    tilt=tilt, tolerance=tolerance, relative_humidity=relative_humidity,
                    contact_angle_deg=contact_angle_deg,
@@ -731,8 +734,8 @@ def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment
         f = np.asarray(d["force"], dtype=float)
         try:
             code, notes = _tabor.plan_segments(h, np.asarray(d["segment"], dtype=np.int64))
-            keep = np.asarray(code) >= 0
-            r = fit_curve(h[keep], f[keep], np.asarray(code)[keep], spring_n_m=k, **options)
+            # -1 (a pause, a dwell) left out by the fit, which reports the dwell at the turn.
+            r = fit_curve(h, f, np.asarray(code), spring_n_m=k, **options)
             r["warnings"] = list(notes) + list(r.get("warnings", []))
         except ValueError as e:  # the file's segments or its own spring constant
             why = str(e)

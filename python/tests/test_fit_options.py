@@ -1,5 +1,5 @@
 """fit_curves makes the option checks `tabor fit` makes (one check, in the library), refuses
-segment values other than 0 and 1, and gives a curve that once panicked its own status."""
+segment values other than 0, 1 and -1 (a dwell), and gives a curve that once panicked its own status."""
 import pathlib
 
 import numpy as np
@@ -33,8 +33,8 @@ def test_options_out_of_range_are_refused_as_the_command_line_refuses_them(optio
     assert "--" not in str(e.value)
 
 
-@pytest.mark.parametrize("value", [0.5, 1.5, 2, -1])
-def test_segment_values_other_than_0_and_1_are_refused(value):
+@pytest.mark.parametrize("value", [0.5, 1.5, 2, -2])  # -1 marks a dwell
+def test_segment_values_other_than_0_1_and_dwell_are_refused(value):
     h, f, s = rows()
     seg = np.where(np.asarray(s) == "retract", 1.0, 0.0)
     seg[3] = value

@@ -283,6 +283,12 @@ fn print_summary(results: &[CurveFit], opt: &FitOptions) -> usize {
         if let Some(h) = &r.humidity {
             eprintln!("  {}", humidity_line(h));
         }
+        if let Some(w) = &r.dwell {
+            eprintln!(
+                "  dwell (points {}..{}): force {:.4e} -> {:.4e} N, indentation creep {:.4e} m",
+                w.first_point, w.last_point, w.force_start_n, w.force_end_n, w.indentation_creep_m
+            );
+        }
         // The humidity's note is printed above.
         let said = r.humidity.as_ref().map(|h| format!("humidity: {}", h.note));
         for w in r.warnings.iter().filter(|w| Some(*w) != said.as_ref()) {
@@ -467,7 +473,37 @@ fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
     cells
 }
 
+/// The dwell's columns, written where any curve has a dwell between approach and retract.
+const DWELL_COLUMNS: [&str; 8] = [
+    "dwell_first_point",
+    "dwell_last_point",
+    "dwell_force_start_n",
+    "dwell_force_end_n",
+    "dwell_relaxation",
+    "dwell_base_advance_m",
+    "dwell_indentation_creep_m",
+    "dwell_relaxed",
+];
+
+fn dwell_cells(w: Option<&fit::DwellReport>) -> Vec<String> {
+    let Some(w) = w else {
+        return vec![String::new(); DWELL_COLUMNS.len()];
+    };
+    let f = |x: f64| format!("{x:.10e}");
+    vec![
+        w.first_point.to_string(),
+        w.last_point.to_string(),
+        f(w.force_start_n),
+        f(w.force_end_n),
+        w.relaxation.map_or(String::new(), f),
+        f(w.base_advance_m),
+        f(w.indentation_creep_m),
+        w.relaxed.to_string(),
+    ]
+}
+
 fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
+    let dwell = results.iter().any(|r| r.dwell.is_some());
     let mut w = crate::io::csv_writer();
     let mut header = vec![
         "curve",
@@ -505,6 +541,9 @@ fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
     ];
     if humid {
         header.extend(HUMIDITY_COLUMNS);
+    }
+    if dwell {
+        header.extend(DWELL_COLUMNS);
     }
     w.write_record(&header)?;
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
@@ -551,6 +590,9 @@ fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
         ];
         if humid {
             row.extend(humidity_cells(r.humidity.as_ref()));
+        }
+        if dwell {
+            row.extend(dwell_cells(r.dwell.as_ref()));
         }
         w.write_record(&row)?;
     }

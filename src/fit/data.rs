@@ -26,6 +26,10 @@ pub struct Curve {
     /// Why the curve cannot be fitted as read (approach and retract not separated), if so:
     /// it gets the status invalid_input and the others go on.
     pub refused: Option<String>,
+    /// The dwell between approach and retract, left out of the points (stress relaxation,
+    /// creep), if the curve had one: the fit reports it, and fits the approach where the force
+    /// relaxed during it.
+    pub dwell: Option<super::segments::Dwell>,
 }
 
 impl Curve {
@@ -36,6 +40,26 @@ impl Curve {
     /// Whether the curve has no points.
     pub fn is_empty(&self) -> bool {
         self.height.is_empty()
+    }
+
+    /// The curve with the directions of a plan ([`super::segments::plan_segments`]): the
+    /// points of pauses and dwells left out, the dwell at the turn kept as [`Curve::dwell`],
+    /// the plan's notes as the curve's. `height` and `force` are every point's, as read.
+    pub fn with_plan(mut self, plan: super::segments::SegmentPlan) -> Curve {
+        self.dwell = super::segments::dwell_at_turn(&plan.direction, &self.height, &self.force);
+        let keep: Vec<bool> = plan.direction.iter().map(Option::is_some).collect();
+        let pick = |v: &[f64]| -> Vec<f64> {
+            v.iter()
+                .zip(&keep)
+                .filter(|(_, &k)| k)
+                .map(|(x, _)| *x)
+                .collect()
+        };
+        self.height = pick(&self.height);
+        self.force = pick(&self.force);
+        self.segment = plan.direction.into_iter().flatten().collect();
+        self.notes = plan.notes;
+        self
     }
 }
 
@@ -154,23 +178,10 @@ fn resolve_segments(mut c: Curve, ids: &[i64]) -> Curve {
         Err(m) => {
             c.segment = vec![Direction::Approach; ids.len()];
             c.refused = Some(m);
+            c
         }
-        Ok(plan) => {
-            let keep: Vec<bool> = plan.direction.iter().map(Option::is_some).collect();
-            let pick = |v: &[f64]| -> Vec<f64> {
-                v.iter()
-                    .zip(&keep)
-                    .filter(|(_, &k)| k)
-                    .map(|(x, _)| *x)
-                    .collect()
-            };
-            c.height = pick(&c.height);
-            c.force = pick(&c.force);
-            c.segment = plan.direction.into_iter().flatten().collect();
-            c.notes = plan.notes;
-        }
+        Ok(plan) => c.with_plan(plan),
     }
-    c
 }
 
 /// Groups rows into curves by id, in order of first appearance.

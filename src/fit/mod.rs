@@ -94,6 +94,7 @@ pub(super) fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFi
         verdict: None,
         warnings: Vec::new(),
         humidity: None,
+        dwell: None,
         md: None,
     }
 }
@@ -134,7 +135,23 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
         Ok(d) => d,
         Err((status, message)) => return fail(curve, status, message),
     };
-    let est = estimates(&d, opt.radius, opt.spring);
+    let mut out = fit_prepared(curve, opt, &d);
+    out.dwell = d.dwell.clone();
+    // The approach fitted in place of the retract after a relaxing dwell: said in the status's
+    // message too (the note is the first warning).
+    let switched =
+        opt.segments != Segments::Approach && d.dwell.as_ref().is_some_and(|w| w.relaxed);
+    if out.status == FitStatus::Ok && switched {
+        if let Some(note) = d.notes.first() {
+            out.message = format!("ok: {note}");
+        }
+    }
+    out
+}
+
+/// The models fitted to a prepared curve, the adequate one chosen.
+fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
+    let est = estimates(d, opt.radius, opt.spring);
     let pull = est
         .pulloff
         .max(10.0 * d.noise)
@@ -148,12 +165,12 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
         f0: 0.0,
     };
     let w_ref = w_of(1.75);
-    let hertz = fit_model(Model::Hertz, &d, opt, start(w_ref, 1.0), w_ref, None);
+    let hertz = fit_model(Model::Hertz, d, opt, start(w_ref, 1.0), w_ref, None);
     let pulloff = |model: Model, lambda: f64| law::Law::new(model, lambda).pulloff();
     // A closed form with adhesion, its w started from the measured pull-off with its own.
     let closed = |model| {
         let s = start(w_of(pulloff(model, 1.0)), 1.0);
-        fit_model(model, &d, opt, s, w_ref, None)
+        fit_model(model, d, opt, s, w_ref, None)
     };
     let (dmt, jkr) = (closed(Model::Dmt), closed(Model::Jkr));
     // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
@@ -185,7 +202,7 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
     // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let (md, iv) = match opt.z0 {
-        Some(z0) => match fixed_z0_fit(curve, &d, opt, z0, (&dmt, &jkr), &from, w_ref) {
+        Some(z0) => match fixed_z0_fit(curve, d, opt, z0, (&dmt, &jkr), &from, w_ref) {
             Ok(r) => r,
             Err(out) => return *out,
         },
@@ -198,12 +215,12 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
                     } else {
                         from(&jkr, l, pc)
                     };
-                    fit_model(Model::Md, &d, opt, s, w_ref, Some(l))
+                    fit_model(Model::Md, d, opt, s, w_ref, Some(l))
                 })
                 .collect();
-            let md = free_fit(&d, opt, w_ref, profile.clone());
+            let md = free_fit(d, opt, w_ref, profile.clone());
             let iv = if md.status == FitStatus::Ok {
-                interval::profile_intervals(&d, opt, w_ref, &md, &profile)
+                interval::profile_intervals(d, opt, w_ref, &md, &profile)
             } else {
                 interval::Intervals::default()
             };
@@ -214,9 +231,9 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
     let stuck = md.status == FitStatus::Ok
         && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
         && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
-    let mut out = summarize(curve, opt, &d, md, vec![hertz, dmt, jkr], &iv);
+    let mut out = summarize(curve, opt, d, md, vec![hertz, dmt, jkr], &iv);
     if stuck && out.status == FitStatus::Ok {
-        out = unmoved(out, curve, &d, opt);
+        out = unmoved(out, curve, d, opt);
     }
     out
 }

@@ -25,6 +25,8 @@ pub struct Prepared {
     pub noise: f64,
     /// What preparing the curve changed or found (outliers dropped, jittering heights): warnings.
     pub notes: Vec<String>,
+    /// The dwell between approach and retract, if the curve had one.
+    pub dwell: Option<DwellReport>,
 }
 
 /// Fewer points than this in the fitted segments, or in contact, and a curve is refused or warned.
@@ -71,11 +73,25 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         }
         None => curve,
     };
+    let ((b0, b1), noise) = baseline(curve, opt);
+    let dwell = curve
+        .dwell
+        .as_ref()
+        .map(|w| dwell_report(w, (b0, b1), noise, opt.spring));
+    // A retract after a relaxing dwell is no loading curve: the approach is fitted instead.
+    let mut segments = opt.segments;
+    if let Some(w) = dwell
+        .as_ref()
+        .filter(|w| w.relaxed && segments != Segments::Approach)
+    {
+        segments = Segments::Approach;
+        notes.insert(0, relaxed_dwell_note(w));
+    }
     let fitted: Vec<usize> = (0..curve.len())
-        .filter(|&i| opt.segments.takes(curve.segment[i]))
+        .filter(|&i| segments.takes(curve.segment[i]))
         .collect();
     if fitted.is_empty() {
-        let which = match opt.segments {
+        let which = match segments {
             Segments::Retract => "no retract segment: fit the approach segment instead, or check the segment column (approach/retract or 0/1)",
             Segments::Approach => "no approach segment: fit the retract segment instead, or check the segment column",
             Segments::Both => "no points",
@@ -88,22 +104,13 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
             fitted.len()
         ));
     }
-    let ((b0, b1), noise) = baseline(curve, opt);
     let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
     let force: Vec<f64> = fitted
         .iter()
         .map(|&i| curve.force[i] - b0 - b1 * curve.height[i])
         .collect();
-    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-    let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
-    if !(fmax > 5.0 * noise && fmax > 1e-3 * (fmax - fmin).abs() && fmax > 0.0) {
-        return Err((
-            FitStatus::NoContact,
-            format!(
-                "no contact: the force never rises above the baseline (largest {:.3e} N, noise {:.2e} N); check the segment and the sign of force_n (positive is repulsive)",
-                fmax, noise
-            ),
-        ));
+    if !shows_contact(&force, noise) {
+        return Err(no_contact(curve, segments, &force, (b0, b1), noise));
     }
     let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
     let side = measured_sides(&force, &dir, noise);
@@ -117,7 +124,93 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         baseline: (b0, b1),
         noise,
         notes,
+        dwell,
     })
+}
+
+/// Whether a segment's forces (baseline removed) rise above the baseline: beyond five times
+/// its noise and a thousandth of their range.
+fn shows_contact(force: &[f64], noise: f64) -> bool {
+    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let fmin = force.iter().cloned().fold(f64::INFINITY, f64::min);
+    fmax > 5.0 * noise && fmax > 1e-3 * (fmax - fmin).abs() && fmax > 0.0
+}
+
+/// Why fitted segments that never rise above the baseline cannot be fitted: `no_contact` where
+/// no segment of the curve does, else the segment that does, to be fitted instead.
+fn no_contact(
+    curve: &Curve,
+    segments: Segments,
+    force: &[f64],
+    (b0, b1): (f64, f64),
+    noise: f64,
+) -> (FitStatus, String) {
+    let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    let mut largest = fmax;
+    for other in [Direction::Approach, Direction::Retract] {
+        if segments.takes(other) {
+            continue;
+        }
+        let f: Vec<f64> = segment_points(curve, other)
+            .into_iter()
+            .map(|i| curve.force[i] - b0 - b1 * curve.height[i])
+            .collect();
+        largest = f.iter().cloned().fold(largest, f64::max);
+        if shows_contact(&f, noise) {
+            // One segment was fitted: the other one.
+            let fitted = seg_name(match other {
+                Direction::Approach => Direction::Retract,
+                Direction::Retract => Direction::Approach,
+            });
+            let top = f.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            return (
+                FitStatus::InvalidInput,
+                format!(
+                    "the {} never rises above five times the baseline's noise (largest {fmax:.3e} N, noise {noise:.2e} N) while the {} does (up to {top:.3e} N), so it holds too little contact to fit; fit the {} segment instead",
+                    fitted,
+                    seg_name(other),
+                    seg_name(other)
+                ),
+            );
+        }
+    }
+    (
+        FitStatus::NoContact,
+        format!(
+            "no contact: no segment of the curve rises above the baseline (largest {largest:.3e} N, noise {noise:.2e} N); check the sign of force_n (positive is repulsive)"
+        ),
+    )
+}
+
+/// A dwell read against the baseline and the cantilever: its forces, relaxation and creep.
+fn dwell_report(w: &segments::Dwell, (b0, b1): (f64, f64), noise: f64, spring: f64) -> DwellReport {
+    let start = w.force.0 - b0 - b1 * w.height.0;
+    let end = w.force.1 - b0 - b1 * w.height.1;
+    let advance = w.height.0 - w.height.1;
+    let fall = start - end;
+    let in_contact = start > 5.0 * noise;
+    DwellReport {
+        first_point: w.points.0,
+        last_point: w.points.1,
+        force_start_n: start,
+        force_end_n: end,
+        relaxation: in_contact.then(|| fall / start),
+        base_advance_m: advance,
+        indentation_creep_m: advance + fall / spring,
+        relaxed: in_contact && fall > DWELL_RELAXED_SHARE * start && fall > 5.0 * noise,
+    }
+}
+
+/// The fit's note where a relaxing dwell makes it fit the approach.
+fn relaxed_dwell_note(w: &DwellReport) -> String {
+    format!(
+        "the approach was fitted, not the retract: the retract follows a dwell (points {}..{}) in which the force relaxed from {:.3e} N to {:.3e} N ({:.0}%), so it unloads a relaxed contact and is not a loading curve of the one the approach made",
+        w.first_point,
+        w.last_point,
+        w.force_start_n,
+        w.force_end_n,
+        100.0 * w.relaxation.unwrap_or(0.0)
+    )
 }
 
 /// The baseline: a line (flat without `opt.tilt`) through the far part of the approach (of the

@@ -11,7 +11,7 @@ pub enum FitStatus {
     Ok,
     /// The curve cannot be fitted as given (NaN, too few points, no segment to fit, ...).
     InvalidInput,
-    /// The force never rises above the baseline's noise.
+    /// No segment of the curve rises above the baseline's noise.
     NoContact,
     /// The optimiser failed or ended outside the models' domain.
     NotConverged,
@@ -175,10 +175,44 @@ pub struct CurveFit {
     /// With a humidity: the meniscus and the solid's w with it taken out.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub humidity: Option<humidity::FitHumidity>,
+    /// For a curve with a dwell between approach and retract: what happened during it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dwell: Option<DwellReport>,
     /// The Maugis-Dugdale fit itself (not written: its values are the ones above).
     #[serde(skip)]
     pub md: Option<ModelFit>,
 }
+
+/// A dwell between approach and retract (stress relaxation: the base held, the force relaxes;
+/// creep: the force held, the indentation grows), as measured, the baseline removed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DwellReport {
+    /// Its first point, numbered as read (from 0).
+    pub first_point: usize,
+    /// Its last point.
+    pub last_point: usize,
+    /// The force at its start (N, baseline removed).
+    pub force_start_n: f64,
+    /// The force at its end (N, baseline removed).
+    pub force_end_n: f64,
+    /// The share of the force at its start that relaxed, `(start - end) / start` (null where
+    /// the dwell starts out of contact).
+    pub relaxation: Option<f64>,
+    /// How far the base moved toward the sample during it (m).
+    pub base_advance_m: f64,
+    /// How much the indentation grew during it (m): the base's advance plus the fall of the
+    /// cantilever's deflection, `advance - (end - start) / k` (creep at a held force; the
+    /// tip's advance as the force relaxes at a held base).
+    pub indentation_creep_m: f64,
+    /// Whether the force relaxed during it (by more than [`DWELL_RELAXED_SHARE`] of its start
+    /// and five times the noise): the retract then unloads a relaxed contact, not the one the
+    /// approach loaded, and the approach is fitted instead.
+    pub relaxed: bool,
+}
+
+/// A dwell whose force falls by more than this share of its start relaxed the contact: the
+/// retract that follows is not a loading curve of the contact the approach made.
+pub const DWELL_RELAXED_SHARE: f64 = 0.1;
 
 /// One quantity of a force map (`tabor fit --maps`): its file name, how to read it from a
 /// curve's result, whether it is drawn on a log scale, and its label and SI unit (drawn with

@@ -72,6 +72,58 @@ pub fn plan_segments(height: &[f64], segment: &[i64]) -> Result<SegmentPlan, Str
     Ok(plan)
 }
 
+/// A dwell at the turn: the points left out between the approach's last point and the
+/// retract's first, where the base is held (stress relaxation: the force relaxes) or the force
+/// is (creep: the indentation grows).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Dwell {
+    /// Its first and last points, numbered as read (from 0).
+    pub points: (usize, usize),
+    /// The base height at its start and at its end (m).
+    pub height: (f64, f64),
+    /// The force at its start and at its end (N, as measured: the baseline not removed).
+    pub force: (f64, f64),
+}
+
+/// The points at each end of a dwell whose median is its value there: a spike is not taken
+/// for the start, and a relaxation (fastest at the start) is not averaged away.
+const DWELL_ENDS: usize = 5;
+
+/// The dwell at the turn of a planned curve (see [`Dwell`]), or None where nothing is left out
+/// between approach and retract.
+pub fn dwell_at_turn(
+    direction: &[Option<Direction>],
+    height: &[f64],
+    force: &[f64],
+) -> Option<Dwell> {
+    let last_approach = direction
+        .iter()
+        .rposition(|d| *d == Some(Direction::Approach))?;
+    let first_retract = direction
+        .iter()
+        .position(|d| *d == Some(Direction::Retract))?;
+    let (a, b) = (last_approach + 1, first_retract);
+    if b <= a || b > height.len().min(force.len()) {
+        return None;
+    }
+    let k = DWELL_ENDS.min(b - a);
+    let median = |v: &[f64]| {
+        let mut s = v.to_vec();
+        s.sort_by(f64::total_cmp);
+        let m = s.len() / 2;
+        if s.len() % 2 == 1 {
+            s[m]
+        } else {
+            0.5 * (s[m - 1] + s[m])
+        }
+    };
+    Some(Dwell {
+        points: (a, b - 1),
+        height: (median(&height[a..a + k]), median(&height[b - k..b])),
+        force: (median(&force[a..a + k]), median(&force[b - k..b])),
+    })
+}
+
 /// The runs `[start, end)` of equal consecutive segment ids.
 fn runs(segment: &[i64]) -> Vec<(usize, usize)> {
     let mut out = Vec::new();
@@ -162,6 +214,44 @@ mod tests {
         assert_eq!(
             q.direction,
             vec![Some(A), Some(A), Some(A), Some(R), Some(R)]
+        );
+    }
+
+    #[test]
+    fn the_dwell_at_the_turn_is_the_points_between_approach_and_retract() {
+        // A pause (left out, not a dwell at the turn), the approach, 7 dwell points, the retract.
+        let d = [
+            None,
+            Some(A),
+            Some(A),
+            None,
+            None,
+            None,
+            None,
+            None,
+            None,
+            None,
+            Some(R),
+        ];
+        let h = [9.0, 5.0, 1.0, 1.0, 1.0, 1.0, 0.9, 0.8, 0.8, 0.8, 2.0];
+        // A spike at the dwell's start is not its start: the median of its first 5 points.
+        let f = [0.0, 0.0, 5.0, 50.0, 5.0, 4.0, 3.0, 2.0, 2.0, 2.0, 1.0];
+        let w = dwell_at_turn(&d, &h, &f).unwrap();
+        assert_eq!(w.points, (3, 9));
+        assert_eq!(w.height, (1.0, 0.8));
+        assert_eq!(w.force, (4.0, 2.0));
+        // Two points: the mean of both.
+        let two = [Some(A), None, None, Some(R)];
+        let w = dwell_at_turn(&two, &[2.0, 1.0, 1.0, 2.0], &[0.0, 4.0, 2.0, 0.0]).unwrap();
+        assert_eq!((w.points, w.force), ((1, 2), (3.0, 3.0)));
+        // Nothing left out at the turn, or no retract: no dwell.
+        assert_eq!(
+            dwell_at_turn(&[Some(A), Some(R)], &[1.0, 2.0], &[0.0; 2]),
+            None
+        );
+        assert_eq!(
+            dwell_at_turn(&[Some(A), None], &[1.0, 1.0], &[0.0; 2]),
+            None
         );
     }
 
