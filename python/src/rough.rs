@@ -66,6 +66,7 @@ pub fn rough<'py>(
     d.set_item("smooth_pulloff", c.smooth_pulloff)?;
     d.set_item("fuller_tabor_parameter", c.fuller_tabor_parameter)?;
     d.set_item("quadrature_error", c.quadrature_error)?;
+    d.set_item("warnings", c.warnings.clone())?;
     Ok(d)
 }
 

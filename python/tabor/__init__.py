@@ -818,7 +818,8 @@ def rough(lam, sigma, min_separation, max_separation=None, points=400, stress_ra
     ``noncontact_fraction``, and the load's parts ``contact_load`` and ``noncontact_load``),
     ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
     ``smooth_pulloff``, ``fuller_tabor_parameter``, ``quadrature_error`` (the largest error
-    estimate of the quadrature over the loads given). With ``stress_ratio`` and ``range_ratio``
+    estimate of the quadrature over the loads given), ``warnings`` (what the range or the
+    sampling cannot show, as ``tabor rough`` prints them). With ``stress_ratio`` and ``range_ratio``
     (both), a water meniscus on every summit (``tabor rough --stress-ratio --range-ratio``): the
     two-zone law, units built on the total w."""
     rho = None if stress_ratio is None else float(stress_ratio)

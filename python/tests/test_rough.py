@@ -278,3 +278,16 @@ def test_an_ensemble_refuses_a_separation_that_is_not_a_number(kw, says):
     with pytest.raises(ValueError) as e:
         tabor.rough_ensemble(1.0, [0.0, 0.5], **kw)
     assert says in str(e.value)
+
+
+def test_rough_warns_as_the_command_line_does():
+    """A retract that ends inside the force range is a partial cycle; the wet loss is exact
+    whatever the number of separations, and so is the pull-off."""
+    full = tabor.rough(1.0, 0.63, -1.89, points=40, stress_ratio=0.2, range_ratio=5)
+    assert full["warnings"] == []
+    cut = tabor.rough(1.0, 0.63, -1.89, max_separation=0.0, points=40)
+    assert any("inside the summits' force range" in w for w in cut["warnings"]), cut["warnings"]
+    few = tabor.rough(1.0, 0.63, -1.89, points=2, stress_ratio=0.2, range_ratio=5)
+    assert abs(few["hysteresis"] - full["hysteresis"]) <= 1e-9 * full["hysteresis"]
+    assert abs(few["pulloff_load"] - full["pulloff_load"]) <= 1e-9 * abs(full["pulloff_load"])
+    assert any("miss the pull-off" in w for w in few["warnings"]), few["warnings"]

@@ -30,6 +30,8 @@ const GL_N: usize = 20;
 /// Samples of each retract curve (the curves are compared there; the pull-off is refined from
 /// the smallest).
 pub const CURVE_SAMPLES: usize = 20;
+/// Samples of both curves where they rise from their pull-offs (see `point`).
+const RISE_SAMPLES: usize = 24;
 /// Interpolation error the table aims at; intervals next to the fold that miss it (near
 /// lambda_D the branch turns within a tiny range of approaches) are solved exactly instead.
 const TABLE_TARGET: f64 = 1e-6;
@@ -1264,13 +1266,19 @@ fn point(
         // needed).
         let r = refined(quad, m, sigma, d_min, &seps, curve, k > 0);
         let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
-        // Each curve also at the other's pull-off: at small sigma both fall steeply within a
-        // few sigma of their jump-outs, a window the uniform samples hit or miss as lambda
-        // varies (which drew the MD/JKR border as one-pixel spikes). Where the jump-outs differ
-        // by more than that window, one curve has risen at the other's pull-off.
-        let across = (quad.retract(m, sigma, d_min, md.separation) - md.pulloff)
-            .abs()
-            .max((quad.retract(&ms.list[4], sigma, d_min, r.separation) - r.pulloff).abs())
+        // The curves also where they rise from their pull-offs: at small sigma both rise
+        // steeply within a few sigma of their jump-outs, a window the uniform samples hit or
+        // miss as lambda varies (which drew the MD/JKR border as one-pixel spikes). Sampled at
+        // a third of sigma there, the curves (smooth on the scale sigma) show their difference.
+        let lo = (md.separation.min(r.separation) - sigma).max(d_min);
+        let hi = (md.separation.max(r.separation) + 6.0 * sigma).min(d_max);
+        let across = (0..RISE_SAMPLES)
+            .map(|k| lo + (hi - lo) * k as f64 / (RISE_SAMPLES - 1) as f64)
+            .map(|d| {
+                (quad.retract(m, sigma, d_min, d) - quad.retract(&ms.list[4], sigma, d_min, d))
+                    .abs()
+            })
+            .fold(0.0f64, f64::max)
             / scale;
         errs[k] = curve_err.max(pull_err).max(across);
         if errs[k] <= spec.tolerance {
