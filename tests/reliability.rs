@@ -748,3 +748,326 @@ fn messages_name_the_input_the_value_and_what_to_do() {
     let all = format!("{}{}", stdout(&o), stderr(&o));
     assert!(!all.contains("XDG_RUNTIME_DIR"), "{all}");
 }
+
+/// The long options of `tabor SUB` that take a value, from its --help.
+fn valued_flags(sub: &str) -> Vec<String> {
+    let help = stdout(&run(&[sub, "--help"]));
+    let mut flags: Vec<String> = help
+        .lines()
+        .filter_map(|l| {
+            let l = l.trim_start();
+            // `-o, --output`: the long name after the short one.
+            let l = match l.as_bytes() {
+                [b'-', _, b',', b' ', ..] => &l[4..],
+                _ => l,
+            };
+            let rest = l.strip_prefix("--")?;
+            let (name, after) = rest.split_once(' ')?;
+            after.starts_with('<').then(|| format!("--{name}"))
+        })
+        .collect();
+    flags.dedup();
+    flags
+}
+
+#[test]
+fn negative_numbers_are_values_of_every_option() {
+    // clap took `-1e-3` (a signed exponent) and `-.5` for short flags: "unexpected argument
+    // '-1'". Every option of every command that takes a value now takes them; the stray flag
+    // after it shows that the value was consumed (parsing stops there, nothing runs).
+    let help = stdout(&run(&["--help"]));
+    let subs: Vec<&str> = help
+        .lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next())
+        .filter(|s| *s != "help")
+        .collect();
+    assert!(subs.len() >= 17, "{subs:?}");
+    let mut checked = 0;
+    for sub in &subs {
+        for flag in valued_flags(sub) {
+            for value in ["-1e-3", "-.5", "-1E+2"] {
+                let o = run(&[sub, &flag, value, "--no-such-flag"]);
+                let err = stderr(&o);
+                assert!(
+                    err.contains("unexpected argument '--no-such-flag'")
+                        || err.contains(&format!("invalid value '{value}' for '{flag}")),
+                    "tabor {sub} {flag} {value}: {err}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 300, "{checked} options checked");
+    // The values arrive: the approach ends at the smallest separation given.
+    let o = run(&[
+        "rough",
+        "--lambda",
+        "1",
+        "--sigma",
+        "0.5",
+        "--min-separation",
+        "-1e-3",
+        "--points",
+        "3",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let last = v["approach"]["separation"][2].as_f64().unwrap();
+    assert!((last + 1e-3).abs() < 1e-15, "{last}");
+    // Several values, a negative one among them, and an option after them.
+    refused(
+        &["pulloff", "--lambda", "1", "-1e-3", "2", "--format", "json"],
+        "lambda = -0.001 is outside",
+    );
+    // A missing value is still one: the flag after it is not taken for it.
+    let o = run(&["solve", "--lambda", "1", "--load", "--format", "json"]);
+    assert!(
+        stderr(&o).contains("a value is required for '--load"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// The width of a PNG in pixels (its IHDR).
+fn png_width(path: &Path) -> u32 {
+    let b = std::fs::read(path).unwrap();
+    u32::from_be_bytes([b[16], b[17], b[18], b[19]])
+}
+
+#[test]
+fn figure_width_help_says_each_commands_default() {
+    // `rough --help` said 85 mm; its figure (two panels) is 175 mm wide.
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    for (sub, mm, args) in [
+        (
+            "rough",
+            175.0,
+            vec![
+                "--lambda",
+                "1",
+                "--sigma",
+                "0.5",
+                "--min-separation",
+                "-1",
+                "--points",
+                "3",
+                "-o",
+                "/dev/null",
+                "--plot",
+            ],
+        ),
+        (
+            "rough-pulloff",
+            85.0,
+            vec![
+                "--lambda",
+                "1",
+                "--points",
+                "2",
+                "-o",
+                "/dev/null",
+                "--plot",
+            ],
+        ),
+    ] {
+        let help = stdout(&run(&[sub, "--help"]));
+        let columns = if mm > 100.0 {
+            "two journal columns"
+        } else {
+            "one journal column"
+        };
+        assert!(
+            help.contains(&format!("[default: {mm}, {columns}]")),
+            "{sub}: {help}"
+        );
+        let png = p(&format!("{sub}.png"));
+        let mut a = vec![sub];
+        a.extend(args);
+        a.push(&png);
+        let o = run(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        // 300 dpi.
+        assert_eq!(
+            png_width(Path::new(&png)),
+            (mm / 25.4 * 300.0_f64).round() as u32,
+            "{sub}"
+        );
+    }
+    for sub in [
+        "map",
+        "plot",
+        "scene",
+        "cycle",
+        "humidity",
+        "profile",
+        "fit",
+        "rough-map",
+    ] {
+        let help = stdout(&run(&[sub, "--help"]));
+        assert!(
+            help.contains("[default: 85, one journal column]"),
+            "{sub}: {help}"
+        );
+    }
+}
+
+#[test]
+fn rough_refusals_say_what_is_wrong_in_the_inputs_given() {
+    // The default largest separation: no --max-separation was given.
+    let base = ["rough", "--sigma", "0.5", "--points", "3"];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        base.iter().copied().chain(extra.iter().copied()).collect()
+    };
+    refused(
+        &with(&["--lambda", "1e-7", "--min-separation", "-1"]),
+        "the summits feel the flat out to 6366202 approach units",
+    );
+    refused(
+        &with(&["--lambda", "1", "--min-separation", "100"]),
+        "--min-separation = 100 is beyond the summits' reach (5.24173 approach units",
+    );
+    // Two zones: the quantities given, short numbers, the span of the stress numbers.
+    refused(
+        &["pulloff", "--lambda", "1", "--stress-ratio", "1e-9", "--range-ratio", "3"],
+        "--lambda 1, --stress-ratio 1e-9 (rho), --range-ratio 3 (eta): the second zone's stress number rho lambda_s (1 + rho eta)^(-1/3) = 1e-9 is outside 1e-8..1e6",
+    );
+    refused(
+        &["pulloff", "--lambda", "1e20", "--stress-ratio", "0.5", "--range-ratio", "3"],
+        "the solid zone's stress number lambda_s (1 + rho eta)^(-1/3) = 7.36806e19 is outside 1e-8..1e6",
+    );
+    refused(
+        &[
+            "cycle",
+            "--lambda",
+            "1",
+            "--stress-ratio",
+            "1e-9",
+            "--range-ratio",
+            "3",
+        ],
+        "--stress-ratio 1e-9 (rho)",
+    );
+    // Options of an explicit ensemble on a statistical surface, and others that were ignored.
+    for (flag, value) in [
+        ("--min-separation-m", "1e-9"),
+        ("--summits", "exact"),
+        ("--pixel-m", "1e-8"),
+        ("--backend", "cpu"),
+        ("--precision", "f64"),
+        ("--adapter", "x"),
+    ] {
+        refused(
+            &["rough", "--preset", "mems-polysilicon", flag, value],
+            &format!("{flag} applies to an explicit ensemble (--asperities, --topography)"),
+        );
+        refused(
+            &with(&["--lambda", "1", "--min-separation", "-1", flag, value]),
+            &format!("leave out {flag}"),
+        );
+    }
+    for sub in ["map", "rough-map"] {
+        refused(
+            &[sub, "--nx", "4", "--ny", "4", "--timings"],
+            "--timings puts the computing time into the JSON: give --json FILE too",
+        );
+    }
+    // One press range, from the library.
+    refused(
+        &["rough-pulloff", "--press-sigmas", "7"],
+        "--press-sigmas = 7 is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
+    );
+    refused(
+        &["rough-map", "--nx", "4", "--ny", "4", "--press-sigmas=-6.5"],
+        "--press-sigmas = -6.5 is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
+    );
+    // A bounded sweep.
+    refused(
+        &[
+            "rough",
+            "--sigma",
+            "0.5",
+            "--lambda",
+            "1",
+            "--min-separation",
+            "-1",
+            "--points",
+            "10001",
+        ],
+        "the number of separations = 10001 is outside the supported domain 2..10000",
+    );
+    // solve by a radius beyond the exact solver: what it can answer there.
+    refused(
+        &["solve", "--lambda", "1e27", "--radius-a", "1"],
+        "--lambda 1e27 with --radius-a: a state by its contact radius is solved only for lambda in 1e-26..1e26 (the exact solver); beyond it the JKR limit answers a load or an approach, not a radius",
+    );
+}
+
+#[test]
+fn rough_scene_and_ensemble_refusals_name_the_key_and_the_value_given() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = |extra: &str| {
+        scene_file(
+            dir.path(),
+            &format!(
+                r#"{{"e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05, "z0_m": 3e-10,
+                "summit_radius_m": 1e-6, "summit_density_m2": 1e12, "nominal_area_m2": 1e-8{extra}}}"#
+            ),
+        )
+    };
+    // The approach unit of this scene, (pi^2 w^2 R/K^2)^(1/3) with K = 4/3 E*.
+    let k = 4.0 / 3.0 * 1e9;
+    let unit = (std::f64::consts::PI.powi(2) * 0.05f64.powi(2) * 1e-6 / (k * k)).cbrt();
+    let s = scene(r#", "sigma_m": 1e-3"#);
+    refused(&["rough", "--scene", &s], "sigma_m = 0.001 m is ");
+    refused(
+        &["rough", "--scene", &s],
+        "beyond the 1e4 the rough model takes: give sigma_m of at most",
+    );
+    let s = scene(r#", "sigma_m": 1e-9, "min_separation_m": -1e-1"#);
+    let o = run(&["rough", "--scene", &s]);
+    let err = stderr(&o);
+    assert!(err.contains("min_separation_m = -0.1 m is "), "{err}");
+    let shown = format!("{:.5e}", -0.1 / unit);
+    let (m, e) = shown.split_once('e').unwrap();
+    let shown = format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'));
+    assert!(
+        err.contains(&format!("-0.1 m is {shown} approach units")),
+        "{shown}: {err}"
+    );
+    let s = scene(r#", "sigma_m": 1e-9, "min_separation_m": 1e-6"#);
+    refused(
+        &["rough", "--scene", &s],
+        "min_separation_m = 1e-6 m is beyond the summits' reach",
+    );
+    // An ensemble pressed far beyond its summits: the flag and the value, not a NaN.
+    let asp = dir.path().join("asp.csv");
+    std::fs::write(&asp, "height_m,radius_m\n0,5e-7\n1e-9,6e-7\n2e-9,4e-7\n").unwrap();
+    let asp = asp.to_str().unwrap();
+    refused(
+        &[
+            "rough",
+            "--preset",
+            "mems-polysilicon",
+            "--asperities",
+            asp,
+            "--min-separation-m=-1",
+        ],
+        "--min-separation-m = -1 m presses a summit more than 1e8 of its approach units",
+    );
+    refused(
+        &[
+            "rough",
+            "--preset",
+            "mems-polysilicon",
+            "--asperities",
+            asp,
+            "--min-separation-m",
+            "1",
+        ],
+        "--min-separation-m = 1 is outside",
+    );
+}

@@ -255,3 +255,89 @@ fn solve_reads_the_tables_fit_reads() {
         assert_eq!(o.stdout, plain.stdout);
     }
 }
+
+/// The synthetic curve as a CSV, at pixel (x, y) where given.
+fn curve_csv(pixels: &[(i64, i64)]) -> String {
+    let (seg, h, f) = curve();
+    if pixels.is_empty() {
+        let mut text = String::from("segment,height_m,force_n\n");
+        for i in 0..seg.len() {
+            text += &format!("{},{:e},{:e}\n", seg[i], h[i], f[i]);
+        }
+        return text;
+    }
+    let mut text = String::from("x,y,segment,height_m,force_n\n");
+    for (px, py) in pixels {
+        for i in 0..seg.len() {
+            text += &format!("{px},{py},{},{:e},{:e}\n", seg[i], h[i], f[i]);
+        }
+    }
+    text
+}
+
+#[test]
+fn fit_csv_has_17_digits_and_options_are_not_ignored() {
+    let fit = |extra: &[&str]| {
+        let mut a = vec!["fit", "-i", "-", "--radius", "20e-9", "--spring-n-m", "40"];
+        a.extend(extra);
+        tabor(&a, Some(curve_csv(&[]).as_bytes()))
+    };
+    // The CSV's numbers are the JSON's to the last bit: 17 significant digits, as the README
+    // says of every CSV (they were 11).
+    let json = fit(&[]);
+    assert!(
+        json.status.success(),
+        "{}",
+        String::from_utf8_lossy(&json.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    let r = &v["curves"][0];
+    let csv = fit(&["--format", "csv"]);
+    let text = String::from_utf8(csv.stdout).unwrap();
+    let mut lines = text.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let row: Vec<&str> = lines.next().unwrap().split(',').collect();
+    for key in [
+        "e_star_pa",
+        "work_of_adhesion_j_m2",
+        "lambda",
+        "rms_residual_n",
+    ] {
+        let cell = row[head.iter().position(|h| *h == key).unwrap()];
+        let mantissa = cell.split('e').next().unwrap().trim_start_matches('-');
+        assert_eq!(mantissa.len(), 18, "{key}: {cell}");
+        assert_eq!(
+            cell.parse::<f64>().unwrap(),
+            r[key].as_f64().unwrap(),
+            "{key}"
+        );
+    }
+    // --curve chooses the curve --plot draws: without --plot it did nothing.
+    refused(
+        &fit(&["--curve", "0"]),
+        "--curve 0 chooses the curve that --plot draws: give --plot FILE too",
+    );
+}
+
+#[test]
+fn out_of_range_pixel_indices_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let prefix = dir.path().join("m");
+    let a = [
+        "fit",
+        "-i",
+        "-",
+        "--radius",
+        "20e-9",
+        "--spring-n-m",
+        "40",
+        "--maps",
+        prefix.to_str().unwrap(),
+        "-o",
+        "/dev/null",
+    ];
+    let o = tabor(&a, Some(curve_csv(&[(0, 0), (100_000, 0)]).as_bytes()));
+    refused(&o, "has pixel index x = 100000, outside 0..99999");
+    let o = tabor(&a, Some(curve_csv(&[(0, -1)]).as_bytes()));
+    refused(&o, "has pixel index y = -1, outside 0..99999");
+}

@@ -24,10 +24,10 @@ pub struct SolveArgs {
     #[arg(long, conflicts_with = "input")]
     pub lambda: Option<f64>,
     /// Normalised load Pbar = P / (pi w R) of a single state (load control).
-    #[arg(long, allow_hyphen_values = true, conflicts_with = "input")]
+    #[arg(long, conflicts_with = "input")]
     pub load: Option<f64>,
     /// Normalised approach Dbar of a single state (displacement control).
-    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["input", "load"])]
+    #[arg(long, conflicts_with_all = ["input", "load"])]
     pub approach: Option<f64>,
     /// What is given: the load (dead load, column `load`), the approach (rigid grips, column
     /// `approach`) or the contact radius (column `A`). Default: load.
@@ -216,6 +216,16 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
                 crate::physics::domain::Method::DmtLimit | crate::physics::domain::Method::JkrLimit
             )
         );
+    if given == Given::Radius
+        && crate::physics::domain::method(lambda)
+            .is_some_and(|m| m != crate::physics::domain::Method::Md)
+    {
+        bail!(
+            "--lambda {} with --radius-a: {}",
+            crate::solver::domain::short(lambda),
+            crate::solver::limits::radius_refusal(lambda)
+        );
+    }
     let ctx = if limit {
         None
     } else {
@@ -286,7 +296,7 @@ fn solve_two_zone(
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
-    let z = Zones::from_ratios(lambda, rho, eta)?;
+    let z = Zones::from_ratios(lambda, rho, eta).map_err(super::zones_error)?;
     let ctx = TwoZoneContext::new(z).map_err(|st| {
         anyhow::anyhow!(
             "--lambda {lambda}: the two-zone curve could not be computed ({})",
@@ -399,8 +409,9 @@ fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> an
         Format::Text => bail!("--format text is for a single state; use csv or json for --input"),
         f => f,
     };
-    // The ratios are checked once, with a lambda the solver takes, before anything is written.
-    Zones::from_ratios(1.0, rho, eta)?;
+    // The ratios are checked once before anything is written; a row whose lambda makes a
+    // zone's stress number one the solver does not take is invalid_input.
+    crate::solver::two_zone::check_ratios(rho, eta).map_err(super::zones_error)?;
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
@@ -944,7 +955,7 @@ fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
     use crate::solver::two_zone::TwoZoneContext;
     let mut rows = Vec::new();
     for &l in &a.lambda {
-        let z = Zones::from_ratios(l, rho, eta)?;
+        let z = Zones::from_ratios(l, rho, eta).map_err(super::zones_error)?;
         let ctx = TwoZoneContext::new(z).map_err(|st| {
             anyhow::anyhow!(
                 "--lambda {l}: the two-zone curve could not be computed ({})",
@@ -1234,7 +1245,7 @@ pub fn plot(a: PlotArgs) -> anyhow::Result<()> {
     }
     let out = a.figure.outputs(Some(&a.out), "--out")?;
     a.figure.check_distinct(Some(&a.out), "--out", [])?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("plot")?;
     use crate::render::Kind;
     let r = match a.kind {
         PlotKind::Pulloff => {

@@ -95,7 +95,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     let opt = options(&a)?;
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     check_outputs(&a, &figure)?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("fit")?;
     let curves = fit::read_curves(&a.input).with_context(|| "--input".to_string())?;
     if a.maps.is_some() {
         fit::map_size(curves.iter().map(|c| (c.x, c.y, c.id.as_str())))
@@ -236,6 +236,9 @@ fn check_outputs(a: &FitArgs, figure: &crate::render::Outputs) -> anyhow::Result
         }
     }
     more.extend(a.on_map.clone().map(|p| ("--on-map".to_string(), p)));
+    if let (None, Some(id)) = (&a.plot, &a.curve) {
+        bail!("--curve {id} chooses the curve that --plot draws: give --plot FILE too, or leave out --curve");
+    }
     if a.plot.is_none() && (a.figure.svg.is_some() || a.figure.pdf.is_some()) {
         bail!("--svg and --pdf add formats to --plot's figure of one curve: give --plot too (the --on-map figure takes its format from its own name)");
     }
@@ -432,7 +435,7 @@ fn status_name(s: fit::FitStatus) -> String {
 }
 
 fn humidity_cells(h: Option<&fit::humidity::FitHumidity>) -> Vec<String> {
-    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
+    let f = |x: Option<f64>| x.map_or(String::new(), crate::io::fmt17);
     let Some(h) = h else {
         return vec![String::new(); HUMIDITY_COLUMNS.len()];
     };
@@ -546,7 +549,7 @@ fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
         header.extend(DWELL_COLUMNS);
     }
     w.write_record(&header)?;
-    let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.10e}"));
+    let f = |x: Option<f64>| x.map_or(String::new(), crate::io::fmt17);
     for r in results {
         let rms = |m: fit::Model| {
             f(r.models

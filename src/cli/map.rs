@@ -28,10 +28,10 @@ pub struct MapArgs {
     #[arg(long, value_enum, default_value_t = LoadAxisArg::Log)]
     pub load_axis: LoadAxisArg,
     /// Lowest load (default 1e-3 for log, 1e-6 for above-pulloff, -2 for linear).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long)]
     pub load_min: Option<f64>,
     /// Highest load (default 1e3 for the log axes, 10 for linear).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long)]
     pub load_max: Option<f64>,
     /// Relative error of the contact radius a simpler model may have.
     #[arg(long, default_value_t = crate::physics::model::DEFAULT_TOLERANCE)]
@@ -111,11 +111,14 @@ pub fn check_extension(path: &Path, ext: &str, flag: &str) -> anyhow::Result<()>
 }
 
 pub fn run(a: MapArgs) -> anyhow::Result<()> {
+    if a.timings && a.json.is_none() {
+        anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
+    }
     let spec = a.spec();
     spec.validate()
         .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::MAP_FLAGS)))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("map")?;
     let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);
     a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work: a bad path fails at once, and none is put in

@@ -1,5 +1,6 @@
 //! The command line: parsing builds the work, the library does it.
 
+mod argv;
 mod basic;
 mod fit;
 mod map;
@@ -238,7 +239,14 @@ pub(crate) fn formats(
 pub fn run() -> anyhow::Result<()> {
     // A command line that cannot be parsed is bad input like any other: exit code 1 (clap's
     // own is 2); --help and --version go to stdout with 0.
-    let cli = match Cli::try_parse() {
+    use clap::FromArgMatches as _;
+    let mut cmd = argv::command();
+    let args = argv::join_negative_values(&cmd, std::env::args_os().collect());
+    let parsed = match cmd.try_get_matches_from_mut(args) {
+        Ok(m) => Cli::from_arg_matches(&m).map_err(|e| e.format(&mut cmd)),
+        Err(e) => Err(e),
+    };
+    let cli = match parsed {
         Ok(c) => c,
         Err(e) if e.use_stderr() => {
             let _ = e.print();
@@ -277,8 +285,8 @@ pub(crate) struct FigureArgs {
     /// The same figure as a vector PDF.
     #[arg(long)]
     pub pdf: Option<std::path::PathBuf>,
-    /// Printed width in millimetres; fonts are 7-9.5 pt at this width [default: 85, one
-    /// journal column].
+    /// Printed width in millimetres (the help names each command's default, from
+    /// `argv::figure_width_mm`).
     #[arg(long, conflicts_with = "double_column")]
     pub width_mm: Option<f64>,
     /// Two journal columns wide (175 mm).
@@ -335,6 +343,18 @@ pub(crate) fn two_zone_ratios(
             ]
         ))
     })
+}
+
+/// A two-zone refusal (the solid's lambda and the second zone's ratios) in flags.
+pub(crate) fn zones_error(e: impl std::fmt::Display) -> anyhow::Error {
+    anyhow::anyhow!(with_flags(
+        &e.to_string(),
+        &[
+            ("lambda", "--lambda"),
+            ("stress_ratio", "--stress-ratio"),
+            ("range_ratio", "--range-ratio")
+        ]
+    ))
 }
 
 pub(crate) fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
@@ -399,8 +419,9 @@ pub(crate) const MAP_FLAGS: &[(&str, &str)] = &[
 pub(crate) const FIGURE_FLAGS: &[(&str, &str)] = &[("width_mm", "--width-mm"), ("dpi", "--dpi")];
 
 impl FigureArgs {
-    /// The printed size; `default_mm` where no width is given.
-    pub fn print(&self, default_mm: f64) -> anyhow::Result<crate::render::Print> {
+    /// The printed size of `command`'s figure; its default width where none is given.
+    pub fn print(&self, command: &str) -> anyhow::Result<crate::render::Print> {
+        let default_mm = argv::figure_width_mm(command);
         let mm = match (self.width_mm, self.double_column) {
             (Some(w), _) => w,
             (None, true) => crate::render::DOUBLE_COLUMN_MM,

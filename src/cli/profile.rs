@@ -61,7 +61,7 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("profile")?;
     if let Some((rho, eta)) = super::two_zone_ratios(a.stress_ratio, a.range_ratio)? {
         return run_two_zone(&a, rho, eta, &figure, &print);
     }
@@ -171,9 +171,7 @@ fn run_two_zone(
         Err(e @ TwoZoneProfileError::Points(_)) => {
             bail!(super::with_flags(&e.to_string(), &[("points", "--points")]))
         }
-        Err(e @ TwoZoneProfileError::Zones(_)) => {
-            bail!("--lambda {l}, --stress-ratio {rho}, --range-ratio {eta}: {e}")
-        }
+        Err(e @ TwoZoneProfileError::Zones(_)) => return Err(super::zones_error(e)),
         Err(e) => bail!("{flag}: {e}"),
     };
     write_two_zone(a, &p, figure, print)?;

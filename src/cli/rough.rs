@@ -45,9 +45,9 @@ pub struct RoughArgs {
     pub min_separation_m: Option<f64>,
     /// How an ensemble's summits are solved: `tables` (the contact branch tabulated over the
     /// summits' lambdas, solved exactly next to each fold, error measured and reported) or
-    /// `exact` (a root search at every summit state).
-    #[arg(long, value_enum, default_value_t = SummitsArg::Tables)]
-    pub summits: SummitsArg,
+    /// `exact` (a root search at every summit state) [default: tables].
+    #[arg(long, value_enum)]
+    pub summits: Option<SummitsArg>,
     /// Where an ensemble's tables are solved [default: auto, or the environment variable
     /// TABOR_BACKEND]; the summits are stepped on the CPU.
     #[arg(long, value_enum)]
@@ -158,7 +158,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::DOUBLE_COLUMN_MM)?;
+    let print = a.figure.print("rough")?;
     let scene = scene_of(&a)?;
     if a.asperities.is_some() || a.topography.is_some() {
         let Some(sc) = scene else {
@@ -169,6 +169,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         }
         return run_ensemble(&a, &sc);
     }
+    refuse_ensemble_options(&a, scene.is_some())?;
     if let Some(sc) = scene {
         return run_scene(&a, &sc, &figure, &print);
     }
@@ -177,8 +178,15 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     };
     let wet = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
     let law = crate::ContactLaw::with_ratios(lambda, wet);
-    let c = crate::rough::wet::WetRough::of_law(law, sigma)?
+    let c = crate::rough::wet::WetRough::of_law(law, sigma)
+        .map_err(super::zones_error)?
         .cycle(lambda, d_min, a.max_separation, a.points)
+        .map_err(|e| {
+            anyhow::anyhow!(super::with_flags(
+                &e.to_string(),
+                &[("min_separation", "--min-separation")]
+            ))
+        })
         .context("the separations (--min-separation, --max-separation, --points)")?;
     let text = match a.format {
         Format::Csv => csv(&c)?,
@@ -229,6 +237,31 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         eprintln!("warning: {w}");
     }
     Ok(())
+}
+
+/// Refuses the options of an explicit ensemble on a statistical surface, which would ignore
+/// them: its cycle is a quadrature over the Gaussian heights, on the CPU, with no summits,
+/// tables or height map.
+fn refuse_ensemble_options(a: &RoughArgs, scene: bool) -> anyhow::Result<()> {
+    let given = [
+        ("--min-separation-m", a.min_separation_m.is_some()),
+        ("--summits", a.summits.is_some()),
+        ("--pixel-m", a.pixel_m.is_some()),
+        ("--backend", a.backend.is_some()),
+        ("--adapter", a.adapter.is_some()),
+        ("--precision", a.precision.is_some()),
+    ];
+    let Some(&(flag, _)) = given.iter().find(|g| g.1) else {
+        return Ok(());
+    };
+    let instead = match (flag, scene) {
+        ("--min-separation-m", true) => " (a scene's smallest separation is its min_separation_m)",
+        ("--min-separation-m", false) => " (its smallest separation is --min-separation)",
+        _ => "",
+    };
+    anyhow::bail!(
+        "{flag} applies to an explicit ensemble (--asperities, --topography); a statistical rough surface (--lambda and --sigma, --scene, --preset) is a quadrature on the CPU with no summits, tables or height map{instead}: leave out {flag}, or give --asperities or --topography"
+    )
 }
 
 /// One row per separation and phase: `phase` then the named columns, each half of the cycle
@@ -317,7 +350,7 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("rough-pulloff")?;
     let sweep = crate::rough::PulloffSweep {
         lambdas: a.lambda.clone(),
         sigma_min: a.sigma_min,
@@ -597,17 +630,23 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
     let spec = EnsembleSpec {
         min_separation_m: a.min_separation_m,
         points: a.points,
-        solver: match a.summits {
+        solver: match a.summits.unwrap_or(SummitsArg::Tables) {
             SummitsArg::Tables => SummitSolver::Tables,
             SummitsArg::Exact => SummitSolver::Exact,
         },
     };
-    spec.validate(sc)?;
+    let flags = |e: crate::rough::RoughError| {
+        anyhow::anyhow!(super::with_flags(
+            &e.to_string(),
+            &[("min_separation_m", "--min-separation-m")]
+        ))
+    };
+    spec.validate(sc).map_err(flags)?;
     let engine = match spec.solver {
         SummitSolver::Exact => crate::engine::Engine::Cpu,
         SummitSolver::Tables => table_engine(a.backend, &a.adapter, a.precision)?,
     };
-    let r = spec.run(sc, &asp, &engine)?;
+    let r = spec.run(sc, &asp, &engine).map_err(flags)?;
     write_output(&a.output, ensemble_text(&r, sc, a.format)?.as_bytes())?;
     if let Some(e) = r.table_error {
         eprintln!(

@@ -200,6 +200,9 @@ pub fn write_npy(m: &RoughMap, outs: &mut [Output]) -> anyhow::Result<()> {
 }
 
 pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
+    if a.timings && a.json.is_none() {
+        anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
+    }
     let spec = a.spec();
     spec.validate()
         .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::ROUGH_MAP_FLAGS)))?;
@@ -210,7 +213,7 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
         );
     }
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("rough-map")?;
     let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);
     a.figure.check_distinct(Some(&a.out), "--out", more)?;
     // Every output is opened before the work; none is put in place unless all were written.

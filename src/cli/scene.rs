@@ -17,7 +17,7 @@ pub struct SceneArgs {
     #[arg(long, conflicts_with = "file")]
     pub preset: Option<String>,
     /// Override the scene's loads (N), comma separated.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    #[arg(long, value_delimiter = ',')]
     pub loads: Option<Vec<f64>>,
     #[arg(long)]
     pub tolerance: Option<f64>,
@@ -57,7 +57,7 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("scene")?;
     let r = solve_scene(&input)?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
@@ -269,7 +269,7 @@ pub fn scene_text(r: &SceneResult) -> String {
 #[command(allow_negative_numbers = true)]
 pub struct InferArgs {
     /// Measured pull-off force (N).
-    #[arg(long, allow_hyphen_values = true, required_unless_present = "pairs")]
+    #[arg(long, required_unless_present = "pairs")]
     pub pulloff: Option<f64>,
     /// Measured (load, contact radius) pairs: CSV with columns `load_n` and `contact_radius_m`;
     /// w and E* are fitted with the exact MD model.
@@ -532,7 +532,7 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("cycle")?;
     if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
         bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
             DriveKind::Grips => "grips",
@@ -563,7 +563,12 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         drive,
         max_load: a.max_load,
     }
-    .run()?;
+    .run()
+    .map_err(|e| match contact {
+        // --lambda and the ratios given as flags: the library's names are theirs.
+        None => super::zones_error(e),
+        Some(_) => anyhow::Error::new(e),
+    })?;
     let text = cycle_text(&c, a.format)?;
     super::write_with_figure(
         &a.output,
@@ -706,7 +711,7 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
         "--plot",
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
-    let print = a.figure.print(crate::render::SINGLE_COLUMN_MM)?;
+    let print = a.figure.print("humidity")?;
     let r = crate::scene::humidity::sweep_scene(
         &input,
         a.contact_angle_deg,

@@ -296,18 +296,21 @@ pub fn map_size<'a>(
 ) -> Result<(usize, usize), String> {
     let (mut nx, mut ny, mut n) = (0usize, 0usize, 0usize);
     for (x, y, name) in cells {
-        match (x, y) {
-            (Some(x), Some(y)) if (0..100_000).contains(&x) && (0..100_000).contains(&y) => {
-                nx = nx.max(x as usize + 1);
-                ny = ny.max(y as usize + 1);
-                n += 1;
-            }
-            _ => {
+        let (Some(x), Some(y)) = (x, y) else {
+            return Err(format!(
+                "curve {name} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999"
+            ));
+        };
+        for (column, v) in [("x", x), ("y", y)] {
+            if !(0..100_000).contains(&v) {
                 return Err(format!(
-                    "curve {name} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999"
-                ))
+                    "curve {name} has pixel index {column} = {v}, outside 0..99999: give the {column} column as pixel indices from 0 (a force map holds at most 4096 x 4096 pixels)"
+                ));
             }
         }
+        nx = nx.max(x as usize + 1);
+        ny = ny.max(y as usize + 1);
+        n += 1;
     }
     if nx * ny > MAP_PIXELS_MAX {
         return Err(format!(

@@ -9,7 +9,7 @@
 use super::lambda_table::LambdaTables;
 use super::{RoughError, Summit, SummitBranch};
 use crate::engine::{CheckReport, Engine};
-use crate::physics::domain::DomainError;
+use crate::physics::domain::{short, DomainError, APPROACH_MAX};
 use crate::physics::params::{Contact, ForceRange};
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -145,15 +145,35 @@ fn separations(
     let d_max = d_max.unwrap_or(top + reach);
     if !(d_min.is_finite() && d_max.is_finite() && d_max > d_min) {
         return Err(bad(
-            "the smallest separation (m)",
+            "min_separation_m",
             d_min,
             "below the largest separation",
             "give a smallest separation below the highest summit's reach",
         ));
     }
+    check_depth(asp, m, d_min)?;
     Ok((0..points)
         .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
         .collect())
+}
+
+/// Every summit pressed at most [`APPROACH_MAX`] of its own approach units at `d_min`: the
+/// summit solver's domain (a deeper press was a failure at a NaN separation).
+fn check_depth(asp: &[Asperity], m: &Materials, d_min: f64) -> Result<(), RoughError> {
+    let mut floor = f64::NEG_INFINITY;
+    for a in asp {
+        let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
+            .map_err(|e| RoughError::Scene(e.to_string()))?;
+        floor = floor.max(a.height_m - APPROACH_MAX * c.approach_scale());
+    }
+    if d_min >= floor {
+        return Ok(());
+    }
+    Err(RoughError::Scene(format!(
+        "min_separation_m = {} m presses a summit more than {APPROACH_MAX:e} of its approach units (pi^2 w^2 R/K^2)^(1/3) deep, beyond what the summit solver takes: give min_separation_m of at least {} m",
+        short(d_min),
+        short(floor)
+    )))
 }
 
 /// Sums per separation: force, area, contact and non-contact counts, for approach and retract.
@@ -473,7 +493,7 @@ impl EnsembleSpec {
         check_points(self.points)?;
         match self.min_separation_m {
             Some(d) if !d.is_finite() => Err(bad(
-                "the smallest separation (m)",
+                "min_separation_m",
                 d,
                 "finite",
                 "give a finite separation, or none for three standard deviations below the mean height",

@@ -94,13 +94,7 @@ impl RoughMapSpec {
                 short(self.tolerance)
             ));
         }
-        if !(self.press_sigmas.is_finite() && self.press_sigmas.abs() <= 6.0) {
-            return bad(format!(
-                "press_sigmas {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -6..6",
-                short(self.press_sigmas)
-            ));
-        }
-        Ok(())
+        super::check_press_sigmas(self.press_sigmas).or_else(bad)
     }
 }
 

@@ -25,8 +25,20 @@ pub(crate) const Z_CUT: f64 = 12.0;
 pub(crate) const Z_FREE: f64 = 8.5;
 /// Relative error each quadrature piece must reach (its estimate).
 const QUAD_TOL: f64 = 1e-13;
-/// Most points of a separation sweep.
-pub const POINTS_MAX: usize = 100_000;
+/// Most points of a separation sweep, as for an explicit ensemble: a few thousand separations
+/// draw and tabulate any cycle, and each costs about 3 ms (dry) to 7 ms (wet) of CPU time, so
+/// this bound keeps a run within about a minute on two cores (100000 took minutes).
+pub const POINTS_MAX: usize = 10_000;
+/// The deepest press of the flat, in sigma (either way) about the mean summit plane: pressed 6
+/// sigma below it, all but 1e-9 of the summits have touched, so a deeper press changes the
+/// retract by less than that (a summit's retract depends on whether it touched, not on how
+/// deep); the rough map's quadrature keeps heights to 7 sigma. One range for `rough-pulloff`
+/// and `rough-map`.
+pub const PRESS_SIGMAS_MAX: f64 = 6.0;
+/// Largest separation of a cycle (approach units).
+pub const SEPARATION_MAX: f64 = 1e6;
+/// Largest sigma of a rough surface (approach units).
+pub const SIGMA_MAX: f64 = 1e4;
 
 /// Which branch a summit is on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -210,7 +222,7 @@ pub enum RoughError {
 
 /// The separations of a cycle, from `d_max` down to `d_min` (approach units), checked.
 pub(crate) fn separations(d_min: f64, d_max: f64, points: usize) -> Result<Vec<f64>, RoughError> {
-    if !d_min.is_finite() || d_min.abs() > 1e6 {
+    if !d_min.is_finite() || d_min.abs() > SEPARATION_MAX {
         return Err(domain(
             "the smallest separation",
             d_min,
@@ -219,7 +231,7 @@ pub(crate) fn separations(d_min: f64, d_max: f64, points: usize) -> Result<Vec<f
         )
         .into());
     }
-    if !(d_max.is_finite() && d_max > d_min && d_max <= 1e6) {
+    if !(d_max.is_finite() && d_max > d_min && d_max <= SEPARATION_MAX) {
         return Err(domain(
             "the largest separation",
             d_max,
@@ -232,14 +244,47 @@ pub(crate) fn separations(d_min: f64, d_max: f64, points: usize) -> Result<Vec<f
         return Err(domain(
             "the number of separations",
             points as f64,
-            "2..100000",
-            "give at least 2 points",
+            "2..10000",
+            "give 2..10000 points (more only cost time: a few thousand draw any cycle)",
         )
         .into());
     }
     Ok((0..points)
         .map(|i| d_max + (d_min - d_max) * i as f64 / (points - 1) as f64)
         .collect())
+}
+
+/// The default largest separation: `free`, where no summit feels the flat (the user gave
+/// none), checked against the sweep's bound and the smallest separation `d_min` with messages
+/// that say which of them is at fault.
+pub(crate) fn free_d_max(free: f64, d_min: f64) -> Result<f64, RoughError> {
+    if free > SEPARATION_MAX {
+        return Err(RoughError::Scene(format!(
+            "the summits feel the flat out to {} approach units (their force range, 2/(pi lambda) for a dry summit, plus {Z_FREE} sigma), beyond the largest separation a cycle takes ({SEPARATION_MAX:e}): give a larger lambda or a smaller sigma",
+            short(free)
+        )));
+    }
+    if d_min >= free {
+        return Err(RoughError::Scene(format!(
+            "min_separation = {} is beyond the summits' reach ({} approach units: no summit feels the flat there), so nothing would touch: give a smaller min_separation",
+            short(d_min),
+            short(free)
+        )));
+    }
+    Ok(free)
+}
+
+/// The press depth `press_sigmas` (in sigma below the mean summit plane) within
+/// +-[`PRESS_SIGMAS_MAX`].
+pub(crate) fn check_press_sigmas(press_sigmas: f64) -> Result<(), String> {
+    if press_sigmas.is_finite() && press_sigmas.abs() <= PRESS_SIGMAS_MAX {
+        return Ok(());
+    }
+    Err(format!(
+        "press_sigmas = {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -{m}..{m} (pressed {m} sigma, all but 1e-9 of the summits have touched: a deeper press changes nothing more)",
+        short(press_sigmas),
+        m = short(PRESS_SIGMAS_MAX)
+    ))
 }
 
 /// The mean state at every separation on the approach (down) and on the retract after `d_min`
@@ -288,7 +333,7 @@ impl Rough {
     /// A rough surface of summit parameter `lambda` and height spread `sigma` (> 0, at most 1e4
     /// approach units).
     pub fn new(lambda: f64, sigma: f64) -> Result<Rough, RoughError> {
-        if !(sigma > 0.0 && sigma <= 1e4) {
+        if !(sigma > 0.0 && sigma <= SIGMA_MAX) {
             return Err(domain(
                 "sigma (the summit heights' standard deviation)",
                 sigma,
@@ -614,7 +659,10 @@ impl Rough {
         d_max: Option<f64>,
         points: usize,
     ) -> Result<RoughCycle, RoughError> {
-        let d_max = d_max.unwrap_or_else(|| self.free_separation());
+        let d_max = match d_max {
+            Some(d) => d,
+            None => free_d_max(self.free_separation(), d_min)?,
+        };
         let seps = separations(d_min, d_max, points)?;
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
@@ -856,12 +904,7 @@ impl PulloffSweep {
         for &l in &self.lambdas {
             crate::physics::domain::check_lambda(l)?;
         }
-        if !(self.press_sigmas.is_finite() && self.press_sigmas.abs() <= 12.0) {
-            return bad(format!(
-                "press_sigmas = {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -12..12",
-                short(self.press_sigmas)
-            ));
-        }
+        check_press_sigmas(self.press_sigmas).or_else(bad)?;
         Ok(())
     }
 

@@ -243,30 +243,32 @@ impl RoughScene {
             Some(h) => h.meniscus(&c).map_err(scene_err)?,
             None => None,
         };
-        // The units: the solid's, or those of the total w with a meniscus.
-        let (unit, f, radius_unit, rough) = match &meniscus {
-            None => (
-                c.approach_scale(),
-                c.force_scale(),
-                c.radius_scale(),
-                WetRough::Dry(Rough::new(c.lambda(), sigma_m / c.approach_scale())?),
-            ),
-            Some(m) => {
-                let (rho, eta, u) = crate::scene::humidity::wet_ratios(&c, m).map_err(scene_err)?;
-                (
-                    u.approach,
-                    u.load,
-                    u.radius,
-                    WetRough::new(c.lambda(), rho, eta, sigma_m / u.approach)?,
-                )
-            }
+        let wet = match &meniscus {
+            Some(m) => Some(crate::scene::humidity::wet_ratios(&c, m).map_err(scene_err)?),
+            None => None,
         };
-        let sigma_n = sigma_m / unit;
+        // The units: the solid's, or those of the total w with a meniscus.
+        let (unit, f, radius_unit) = match &wet {
+            None => (c.approach_scale(), c.force_scale(), c.radius_scale()),
+            Some((_, _, u)) => (u.approach, u.load, u.radius),
+        };
+        let sigma_n = approach_units("sigma_m", sigma_m, unit, super::SIGMA_MAX)?;
         let d_min = match self.min_separation_m {
-            Some(d) if d.is_finite() => d / unit,
-            Some(d) => return Err(positive("min_separation_m", d).unwrap_err()),
+            Some(d) => approach_units("min_separation_m", d, unit, super::SEPARATION_MAX)?,
             None => -3.0 * sigma_n,
         };
+        let rough = match wet {
+            None => WetRough::Dry(Rough::new(c.lambda(), sigma_n)?),
+            Some((rho, eta, _)) => WetRough::new(c.lambda(), rho, eta, sigma_n)?,
+        };
+        let reach = rough.free_separation();
+        if d_min >= reach {
+            return Err(scene_err(format!(
+                "min_separation_m = {} m is beyond the summits' reach ({} m above the mean summit plane: no summit feels the flat there), so nothing would touch: give a smaller min_separation_m",
+                short(self.min_separation_m.unwrap_or(d_min * unit)),
+                short(reach * unit)
+            )));
+        }
         let cyc = rough.cycle(c.lambda(), d_min, None, points)?;
         let n = density * area;
         let a2 = radius_unit.powi(2);
@@ -370,6 +372,27 @@ fn merging(range_m: f64, radius_m: f64, density: f64, sigma_m: f64) -> Option<St
             short(spacing)
         )
     })
+}
+
+/// A scene's length `key` = `v` m in approach units (`unit` m), at most `max` of them in
+/// magnitude: the message is in the scene's key and metres, the value as given.
+fn approach_units(key: &str, v: f64, unit: f64, max: f64) -> Result<f64, RoughError> {
+    let n = v / unit;
+    if !v.is_finite() {
+        return Err(scene_err(format!(
+            "{key} = {v} is not a length: give a finite value in m"
+        )));
+    }
+    if n.abs() <= max {
+        return Ok(n);
+    }
+    Err(scene_err(format!(
+        "{key} = {} m is {} approach units ((pi^2 w^2 R/K^2)^(1/3) = {} m for this scene), beyond the {max:e} the rough model takes: give {key} of at most {} m in magnitude",
+        short(v),
+        short(n),
+        short(unit),
+        short(max * unit)
+    )))
 }
 
 fn scene_err(e: impl std::fmt::Display) -> RoughError {

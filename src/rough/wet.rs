@@ -764,7 +764,10 @@ impl WetRough {
             }
             WetRough::Wet { summit, sigma } => (summit, *sigma),
         };
-        let d_max = d_max.unwrap_or_else(|| self.free_separation());
+        let d_max = match d_max {
+            Some(d) => d,
+            None => super::free_d_max(self.free_separation(), d_min)?,
+        };
         let seps = separations(d_min, d_max, points)?;
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };

@@ -177,3 +177,17 @@ pub fn refusal(lambda: f64, control: Control) -> String {
         ),
     }
 }
+
+/// Why a contact radius is not solved for a lambda that only a limit answers (the limits
+/// answer a load or an approach; a state by its radius is the exact solver's alone).
+pub fn radius_refusal(lambda: f64) -> String {
+    let limit = match domain::method(lambda) {
+        Some(Method::DmtLimit) => "DMT",
+        _ => "JKR",
+    };
+    format!(
+        "a state by its contact radius is solved only for lambda in {}..{} (the exact solver); beyond it the {limit} limit answers a load or an approach, not a radius: give a load or an approach instead, or a lambda in that range",
+        domain::short(domain::LAMBDA_MIN),
+        domain::short(domain::LAMBDA_MAX)
+    )
+}

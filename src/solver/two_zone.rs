@@ -8,6 +8,7 @@
 use super::context::LambdaContext;
 use super::root::{bisect_sign, secant_bracketed};
 use super::Status;
+use crate::physics::domain::short;
 use crate::physics::md::LAMBDA_D;
 use crate::physics::two_zone::{gap, point, Shape, TwoZonePoint, Zones};
 use std::f64::consts::PI;
@@ -39,8 +40,9 @@ impl Zones {
             for (name, v) in [("stress number", lambda[i]), ("range", range[i])] {
                 if !v.is_finite() || v < 0.0 {
                     return Err(ZonesError(format!(
-                        "zone {}'s {name} = {v} must be a finite number >= 0",
-                        i + 1
+                        "zone {}'s {name} = {} must be a finite number >= 0",
+                        i + 1,
+                        short(v)
                     )));
                 }
             }
@@ -54,15 +56,15 @@ impl Zones {
         if (z.total_work() - 1.0).abs() > 1e-9 {
             return Err(ZonesError(format!(
                 "(pi/2)(lambda_1 h_1 + lambda_2 h_2) = {} must be 1 in the total-w units",
-                z.total_work()
+                short(z.total_work())
             )));
         }
         for i in 0..2 {
             if z.present(i) && !(LAMBDA_MIN..=LAMBDA_MAX).contains(&z.lambda[i]) {
                 return Err(ZonesError(format!(
-                    "zone {}'s stress number {} is outside {LAMBDA_MIN}..{LAMBDA_MAX}",
+                    "zone {}'s stress number {} is outside {LAMBDA_MIN:e}..{LAMBDA_MAX:e}",
                     i + 1,
-                    z.lambda[i]
+                    short(z.lambda[i])
                 )));
             }
         }
@@ -73,25 +75,67 @@ impl Zones {
     /// and the second zone's stress ratio `rho = s2/s1` and range ratio `eta = h2/h1`
     /// (docs/PHYSICS.md section 10). `rho = 0` or `eta = 0` is the solid alone.
     pub fn from_ratios(lambda_s: f64, rho: f64, eta: f64) -> Result<Zones, ZonesError> {
-        for (name, v) in [
-            ("lambda", lambda_s),
-            ("stress ratio", rho),
-            ("range ratio", eta),
-        ] {
+        check_ratios(rho, eta)?;
+        for (name, v) in [("lambda", lambda_s)] {
             if !v.is_finite() || v < 0.0 {
                 return Err(ZonesError(format!(
-                    "{name} = {v} must be a finite number >= 0"
+                    "{name} = {} must be a finite number >= 0",
+                    short(v)
                 )));
             }
         }
         if lambda_s <= 0.0 {
-            return Err(ZonesError(format!("lambda = {lambda_s} must be > 0")));
+            return Err(ZonesError(format!(
+                "lambda = {} must be > 0",
+                short(lambda_s)
+            )));
         }
         let ratio = 1.0 + rho * eta;
         let l1 = lambda_s / ratio.cbrt();
         let h1 = 2.0 / (PI * lambda_s * ratio.powf(2.0 / 3.0));
+        check_stress_numbers(lambda_s, rho, eta, l1)?;
         Zones::new([l1, rho * l1], [h1, eta * h1])
     }
+}
+
+/// The second zone's stress ratio and range ratio: finite and >= 0 (whatever lambda).
+pub fn check_ratios(rho: f64, eta: f64) -> Result<(), ZonesError> {
+    for (name, v) in [("stress ratio", rho), ("range ratio", eta)] {
+        if !v.is_finite() || v < 0.0 {
+            return Err(ZonesError(format!(
+                "{name} = {} must be a finite number >= 0",
+                short(v)
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The zones' stress numbers `lambda_1 = lambda_s (1 + rho eta)^(-1/3)` and `lambda_2 = rho
+/// lambda_1` in [`LAMBDA_MIN`]..[`LAMBDA_MAX`] (a zone of zero stress or range is absent), in
+/// the words of the ratios given: the two-zone solver's grid is built for that span.
+fn check_stress_numbers(lambda_s: f64, rho: f64, eta: f64, l1: f64) -> Result<(), ZonesError> {
+    let given = format!(
+        "lambda {}, stress_ratio {} (rho), range_ratio {} (eta)",
+        short(lambda_s),
+        short(rho),
+        short(eta)
+    );
+    let span = format!("{LAMBDA_MIN:e}..{LAMBDA_MAX:e}");
+    if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l1) {
+        return Err(ZonesError(format!(
+            "{given}: the solid zone's stress number lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a lambda that brings it inside, or no stress_ratio and range_ratio for the one-zone law, whose lambda may be 1e-26..1e26",
+            short(l1)
+        )));
+    }
+    let l2 = rho * l1;
+    if rho > 0.0 && eta > 0.0 && !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l2) {
+        return Err(ZonesError(format!(
+            "{given}: the second zone's stress number rho lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a stress_ratio that brings it inside, or stress_ratio 0 for no second zone",
+            short(l2)
+        )));
+    }
+    Ok(())
 }
 
 /// The scales of a dimensional two-zone problem: total w and the units of section 1 built on it.
@@ -118,7 +162,8 @@ pub fn dimensional_zones(
     for (name, v) in [("K", k), ("R", r)] {
         if !v.is_finite() || v <= 0.0 {
             return Err(ZonesError(format!(
-                "{name} = {v} must be a finite number > 0"
+                "{name} = {} must be a finite number > 0",
+                short(v)
             )));
         }
     }
@@ -127,8 +172,8 @@ pub fn dimensional_zones(
             return Err(ZonesError(format!(
                 "zone {}: stress {} and range {} must be finite numbers >= 0",
                 i + 1,
-                s[i],
-                h[i]
+                short(s[i]),
+                short(h[i])
             )));
         }
     }
