@@ -187,12 +187,15 @@ fn no_meniscus_above_90_degrees_leaves_the_fitted_w_and_a_strong_one_leaves_none
     assert_eq!(h["solid_work_of_adhesion_j_m2"], c["work_of_adhesion_j_m2"]);
     assert!(h["meniscus"].is_null());
     let note = h["note"].as_str().unwrap();
-    assert!(note.starts_with("no meniscus (the Kelvin radius 0.023 nm"), "{note}");
-    let warned = c["warnings"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .any(|w| w.as_str().unwrap().starts_with("humidity: the Kelvin radius 0.023 nm"));
+    assert!(
+        note.starts_with("no meniscus (the Kelvin radius 0.023 nm"),
+        "{note}"
+    );
+    let warned = c["warnings"].as_array().unwrap().iter().any(|w| {
+        w.as_str()
+            .unwrap()
+            .starts_with("humidity: the Kelvin radius 0.023 nm")
+    });
     assert!(warned, "{}", c["warnings"]);
     // Water wetting fully at 90% RH: its w = 0.144 J/m^2 is nearly three times the fit's.
     let c = fit(

@@ -660,7 +660,8 @@ fn infer_takes_the_meniscus_out_of_a_wet_pull_off() {
     );
     // A larger contact angle weakens the meniscus: that is the advice (as `fit` gives it).
     assert!(
-        got.verdict.contains("a larger contact angle or a lower humidity than given"),
+        got.verdict
+            .contains("a larger contact angle or a lower humidity than given"),
         "{}",
         got.verdict
     );
@@ -894,7 +895,11 @@ fn below_one_molecule_no_meniscus_is_counted_and_every_front_end_says_so() {
     assert!((rh_mol - 0.1855).abs() < 1e-3, "{rh_mol}");
     let dry = solve_scene(&preset("afm-si").unwrap()).unwrap();
     let mut s = preset("afm-si").unwrap();
-    for (rh, counted) in [(1e-10, false), (0.999 * rh_mol, false), (1.001 * rh_mol, true)] {
+    for (rh, counted) in [
+        (1e-10, false),
+        (0.999 * rh_mol, false),
+        (1.001 * rh_mol, true),
+    ] {
         s.humidity = Some(HumidityInput::water(rh, 20.0));
         let r = solve_scene(&s).unwrap();
         assert_eq!(r.meniscus.is_some(), counted, "RH {rh}");
@@ -949,7 +954,13 @@ fn below_one_molecule_no_meniscus_is_counted_and_every_front_end_says_so() {
     assert!((above - rh_mol).abs() < 1e-6, "{above}");
     let infer = |rh: &str| {
         let mut a = vec![
-            "infer", "--pulloff", "-28.8155e-9", "--radius", "20e-9", "--e-star", "91.1444e9",
+            "infer",
+            "--pulloff",
+            "-28.8155e-9",
+            "--radius",
+            "20e-9",
+            "--e-star",
+            "91.1444e9",
         ];
         if !rh.is_empty() {
             a.extend(["--relative-humidity", rh, "--contact-angle-deg", "20"]);
@@ -972,7 +983,13 @@ fn below_one_molecule_no_meniscus_is_counted_and_every_front_end_says_so() {
 /// `scene` does; a humidity beyond the solver's reach is refused naming the value given.
 #[test]
 fn flooding_warning_and_saturation_refusal_name_the_humidity() {
-    let o = tabor_cli(&["humidity", "--preset", "afm-si", "--contact-angle-deg", "20"]);
+    let o = tabor_cli(&[
+        "humidity",
+        "--preset",
+        "afm-si",
+        "--contact-angle-deg",
+        "20",
+    ]);
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success());
     // 2 r_K cos(theta) = 0.1 R at RH = 0.612 for R = 20 nm: the points 0.65..0.95.
@@ -984,7 +1001,9 @@ fn flooding_warning_and_saturation_refusal_name_the_humidity() {
     s.humidity = Some(HumidityInput::water(0.95, 20.0));
     let r = solve_scene(&s).unwrap();
     assert!(
-        r.meniscus_warnings[0].starts_with("the meniscus height 2 r_K cos(theta) = 1.916e-8 m at RH = 0.95 is 96% of R"),
+        r.meniscus_warnings[0].starts_with(
+            "the meniscus height 2 r_K cos(theta) = 1.916e-8 m at RH = 0.95 is 96% of R"
+        ),
         "{:?}",
         r.meniscus_warnings
     );
@@ -1006,8 +1025,9 @@ fn flooding_warning_and_saturation_refusal_name_the_humidity() {
     s.humidity = Some(h);
     let e = solve_scene(&s).unwrap_err().to_string();
     assert!(
-        e.starts_with("humidity (relative humidity 0.5, contact angle 20 deg, surface tension 1e30 N/m")
-            && e.contains("check the liquid's values"),
+        e.starts_with(
+            "humidity (relative humidity 0.5, contact angle 20 deg, surface tension 1e30 N/m"
+        ) && e.contains("check the liquid's values"),
         "{e}"
     );
 }
@@ -1018,17 +1038,31 @@ fn infer_bounds_w_as_fit_does() {
     let r = tabor::scene::infer(1.0, 20e-9, 91.1444e9, 0.3e-9).unwrap();
     assert!(!r.verdict.contains("Trust"), "{}", r.verdict);
     assert!(
-        r.verdict.starts_with("no w to trust: E* = 9.11444e10 Pa (plausible 10..1e12 Pa), w = ")
-            && r.verdict.contains("(plausible up to 10 J/m^2): outside physical sense"),
+        r.verdict
+            .starts_with("no w to trust: E* = 9.11444e10 Pa (plausible 10..1e12 Pa), w = ")
+            && r.verdict
+                .contains("(plausible up to 10 J/m^2): outside physical sense"),
         "{}",
         r.verdict
     );
     assert_eq!(r.warnings.len(), 1);
-    let o = tabor_cli(&["infer", "--pulloff", "1", "--radius", "20e-9", "--e-star", "91.1444e9"]);
+    let o = tabor_cli(&[
+        "infer",
+        "--pulloff",
+        "1",
+        "--radius",
+        "20e-9",
+        "--e-star",
+        "91.1444e9",
+    ]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("warning: E* = 9.11444e10 Pa"));
     // A plausible force has no warning.
     let r = tabor::scene::infer(-12.2e-9, 20e-9, 91.1444e9, 0.3e-9).unwrap();
-    assert!(r.warnings.is_empty() && r.verdict.contains("Trust"), "{}", r.verdict);
+    assert!(
+        r.warnings.is_empty() && r.verdict.contains("Trust"),
+        "{}",
+        r.verdict
+    );
 }
 
 /// A wet scene under a cantilever and its cycle name the w their kbar is built on: the total w
@@ -1054,8 +1088,15 @@ fn scene_and_cycle_label_the_w_of_their_kbar() {
     );
     assert!(r.control.ends_with(&label), "{} / {label}", r.control);
     let o = tabor_cli(&[
-        "cycle", "--scene", f.to_str().unwrap(), "--control", "spring", "--spring-n-m", "2",
-        "-o", dir.join("c.csv").to_str().unwrap(),
+        "cycle",
+        "--scene",
+        f.to_str().unwrap(),
+        "--control",
+        "spring",
+        "--spring-n-m",
+        "2",
+        "-o",
+        dir.join("c.csv").to_str().unwrap(),
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success() && err.contains(&label), "{err}");
@@ -1074,8 +1115,16 @@ fn scene_and_cycle_label_the_w_of_their_kbar() {
 #[test]
 fn wet_profile_prints_its_summary() {
     let o = tabor_cli(&[
-        "profile", "--scene", "examples/si_tip_40rh.json", "--load-n", "0", "-o",
-        std::env::temp_dir().join("tabor-wet-profile.csv").to_str().unwrap(),
+        "profile",
+        "--scene",
+        "examples/si_tip_40rh.json",
+        "--load-n",
+        "0",
+        "-o",
+        std::env::temp_dir()
+            .join("tabor-wet-profile.csv")
+            .to_str()
+            .unwrap(),
     ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");

@@ -23,9 +23,8 @@ fn interrupted_work_unwinds_at_its_checkpoints_and_finished_work_is_left_alone()
     assert_eq!(p.downcast_ref::<Interrupted>(), Some(&Interrupted));
     // The library's long loops stop instead of returning numbers: a rough cycle (its rayon
     // workers' unwind reaches the caller), a rough map, an adhesion map.
-    let p = interrupted(|| {
-        tabor::rough::Rough::new(1.0, 0.63).and_then(|r| r.cycle(-1.89, None, 100))
-    });
+    let p =
+        interrupted(|| tabor::rough::Rough::new(1.0, 0.63).and_then(|r| r.cycle(-1.89, None, 100)));
     assert!(p.downcast_ref::<Interrupted>().is_some());
     let spec = tabor::rough::map::RoughMapSpec {
         lambda_min: 0.1,

@@ -599,15 +599,24 @@ fn a_full_rough_map_json_streams_in_bounded_memory() {
     let o = Command::new("prlimit")
         .arg(format!("--as={}", 400 << 20))
         .arg(env!("CARGO_BIN_EXE_tabor"))
-        .args(["rough-map", "--nx", "1024", "--ny", "1024", "--check", "0", "--backend", "cpu"])
+        .args([
+            "rough-map",
+            "--nx",
+            "1024",
+            "--ny",
+            "1024",
+            "--check",
+            "0",
+            "--backend",
+            "cpu",
+        ])
         .args(["--json-full", "--json", json.to_str().unwrap()])
         .args(["--out", dir.path().join("rough.png").to_str().unwrap()])
         .stderr(Stdio::piped())
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let j: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     for key in ["pulloff", "relative_pulloff", "region", "jkr_error"] {
         assert_eq!(j[key].as_array().map(|a| a.len()), Some(1 << 20), "{key}");
     }

@@ -537,7 +537,9 @@ fn a_retract_that_ends_inside_the_force_range_is_warned() {
         assert!(full.warnings.is_empty(), "{:?}", full.warnings);
         let cut = w.cycle(lambda, d_min, Some(0.0), 100).unwrap();
         assert!(
-            cut.warnings.iter().any(|s| s.contains("inside the summits' force range")),
+            cut.warnings
+                .iter()
+                .any(|s| s.contains("inside the summits' force range")),
             "{:?}",
             cut.warnings
         );
@@ -577,7 +579,12 @@ fn explicit_ensembles_refuse_a_humid_scene_and_take_one_radius() {
     let s = |p: &std::path::Path| p.to_str().unwrap().to_string();
     for input in [
         vec!["--asperities".to_string(), s(&summits)],
-        vec!["--topography".to_string(), s(&topo), "--pixel-m".into(), "1e-8".into()],
+        vec![
+            "--topography".to_string(),
+            s(&topo),
+            "--pixel-m".into(),
+            "1e-8".into(),
+        ],
     ] {
         let mut args = vec!["rough".to_string(), "--scene".into(), s(&wet)];
         args.extend(input.iter().cloned());
@@ -585,7 +592,10 @@ fn explicit_ensembles_refuse_a_humid_scene_and_take_one_radius() {
         let o = tabor(&args);
         let e = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
-        assert!(e.contains("\"humidity\"") && e.trim().lines().count() == 1, "{e}");
+        assert!(
+            e.contains("\"humidity\"") && e.trim().lines().count() == 1,
+            "{e}"
+        );
         let mut args = vec!["rough".to_string(), "--scene".into(), s(&dry)];
         args.extend(input.iter().cloned());
         let args: Vec<&str> = args.iter().map(|a| a.as_str()).collect();
@@ -595,6 +605,12 @@ fn explicit_ensembles_refuse_a_humid_scene_and_take_one_radius() {
         let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         assert!(j["pulloff_force_n"].as_f64().unwrap() < 0.0, "{j}");
     }
-    let o = tabor(&["rough", "--preset", "mems-polysilicon", "--asperities", &s(&summits)]);
+    let o = tabor(&[
+        "rough",
+        "--preset",
+        "mems-polysilicon",
+        "--asperities",
+        &s(&summits),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

@@ -145,15 +145,28 @@ pub fn write_json(
         return Ok(());
     }
     // Reopen the document's closing brace and append the arrays.
-    let body = text.trim_end().strip_suffix('}').unwrap_or(&text).trim_end();
+    let body = text
+        .trim_end()
+        .strip_suffix('}')
+        .unwrap_or(&text)
+        .trim_end();
     out.write_all(body.as_bytes())?;
     let value = |x: f64| crate::io::json_num(x).to_string();
     let errors = crate::rough::map::MODEL_REGIONS.map(|r| format!("{}_error", r.name()));
     let mut fields: Vec<(&str, Box<dyn Fn(usize) -> String + '_>)> = vec![
         ("pulloff", Box::new(|i| value(m.pulloff[i]))),
-        ("relative_pulloff", Box::new(|i| value(m.relative_pulloff[i]))),
-        ("pulloff_separation", Box::new(|i| value(m.pulloff_separation[i]))),
-        ("region", Box::new(|i| format!("\"{}\"", m.regions[i].name()))),
+        (
+            "relative_pulloff",
+            Box::new(|i| value(m.relative_pulloff[i])),
+        ),
+        (
+            "pulloff_separation",
+            Box::new(|i| value(m.pulloff_separation[i])),
+        ),
+        (
+            "region",
+            Box::new(|i| format!("\"{}\"", m.regions[i].name())),
+        ),
     ];
     for (k, name) in errors.iter().enumerate() {
         fields.push((name, Box::new(move |i| value(m.model_error[i][k]))));
@@ -254,7 +267,8 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     }
     if let Some(o) = json_out.as_mut() {
         let shown = o.name().display().to_string();
-        write_json(o, &m, a.json_full, a.timings).with_context(|| format!("cannot write {shown}"))?;
+        write_json(o, &m, a.json_full, a.timings)
+            .with_context(|| format!("cannot write {shown}"))?;
     }
     if !npy.is_empty() {
         write_npy(&m, &mut npy)?;

@@ -100,7 +100,11 @@ pub(super) fn summarize(
             warn.push(format!("humidity: {}", fh.note));
         }
         // The limits of the meniscus model at the tip, as every front end reports them.
-        warn.extend(h.warnings(opt.radius).into_iter().map(|w| format!("humidity: {w}")));
+        warn.extend(
+            h.warnings(opt.radius)
+                .into_iter()
+                .map(|w| format!("humidity: {w}")),
+        );
     }
     out.status = FitStatus::Ok;
     out.message = "ok".into();

@@ -246,7 +246,10 @@ fn add_summit(
     for (k, &d) in seps.iter().enumerate() {
         let delta = (a.height_m - d) / unit;
         let approach = (!retract_only).then(|| (0, s.approach_branch(delta)));
-        for (leg, b) in approach.into_iter().chain([(4, s.retract_branch(delta, delta_max))]) {
+        for (leg, b) in approach
+            .into_iter()
+            .chain([(4, s.retract_branch(delta, delta_max))])
+        {
             let slot = &mut acc.v[k];
             match b {
                 SummitBranch::Free => {}
@@ -325,7 +328,10 @@ fn pulloff(
         if pts[i].1 < best.1 {
             best = pts[i];
         }
-        let (lo, hi) = (pts[i.saturating_sub(1)].0, pts[(i + 1).min(pts.len() - 1)].0);
+        let (lo, hi) = (
+            pts[i.saturating_sub(1)].0,
+            pts[(i + 1).min(pts.len() - 1)].0,
+        );
         if !(hi - lo > 1e-13 * span) {
             break;
         }

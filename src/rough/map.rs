@@ -1232,7 +1232,10 @@ fn point(
         .collect();
     let md = retract(quad, &ms.list[4], sigma, d_min, &seps, true);
     // The largest |load| of MD's curve, its pull-off included (a sample may miss a narrow dip).
-    let scale = md.curve.iter().fold(md.pulloff.abs(), |m, v| m.max(v.abs()));
+    let scale = md
+        .curve
+        .iter()
+        .fold(md.pulloff.abs(), |m, v| m.max(v.abs()));
     let scale = scale.max(f64::MIN_POSITIVE);
     let order = sample_order(&md.curve);
     let mut errs = [f64::NAN; 4];

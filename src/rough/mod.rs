@@ -312,7 +312,13 @@ pub(crate) fn separation_in_range(name: &'static str, d: f64) -> Result<(), Roug
     if d.is_finite() && d.abs() <= 1e6 {
         return Ok(());
     }
-    Err(domain(name, d, "-1e6..1e6 approach units", "give a finite separation").into())
+    Err(domain(
+        name,
+        d,
+        "-1e6..1e6 approach units",
+        "give a finite separation",
+    )
+    .into())
 }
 
 pub(crate) fn domain(
@@ -797,11 +803,13 @@ impl Rough {
             return Err(RoughError::Failed(d_min, sm.lambda));
         }
         // Each summit's loop encloses a non-negative area: a negative sum is rounding.
-        Ok(if total < 0.0 && total >= -1e-12 * sm.ctx.load_pulloff.load.abs() * s {
-            0.0
-        } else {
-            total
-        })
+        Ok(
+            if total < 0.0 && total >= -1e-12 * sm.ctx.load_pulloff.load.abs() * s {
+                0.0
+            } else {
+                total
+            },
+        )
     }
 }
 

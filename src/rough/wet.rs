@@ -500,10 +500,8 @@ impl WetSummit {
             (!failed.get()).then_some(v)
         };
         use rayon::prelude::*;
-        let parts: Option<Vec<(f64, f64)>> = cuts
-            .par_windows(2)
-            .map(|w| piece(w[0], w[1]))
-            .collect();
+        let parts: Option<Vec<(f64, f64)>> =
+            cuts.par_windows(2).map(|w| piece(w[0], w[1])).collect();
         let Some(parts) = parts else {
             return Err(RoughError::Failed(d_min, self.ctx.zones.lambda[0]));
         };

@@ -365,13 +365,14 @@ impl HumidityInput {
         let shown = 1.0 - (gap / step).ceil() * step;
         // Name the humidity where a lower one gives a meniscus the solver takes, else the liquid.
         let lower_helps = shown > self.molecular_rh();
-        Err(ParamError::Conflict(if liquid < LAMBDA_MIN && lower_helps && inside(solid) {
-            format!(
+        Err(ParamError::Conflict(
+            if liquid < LAMBDA_MIN && lower_helps && inside(solid) {
+                format!(
                 "humidity.relative_humidity = {:?}: {what}: give a relative humidity below {shown:.digits$} (the meniscus model fails already where its height nears a tenth of R)",
                 self.relative_humidity,
             )
-        } else {
-            format!(
+            } else {
+                format!(
                 "humidity (relative humidity {:?}, contact angle {} deg, surface tension {} N/m, molar volume {} m^3/mol, temperature {} K): {what}: check the liquid's values and their units",
                 self.relative_humidity,
                 short(self.contact_angle_deg),
@@ -379,7 +380,8 @@ impl HumidityInput {
                 short(self.molar_volume()),
                 short(self.temperature())
             )
-        }))
+            },
+        ))
     }
 }
 

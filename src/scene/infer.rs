@@ -230,7 +230,8 @@ pub fn infer_wet(
         );
         (ok.then_some(w), ok.then_some(lam), v)
     };
-    out.warnings.extend(w.and_then(|w| implausible_w(w, e_star)));
+    out.warnings
+        .extend(w.and_then(|w| implausible_w(w, e_star)));
     Ok(WetInference {
         solid_work_of_adhesion_j_m2: w,
         solid_lambda: lam,
