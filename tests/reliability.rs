@@ -1080,3 +1080,87 @@ fn rough_scene_and_ensemble_refusals_name_the_key_and_the_value_given() {
         "--min-separation-m = 1 is outside",
     );
 }
+
+#[test]
+fn an_ensemble_presses_to_its_scenes_own_min_separation() {
+    // `tabor rough --scene S --asperities A` used to ignore S's `min_separation_m` (and press to
+    // three standard deviations below the mean height). The key is measured from the mean
+    // summit height, as for a Gaussian scene; `--min-separation-m` (from the heights' datum)
+    // overrides it.
+    let dir = tempfile::tempdir().unwrap();
+    let asp = dir.path().join("asp.csv");
+    // Mean height 1 nm.
+    std::fs::write(&asp, "height_m,radius_m\n0,5e-7\n1e-9,6e-7\n2e-9,4e-7\n").unwrap();
+    let asp = asp.to_str().unwrap();
+    let scene = |extra: &str| {
+        let p = dir.path().join(format!("scene{}.json", extra.len()));
+        std::fs::write(
+            &p,
+            format!(
+                r#"{{"e_star_pa": 87.2e9, "work_of_adhesion_j_m2": 0.1, "z0_m": 3e-10,
+                "summit_radius_m": 5e-7, "summit_density_m2": 1e12, "sigma_m": 1e-9,
+                "nominal_area_m2": 1e-8{extra}}}"#
+            ),
+        )
+        .unwrap();
+        p.to_str().unwrap().to_string()
+    };
+    let cycle = |args: &[&str]| {
+        let o = run(args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        stdout(&o)
+    };
+    let keyed = scene(r#", "min_separation_m": -0.5e-9"#);
+    let plain = scene("");
+    let with_key = cycle(&[
+        "rough",
+        "--scene",
+        &keyed,
+        "--asperities",
+        asp,
+        "--points",
+        "20",
+    ]);
+    // 1 nm (the mean) - 0.5 nm.
+    let by_flag = cycle(&[
+        "rough",
+        "--scene",
+        &plain,
+        "--asperities",
+        asp,
+        "--points",
+        "20",
+        "--min-separation-m",
+        "0.5e-9",
+    ]);
+    let default = cycle(&[
+        "rough",
+        "--scene",
+        &plain,
+        "--asperities",
+        asp,
+        "--points",
+        "20",
+    ]);
+    assert_eq!(with_key, by_flag);
+    assert_ne!(with_key, default);
+    // The flag overrides the key.
+    let overridden = cycle(&[
+        "rough",
+        "--scene",
+        &keyed,
+        "--asperities",
+        asp,
+        "--points",
+        "20",
+        "--min-separation-m",
+        "0.5e-9",
+    ]);
+    assert_eq!(overridden, by_flag);
+    // A key beyond the solver's depth is refused naming the key, the value given and the mean.
+    let deep = scene(r#", "min_separation_m": -1"#);
+    refused(
+        &["rough", "--scene", &deep, "--asperities", asp],
+        "(the scene's min_separation_m = -1 m, measured from the mean summit height 1e-9 m)",
+    );
+}

@@ -635,11 +635,13 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
             SummitsArg::Exact => SummitSolver::Exact,
         },
     };
-    let flags = |e: crate::rough::RoughError| {
-        anyhow::anyhow!(super::with_flags(
+    // The flag's name only where the flag was given (else the scene's key is meant).
+    let flags = |e: crate::rough::RoughError| match a.min_separation_m {
+        Some(_) => anyhow::anyhow!(super::with_flags(
             &e.to_string(),
             &[("min_separation_m", "--min-separation-m")]
-        ))
+        )),
+        None => anyhow::anyhow!(e.to_string()),
     };
     spec.validate(sc).map_err(flags)?;
     let engine = match spec.solver {

@@ -452,8 +452,10 @@ fn dry_scene(scene: &super::scene::RoughScene) -> Result<(), RoughError> {
 }
 
 /// An ensemble's cycle with a rough scene's materials (its summit radius, density, sigma and
-/// nominal area are not used: the summits are given). The smallest separation defaults to the
-/// mean summit height less three standard deviations, as for a Gaussian scene.
+/// nominal area are not used: the summits are given). The smallest separation is
+/// `min_separation_m` (from the heights' reference plane) where given, else the scene's
+/// `min_separation_m` from the mean summit height (as for a Gaussian scene), else the mean
+/// summit height less three standard deviations.
 pub fn scene_cycle(
     scene: &super::scene::RoughScene,
     asp: &[Asperity],
@@ -473,7 +475,23 @@ pub fn scene_cycle(
     let n = asp.len() as f64;
     let mean = asp.iter().map(|s| s.height_m).sum::<f64>() / n;
     let sd = (asp.iter().map(|s| (s.height_m - mean).powi(2)).sum::<f64>() / n).sqrt();
-    let d_min = min_separation_m.unwrap_or(mean - 3.0 * sd);
+    // The scene's own key is measured from the mean summit plane, as for a Gaussian scene; an
+    // explicit separation (from the heights' reference plane) overrides it.
+    let d_min = match (min_separation_m, scene.min_separation_m) {
+        (Some(d), _) => d,
+        (None, Some(from_mean)) => {
+            return cycle_with(asp, &m, mean + from_mean, None, points, solver, engine).map_err(
+                |e| {
+                    RoughError::Scene(format!(
+                        "{e} (the scene's min_separation_m = {} m, measured from the mean summit height {} m)",
+                        short(from_mean),
+                        short(mean)
+                    ))
+                },
+            )
+        }
+        (None, None) => mean - 3.0 * sd,
+    };
     cycle_with(asp, &m, d_min, None, points, solver, engine)
 }
 
@@ -482,8 +500,9 @@ pub fn scene_cycle(
 /// only parse them.
 #[derive(Clone, Copy, Debug)]
 pub struct EnsembleSpec {
-    /// The smallest separation (m from the heights' reference plane); None: the mean summit
-    /// height less three standard deviations.
+    /// The smallest separation (m from the heights' reference plane); None: the scene's
+    /// `min_separation_m` from the mean summit height, or without one the mean summit height
+    /// less three standard deviations.
     pub min_separation_m: Option<f64>,
     /// Separations each way.
     pub points: usize,
