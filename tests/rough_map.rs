@@ -134,6 +134,11 @@ fn fold_stretch_table_is_within_its_estimate() {
 /// Fuller and Tabor's JKR summits, computed here by bisection on JKR's closed forms and a
 /// composite Simpson quadrature in the height, split at the jump-out.
 fn jkr_rough(sigma: f64, d_min: f64, d: f64) -> f64 {
+    jkr_rough_n(sigma, d_min, d, 4000)
+}
+
+/// [`jkr_rough`] with `n` Simpson intervals.
+fn jkr_rough_n(sigma: f64, d_min: f64, d: f64, n: usize) -> f64 {
     let a_out = 6f64.powf(-1.0 / 3.0);
     let d_out = tabor::physics::closed::jkr_approach(a_out);
     let load = |delta: f64| {
@@ -155,7 +160,6 @@ fn jkr_rough(sigma: f64, d_min: f64, d: f64) -> f64 {
         return 0.0;
     }
     // t = sqrt(z - lo) takes out the fold's square root.
-    let n = 4000;
     let h = (hi - lo).sqrt() / n as f64;
     let f = |t: f64| {
         let z = lo + t * t;
@@ -209,6 +213,50 @@ fn jkr_side_is_fuller_and_tabor() {
         );
         assert!(m.model_error[i][3] <= 0.05 || m.regions[i] == Region::Hertz);
     }
+}
+
+/// At small sigma the rough retract rises steeply within a few sigma of each model's jump-out,
+/// a stretch uniform samples alone hit or missed as lambda moved their grid: JKR was accepted at
+/// isolated points inside the MD region (a border drawn as one-pixel spikes, up to five region
+/// changes along one lambda column). Every point the map gives to JKR must pass a dense check of
+/// the whole retract curve (the MD summits by `tabor rough`'s adaptive quadrature, Fuller and
+/// Tabor's JKR summits computed here), and each column changes region at most once.
+#[test]
+fn small_sigma_mdjkr_border_is_a_curve() {
+    let (nx, ny) = (8, 12);
+    let m = compute(&spec((3.0, 6.0, nx), (0.01, 0.3, ny)), 0).unwrap();
+    let d_out_jkr = tabor::physics::closed::jkr_approach(6f64.powf(-1.0 / 3.0));
+    let mut jkr_points = 0;
+    for ix in 0..nx {
+        let column: Vec<Region> = (0..ny).map(|iy| m.regions[iy * nx + ix]).collect();
+        let changes = column.windows(2).filter(|w| w[0] != w[1]).count();
+        assert!(changes <= 1, "lambda {}: {column:?}", m.lambdas[ix]);
+        for iy in 0..ny {
+            if column[iy] != Region::Jkr {
+                continue;
+            }
+            jkr_points += 1;
+            let (lambda, sigma) = (m.lambdas[ix], m.sigmas[iy]);
+            let r = Rough::new(lambda, sigma).unwrap();
+            let d_min = -3.0 * sigma;
+            let md_out = Summit::new(lambda).unwrap().delta_out;
+            let d_hi = (-d_out_jkr).max(-md_out) + 6.0 * sigma;
+            let (mut worst, mut scale) = (0.0f64, 0.0f64);
+            for k in 0..=300 {
+                let d = d_min + (d_hi - d_min) * k as f64 / 300.0;
+                let md = r.mean(Leg::Retract { d_min }, d).unwrap().load;
+                let jkr = jkr_rough_n(sigma, d_min, d, 400);
+                worst = worst.max((md - jkr).abs());
+                scale = scale.max(md.abs());
+            }
+            assert!(
+                worst <= 1.02 * 0.05 * scale,
+                "lambda {lambda}, sigma {sigma}: JKR on the map, but its retract differs by {} of the MD curve's largest load",
+                worst / scale
+            );
+        }
+    }
+    assert!(jkr_points > 0 && jkr_points < nx * ny, "{:?}", m.regions);
 }
 
 /// DMT summits (Maugis 1996): delta^(3/2) - 2 in contact, the rigid sphere's Dugdale attraction

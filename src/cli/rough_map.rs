@@ -96,7 +96,7 @@ impl RoughMapArgs {
 }
 
 /// How a region is decided, for the JSON and the figure.
-pub const REGION_RULE: &str = "each point takes the first of Hertz (no adhesion), Bradley (rigid summits: Dugdale attraction -2(1 + delta/h0) at a gap, -2 in contact), DMT (delta^(3/2) - 2 in contact, the same attraction at a gap), JKR (Fuller and Tabor: in at delta = 0, out at JKR's rigid-grip jump-out) whose rough pull-off differs from the exact MD summits' by at most the tolerance times the smooth summit's pull-off, and whose retract curve (at 20 separations from the smallest to where the summits are free, and at 24 from a sigma before the first pull-off to six after the second) differs by at most the tolerance times the MD curve's largest |load| (its pull-off included); else MD";
+pub const REGION_RULE: &str = "each point takes the first of Hertz (no adhesion), Bradley (rigid summits: Dugdale attraction -2(1 + delta/h0) at a gap, -2 in contact), DMT (delta^(3/2) - 2 in contact, the same attraction at a gap), JKR (Fuller and Tabor: in at delta = 0, out at JKR's rigid-grip jump-out) whose rough pull-off differs from the exact MD summits' by at most the tolerance times the smooth summit's pull-off, and whose retract curve (at 20 separations from the smallest to where the summits are free, and, where those are more than half a sigma apart, every half sigma within 4 sigma of where either model's touched summits jump out, d = -delta_out) differs by at most the tolerance times the MD curve's largest |load| (its pull-off included); else MD";
 
 /// The map's metadata as JSON (everything but the per-point arrays).
 pub fn json(m: &RoughMap, timings: bool) -> serde_json::Value {

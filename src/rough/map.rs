@@ -30,8 +30,9 @@ const GL_N: usize = 20;
 /// Samples of each retract curve (the curves are compared there; the pull-off is refined from
 /// the smallest).
 pub const CURVE_SAMPLES: usize = 20;
-/// Samples of both curves where they rise from their pull-offs (see `point`).
-const RISE_SAMPLES: usize = 24;
+/// Half-width, in sigma, of the window sampled around each jump-out (see `jump_windows`): the
+/// Gaussian's weight beyond it is 3e-5 of its peak.
+const JUMP_WINDOW: f64 = 4.0;
 /// Interpolation error the table aims at; intervals next to the fold that miss it (near
 /// lambda_D the branch turns within a tiny range of approaches) are solved exactly instead.
 const TABLE_TARGET: f64 = 1e-6;
@@ -1213,6 +1214,31 @@ pub fn compute_with(
     Ok(m)
 }
 
+/// Separations, half a sigma apart, within `JUMP_WINDOW` sigma of where either model's
+/// touched summits jump out (a contact branch ending at `delta_lo`: the summits at height
+/// `d + delta_lo` leave it, so the load steps there, smoothed by the Gaussian over a few sigma).
+/// None where the uniform samples are already that dense.
+fn jump_windows<'m>(
+    md: &'m Model,
+    m: &'m Model,
+    sigma: f64,
+    (d_min, d_max): (f64, f64),
+    seps: &[f64],
+) -> impl Iterator<Item = f64> + 'm {
+    let spacing = seps.get(1).map_or(0.0, |s1| s1 - seps[0]);
+    let dense = spacing <= 0.5 * sigma;
+    let steps = (2.0 * JUMP_WINDOW) as i32;
+    [md, m]
+        .into_iter()
+        .flat_map(|model| model.touched.iter())
+        .filter(move |(lo, _, law)| !dense && lo.is_finite() && matches!(law, Law::Table(..)))
+        .flat_map(move |&(lo, _, _)| {
+            (-steps..=steps)
+                .map(move |i| -lo + 0.5 * sigma * f64::from(i))
+                .filter(move |&d| d_min <= d && d <= d_max)
+        })
+}
+
 /// One point of the map: the exact summits' pull-off and its separation, the region (the first
 /// simpler model within the tolerance, else MD) and each model's error (NaN after the adequate
 /// one; a lower bound for a rejected model).
@@ -1263,14 +1289,12 @@ fn point(
         // needed).
         let r = refined(quad, m, sigma, d_min, &seps, curve, k > 0);
         let pull_err = (r.pulloff - md.pulloff).abs() / smooth.abs();
-        // The curves also where they rise from their pull-offs: at small sigma both rise
-        // steeply within a few sigma of their jump-outs, a window the uniform samples hit or
-        // miss as lambda varies (which drew the MD/JKR border as one-pixel spikes). Sampled at
-        // a third of sigma there, the curves (smooth on the scale sigma) show their difference.
-        let lo = (md.separation.min(r.separation) - sigma).max(d_min);
-        let hi = (md.separation.max(r.separation) + 6.0 * sigma).min(d_max);
-        let across = (0..RISE_SAMPLES)
-            .map(|k| lo + (hi - lo) * k as f64 / (RISE_SAMPLES - 1) as f64)
+        // The curves also where they rise steeply: at small sigma a summit model's retract
+        // rises within a few sigma of its summits' jump-out (`d = -delta_out`, away from the
+        // pull-off), a stretch the uniform samples hit or miss as lambda moves their grid
+        // (which drew the MD/JKR border as one-pixel spikes). There both curves are sampled at
+        // half a sigma, on which scale they are smooth.
+        let across = jump_windows(&ms.list[4], m, sigma, (d_min, d_max), &seps)
             .map(|d| {
                 (quad.retract(m, sigma, d_min, d) - quad.retract(&ms.list[4], sigma, d_min, d))
                     .abs()
