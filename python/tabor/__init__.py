@@ -225,7 +225,7 @@ def _status(codes, shape):
 def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precision="f32",
           check=1000, adapter=None):
     """Maugis-Dugdale states, broadcast over ``lam`` and exactly one of ``load``,
-    ``approach`` or ``radius``.
+    ``approach`` or ``radius`` (``tabor solve``).
 
     Units (Johnson & Greenwood 1997, K = 4/3 E*): load Pbar = P / (pi w R), approach
     Dbar = delta (K^2 / (pi^2 w^2 R))^(1/3), contact radius A = a (K / (pi w R^2))^(1/3),
@@ -238,14 +238,16 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     Parameters
     ----------
     lam : array_like
-        Maugis parameter lambda (1e-26 .. 1e26; the limits beyond, see above).
+        Maugis parameter lambda (dimensionless; 1e-26 .. 1e26, the limits beyond, see above).
     load : array_like, optional
-        Normalised load Pbar: the state on the stable branch under load control.
+        Normalised load Pbar (in pi w R, tensile negative): the state on the stable branch
+        under load control.
     approach : array_like, optional
-        Normalised approach Dbar: the state on the stable branch under displacement control.
+        Normalised approach Dbar (in (pi^2 w^2 R / K^2)^(1/3)): the state on the stable branch
+        under displacement control.
     radius : array_like, optional
-        Contact radius A: the curve point there (stable or not); adds ``load_stable`` and
-        ``displacement_stable``.
+        Contact radius A (in (pi w R^2 / K)^(1/3)): the curve point there (stable or not); adds
+        ``load_stable`` and ``displacement_stable``.
     backend : {"cpu", "gpu", "auto"}
         ``cpu``: the exact f64 solver. ``gpu``: the f32 WGSL kernels (error if no adapter);
         ``auto``: a GPU if there is one. Radius control always runs on the CPU.
@@ -260,15 +262,18 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     Returns
     -------
     Result
-        float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1``, a string array
-        ``status``, an object array ``message`` (why, where ``status`` is not ``ok``; ''
-        elsewhere) and a string array ``method`` ("md", "dmt_limit", "jkr_limit", or '' where
-        lambda has none), all of the broadcast shape; NaN only where ``status`` is not ``ok``.
+        float64 arrays ``A``, ``load``, ``approach``, ``m_minus_1`` (c/a - 1), a string array
+        ``status`` (``ok``, ``no_contact``, ``not_converged``, ``invalid_input``), an object
+        array ``message`` (why, where ``status`` is not ``ok``; '' elsewhere) and a string array
+        ``method`` ("md", "dmt_limit", "jkr_limit", or '' where lambda has none), all of the
+        broadcast shape; NaN only where ``status`` is not ``ok``. ``metadata`` holds the
+        backend, precision and a GPU run's cross-check.
 
     Raises
     ------
     ValueError
-        a scalar ``lam`` or value outside the domain (the whole input is bad).
+        a scalar ``lam`` or value outside the domain (the whole input is bad), or not exactly
+        one of ``load``, ``approach``, ``radius``.
     TypeError
         complex, date, string or masked-array input.
     KeyboardInterrupt
@@ -276,8 +281,14 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
 
     Examples
     --------
+    >>> import tabor
     >>> r = tabor.solve(1.0, load=[0.5, -1.7])
-    >>> r["A"], r["status"]
+    >>> r["A"].round(6).tolist()
+    [1.72894, nan]
+    >>> r["status"].tolist()
+    ['ok', 'no_contact']
+    >>> r.metadata["backend"], r.metadata["precision"]
+    ('cpu', 'f64')
     """
     given = [k for k, v in (("load", load), ("approach", approach), ("radius", radius))
              if v is not None]
@@ -318,16 +329,40 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
 def pulloff(lam, stress_ratio=None, range_ratio=None):
     """Pull-off (jump-out) under load and displacement control, as ``tabor pulloff``.
 
-    Returns a Result of arrays of the shape of ``lam``: ``load_control_load`` (Pbar_c),
-    ``load_control_A``, ``load_control_approach``, ``displacement_control_load``,
-    ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero radius),
-    ``displacement_control_approach``, ``zero_radius_end_load``, ``zero_radius_end_approach``.
-    Raises ValueError for a lambda outside 1e-26 .. 1e26.
+    Parameters
+    ----------
+    lam : array_like
+        Maugis parameter lambda (1e-26 .. 1e26). With ``stress_ratio`` and ``range_ratio``, the
+        solid's own lambda, one number.
+    stress_ratio, range_ratio : float, optional
+        A second Dugdale zone, such as a water meniscus: its stress and range relative to the
+        solid's (both or neither; docs/PHYSICS.md section 10).
 
-    With ``stress_ratio`` and ``range_ratio`` (a second Dugdale zone, such as a water meniscus:
-    its stress and range relative to the solid's; docs/PHYSICS.md section 10) ``lam`` is the
-    solid's Maugis parameter, one number, and the result is a dict of the two pull-offs'
-    ``*_load``, ``*_A`` and ``*_approach`` in units built on the total work of adhesion.
+    Returns
+    -------
+    Result or dict
+        Arrays of the shape of ``lam``, normalised (loads in pi w R): ``load_control_load``
+        (Pbar_c), ``load_control_A``, ``load_control_approach``, ``displacement_control_load``,
+        ``displacement_control_A`` (0 for lambda <= LAMBDA_D: the contact is lost at zero
+        radius), ``displacement_control_approach``, ``zero_radius_end_load``,
+        ``zero_radius_end_approach``. With two zones, a dict of the two pull-offs' ``*_load``,
+        ``*_A`` and ``*_approach`` in units built on the total work of adhesion.
+
+    Raises
+    ------
+    ValueError
+        a lambda outside 1e-26 .. 1e26, or one ratio without the other.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> p = tabor.pulloff([0.1, 1.0, 10.0])
+    >>> p["load_control_load"].round(6).tolist()
+    [-1.950595, -1.600735, -1.501625]
+    >>> p["displacement_control_A"].round(6).tolist()
+    [0.0, 0.084681, 0.544932]
+    >>> round(tabor.pulloff(1.0, stress_ratio=0.5, range_ratio=3.0)["load_control_load"], 6)
+    -1.617368
     """
     if _tabor.two_zone_ratios(_optional(stress_ratio, "stress_ratio"),
                               _optional(range_ratio, "range_ratio")) is not None:
@@ -347,31 +382,145 @@ def _closed(model, load=None, A=None):
 
 
 def hertz(load=None, A=None):
-    """Hertz: A = Pbar^(1/3) from ``load`` (NaN for Pbar < 0), or Pbar = A^3 from ``A``."""
+    """Hertz: A = Pbar^(1/3) from ``load``, or Pbar = A^3 from ``A`` (normalised units).
+
+    Parameters
+    ----------
+    load : array_like, optional
+        Normalised load Pbar (in pi w R); gives A (NaN for Pbar < 0).
+    A : array_like, optional
+        Normalised contact radius; gives Pbar. Exactly one of ``load`` and ``A``.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, of the input's shape.
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``load`` and ``A``.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> float(tabor.hertz(load=8.0)), float(tabor.hertz(A=2.0))
+    (2.0, 8.0)
+    """
     return _closed("hertz", load, A)
 
 
 def dmt(load=None, A=None):
-    """DMT: A = (Pbar + 2)^(1/3) from ``load`` (NaN below -2), or Pbar = A^3 - 2 from ``A``."""
+    """DMT: A = (Pbar + 2)^(1/3) from ``load``, or Pbar = A^3 - 2 from ``A`` (normalised units).
+
+    Parameters
+    ----------
+    load : array_like, optional
+        Normalised load Pbar (in pi w R); gives A (NaN below the pull-off -2).
+    A : array_like, optional
+        Normalised contact radius; gives Pbar. Exactly one of ``load`` and ``A``.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, of the input's shape.
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``load`` and ``A``.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> float(tabor.dmt(load=6.0)), float(tabor.dmt(A=1.0))
+    (2.0, -1.0)
+    """
     return _closed("dmt", load, A)
 
 
 def jkr(load=None, A=None):
-    """JKR: A^3 = Pbar + 3 + sqrt(9 + 6 Pbar) from ``load`` (NaN below -3/2), or
-    Pbar = A^3 - sqrt(6 A^3) from ``A``."""
+    """JKR: A^3 = Pbar + 3 + sqrt(9 + 6 Pbar) from ``load``, or Pbar = A^3 - sqrt(6 A^3) from
+    ``A`` (normalised units).
+
+    Parameters
+    ----------
+    load : array_like, optional
+        Normalised load Pbar (in pi w R); gives A (NaN below the pull-off -3/2).
+    A : array_like, optional
+        Normalised contact radius; gives Pbar. Exactly one of ``load`` and ``A``.
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, of the input's shape.
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``load`` and ``A``.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> round(float(tabor.jkr(load=-1.5)), 6), round(float(tabor.jkr(A=1.0)), 6)
+    (1.144714, -1.44949)
+    """
     return _closed("jkr", load, A)
 
 
 def bradley():
-    """Bradley (rigid spheres): the pull-off load -2 (no deformation, no contact radius)."""
+    """Bradley (rigid spheres): the pull-off load -2 (no deformation, no contact radius).
+
+    Returns
+    -------
+    float
+        The normalised pull-off load, -2 (in pi w R).
+
+    Examples
+    --------
+    >>> import tabor
+    >>> tabor.bradley()
+    -2.0
+    """
     return -2.0
 
 
 def curve(lam, a_max=4.0, points=200):
-    """The whole MD curve of one lambda, stable and unstable parts, as ``tabor curve``: A
-    uniform from ``a_max`` down to 0, then the A = 0 end. Returns a Result of arrays ``A``,
-    ``load``, ``approach``, ``m_minus_1`` (inf at the end), ``load_stable``,
-    ``displacement_stable``."""
+    """The whole MD curve of one lambda, stable and unstable parts, as ``tabor curve``.
+
+    Parameters
+    ----------
+    lam : float
+        Maugis parameter lambda (1e-26 .. 1e26).
+    a_max : float
+        The largest normalised contact radius; A runs uniformly from it down to 0.
+    points : int
+        Number of points, at most 1,000,000.
+
+    Returns
+    -------
+    Result
+        Arrays ``A``, ``load`` (Pbar), ``approach`` (Dbar), ``m_minus_1`` (inf at the A = 0
+        end), ``load_stable`` (dPbar/dA > 0) and ``displacement_stable`` (dDbar/dA > 0);
+        ``metadata["lambda"]``.
+
+    Raises
+    ------
+    ValueError
+        a lambda outside the domain, a bad ``a_max`` or ``points``.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> c = tabor.curve(1.0, a_max=4.0, points=5)
+    >>> c["A"].tolist()
+    [4.0, 3.0, 2.0, 1.0, 0.0]
+    >>> c["load"].round(4).tolist()
+    [50.7884, 17.8608, 2.4562, -1.5796, -0.8683]
+    >>> c["load_stable"].tolist()
+    [True, True, True, True, False]
+    """
     c = _tabor.curve(_real(lam, "lam"), _real(a_max, "a_max"), int(points))
     pts = c["points"]
     out = {k: np.array([p[k] if p[k] is not None else np.inf for p in pts], dtype=float)
@@ -382,12 +531,36 @@ def curve(lam, a_max=4.0, points=200):
 
 
 class AdhesionMap:
-    """An adhesion map (Johnson & Greenwood 1997), as ``tabor map`` computes it.
+    """An adhesion map (Johnson & Greenwood 1997), as ``tabor map`` computes it; made by
+    :func:`adhesion_map`.
 
-    Attributes: ``lam`` (nx), ``load_axis`` (ny: Pbar, or Pbar - Pbar_c for
-    ``load_axis="above-pulloff"``), ``pulloff`` (nx), and (ny, nx) arrays ``A``, ``load``,
-    ``approach``, ``m_minus_1``, ``region`` (uint8 codes; ``region_names`` gives the names),
-    ``status``. ``region_counts`` maps region names to point counts.
+    Attributes
+    ----------
+    lam : numpy.ndarray
+        The nx lambdas.
+    load_axis : numpy.ndarray
+        The ny loads: Pbar (in pi w R), or Pbar - Pbar_c for ``load_axis="above-pulloff"``.
+    pulloff : numpy.ndarray
+        The load-controlled pull-off Pbar_c of each lambda (nx).
+    A, load, approach, m_minus_1 : numpy.ndarray
+        (ny, nx) float64 states in normalised units, NaN where not computed.
+    region : numpy.ndarray
+        (ny, nx) uint8 codes; ``region_names`` gives the names.
+    status : numpy.ndarray
+        (ny, nx) strings: ``ok``, ``no_contact``, ``not_converged``, ``invalid_input``.
+    region_counts : dict
+        Region name to point count.
+    backend : str
+        Where the states were solved.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> m = tabor.adhesion_map(nx=64, ny=64, backend="cpu")
+    >>> m.A.shape, m.backend
+    ((64, 64), 'cpu')
+    >>> m.region_names[:6]
+    ('no_contact', 'hertz', 'rigid', 'dmt', 'jkr', 'md')
     """
 
     def __init__(self, inner):
@@ -406,11 +579,43 @@ class AdhesionMap:
         self.backend = inner.backend
 
     def save(self, path, quantity=None, width_mm=85.0, dpi=300.0, *, npy=False):
-        """Writes the figure (``.png``, ``.svg`` or ``.pdf``, ``width_mm`` wide: 85 for one
-        journal column, 175 for two; the PNG at ``dpi``) or the JSON document (``.json``),
-        exactly as ``tabor map --out/--svg/--pdf/--json`` do. With ``npy=True``, ``path`` is a
-        prefix and the NumPy files ``PATH_lambda.npy``, ... are written (``tabor map --npy``);
-        any other extension is refused rather than taken for a prefix."""
+        """Writes the figure or the JSON document, exactly as ``tabor map`` does.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            A file ending in ``.png``, ``.svg`` or ``.pdf`` (the figure; ``--out``, ``--svg``,
+            ``--pdf``) or ``.json`` (``--json``); with ``npy=True`` a prefix.
+        quantity : str, optional
+            Draw a quantity with a colorbar instead of the regions: ``a``, ``approach``, ``m``,
+            ``err-hertz``, ``err-dmt``, ``err-jkr`` (``--quantity``).
+        width_mm : float
+            Printed width in mm: 85 for one journal column, 175 for two (40..600).
+        dpi : float
+            Resolution of the PNG.
+        npy : bool
+            Write the NumPy files ``PATH_lambda.npy``, ``PATH_load_axis.npy``, ``PATH_load.npy``,
+            ``PATH_A.npy``, ``PATH_approach.npy``, ``PATH_m_minus_1.npy``, ``PATH_region.npy``
+            and ``PATH_region_names.json`` (``--npy``).
+
+        Raises
+        ------
+        ValueError
+            another extension (it is refused rather than taken for a prefix), or ``quantity``
+            with ``npy=True``.
+        OSError
+            a file that cannot be written.
+
+        Examples
+        --------
+        >>> import os, tempfile, tabor
+        >>> m = tabor.adhesion_map(nx=64, ny=64, backend="cpu")
+        >>> d = tempfile.mkdtemp()
+        >>> m.save(os.path.join(d, "map.svg"), width_mm=175)
+        >>> m.save(os.path.join(d, "map"), npy=True)
+        >>> sorted(os.listdir(d))[:3]
+        ['map.svg', 'map_A.npy', 'map_approach.npy']
+        """
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
         if npy:
@@ -426,19 +631,78 @@ class AdhesionMap:
                              "or save(prefix, npy=True) for the NumPy files PREFIX_lambda.npy, ...")
 
     def save_json(self, path, full=False):
-        """The JSON document; ``full`` adds the per-point arrays (``--json-full``)."""
+        """Writes the JSON document (``tabor map --json``); ``full`` adds the per-point arrays
+        (``--json-full``).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The JSON file.
+        full : bool
+            Add the arrays ``region``, ``load``, ``A``, ``approach``, ``m_minus_1``, ``status``
+            (ny rows of nx).
+
+        Examples
+        --------
+        >>> import json, os, tempfile, tabor
+        >>> m = tabor.adhesion_map(nx=64, ny=64, backend="cpu")
+        >>> path = os.path.join(tempfile.mkdtemp(), "map.json")
+        >>> m.save_json(path)
+        >>> sorted(json.load(open(path)))
+        ['axes', 'large_deformation', 'metadata', 'thresholds']
+        """
         self._inner.save_json(os.fspath(path), bool(full))
 
 
 def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="log",
                  load_min=None, load_max=None, tolerance=_tabor.DEFAULT_TOLERANCE, strength_ratio=(0.001, 0.01),
                  *, backend="auto", precision="f32", check=1000, adapter=None):
-    """Computes an adhesion map with the options of ``tabor map``; see :class:`AdhesionMap`.
+    """Computes an adhesion map with the options of ``tabor map``.
 
-    ``load_axis``: ``"log"`` (Pbar, default 1e-3..1e3), ``"above-pulloff"`` (Pbar - Pbar_c,
-    default 1e-6..1e3) or ``"linear"`` (default -2..10). Each point is classified into the first
-    of Hertz, Bradley (rigid), DMT, JKR whose contact radius is within ``tolerance`` of the
-    exact MD one, else MD; below the pull-off: no contact.
+    Each point is classified into the first of Hertz, Bradley (rigid), DMT, JKR whose contact
+    radius is within ``tolerance`` of the exact MD one, else MD; below the pull-off: no contact.
+
+    Parameters
+    ----------
+    lambda_min, lambda_max : float
+        The lambda axis (log), default 1e-3..1e3.
+    nx, ny : int
+        Grid size (at most 4096 x 4096).
+    load_axis : {"log", "above-pulloff", "linear"}
+        ``"log"`` (Pbar, default 1e-3..1e3), ``"above-pulloff"`` (Pbar - Pbar_c, default
+        1e-6..1e3) or ``"linear"`` (default -2..10); loads in pi w R.
+    load_min, load_max : float, optional
+        The load axis' range, if not the default.
+    tolerance : float
+        The relative error of the contact radius a closed form may have (default 0.05).
+    strength_ratio : sequence of float
+        s0/K of the large-deformation lines a/R = 0.1 on the figure.
+    backend : {"auto", "cpu", "gpu"}
+        ``auto`` takes a hardware GPU, else the CPU; ``cpu`` the exact f64 solver.
+    precision : {"f32", "f64"}
+        GPU arithmetic.
+    check : int
+        GPU points re-solved on the CPU for the cross-check.
+    adapter : str, optional
+        The GPU adapter whose name contains this text.
+
+    Returns
+    -------
+    AdhesionMap
+
+    Raises
+    ------
+    ValueError
+        a bad range, count, axis or tolerance (the library's message).
+    KeyboardInterrupt
+        on Ctrl-C.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> m = tabor.adhesion_map(nx=64, ny=64, backend="cpu")
+    >>> m.region_counts
+    {'hertz': 822, 'rigid': 566, 'dmt': 419, 'jkr': 1691, 'md': 598}
     """
     defaults = {"log": (1e-3, 1e3), "above-pulloff": (1e-6, 1e3), "linear": (-2.0, 10.0)}
     if load_axis not in defaults:
@@ -458,7 +722,18 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
 
 
 def presets():
-    """Names of the built-in scenes."""
+    """Names of the built-in scenes (``tabor scene --preset NAME``).
+
+    Returns
+    -------
+    list of str
+
+    Examples
+    --------
+    >>> import tabor
+    >>> tabor.presets()
+    ['afm-si', 'pdms-glass', 'mica-sfa', 'graphene-mems', 'hydrogel-titanium']
+    """
     return list(_tabor.presets())
 
 
@@ -488,12 +763,47 @@ def _scene_text(scene):
 class Scene:
     """A real contact in SI units, solved as ``tabor scene`` does.
 
-    Build it from a dict (the scene JSON keys: ``body1``/``body2`` or ``e_star_pa`` and
-    ``radius_m``, ``work_of_adhesion_j_m2``, ``z0_m`` or ``s0_pa`` or ``h0_m``, ``loads_n``, ...),
-    a JSON file (:meth:`from_file`) or a preset name (:meth:`preset`). Attributes: ``report``
-    (the whole report as a dict), ``lam``, ``recommended_model``, ``warnings`` (per load), and
-    per-load arrays ``load_n``, ``contact_radius_m``, ``approach_m`` (NaN where no contact),
-    ``model``.
+    Parameters
+    ----------
+    scene : dict
+        The scene JSON keys: ``body1``/``body2`` (``youngs_modulus_pa``, ``poisson_ratio``,
+        ``radius_m``) or ``e_star_pa`` (Pa) and ``radius_m`` (m); ``work_of_adhesion_j_m2``
+        (J/m^2) or ``surface_energies_j_m2``; the range as ``z0_m`` (m), ``s0_pa`` (Pa) or
+        ``h0_m`` (m); ``loads_n`` (N) or ``load_range_n``; optional ``tolerance``,
+        ``atomic_spacing_m``, ``shear_strength_pa``, ``control`` and ``humidity``. Or use
+        :meth:`from_file` or :meth:`preset`.
+
+    Attributes
+    ----------
+    report : dict
+        The whole report, the keys of ``tabor scene --format json``.
+    lam : float
+        The Maugis parameter.
+    recommended_model : str
+        The simplest model adequate at every load in contact.
+    load_n, contact_radius_m, approach_m : numpy.ndarray
+        Per load, in N and m (NaN where no contact).
+    model : numpy.ndarray
+        Per load, the adequate model.
+    warnings : list of list of str
+        Per load.
+
+    Raises
+    ------
+    TypeError
+        a scene that is not a dict.
+    ValueError
+        a missing or bad key (the library's message), a value that is not a finite number.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> s = tabor.Scene({"e_star_pa": 1e9, "radius_m": 1e-6, "work_of_adhesion_j_m2": 0.05,
+    ...                  "z0_m": 0.3e-9, "loads_n": [0.0, 1e-6]})
+    >>> s
+    Scene('scene', lambda=5.234, recommended model 'jkr')
+    >>> (s.contact_radius_m * 1e9).round(2).tolist()
+    [88.31, 123.34]
     """
 
     def __init__(self, scene=None, *, _report=None):
@@ -516,11 +826,54 @@ class Scene:
 
     @classmethod
     def from_file(cls, path):
+        """A scene from a JSON file (``tabor scene FILE``).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The scene file (the keys of :class:`Scene`).
+
+        Returns
+        -------
+        Scene
+
+        Examples
+        --------
+        >>> import json, os, tempfile, tabor
+        >>> path = os.path.join(tempfile.mkdtemp(), "scene.json")
+        >>> json.dump({"e_star_pa": 1e9, "radius_m": 1e-6, "work_of_adhesion_j_m2": 0.05,
+        ...            "z0_m": 0.3e-9, "loads_n": [0.0]}, open(path, "w"))
+        >>> tabor.Scene.from_file(path).recommended_model
+        'jkr'
+        """
         with open(path) as f:
             return cls(json.load(f))
 
     @classmethod
     def preset(cls, name):
+        """A built-in scene by name (``tabor scene --preset NAME``; see :func:`presets`).
+
+        Parameters
+        ----------
+        name : str
+            ``afm-si``, ``pdms-glass``, ``mica-sfa``, ``graphene-mems`` or ``hydrogel-titanium``.
+
+        Returns
+        -------
+        Scene
+
+        Raises
+        ------
+        ValueError
+            an unknown name.
+
+        Examples
+        --------
+        >>> import tabor
+        >>> s = tabor.Scene.preset("pdms-glass")
+        >>> s.recommended_model, round(s.lam, 1)
+        ('jkr', 3378.5)
+        """
         return cls(_report=_tabor.scene(None, name))
 
     def __repr__(self):
@@ -530,16 +883,48 @@ class Scene:
 
 def humidity(scene=None, preset=None, rh_min=0.05, rh_max=0.95, points=19,
              contact_angle_deg=None):
-    """The pull-off against relative humidity of a scene (a dict as :class:`Scene` takes) or a
-    preset (``tabor humidity``): ``points`` humidities from ``rh_min`` to ``rh_max``, with the
-    scene's liquid and contact angle (``contact_angle_deg`` replaces the scene's; water at 0
-    degrees where the scene has no ``"humidity"``). Returns the dict of ``tabor humidity
-    --format json``: ``points`` (per RH ``kelvin_radius_m``, ``meniscus_range_m``,
-    ``meniscus_lambda`` (None where no meniscus is counted), ``pulloff_solid_N``,
-    ``pulloff_meniscus_N``, ``pulloff_total_N``, ``meniscus_share``),
-    ``meniscus_dominates_above_rh`` and ``warnings`` (where the meniscus model does not hold:
-    a Kelvin radius below one molecule, where no meniscus is counted, or a meniscus height
-    above a tenth of R)."""
+    """The pull-off against relative humidity (``tabor humidity``): the solid's adhesion and
+    the water meniscus together (two Dugdale zones).
+
+    Parameters
+    ----------
+    scene : dict, optional
+        A scene as :class:`Scene` takes it; or
+    preset : str, optional
+        a preset name (one of the two).
+    rh_min, rh_max : float
+        The relative humidity's range (fractions, in (0, 1)).
+    points : int
+        Number of humidities (2..10000).
+    contact_angle_deg : float, optional
+        The liquid's contact angle in degrees, replacing the scene's (water at 0 degrees where
+        the scene has no ``"humidity"``).
+
+    Returns
+    -------
+    dict
+        The dict of ``tabor humidity --format json``: ``points`` (per RH ``relative_humidity``,
+        ``kelvin_radius_m``, ``meniscus_range_m`` (m), ``meniscus_lambda`` (None where no
+        meniscus is counted), ``pulloff_solid_N``, ``pulloff_meniscus_N``, ``pulloff_total_N``
+        (N, load control), ``meniscus_share``), ``meniscus_dominates_above_rh`` and
+        ``warnings`` (where the meniscus model does not hold: a Kelvin radius below one
+        molecule, where no meniscus is counted, or a meniscus height above a tenth of R).
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``scene`` and ``preset``, a bad range or count.
+    TypeError
+        a scene that is not a dict.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> h = tabor.humidity(preset="afm-si", points=3)
+    >>> [(round(p["relative_humidity"], 2), round(p["pulloff_total_N"] * 1e9, 2))
+    ...  for p in h["points"]]
+    [(0.05, -12.21), (0.5, -30.0), (0.95, -30.28)]
+    """
     if (scene is None) == (preset is None):
         raise ValueError("give scene (a dict) or preset (a name), one of them")
     if scene is not None and not isinstance(scene, dict):
@@ -555,15 +940,52 @@ def humidity(scene=None, preset=None, rh_min=0.05, rh_max=0.95, points=19,
 def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9, relative_humidity=None,
                   contact_angle_deg=None):
     """The work of adhesion from a measured pull-off force under JKR, DMT and exact MD, with
-    the Tabor self-consistency verdict (``tabor infer``). Returns a dict.
+    the Tabor self-consistency verdict (``tabor infer``).
 
-    With ``relative_humidity`` (the force measured in air; water at ``contact_angle_deg``), the
-    dict is ``tabor infer --relative-humidity``'s: ``solid_work_of_adhesion_j_m2`` with the
-    meniscus taken out (None where the meniscus alone pulls off harder), ``meniscus``,
-    ``meniscus_only_pulloff_n``, ``dry_md_work_of_adhesion_j_m2``, ``verdict`` and ``warnings``
-    (where the meniscus model does not hold: below one molecule's Kelvin radius no meniscus is
-    counted and the solid's w is the dry one). ``contact_angle_deg`` (default 0) goes only with
-    ``relative_humidity``."""
+    Parameters
+    ----------
+    force_n : float
+        The measured pull-off force in N (its sign is ignored).
+    radius_m : float
+        The tip (sphere) radius in m.
+    e_star_pa : float
+        The combined modulus E* in Pa.
+    z0_m : float
+        The Lennard-Jones range in m (default 0.3 nm).
+    relative_humidity : float, optional
+        The force measured in air at this relative humidity (in (0, 1)): the water meniscus is
+        taken out of it.
+    contact_angle_deg : float, optional
+        The water's contact angle in degrees (default 0); only with ``relative_humidity``.
+
+    Returns
+    -------
+    dict
+        Dry: ``pulloff_force_n``, ``w_jkr_j_m2``, ``tabor_if_jkr``, ``w_dmt_j_m2``,
+        ``tabor_if_dmt``, ``w_md_j_m2`` (J/m^2), ``lambda_md``, ``verdict``, ``warnings``. With
+        ``relative_humidity``, ``tabor infer --relative-humidity``'s:
+        ``solid_work_of_adhesion_j_m2`` with the meniscus taken out (None where the meniscus
+        alone pulls off harder), ``solid_lambda``, ``meniscus``, ``meniscus_only_pulloff_n``,
+        ``dry_md_work_of_adhesion_j_m2``, ``verdict`` and ``warnings`` (below one molecule's
+        Kelvin radius no meniscus is counted and the solid's w is the dry one).
+
+    Raises
+    ------
+    ValueError
+        a value that is not a finite number or outside its range; a contact angle without a
+        humidity.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> r = tabor.infer_pulloff(-12.2073e-9, 20e-9, 91.1444e9)
+    >>> round(r["w_md_j_m2"], 4), round(r["w_dmt_j_m2"], 5)
+    (0.1, 0.09714)
+    >>> r = tabor.infer_pulloff(-28.8155e-9, 20e-9, 91.1444e9, relative_humidity=0.4,
+    ...                         contact_angle_deg=20)
+    >>> round(r["solid_work_of_adhesion_j_m2"], 4)
+    0.1
+    """
     if relative_humidity is not None or contact_angle_deg is not None:
         return _tabor.infer_pulloff_wet(_finite(force_n, "force_n"), _finite(radius_m, "radius_m"),
                                         _finite(e_star_pa, "e_star_pa"), _finite(z0_m, "z0_m"),
@@ -576,7 +998,38 @@ def infer_pulloff(force_n, radius_m, e_star_pa, z0_m=0.3e-9, relative_humidity=N
 
 def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
     """Fits w and E* to measured (load, contact radius) pairs with the exact MD model
-    (``tabor infer --pairs``). Returns a dict."""
+    (``tabor infer --pairs``), as in a JKR test.
+
+    Parameters
+    ----------
+    loads_n : array_like
+        Loads in N (at most 100,000 pairs).
+    radii_m : array_like
+        The contact radius at each load, in m.
+    radius_m : float
+        The sphere's radius R in m.
+    z0_m : float
+        The Lennard-Jones range in m (default 0.3 nm).
+
+    Returns
+    -------
+    dict
+        ``work_of_adhesion_j_m2`` (J/m^2), ``e_star_pa`` (Pa), ``lambda``, ``tabor_parameter``,
+        ``relative_residuals`` (of the contact radius, per pair) and ``rms_relative_residual``.
+
+    Raises
+    ------
+    ValueError
+        arrays of different lengths, values that are not finite or out of range.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> r = tabor.fit_pairs([0, 5e-4, 1e-3, 1.5e-3],
+    ...                     [1.012106e-4, 1.169795e-4, 1.280752e-4, 1.369721e-4], 2e-3)
+    >>> round(r["work_of_adhesion_j_m2"], 5), round(r["e_star_pa"] / 1e6, 4)
+    (0.044, 2.3999)
+    """
     (p, a), _ = _flat(loads_n, radii_m, names=["loads_n", "radii_m"])
     return _tabor.fit_pairs(p, a, _finite(radius_m, "radius_m"), _finite(z0_m, "z0_m"))
 
@@ -586,24 +1039,90 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
                relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
                molar_volume_m3_mol=None, temperature_k=None):
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
-    (``tabor fit``). ``height_m``: piezo height of the cantilever base (larger is farther from
-    the sample); ``force_n``: force on the tip, positive when repulsive; ``segment``: 0 approach,
-    1 retract, -1 a dwell between them, left out of the fit (or the strings "approach",
-    "retract", "dwell"); ``curve``: an id per point where the arrays hold many curves.
-    Returns a list of dicts, one per curve in order of first appearance, with the keys of
-    ``tabor fit --format json`` (SI units, ``_stderr`` standard errors, ``status`` and
-    ``message``, ``adequate_model`` and ``why``, ``warnings``).
+    (``tabor fit``).
 
-    With ``relative_humidity`` (the curves measured in humid air; water, or the liquid of
-    ``surface_tension_n_m`` and ``molar_volume_m3_mol``, at ``contact_angle_deg`` and
-    ``temperature_k``), each fitted curve's dict has a ``humidity`` dict, as ``tabor fit
-    --relative-humidity`` gives: the ``meniscus``, the fitted model's load-controlled pull-off
-    and ``solid_work_of_adhesion_j_m2``, the solid's w with the meniscus taken out of it (None,
-    with the reason in ``note``, where the meniscus alone pulls off harder). Where that reading
-    is doubtful (``fair_reading`` False: the meniscus reaches beyond the one zone's range),
-    ``shape_fit`` is the two-zone law fitted to the curve's shape: ``fit`` (E*, the solid's w
-    and lambda, ``model`` "solid_and_meniscus"), ``z0_m``, ``lambda_profile``, ``lambda_95``,
-    ``lambda_bounded`` and ``solid_w_95``; None where the reading is fair."""
+    Parameters
+    ----------
+    height_m : array_like
+        Piezo height of the cantilever base in m (larger is farther from the sample).
+    force_n : array_like
+        Force on the tip in N, positive when repulsive. The tip sits at
+        ``height_m + force_n / spring_n_m``.
+    segment : array_like
+        Per point: 0 approach, 1 retract, -1 a dwell between them, left out of the fit (or the
+        strings "approach", "retract", "dwell").
+    curve : array_like, optional
+        An id per point (numbers or strings) where the arrays hold many curves.
+    radius_m : float
+        Tip radius in m (plausible: 1e-10..1e-3).
+    spring_n_m : float
+        Cantilever spring constant in N/m (plausible: 1e-4..1e4).
+    poisson : float, optional
+        The sample's Poisson ratio in (-1, 0.5]: adds ``youngs_modulus_pa``.
+    fit_segment : {"retract", "approach", "both"}
+        The segment fitted.
+    z0_m : float, optional
+        Hold the Lennard-Jones range (m, 1e-12..1e-6) instead of fitting lambda.
+    tilt : bool
+        Fit a tilted baseline.
+    tolerance : float
+        For noise-free curves: the relative tolerance of the adequate model, in (0, 1).
+    relative_humidity : float, optional
+        The curves measured in humid air (in (0, 1)): each fitted curve gets a ``humidity``
+        dict with the solid's w, the meniscus taken out.
+    contact_angle_deg : float
+        The liquid's contact angle in degrees (0..180), with ``relative_humidity``.
+    surface_tension_n_m, molar_volume_m3_mol, temperature_k : float, optional
+        The liquid (default water: 0.072 N/m, 1.8e-5 m^3/mol, 298.15 K).
+
+    Returns
+    -------
+    list of dict
+        One per curve, in order of first appearance, with the keys of ``tabor fit --format
+        json`` (SI units): ``status`` (``ok``, ``invalid_input``, ``no_contact``,
+        ``not_converged``) and ``message``; ``e_star_pa``, ``work_of_adhesion_j_m2``,
+        ``lambda``, ``tabor_parameter``, ``z0_m``, ``contact_point_m``, each with ``_stderr``;
+        the 95% and 68% profile-likelihood intervals ``*_interval_95`` and ``*_interval_68``
+        (tuples, None for an end the data leave open); ``lambda_determined`` and
+        ``lambda_bound``; ``rms_residual_n``, ``pulloff_force_measured_n``,
+        ``pulloff_force_model_n``; ``models`` (Hertz, DMT, JKR); ``adequate_model`` and
+        ``why``; ``verdict``; ``warnings``; ``dwell`` for a curve with one. With
+        ``relative_humidity``, ``humidity``: the ``meniscus``, the fitted model's load-controlled
+        pull-off and ``solid_work_of_adhesion_j_m2`` (None, with the reason in ``note``, where
+        the meniscus alone pulls off harder); where that reading is doubtful (``fair_reading``
+        False), ``shape_fit`` is the two-zone law fitted to the curve's shape (``fit``,
+        ``z0_m``, ``lambda_profile``, ``lambda_95``, ``lambda_bounded``, ``solid_w_95``).
+
+    Raises
+    ------
+    ValueError
+        an option wrong for every curve (a NaN ``radius_m``, a relative humidity of 0, a
+        negative ``spring_n_m``), named, before any curve is fitted; arrays of different
+        lengths; a segment value other than 0, 1, -1. What is wrong with one curve's data is
+        that curve's ``invalid_input`` status.
+    TypeError
+        complex heights or forces, unhashable curve ids.
+    KeyboardInterrupt
+        on Ctrl-C.
+
+    Examples
+    --------
+    A noise-free curve made with :func:`cycle` under a 40 N/m cantilever (E* = 2 GPa,
+    w = 0.04 J/m^2, lambda = 0.3, R = 20 nm), fitted back:
+
+    >>> import numpy as np, tabor
+    >>> E, w, lam, R, k = 2e9, 0.04, 0.3, 20e-9, 40.0
+    >>> unit = (np.pi**2 * w**2 * R / (4 / 3 * E)**2) ** (1 / 3)   # the approach unit, m
+    >>> c = tabor.cycle(lam, drive="spring", stiffness=k * unit / (np.pi * w * R))
+    >>> height = -c["control"] * unit                # the base, from the normalised Delta
+    >>> force = c["load"] * np.pi * w * R
+    >>> segment = np.where(c["phase"] == "approach", 0, 1)
+    >>> f = tabor.fit_curves(height, force, segment, radius_m=R, spring_n_m=k)[0]
+    >>> f["status"], f["adequate_model"]
+    ('ok', 'md')
+    >>> print(f"{f['e_star_pa']:.4g} {f['work_of_adhesion_j_m2']:.4g} {f['lambda']:.4g}")
+    2e+09 0.04 0.3
+    """
     h = np.ascontiguousarray(_numbers(height_m, "height_m")).ravel()
     f = np.ascontiguousarray(_numbers(force_n, "force_n")).ravel()
     seg = np.asarray(segment).ravel()
@@ -687,7 +1206,37 @@ def _curve_ids(curve):
 
 
 def fit_curve(height_m, force_n, segment, **options):
-    """One force curve: :func:`fit_curves` for a single curve, its dict."""
+    """One force curve: :func:`fit_curves` for a single curve, its dict.
+
+    Parameters
+    ----------
+    height_m, force_n, segment : array_like
+        As :func:`fit_curves` (m, N, 0/1/-1 per point).
+    **options
+        The keyword options of :func:`fit_curves` (``radius_m`` and ``spring_n_m`` needed).
+
+    Returns
+    -------
+    dict
+        The curve's fit, the keys of :func:`fit_curves`.
+
+    Raises
+    ------
+    ValueError, TypeError
+        As :func:`fit_curves`.
+
+    Examples
+    --------
+    >>> import numpy as np, tabor
+    >>> E, w, lam, R, k = 2e9, 0.04, 0.3, 20e-9, 40.0
+    >>> unit = (np.pi**2 * w**2 * R / (4 / 3 * E)**2) ** (1 / 3)
+    >>> c = tabor.cycle(lam, drive="spring", stiffness=k * unit / (np.pi * w * R))
+    >>> f = tabor.fit_curve(-c["control"] * unit, c["load"] * np.pi * w * R,
+    ...                     np.where(c["phase"] == "approach", 0, 1), radius_m=R, spring_n_m=k)
+    >>> lo, hi = f["work_of_adhesion_j_m2_interval_95"]
+    >>> bool(lo < 0.04 < hi)
+    True
+    """
     return fit_curves(height_m, force_n, segment, **options)[0]
 
 
@@ -696,20 +1245,56 @@ def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment
                    relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
                    molar_volume_m3_mol=None, temperature_k=None):
     """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum/Igor,
-    NT-MDT, ...): one ``AFMForceDistance`` or a list of them, each with its own spring constant
-    from its metadata, or ``spring_n_m`` for all of them where given (a file without one needs
-    it; a file without a sensitivity is loaded with ``afmformats.load_data(path,
-    meta_override={"sensitivity": ...})``). Uses ``height (measured)`` where present, else
-    ``height (piezo)``. Approach and retract are taken from the heights, whatever the file's
-    segment numbers: a pause or a dwell (stress relaxation, creep) is left out, and a curve
-    kept in one segment is split where the base turns (each said in ``warnings``); a curve
-    without a clear turn, or whose file gives a spring constant out of range, gets the status
-    ``invalid_input``. A dwell between approach and retract is reported in ``dwell`` (its
-    forces, relaxation and creep); where the force relaxed during it, the retract is no loading
-    curve and the approach is fitted instead (said in ``message``). The options are
-    :func:`fit_curves`' (``fit_segment="approach"`` fits the approach); a bad option raises
-    ``ValueError`` naming it before any curve is fitted, as :func:`fit_curves` does. Returns a
-    list of dicts as :func:`fit_curves` does, each with ``path`` and ``enum`` from the data."""
+    NT-MDT, AFM Workshop, ...), each with the spring constant of its file.
+
+    Uses ``height (measured)`` where present, else ``height (piezo)``. Approach and retract are
+    taken from the heights, whatever the file's segment numbers: a pause or a dwell (stress
+    relaxation, creep) is left out, and a curve kept in one segment is split where the base
+    turns (each said in ``warnings``); a curve without a clear turn, or whose file gives a
+    spring constant out of range, gets the status ``invalid_input``. A dwell between approach
+    and retract is reported in ``dwell`` (its forces, relaxation and creep); where the force
+    relaxed during it, the retract is no loading curve and the approach is fitted instead (said
+    in ``message``).
+
+    Parameters
+    ----------
+    data : afmformats.AFMForceDistance or list of them
+        What ``afmformats.load_data`` returns (a file without a sensitivity is loaded with
+        ``afmformats.load_data(path, meta_override={"sensitivity": ...})``).
+    radius_m : float
+        Tip radius in m.
+    spring_n_m : float, optional
+        Spring constant in N/m for every curve, instead of each file's own (needed where a file
+        has none).
+    poisson, fit_segment, z0_m, tilt, tolerance, relative_humidity, contact_angle_deg,
+    surface_tension_n_m, molar_volume_m3_mol, temperature_k
+        As :func:`fit_curves` (``fit_segment="approach"`` fits the approach).
+
+    Returns
+    -------
+    list of dict
+        As :func:`fit_curves`, each with ``path`` and ``enum`` from the data.
+
+    Raises
+    ------
+    ValueError
+        a bad option, named, before any curve is fitted, as :func:`fit_curves` does; a file
+        without a spring constant where ``spring_n_m`` is not given.
+
+    Examples
+    --------
+    >>> import afmformats, numpy as np, tabor
+    >>> E, w, lam, R, k = 2e9, 0.04, 0.3, 20e-9, 40.0
+    >>> unit = (np.pi**2 * w**2 * R / (4 / 3 * E)**2) ** (1 / 3)
+    >>> c = tabor.cycle(lam, drive="spring", stiffness=k * unit / (np.pi * w * R))
+    >>> data = {"height (measured)": -c["control"] * unit, "force": c["load"] * np.pi * w * R,
+    ...         "segment": np.where(c["phase"] == "approach", 0, 1)}
+    >>> meta = {"spring constant": k, "path": "synthetic", "enum": 0}
+    >>> fd = afmformats.AFMForceDistance(data, meta, diskcache=False)
+    >>> r = tabor.fit_afmformats(fd, radius_m=R)[0]
+    >>> r["status"], r["path"], round(r["work_of_adhesion_j_m2"], 4)
+    ('ok', 'synthetic', 0.04)
+    """
     options = dict(radius_m=radius_m, poisson=poisson, fit_segment=fit_segment, z0_m=z0_m,
                    tilt=tilt, tolerance=tolerance, relative_humidity=relative_humidity,
                    contact_angle_deg=contact_angle_deg,
@@ -758,13 +1343,48 @@ def _refused(message):
 
 def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
           range_ratio=None):
-    """An approach-retract cycle (``tabor cycle``): ``drive`` ``"grips"``, ``"dead_load"`` or
-    ``"spring"`` (normalised ``stiffness``). Returns a Result with the followed path as arrays
-    ``phase``, ``branch``, ``approach``, ``load``, ``A``, ``C``, ``control``, ``jump`` and the
-    metadata ``hysteresis`` (energy lost per cycle, normalised; None under dead load) and
-    ``jumps``. With ``stress_ratio`` and ``range_ratio`` (a second zone, a water meniscus:
-    its stress and range over the solid's; ``lam`` is the solid's) the cycle of both zones, in
-    the units of the total w (``tabor cycle --stress-ratio --range-ratio``)."""
+    """An approach-retract cycle (``tabor cycle``): the equilibrium path followed under rigid
+    grips, dead load or a spring, its jumps and the energy lost per cycle.
+
+    Parameters
+    ----------
+    lam : float
+        Maugis parameter lambda (with two zones, the solid's).
+    drive : {"grips", "dead_load", "spring"}
+        The control.
+    stiffness : float, optional
+        The spring's normalised stiffness kbar = k (pi^2 w^2 R / K^2)^(1/3) / (pi w R), with
+        ``drive="spring"``.
+    max_load : float
+        The largest normalised load (in pi w R) of the approach.
+    stress_ratio, range_ratio : float, optional
+        A second Dugdale zone (a water meniscus: its stress and range over the solid's; both or
+        neither): the cycle of both zones, in the units of the total w.
+
+    Returns
+    -------
+    Result
+        Arrays of the followed path: ``phase`` (approach, retract), ``branch`` (free,
+        non_contact, contact), ``approach`` (Dbar), ``load`` (Pbar), ``A``, ``C`` (the cohesive
+        zone's radius), ``control`` (the controlled variable: Dbar, Pbar, or the base
+        displacement Delta = Dbar + Pbar/kbar), ``jump`` (True at the first point after a
+        jump); ``metadata``: ``hysteresis`` (energy lost per cycle in pi w R times the approach
+        unit; None under dead load), ``jumps``, ``drive``.
+
+    Raises
+    ------
+    ValueError
+        a bad lambda, drive, stiffness or ratio.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> c = tabor.cycle(1.0)
+    >>> round(c.metadata["hysteresis"], 6)
+    0.496319
+    >>> [round(j["from"]["load"], 6) for j in c.metadata["jumps"]]
+    [-0.0, -0.891741]
+    """
     opt = lambda v, n: None if v is None else _real(v, n)
     c = _tabor.cycle(_real(lam, "lam"), drive, opt(stiffness, "stiffness"),
                      _real(max_load, "max_load"), opt(stress_ratio, "stress_ratio"),
@@ -788,9 +1408,42 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
             range_ratio=None):
     """Pressure and gap inside and around the contact (``tabor profile``) for the MD state
     given by exactly one of ``load``, ``approach``, ``radius``, and Hertz, DMT and JKR at the
-    same load. Returns a dict with ``models``: one dict per model with arrays ``r``,
-    ``pressure`` (NaN where singular), ``gap`` and ``a``, ``c``, ``load``, the largest tension,
-    the stress intensity factor and the energy release rate over w."""
+    same load.
+
+    Parameters
+    ----------
+    lam : float
+        Maugis parameter lambda (with two zones, the solid's).
+    load, approach, radius : float, optional
+        The state: normalised load Pbar, approach Dbar or contact radius A (one of them).
+    points : int
+        Radii sampled (at most 100,000), uniformly plus clusters at every a and c.
+    stress_ratio, range_ratio : float, optional
+        A second Dugdale zone: the two-zone profile (model ``two_zone`` first, with both zone
+        edges), then Hertz, DMT and JKR of the total w.
+
+    Returns
+    -------
+    dict
+        ``models``: one dict per model with arrays ``r`` (in (pi w R^2 / K)^(1/3)),
+        ``pressure`` (in (pi w K^2 / R)^(1/3), compressive positive; NaN where singular) and
+        ``gap`` (in the approach unit), and ``a``, ``c``, ``load``, ``max_tension``,
+        ``max_tension_at``, ``stress_intensity``, ``energy_release_rate_over_w``, ``notes``.
+
+    Raises
+    ------
+    ValueError
+        not exactly one of ``load``, ``approach``, ``radius``; a value outside the domain.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> p = tabor.profile(1.0, load=0.0)
+    >>> [m["model"] for m in p["models"]]
+    ['md', 'hertz', 'dmt', 'jkr']
+    >>> round(p["models"][0]["a"], 5), round(p["models"][0]["c"], 5)
+    (1.63609, 2.00569)
+    """
     given = [(k, v) for k, v in (("load", load), ("approach", approach), ("radius", radius))
              if v is not None]
     if len(given) != 1:
@@ -810,18 +1463,50 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
 
 def rough(lam, sigma, min_separation, max_separation=None, points=400, stress_ratio=None,
           range_ratio=None):
-    """A rough surface of Maugis-Dugdale summits (Greenwood-Williamson, Gaussian heights of
-    standard deviation ``sigma``) through an approach from ``max_separation`` (default: where no
-    summit feels the flat) to ``min_separation`` and back, as ``tabor rough`` computes it.
-    Loads per summit in pi w R, separations and sigma in the summit's approach unit. Returns a
-    dict: ``approach`` and ``retract`` (arrays ``separation``, ``load``, ``contact_fraction``,
-    ``noncontact_fraction``, and the load's parts ``contact_load`` and ``noncontact_load``),
-    ``pulloff_load``, ``pulloff_separation``, ``hysteresis``,
-    ``smooth_pulloff``, ``fuller_tabor_parameter``, ``quadrature_error`` (the largest error
-    estimate of the quadrature over the loads given), ``warnings`` (what the range or the
-    sampling cannot show, as ``tabor rough`` prints them). With ``stress_ratio`` and ``range_ratio``
-    (both), a water meniscus on every summit (``tabor rough --stress-ratio --range-ratio``): the
-    two-zone law, units built on the total w."""
+    """A rough surface of Maugis-Dugdale summits (Greenwood-Williamson, Gaussian heights)
+    through an approach and a retract, as ``tabor rough`` computes it.
+
+    Parameters
+    ----------
+    lam : float
+        The summits' Maugis parameter.
+    sigma : float
+        Standard deviation of the summit heights, in the summit's approach unit
+        (pi^2 w^2 R / K^2)^(1/3).
+    min_separation : float
+        The deepest separation of the flat from the mean summit plane (approach units).
+    max_separation : float, optional
+        Where the approach starts (default: where no summit feels the flat).
+    points : int
+        Separations each way (2..10000).
+    stress_ratio, range_ratio : float, optional
+        A water meniscus on every summit (both): the two-zone law, units built on the total w.
+
+    Returns
+    -------
+    dict
+        ``approach`` and ``retract`` (arrays ``separation``, ``load`` per summit in pi w R,
+        ``contact_fraction``, ``noncontact_fraction``, and the load's parts ``contact_load``
+        and ``noncontact_load``), ``pulloff_load``, ``pulloff_separation``, ``hysteresis``
+        (energy lost per summit per cycle), ``smooth_pulloff``, ``fuller_tabor_parameter``,
+        ``quadrature_error`` (the largest error estimate of the quadrature over the loads
+        given), ``warnings`` (what the range or the sampling cannot show), ``lambda``,
+        ``sigma``.
+
+    Raises
+    ------
+    ValueError
+        a bad sigma, separation, count or ratio.
+    KeyboardInterrupt
+        on Ctrl-C.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> r = tabor.rough(2.0, 0.5, -1.0, points=50)
+    >>> round(r["pulloff_load"], 4), round(r["hysteresis"], 4)
+    (-1.2081, 0.8805)
+    """
     rho = None if stress_ratio is None else float(stress_ratio)
     eta = None if range_ratio is None else float(range_ratio)
     return _tabor.rough(float(lam), float(sigma), float(min_separation),
@@ -830,9 +1515,39 @@ def rough(lam, sigma, min_separation, max_separation=None, points=400, stress_ra
 
 
 def rough_ensemble(lam, heights, separations, min_separation=None):
-    """Load per summit and branch fractions of an explicit ensemble of summit ``heights``
-    (approach units, all of Maugis parameter ``lam``) at each of ``separations``: on the
-    approach, or with ``min_separation`` on the retract after pressing to it."""
+    """Load per summit and branch fractions of an explicit ensemble of summit heights, all of
+    one Maugis parameter.
+
+    Parameters
+    ----------
+    lam : float
+        The summits' Maugis parameter.
+    heights : array_like
+        Summit heights in the approach unit (pi^2 w^2 R / K^2)^(1/3).
+    separations : array_like
+        Separations of the flat from the mean plane (approach units); each a finite number.
+    min_separation : float, optional
+        Without it, the states on the approach; with it, on the retract after pressing to it.
+
+    Returns
+    -------
+    dict
+        NumPy arrays ``separation``, ``load`` (per summit, in pi w R), ``contact_fraction``,
+        ``noncontact_fraction``, ``contact_load``, ``noncontact_load``.
+
+    Raises
+    ------
+    ValueError
+        a separation that is not a finite number, a bad lambda.
+
+    Examples
+    --------
+    >>> import numpy as np, tabor
+    >>> h = np.random.default_rng(1).normal(0.0, 0.5, 2000)
+    >>> e = tabor.rough_ensemble(2.0, h, [0.5, 0.0, -0.5])
+    >>> e["contact_fraction"].round(4).tolist()
+    [0.352, 0.7345, 0.9515]
+    """
     h = _numbers(heights, "heights").ravel()
     d = _numbers(separations, "separations").ravel()
     d_min = _optional(min_separation, "min_separation")  # the library checks both
@@ -861,16 +1576,45 @@ def _rough_scene(scene, preset):
 
 def rough_scene(scene=None, preset=None, points=400):
     """A rough scene in SI units through an approach and a retract, as ``tabor rough --scene
-    FILE`` or ``tabor rough --preset NAME`` computes it (dry, or with the scene's ``humidity`` a
-    water meniscus on every summit): ``scene`` a dict or the path of a JSON file (the keys of
-    ``tabor rough --scene``), or ``preset`` one of ``mems-polysilicon``, ``pdms-rough-glass``,
-    ``colloidal-probe-wafer``; ``points`` separations each way. Returns the dict ``tabor rough
-    --scene --format json`` writes, the same numbers to the last bit: ``approach`` and
-    ``retract`` (arrays ``separation_m``, ``force_n``, ``nominal_pressure_pa``,
-    ``real_contact_area_m2``, ``contact_fraction``, ``noncontact_fraction``),
-    ``pulloff_force_n``, ``pulloff_stress_pa``, ``pulloff_separation_m``, ``hysteresis_j``,
-    ``lambda``, ``summits``, ``warnings``, ... and, with a humidity, ``meniscus`` and
-    ``dry_pulloff_force_n``."""
+    FILE`` or ``tabor rough --preset NAME`` computes it (dry, or with the scene's ``humidity``
+    a water meniscus on every summit).
+
+    Parameters
+    ----------
+    scene : dict or str or os.PathLike, optional
+        A dict or the path of a JSON file: the materials of a scene (``e_star_pa`` or two
+        bodies, ``work_of_adhesion_j_m2``, one of ``z0_m``, ``s0_pa``, ``h0_m``) with
+        ``summit_radius_m`` (m), ``summit_density_m2`` (1/m^2), ``sigma_m`` (m),
+        ``nominal_area_m2`` (m^2), optional ``min_separation_m`` and ``humidity``; or
+    preset : str, optional
+        ``mems-polysilicon``, ``pdms-rough-glass`` or ``colloidal-probe-wafer``.
+    points : int
+        Separations each way (2..10000).
+
+    Returns
+    -------
+    dict
+        The dict ``tabor rough --scene --format json`` writes, the same numbers to the last
+        bit: ``approach`` and ``retract`` (arrays ``separation_m``, ``force_n``,
+        ``nominal_pressure_pa``, ``real_contact_area_m2``, ``contact_fraction``,
+        ``noncontact_fraction``), ``pulloff_force_n``, ``pulloff_stress_pa``,
+        ``pulloff_separation_m``, ``hysteresis_j``, ``lambda``, ``summits``, ``warnings``, ...
+        and, with a humidity, ``meniscus`` and ``dry_pulloff_force_n``.
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``scene`` and ``preset``; a bad key or value.
+    TypeError
+        a scene that is not a dict or a path.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> r = tabor.rough_scene(preset="mems-polysilicon", points=50)
+    >>> print(f"{r['pulloff_force_n']:.3g} N")
+    -2.09e-05 N
+    """
     if isinstance(scene, (str, os.PathLike)) and preset is None:
         with open(scene) as f:
             text = f.read()
@@ -883,16 +1627,50 @@ def rough_scene(scene=None, preset=None, points=400):
 
 def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation_m=None,
                      points=400, summits="tables"):
-    """An explicit ensemble of summits in SI, as ``tabor rough --asperities`` computes it: each
-    summit (``heights_m[i]``, ``radii_m[i]``) its own lambda and history, the materials from a
-    rough ``scene`` (a dict, as ``tabor rough --scene`` reads) or a ``preset`` name, an approach
-    down to ``min_separation_m`` (default: the mean height less three standard deviations) and a
-    retract, ``points`` separations each way. ``summits="tables"`` (default) takes the contact
-    states from tables over the summits' lambdas with their error measured (``table_error``);
-    ``"exact"`` solves every state. Returns a dict: ``summits``, ``approach`` and ``retract``
-    (arrays ``separation_m``, ``force_n``, ``real_contact_area_m2``, ``contact_fraction``,
-    ``noncontact_fraction``), ``pulloff_force_n``, ``pulloff_separation_m``, ``summit_solver``,
-    ``table_error``, ``summit_states``, ``seconds``."""
+    """An explicit ensemble of summits in SI units, as ``tabor rough --asperities`` computes
+    it: each summit its own radius, lambda and history.
+
+    Parameters
+    ----------
+    heights_m : array_like
+        Summit heights in m.
+    radii_m : array_like
+        Summit radii in m, one per height.
+    scene : dict, optional
+        A rough scene (as ``tabor rough --scene`` reads) for the materials; or
+    preset : str, optional
+        a rough preset name.
+    min_separation_m : float, optional
+        The deepest separation in m (default: the mean height less three standard
+        deviations).
+    points : int
+        Separations each way.
+    summits : {"tables", "exact"}
+        ``tables`` (default) takes the contact states from tables over the summits' lambdas
+        with their error measured (``table_error``); ``exact`` solves every state.
+
+    Returns
+    -------
+    dict
+        ``summits``, ``approach`` and ``retract`` (arrays ``separation_m``, ``force_n``,
+        ``real_contact_area_m2``, ``contact_fraction``, ``noncontact_fraction``),
+        ``pulloff_force_n``, ``pulloff_separation_m``, ``summit_solver``, ``table_error``,
+        ``summit_states``, ``seconds``.
+
+    Raises
+    ------
+    ValueError
+        bad summits (the library's message), neither or both of ``scene`` and ``preset``, a
+        humid scene (explicit summits are dry).
+
+    Examples
+    --------
+    >>> import numpy as np, tabor
+    >>> h = np.random.default_rng(0).normal(0.0, 0.6e-9, 500)
+    >>> r = tabor.rough_asperities(h, np.full(500, 0.5e-6), preset="mems-polysilicon", points=50)
+    >>> r["summits"], r["summit_solver"]
+    (500, 'tables (cpu f64)')
+    """
     h = _numbers(heights_m, "heights_m").ravel()
     r = _numbers(radii_m, "radii_m").ravel()
     text = _rough_scene(scene, preset)
@@ -906,10 +1684,37 @@ def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation
 
 def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation_m=None,
                      points=400, summits="tables"):
-    """A measured height map (2-D array, m, pixels ``pixel_m`` apart) as ``tabor rough
-    --topography --pixel-m`` takes it: its summits are the pixels above their eight neighbours,
-    with the radius from the mean curvature there (as Greenwood and Williamson did), then the
-    cycle of :func:`rough_asperities`, whose dict it returns."""
+    """A measured height map as ``tabor rough --topography --pixel-m`` takes it: its summits are
+    the pixels above their eight neighbours, with the radius from the mean curvature there (as
+    Greenwood and Williamson did), then the cycle of :func:`rough_asperities`.
+
+    Parameters
+    ----------
+    heights_m : array_like
+        A 2-D height map in m.
+    pixel_m : float
+        The pixel spacing in m.
+    scene, preset, min_separation_m, points, summits
+        As :func:`rough_asperities`.
+
+    Returns
+    -------
+    dict
+        As :func:`rough_asperities`.
+
+    Raises
+    ------
+    ValueError
+        a map that is not 2-D, bad values (the library's message).
+
+    Examples
+    --------
+    >>> import numpy as np, tabor
+    >>> x = np.arange(64) * 10e-9
+    >>> z = 2e-9 * np.outer(np.sin(2 * np.pi * x / 160e-9), np.sin(2 * np.pi * x / 160e-9))
+    >>> tabor.rough_topography(z, 10e-9, preset="mems-polysilicon", points=50)["summits"]
+    32
+    """
     z = _numbers(heights_m, "heights_m")
     if z.ndim != 2:
         raise ValueError(f"heights_m has shape {z.shape}: give a 2-D height map")
@@ -925,11 +1730,39 @@ def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation
 
 def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10.0, points=24,
                   press_sigmas=3.0):
-    """Fuller and Tabor's figure, as ``tabor rough-pulloff`` computes it: for each summit
-    ``lambda``, the pull-off per summit after pressing the flat ``press_sigmas`` sigma below the
-    mean summit plane, over ``points`` roughnesses log-spaced in ``sigma_min..sigma_max``
-    (approach units). Returns a list of dicts (one per lambda): ``lambda``, ``smooth_pulloff``,
-    and NumPy arrays ``sigma``, ``fuller_tabor_parameter``, ``pulloff``, ``relative_pulloff``."""
+    """Fuller and Tabor's figure, as ``tabor rough-pulloff`` computes it: for each summit lambda,
+    the pull-off per summit after pressing the flat below the mean summit plane, over a range
+    of roughness.
+
+    Parameters
+    ----------
+    lambdas : sequence of float
+        The summits' Maugis parameters.
+    sigma_min, sigma_max : float
+        The roughness range (approach units), log-spaced.
+    points : int
+        Roughnesses per lambda.
+    press_sigmas : float
+        How deep the flat is pressed, in sigma (at most 6 either way).
+
+    Returns
+    -------
+    list of dict
+        One per lambda: ``lambda``, ``smooth_pulloff``, and NumPy arrays ``sigma``,
+        ``fuller_tabor_parameter``, ``pulloff`` (per summit, pi w R), ``relative_pulloff``.
+
+    Raises
+    ------
+    ValueError
+        a bad range, count or press depth.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> r = tabor.rough_pulloff([1.0], points=3)
+    >>> r[0]["relative_pulloff"].round(4).tolist()
+    [0.9999, 0.9163, 0.0]
+    """
     if int(points) < 0:
         raise ValueError(f"points = {points}: give a count >= 0")
     lams = [float(v) for v in np.atleast_1d(_numbers(lambdas, "lambdas")).ravel()]
@@ -939,14 +1772,50 @@ def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10
 
 def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max=1e2, ny=256,
               tolerance=_tabor.DEFAULT_TOLERANCE, press_sigmas=3.0, check=64):
-    """The rough adhesion map, as ``tabor rough-map`` computes it: over ``lambda`` (nx, log) and
-    ``sigma`` (ny, log, approach units), the pull-off per summit after pressing to
-    ``-press_sigmas * sigma`` and retracting, relative to the smooth summit's, and the simplest
-    adequate summit model. Returns a dict of NumPy arrays: ``lambda`` (nx), ``sigma`` (ny),
-    ``smooth_pulloff`` (nx); ``pulloff``, ``relative_pulloff``, ``pulloff_separation`` and
-    ``region`` (uint8 codes named by ``region_names``), each (ny, nx); ``model_error``
-    (ny, nx, 4: Hertz, Bradley, DMT, JKR); ``table_error`` and the check of ``check`` points
-    against the adaptive quadrature (``check_points``, ``check_max_relative_difference``)."""
+    """The rough adhesion map, as ``tabor rough-map`` computes it: over lambda and the
+    roughness sigma, the pull-off per summit after pressing to ``-press_sigmas * sigma`` and
+    retracting, relative to the smooth summit's, and the simplest adequate summit model.
+
+    Parameters
+    ----------
+    lambda_min, lambda_max : float
+        The summits' Maugis parameter axis (log).
+    nx : int
+        Lambdas.
+    sigma_min, sigma_max : float
+        The roughness axis (log, approach units).
+    ny : int
+        Roughnesses.
+    tolerance : float
+        The region test's tolerance (default 0.05).
+    press_sigmas : float
+        Press depth in sigma (at most 6).
+    check : int
+        Points re-solved by the adaptive quadrature.
+
+    Returns
+    -------
+    dict
+        NumPy arrays: ``lambda`` (nx), ``sigma`` (ny), ``smooth_pulloff`` (nx); ``pulloff``,
+        ``relative_pulloff``, ``pulloff_separation`` and ``region`` (uint8 codes named by
+        ``region_names``), each (ny, nx); ``model_error`` (ny, nx, 4: Hertz, Bradley, DMT,
+        JKR); ``table_error`` and the check of ``check`` points against the adaptive quadrature
+        (``check_points``, ``check_max_relative_difference``).
+
+    Raises
+    ------
+    ValueError
+        a bad range, count, tolerance or press depth.
+    KeyboardInterrupt
+        on Ctrl-C.
+
+    Examples
+    --------
+    >>> import tabor
+    >>> m = tabor.rough_map(nx=8, ny=8, check=0)
+    >>> m["region"].shape, m["region_names"][:6]
+    ((8, 8), ['no_contact', 'hertz', 'rigid', 'dmt', 'jkr', 'md'])
+    """
     for name, v in [("nx", nx), ("ny", ny), ("check", check)]:
         if int(v) < 0:
             raise ValueError(f"{name} = {v}: give a count >= 0")
