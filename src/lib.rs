@@ -86,6 +86,31 @@
 //! let md = &p.models[0];
 //! assert!((md.energy_release_rate_over_w.unwrap() - 1.0).abs() < 1e-12); // J = w
 //! ```
+//!
+//! An AFM force curve fitted by exact MD (here a synthetic one, 20 nm tip, 40 N/m), with its
+//! 95% profile-likelihood interval and the simplest adequate model:
+//!
+//! ```
+//! use tabor::fit::{fit_curve, synthetic::{map_curve, synthetic}, FitOptions, FitStatus};
+//! let curve = synthetic(&map_curve(0, 1, 300, 40.0, 2e-11)); // E* = 2 GPa, w = 0.04 J/m^2
+//! let opt = FitOptions { radius: 20e-9, spring: 40.0, ..FitOptions::default() };
+//! let f = fit_curve(&curve, &opt);
+//! assert_eq!(f.status, FitStatus::Ok);
+//! let [lo, hi] = f.work_of_adhesion_j_m2_interval_95.unwrap();
+//! assert!(lo.unwrap() < 0.04 && 0.04 < hi.unwrap());
+//! assert!((f.e_star_pa.unwrap() / 2e9 - 1.0).abs() < 1e-2);
+//! ```
+//!
+//! A rough surface of Greenwood-Williamson MD summits (lambda 2, heights of standard deviation
+//! 0.5 approach units), pressed to -1 and retracted: its pull-off per summit against a smooth
+//! summit's (`tabor rough --lambda 2 --sigma 0.5 --min-separation -1`):
+//!
+//! ```
+//! let r = tabor::Rough::new(2.0, 0.5).unwrap();
+//! let (_separation, pulloff) = r.pulloff_after(-1.0, 48).unwrap();
+//! assert!((pulloff + 1.2081).abs() < 1e-4);
+//! assert!(pulloff > r.summit.smooth_pulloff()); // roughness lowers the pull-off
+//! ```
 
 // `!(x <= tol)` and the like are deliberate: a NaN must land on the failure side.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]

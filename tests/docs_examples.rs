@@ -447,6 +447,36 @@ fn documented_commands_print_what_the_documents_show() {
     );
 }
 
+/// A `tabor` command quoted in a plain shell block would not be run: every one must be a `$ `
+/// example (with a skip marker and its reason where it cannot run here).
+#[test]
+fn every_quoted_tabor_command_is_an_example() {
+    let mut unchecked = Vec::new();
+    for doc in documents() {
+        let text = std::fs::read_to_string(&doc).unwrap();
+        let name = doc.strip_prefix(repo()).unwrap().display().to_string();
+        let mut shell = None;
+        for (i, l) in text.lines().enumerate() {
+            let t = l.trim_start();
+            if let Some(lang) = t.strip_prefix("```") {
+                shell = match shell {
+                    Some(_) => None,
+                    None => Some(matches!(lang.trim(), "sh" | "bash" | "console" | "shell")),
+                };
+                continue;
+            }
+            if shell == Some(true) && (t.starts_with("tabor ") || t.contains("-- tabor ")) {
+                unchecked.push(format!("{name}:{}: {t}", i + 1));
+            }
+        }
+    }
+    assert!(
+        unchecked.is_empty(),
+        "tabor commands in shell blocks, not run by this test (quote them as `$ ` examples):\n{}",
+        unchecked.join("\n")
+    );
+}
+
 #[test]
 fn the_comparison_reads_gaps_elisions_and_digits() {
     let v = |s: &[&str]| s.iter().map(|l| l.to_string()).collect::<Vec<_>>();
