@@ -141,6 +141,7 @@ pub mod bench;
 #[cfg(feature = "cli")]
 pub mod cli;
 pub mod cycle;
+pub mod dem;
 pub mod engine;
 pub mod export;
 #[doc(hidden)]

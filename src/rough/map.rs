@@ -139,7 +139,7 @@ impl FoldTable {
     }
 }
 
-fn u_of_v(v: f64) -> f64 {
+pub(crate) fn u_of_v(v: f64) -> f64 {
     v + v * v / (2.0 * U_S)
 }
 
@@ -289,7 +289,7 @@ impl BranchTable {
 /// The spline of [`spline`] at `x` in units of its spacing from the first node (the last
 /// interval's cubic beyond it).
 #[inline(always)]
-fn spline_at(coef: &[[f64; 4]], x: f64) -> f64 {
+pub(crate) fn spline_at(coef: &[[f64; 4]], x: f64) -> f64 {
     // The interval's index from x clamped to the last one (a NaN x takes the last one and gives
     // NaN): in range, so the plain conversion needs none of `as`'s saturating checks.
     let last = coef.len() - 1;
@@ -306,7 +306,7 @@ fn spline_at(coef: &[[f64; 4]], x: f64) -> f64 {
 /// local variable `s` in [0, 1]. Not-a-knot at uniform spacing makes the second derivatives `M`
 /// linear over the first and last three nodes (`M0 = 2 M1 - M2`), so the first and last
 /// equations give `M1` and `M(n-2)` directly and the rest is tridiagonal (Thomas algorithm).
-fn spline(y: &[f64]) -> Vec<[f64; 4]> {
+pub(crate) fn spline(y: &[f64]) -> Vec<[f64; 4]> {
     let n = y.len();
     assert!(n >= 5, "a spline table needs at least five nodes");
     // r_i = 6 (y[i-1] - 2 y[i] + y[i+1]) = M[i-1] + 4 M[i] + M[i+1] for 1 <= i <= n-2.

@@ -61,10 +61,11 @@ pub struct Summit {
     /// The Dugdale range, 2 / (pi lambda).
     pub h0: f64,
     /// The non-contact branch's lowest approach is at C = C* = 8 lambda / (3 pi).
-    c_star: f64,
+    pub c_star: f64,
     /// The A -> 0 end of the contact branch: C there, and its approach.
-    c_end: f64,
-    delta_a0: f64,
+    pub c_end: f64,
+    /// The approach of the contact branch's A -> 0 end.
+    pub delta_a0: f64,
     /// Entry into contact on the approach.
     pub delta_in: f64,
     /// The contact branch's lowest approach (rigid-grip jump-out).
