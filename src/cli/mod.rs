@@ -2,6 +2,7 @@
 
 mod argv;
 mod basic;
+mod dem;
 mod fit;
 mod map;
 mod profile;
@@ -59,6 +60,10 @@ pub(crate) enum Command {
     /// The rough adhesion map over lambda and sigma: pull-off per summit relative to the smooth
     /// summit's, and the simplest adequate summit model (Hertz, Bradley, DMT, JKR, MD).
     RoughMap(rough_map::RoughMapArgs),
+    /// The Maugis-Dugdale force-overlap law for particle (DEM) codes: its branches, jumps and
+    /// hysteresis as tables over lambda and overlap, a pair's law in SI units, or a pair driven
+    /// under displacement control.
+    DemLaw(dem::DemLawArgs),
     /// GPU adapters, backends, features and limits; and which one `--backend auto` takes.
     Info,
 }
@@ -272,6 +277,7 @@ pub fn run() -> anyhow::Result<()> {
         Command::Rough(a) => rough::run(a),
         Command::RoughPulloff(a) => rough::pulloff(a),
         Command::RoughMap(a) => rough_map::run(a),
+        Command::DemLaw(a) => dem::run(a),
     }
 }
 
