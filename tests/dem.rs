@@ -5,8 +5,8 @@
 
 use tabor::dem::{Branch, DemLaw};
 
-const LAMBDAS: [f64; 12] = [
-    0.01, 0.1, 0.5, 0.9, 0.93, 0.94, 1.0, 3.0, 10.0, 100.0, 1e3, 1e4,
+const LAMBDAS: [f64; 13] = [
+    0.01, 0.1, 0.5, 0.8, 0.9, 0.93, 0.94, 1.0, 3.0, 10.0, 100.0, 1e3, 1e4,
 ];
 
 #[test]
@@ -152,4 +152,77 @@ fn bad_input_is_refused_or_marked() {
     assert!(e.load.is_nan() && h == Branch::Contact);
     let e = law.eval(6.0, &mut h);
     assert!(e.beyond_table && e.load.is_finite());
+}
+
+/// tests/data/dem_reference.csv: written from Maugis's equations and the Dugdale disc on a
+/// half-space alone (tests/data/dem_reference.py, 50-digit arithmetic), with its own jump rules
+/// from the branches' stability under rigid grips.
+#[test]
+fn the_law_is_the_independent_reference() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/dem_reference.csv"
+    ))
+    .unwrap();
+    let rows: Vec<Vec<String>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(str::to_string).collect())
+        .collect();
+    let mut lambdas: Vec<f64> = rows.iter().map(|r| r[0].parse().unwrap()).collect();
+    lambdas.dedup();
+    assert_eq!(lambdas.len(), 6);
+    for &lambda in &lambdas {
+        let law = DemLaw::new(lambda, 10.0).unwrap();
+        let pc = law.load_pulloff.abs();
+        let mine: Vec<&Vec<String>> = rows
+            .iter()
+            .filter(|r| r[0].parse::<f64>().unwrap() == lambda)
+            .collect();
+        let mut history = Branch::Free;
+        let mut compared = 0;
+        for r in &mine {
+            let (phase, d, load, branch) = (&r[1], r[2].parse::<f64>().unwrap(), &r[3], &r[4]);
+            let want: f64 = load.parse().unwrap();
+            if phase == "mark" {
+                let got = match branch.as_str() {
+                    "non_contact_start" => -law.h0,
+                    "jump_in" => law.delta_in,
+                    "jump_out" => law.delta_out,
+                    "non_contact_end" => law.delta_nc.unwrap(),
+                    _ => continue,
+                };
+                assert!(
+                    (got - d).abs() <= 1e-9 * d.abs().max(1.0),
+                    "lambda {lambda}, {branch}: {got} against {d}"
+                );
+                continue;
+            }
+            let e = law.eval(d, &mut history);
+            assert_eq!(e.branch.name(), branch, "lambda {lambda}, {phase} at {d}");
+            assert!(
+                (e.load - want).abs() <= 1e-6 * pc.max(want.abs()),
+                "lambda {lambda}, {phase} at {d}: {} against {want}",
+                e.load
+            );
+            compared += 1;
+        }
+        assert_eq!(compared, 82, "lambda {lambda}");
+    }
+    let energy = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/dem_reference_energy.csv"
+    ))
+    .unwrap();
+    for l in energy.lines().skip(1) {
+        let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        let law = DemLaw::new(v[0], 10.0).unwrap();
+        let area = law.loop_area(v[1]).unwrap();
+        assert!(
+            (area - v[2]).abs() <= 1e-8 * v[2],
+            "lambda {}: loop {area} against {}",
+            v[0],
+            v[2]
+        );
+    }
 }

@@ -5,6 +5,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo test --release
+# The C library for particle codes (libtabor_dem, sharing the compiled tabor above), its tests
+# and the C example compiled and run against it; the committed header is the generated one.
+cargo build --release -p tabor-capi
+cargo test --release -p tabor-capi
+cargo test --release -p tabor-capi-header
 # The library's documentation builds without a warning (broken links included).
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
 cargo build --release --bin tabor   # the Python tests compare with the command line
