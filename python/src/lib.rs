@@ -13,6 +13,7 @@ use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use tabor::engine::{Backend, Engine, Precision};
 use tabor::solver::{Control, LambdaContext, State, Status};
 
+mod dem;
 mod rough;
 
 /// How often a call waiting for its work checks for Ctrl-C.
@@ -1050,6 +1051,8 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("APPROACH_MAX", tabor::physics::domain::APPROACH_MAX)?;
     m.add("RADIUS_MAX", tabor::physics::domain::RADIUS_MAX)?;
     m.add_function(wrap_pyfunction!(method_codes, m)?)?;
+    m.add_function(wrap_pyfunction!(dem::dem_law, m)?)?;
+    m.add_class::<dem::PyDemLaw>()?;
     m.add_function(wrap_pyfunction!(rough::rough_scene, m)?)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
     m.add_function(wrap_pyfunction!(python_names, m)?)?;

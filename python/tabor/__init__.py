@@ -47,7 +47,7 @@ __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "humidity", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
     "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
-    "rough_map", "rough_pulloff", "rough_scene", "rough_topography",
+    "rough_map", "rough_pulloff", "rough_scene", "rough_topography", "dem_law",
 ]
 
 
@@ -1829,3 +1829,71 @@ def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max
     d["region"] = np.frombuffer(bytes(d["region"]), dtype=np.uint8).reshape(shape).copy()
     d["model_error"] = d["model_error"].reshape(shape + (4,))
     return d
+
+
+def dem_law(lam=None, scene=None, overlap_max=None):
+    """The Maugis-Dugdale force-overlap law for particle (DEM) codes, as ``tabor dem-law`` and
+    the C library ``libtabor_dem`` evaluate it: the approach (attraction across the gap, the
+    jump into contact) and the retract (the contact branch down to its fold under rigid grips,
+    the jump out), each contact carrying its branch as a history code.
+
+    Parameters
+    ----------
+    lam : float, optional
+        The Maugis parameter of a normalised law: forces in ``pi w R``, overlaps in
+        ``(pi^2 w^2 R / K^2)^(1/3)`` (positive interpenetrating). Or:
+    scene : dict or str or os.PathLike, optional
+        A pair in SI units, a dict or the path of a JSON file with ``tabor scene``'s keys
+        (``body1`` and ``body2``, or ``e_star_pa`` and ``radius_m``; ``work_of_adhesion_j_m2``;
+        ``s0_pa``, ``h0_m`` or ``z0_m``): overlaps in m, forces in N.
+    overlap_max : float, optional
+        The largest overlap the table covers (approach units, or m for a scene) [default: 10
+        approach units]; beyond it an evaluation extrapolates the last cubic.
+
+    Returns
+    -------
+    DemLaw
+        ``law.info`` (a dict: ``lambda``, ``attraction_from``, ``jump_in``, ``jump_out``,
+        ``jump_out_force``, ``non_contact_end`` (None above lambda 0.938), ``pulloff_force``,
+        ``loop_energy`` (the energy lost per slow cycle), ``table_error`` (the table's largest
+        measured error relative to max(|pull-off|, |force|)), ``table_nodes``, ``overlap_max``,
+        ``force_scale``, ``length_scale``, ``units``); ``law.eval(overlap, history)`` (float64
+        and uint8 arrays of one length: the forces and stiffnesses dF/d(overlap), the history
+        codes 0 free, 1 non-contact, 2 contact updated in place); ``law.drive(overlap_min,
+        overlap_max, points)`` (the pair driven out and back under displacement control:
+        ``{"approach": {"overlap", "force"}, "retract": {...}}``); ``law.loop_energy(overlap_max)``.
+
+    Raises
+    ------
+    ValueError
+        neither or both of ``lam`` and ``scene``; a lambda or overlap outside the domain; a
+        scene key the dry law does not use (``humidity``, ``loads_n``, ``control``, ...).
+    TypeError
+        a scene that is not a dict or a path.
+
+    Examples
+    --------
+    >>> import numpy as np, tabor
+    >>> law = tabor.dem_law(10.0)
+    >>> round(law.info["jump_out_force"], 4), round(law.info["loop_energy"], 4)
+    (-0.8337, 1.1918)
+    >>> history = np.zeros(3, dtype=np.uint8)          # three new contacts, apart
+    >>> f, k = law.eval(np.array([-1.0, 0.0, 1.0]), history)
+    >>> history.tolist(), f.round(4).tolist()
+    ([0, 2, 2], [0.0, -1.3345, -0.1621])
+    >>> f, k = law.eval(np.array([-0.5, -0.5, -0.5]), history)   # pulled back: the contacts hold
+    >>> history.tolist(), f.round(4).tolist()
+    ([0, 2, 2], [0.0, -1.4971, -1.4971])
+    """
+    if (lam is None) == (scene is None):
+        raise ValueError("give lam (a normalised law) or scene (a pair in SI units), one of them")
+    text = None
+    if scene is not None:
+        if isinstance(scene, (str, os.PathLike)):
+            with open(scene) as f:
+                text = f.read()
+        elif isinstance(scene, dict):
+            text = _scene_text(scene)
+        else:
+            raise TypeError(f"scene = {scene!r}: give a dict or the path of a JSON file")
+    return _tabor.dem_law(_optional(lam, "lam"), text, _optional(overlap_max, "overlap_max"))

@@ -235,3 +235,21 @@ def rough_map(
     press_sigmas: float = 3.0,
     check: int = 64,
 ) -> Dict[str, Any]: ...
+
+class DemLaw:
+    """The force-overlap law of :func:`dem_law` (the compiled ``tabor._tabor.DemLaw``)."""
+    @property
+    def info(self) -> Dict[str, Any]: ...
+    def eval(
+        self, overlap: npt.NDArray[np.float64], history: npt.NDArray[np.uint8]
+    ) -> Tuple[Array, Array]: ...
+    def drive(
+        self, overlap_min: float, overlap_max: float, points: int
+    ) -> Dict[str, Dict[str, Array]]: ...
+    def loop_energy(self, overlap_max: float) -> Optional[float]: ...
+
+def dem_law(
+    lam: Optional[float] = None,
+    scene: Union[Dict[str, Any], str, PathLike[str], None] = None,
+    overlap_max: Optional[float] = None,
+) -> DemLaw: ...

@@ -2,18 +2,15 @@
 //! over lambda and overlap, a pair's SI law, or a pair driven under displacement control.
 
 use super::Format;
-use crate::dem::{Branch, DemLaw, Eval, Pair};
+use crate::dem::{Branch, DemLaw, Eval, Pair, DEFAULT_OVERLAP_MAX};
 use crate::io::{fmt17, json_num, write_output};
 use crate::physics::domain::short;
-use anyhow::Context;
 use clap::Args;
 use serde_json::json;
 use std::fmt::Write as _;
 
 /// Largest number of overlaps each way.
 const POINTS_MAX: usize = 1_000_000;
-/// The default largest overlap (approach units) where none is given.
-const DEFAULT_OVERLAP_MAX: f64 = 10.0;
 
 #[derive(Args, Debug)]
 #[command(allow_negative_numbers = true)]
@@ -71,27 +68,11 @@ impl Shown {
 
 fn pair_of(path: &str, overlap_max_m: Option<f64>) -> anyhow::Result<Shown> {
     let s = super::scene::read_scene(path)?;
-    let ignored = [
-        ("humidity", s.humidity.is_some()),
-        ("loads_n", s.loads_n.is_some()),
-        ("load_range_n", s.load_range_n.is_some()),
-        ("control", s.control.is_some()),
-        ("tolerance", s.tolerance.is_some()),
-        ("shear_strength_pa", s.shear_strength_pa.is_some()),
-    ];
-    if let Some((key, _)) = ignored.iter().find(|k| k.1) {
-        anyhow::bail!(
-            "{path}: `{key}` is not used by the DEM law (a dry pair under displacement control): remove it"
-        );
-    }
-    let contact = crate::scene::contact_of(&s).with_context(|| path.to_string())?;
-    let unit = contact.approach_scale();
-    let max_m = overlap_max_m.unwrap_or(DEFAULT_OVERLAP_MAX * unit);
-    let pair = Pair::new(contact, max_m).map_err(|e| {
-        anyhow::anyhow!(super::with_flags(
-            &e.to_string(),
-            &[("overlap_max_m", "--overlap-max")]
-        ))
+    let pair = Pair::from_scene(&s, overlap_max_m).map_err(|e| {
+        anyhow::anyhow!(
+            "{path}: {}",
+            super::with_flags(&e.to_string(), &[("overlap_max_m", "--overlap-max")])
+        )
     })?;
     Ok(Shown {
         lambda_given: pair.law.lambda,

@@ -30,6 +30,8 @@ pub const TARGET: f64 = 1e-6;
 /// The largest overlap a table may cover (approach units): a contact radius of about 100
 /// approach units, far beyond small strain for any real pair.
 pub const OVERLAP_MAX: f64 = 1e4;
+/// The largest overlap a table covers where none is given (approach units).
+pub const DEFAULT_OVERLAP_MAX: f64 = 10.0;
 /// The table's step is halved at most this many times (to TABLE_H / 256).
 const MAX_HALVINGS: u32 = 8;
 /// The graded variable's scale (the rough map's: `u = v + v^2 / (2 U_S)`).
@@ -439,6 +441,31 @@ impl Pair {
             force_scale,
             length_scale,
         })
+    }
+
+    /// The pair of a scene file (`tabor scene`'s keys: the bodies or E* and R, w, and the range),
+    /// tabulated up to `overlap_max_m` (default [`DEFAULT_OVERLAP_MAX`] approach units). Keys
+    /// the dry law under displacement control does not use are refused, not ignored.
+    pub fn from_scene(
+        s: &crate::scene::SceneInput,
+        overlap_max_m: Option<f64>,
+    ) -> Result<Pair, DemError> {
+        let unused = [
+            ("humidity", s.humidity.is_some()),
+            ("loads_n", s.loads_n.is_some()),
+            ("load_range_n", s.load_range_n.is_some()),
+            ("control", s.control.is_some()),
+            ("tolerance", s.tolerance.is_some()),
+            ("shear_strength_pa", s.shear_strength_pa.is_some()),
+        ];
+        if let Some((key, _)) = unused.iter().find(|k| k.1) {
+            return Err(DemError::Scene(format!(
+                "`{key}` is not used by the DEM law (a dry pair under displacement control): remove it"
+            )));
+        }
+        let contact = crate::scene::contact_of(s).map_err(|e| DemError::Scene(e.to_string()))?;
+        let max = overlap_max_m.unwrap_or(DEFAULT_OVERLAP_MAX * contact.approach_scale());
+        Pair::new(contact, max)
     }
 
     /// The force and stiffness at `overlap_m` (m, positive interpenetrating) for a contact whose
