@@ -12,7 +12,8 @@ cargo test --release -p tabor-capi
 cargo test --release -p tabor-capi-header
 # The library's documentation builds without a warning (broken links included).
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
-cargo build --release --bin tabor   # the Python tests compare with the command line
+# The Python tests compare with the command line: target/release/tabor, built by `cargo test`
+# above (a separate `cargo build` would compile tabor again without the tests' features).
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install -q --upgrade pip
