@@ -38,7 +38,7 @@ fn main() {
         .map(|i| {
             let s = map_curve(i, curves, points, 40.0, 2e-11);
             let u = units(&s.params, s.radius, s.spring);
-            let path = SpringPath::new(Model::Md, s.params.lambda, u.kbar, s.depth);
+            let path = SpringPath::of(Model::Md.law(s.params.lambda), u.kbar, s.depth);
             let reach = path.force_reach().min(0.0);
             let low = reach - (s.depth - reach) * 0.4 / 0.6;
             let ds = (0..points)
@@ -51,7 +51,7 @@ fn main() {
     let (t_paths, mut paths) = timed(reps, || {
         specs
             .par_iter()
-            .map(|&(l, k, depth, _)| SpringPath::new(Model::Md, l, k, depth))
+            .map(|&(l, k, depth, _)| SpringPath::of(Model::Md.law(l), k, depth))
             .collect::<Vec<SpringPath>>()
     });
     let (t_cpu, cpu) = timed(reps, || {

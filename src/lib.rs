@@ -155,6 +155,7 @@ pub mod io;
 // bit for bit. A user solves through `engine`, `map` or `solver`.
 #[doc(hidden)]
 pub mod kernel;
+pub mod law;
 pub mod map;
 pub mod physics;
 pub mod profile;
@@ -171,8 +172,9 @@ pub mod solver;
 pub use cycle::{cycle, Cycle, CycleSpec, Drive};
 pub use engine::{Backend, Engine, Precision};
 pub use fit::{fit_curve, Curve, CurveFit, FitOptions};
+pub use law::ContactLaw;
 pub use map::{compute as compute_map, MapData, MapSpec, Region};
-pub use physics::model::{ContactLaw, ContactModel};
+pub use physics::model::ContactModel;
 pub use physics::params::{Contact, ForceRange};
 pub use profile::{profile, Given, Profile};
 pub use rough::ensemble::{Asperity, EnsembleCycle, EnsembleSpec, SummitSolver};

@@ -2,7 +2,7 @@
 //! Python's): the law's own module computes it, MD in `profile.rs`, the solid with its
 //! meniscus in `profile_two_zone.rs`.
 
-use crate::physics::model::ContactLaw;
+use crate::law::{ContactLaw, Md, TwoZones};
 use crate::profile::{profile, Given, Profile, ProfileError};
 use crate::profile_two_zone::{two_zone_profile, TwoZoneProfile, TwoZoneProfileError};
 use serde::Serialize;
@@ -39,24 +39,36 @@ pub enum LawProfileError {
     /// The two-zone law.
     #[error(transparent)]
     SolidAndMeniscus(#[from] TwoZoneProfileError),
+    /// A law without a profile here (the closed forms are drawn beside Maugis-Dugdale's).
+    #[error(transparent)]
+    Law(#[from] crate::law::LawError),
 }
 
 impl ProfileSpec {
     /// The profile, by the law's module.
     pub fn run(&self) -> Result<LawProfile, LawProfileError> {
         Ok(match self.law {
-            ContactLaw::Md { lambda } => LawProfile::Md(profile(lambda, self.given, self.points)?),
-            ContactLaw::SolidAndMeniscus {
+            ContactLaw::Md(Md { lambda }) => {
+                LawProfile::Md(profile(lambda, self.given, self.points)?)
+            }
+            ContactLaw::SolidAndMeniscus(TwoZones {
                 lambda,
                 stress_ratio,
                 range_ratio,
-            } => LawProfile::SolidAndMeniscus(two_zone_profile(
+            }) => LawProfile::SolidAndMeniscus(two_zone_profile(
                 lambda,
                 stress_ratio,
                 range_ratio,
                 self.given,
                 self.points,
             )?),
+            closed => {
+                return Err(crate::law::LawError::Unsupported {
+                    model: closed.model(),
+                    what: "profile of its own (profiles of md draw it beside)",
+                }
+                .into())
+            }
         })
     }
 }

@@ -1,15 +1,15 @@
 //! The two-zone law (the solid's Dugdale zone plus a water meniscus) fitted to a humid curve's
-//! shape through the fit's seam for a law (`fit::law`): its path under the cantilever against
+//! shape through the law layer (`tabor::law`): its path under the cantilever against
 //! the two-zone solver's states and the cycle's exact spring fold (an independent follower),
 //! and fits of curves made with a known solid: noise-free ones give it back, a noisy one whose
 //! curve cannot fix lambda brackets it, through the library and the command line.
 
 use std::process::Command;
-use tabor::cycle::{two_zone, Drive, Phase};
-use tabor::fit::law::Law;
-use tabor::fit::path::{Direction, Piece};
+use tabor::cycle::{Drive, Phase};
 use tabor::fit::synthetic::{try_synthetic_wet, Synthetic};
+use tabor::fit::Direction;
 use tabor::fit::{fit_curve, Curve, FitOptions, Model, Params, SpringPath};
+use tabor::law::{ContactLaw, Piece};
 use tabor::physics::two_zone::Zones;
 use tabor::scene::humidity::HumidityInput;
 use tabor::solver::two_zone::TwoZoneContext;
@@ -30,8 +30,13 @@ fn the_path_under_a_spring_is_the_solvers_states_and_jumps_at_its_fold() {
         let ctx = TwoZoneContext::new(Zones::from_ratios(lambda, rho, eta).unwrap()).unwrap();
         for kbar in [0.5, 2.0] {
             let at = format!("lambda {lambda}, ratios {rho} {eta}, kbar {kbar}");
-            let path = SpringPath::of(Law::solid_and_meniscus(lambda, rho, eta), kbar, 8.0);
-            let cycle = two_zone::cycle(lambda, rho, eta, Drive::Spring(kbar), 30.0).unwrap();
+            let path = SpringPath::of(ContactLaw::solid_and_meniscus(lambda, rho, eta), kbar, 8.0);
+            let cycle = tabor::cycle::run(
+                &ContactLaw::solid_and_meniscus(lambda, rho, eta),
+                Drive::Spring(kbar),
+                30.0,
+            )
+            .unwrap();
             let fold = cycle
                 .jumps
                 .iter()
@@ -83,26 +88,16 @@ fn the_path_under_a_spring_is_the_solvers_states_and_jumps_at_its_fold() {
 /// (pi lambda)` with the load `-(pi lambda / 2) C^2` in closed form, down to its fold.
 #[test]
 fn retract_landings_are_the_cycles() {
-    let mut laws: Vec<(Law, f64)> = LAWS
+    let mut laws: Vec<(ContactLaw, f64)> = LAWS
         .iter()
-        .flat_map(|&(l, r, e)| [0.5, 2.0].map(|k| (Law::solid_and_meniscus(l, r, e), k)))
+        .flat_map(|&(l, r, e)| [0.5, 2.0].map(|k| (ContactLaw::solid_and_meniscus(l, r, e), k)))
         .collect();
-    laws.extend([(0.3, 5.0), (1.0, 20.0), (3.0, 2.0)].map(|(l, k)| (Law::new(Model::Md, l), k)));
+    laws.extend([(0.3, 5.0), (1.0, 20.0), (3.0, 2.0)].map(|(l, k)| (ContactLaw::md(l), k)));
     let mut landed_on_the_meniscus = 0;
     for (law, kbar) in laws {
         let at = format!("{law:?}, kbar {kbar}");
         let path = SpringPath::of(law, kbar, 8.0);
-        let cycle = match law.model {
-            Model::Md => tabor::cycle(law.lambda, Drive::Spring(kbar), 30.0).unwrap(),
-            _ => two_zone::cycle(
-                law.lambda,
-                law.second[0],
-                law.second[1],
-                Drive::Spring(kbar),
-                30.0,
-            )
-            .unwrap(),
-        };
+        let cycle = tabor::cycle::run(&law, Drive::Spring(kbar), 30.0).unwrap();
         for j in cycle.jumps.iter().filter(|j| j.phase == Phase::Retract) {
             if j.from.branch != tabor::cycle::Branch::Contact {
                 continue;
@@ -123,7 +118,7 @@ fn retract_landings_are_the_cycles() {
     assert!(landed_on_the_meniscus >= 2, "{landed_on_the_meniscus}");
     // Maugis-Dugdale at lambda 0.5 under kbar 50: no fold on the contact branch.
     let (lambda, kbar) = (0.5, 50.0);
-    let path = SpringPath::of(Law::new(Model::Md, lambda), kbar, 8.0);
+    let path = SpringPath::of(ContactLaw::md(lambda), kbar, 8.0);
     let pi = std::f64::consts::PI;
     let (a2, a1, a0) = (
         0.5 - pi * lambda / (2.0 * kbar),

@@ -840,7 +840,7 @@ fn fit_states_match_the_mirror_and_the_path() {
     for i in 0..24 {
         let s = map_curve(i * 41, 1000, 300, if i % 2 == 0 { 40.0 } else { 0.4 }, 0.0);
         let u = units(&s.params, s.radius, s.spring);
-        let p = SpringPath::new(Model::Md, s.params.lambda, u.kbar, s.depth);
+        let p = SpringPath::of(Model::Md.law(s.params.lambda), u.kbar, s.depth);
         let low = p.force_reach().min(0.0) - 1.0;
         deltas.push(
             (0..300)

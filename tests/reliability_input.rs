@@ -79,7 +79,7 @@ fn curve() -> (Vec<f64>, Vec<f64>, Vec<f64>) {
         .segment
         .iter()
         .map(|s| {
-            if *s == tabor::fit::path::Direction::Approach {
+            if *s == tabor::fit::Direction::Approach {
                 0.0
             } else {
                 1.0

@@ -4,7 +4,7 @@
 //! summit (sigma -> 0), an explicit ensemble stepped through the two-zone grips cycle, and the
 //! physics of humidity (pull-off grows with the meniscus).
 
-use tabor::cycle::{two_zone, Branch, Drive, PathPoint};
+use tabor::cycle::{Branch, Drive, PathPoint};
 use tabor::physics::two_zone::Zones;
 use tabor::rough::wet::WetRough;
 use tabor::rough::{Leg, Rough};
@@ -92,7 +92,12 @@ fn one_summit_height_gives_the_wet_summits_grips_pulloff() {
     for (lambda, rho, eta) in [(1.0, 0.5, 3.0), (2.0, 1.0, 2.0), (1.0, 0.05, 10.0)] {
         let ctx = TwoZoneContext::new(Zones::from_ratios(lambda, rho, eta).unwrap()).unwrap();
         assert!(ctx.load_pulloff.a > ctx.disp_pulloff.a);
-        let c = two_zone::cycle(lambda, rho, eta, Drive::RigidGrips, 5.0).unwrap();
+        let c = tabor::cycle::run(
+            &tabor::ContactLaw::solid_and_meniscus(lambda, rho, eta),
+            Drive::RigidGrips,
+            5.0,
+        )
+        .unwrap();
         let sampled = c
             .steps
             .iter()
@@ -124,7 +129,12 @@ struct Follower {
 
 impl Follower {
     fn new(lambda: f64, rho: f64, eta: f64) -> Follower {
-        let c = two_zone::cycle(lambda, rho, eta, Drive::RigidGrips, 40.0).unwrap();
+        let c = tabor::cycle::run(
+            &tabor::ContactLaw::solid_and_meniscus(lambda, rho, eta),
+            Drive::RigidGrips,
+            40.0,
+        )
+        .unwrap();
         let path = c.path;
         let mut runs = Vec::new();
         let mut i = 0;
@@ -498,10 +508,14 @@ fn vanishing_roughness_loses_the_wet_summits_grips_loop() {
     // sigma -> 0: every summit at one height; pressed to approach 3, each loses the two-zone
     // rigid-grips cycle's loop (sampled there, so within 2e-3).
     for (lambda, rho, eta) in [(1.0, 0.5, 3.0), (0.3, 0.2, 5.0), (3.0, 1.0, 2.0)] {
-        let single = two_zone::cycle(lambda, rho, eta, Drive::RigidGrips, 8.0)
-            .unwrap()
-            .hysteresis
-            .unwrap();
+        let single = tabor::cycle::run(
+            &tabor::ContactLaw::solid_and_meniscus(lambda, rho, eta),
+            Drive::RigidGrips,
+            8.0,
+        )
+        .unwrap()
+        .hysteresis
+        .unwrap();
         let c = WetRough::new(lambda, rho, eta, 1e-6)
             .unwrap()
             .cycle(lambda, -3.0, None, 50)

@@ -7,7 +7,7 @@ use tabor::physics::two_zone::{Shape, Zones};
 use tabor::solver::two_zone::TwoZoneContext;
 
 fn wet(l: f64, rho: f64, eta: f64, d: Drive) -> Cycle {
-    cycle::two_zone::cycle(l, rho, eta, d, 2.0).unwrap()
+    tabor::cycle::run(&tabor::ContactLaw::solid_and_meniscus(l, rho, eta), d, 2.0).unwrap()
 }
 
 fn same(a: &Cycle, b: &Cycle, tol: f64) {
@@ -164,14 +164,18 @@ fn bad_input_is_one_line() {
         (1.0, 0.1, 2.0, Drive::Spring(0.0), "stiffness"),
         (1.0, 0.1, 2.0, Drive::Spring(-1.0), "stiffness"),
     ] {
-        let e = cycle::two_zone::cycle(l, rho, eta, d, 2.0)
+        let e = tabor::cycle::run(&tabor::ContactLaw::solid_and_meniscus(l, rho, eta), d, 2.0)
             .unwrap_err()
             .to_string();
         assert!(e.contains(word) && !e.contains('\n'), "{e}");
     }
-    let e = cycle::two_zone::cycle(1.0, 0.1, 2.0, g, -1.0)
-        .unwrap_err()
-        .to_string();
+    let e = tabor::cycle::run(
+        &tabor::ContactLaw::solid_and_meniscus(1.0, 0.1, 2.0),
+        g,
+        -1.0,
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("largest load") && !e.contains('\n'), "{e}");
 }
 
@@ -229,7 +233,12 @@ fn command_line_wet_cycle_is_the_librarys() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-    let c = cycle::two_zone::cycle(2.0, 0.3, 3.0, Drive::Spring(0.7), 2.0).unwrap();
+    let c = tabor::cycle::run(
+        &tabor::ContactLaw::solid_and_meniscus(2.0, 0.3, 3.0),
+        Drive::Spring(0.7),
+        2.0,
+    )
+    .unwrap();
     assert_eq!(v["hysteresis"].as_f64(), c.hysteresis);
     assert_eq!(v["steps"].as_array().unwrap().len(), c.steps.len());
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
@@ -315,7 +324,7 @@ fn spring_jump_out_is_the_fold_found_exactly() {
 #[test]
 fn the_cycle_spec_dispatches_on_the_law() {
     use tabor::cycle::CycleSpec;
-    use tabor::physics::model::{ContactLaw, ContactModel};
+    use tabor::{ContactLaw, ContactModel};
     let json = |c: &Cycle| serde_json::to_string(c).unwrap();
     let e = ContactLaw::new(1.0, Some(0.2), None).unwrap_err();
     assert!(
@@ -337,13 +346,13 @@ fn the_cycle_spec_dispatches_on_the_law() {
         let law = ContactLaw::new(2.0, Some(0.3), Some(3.0)).unwrap();
         assert_eq!(
             (law.model(), law.lambda()),
-            (ContactModel::SolidAndMeniscus, 2.0)
+            (ContactModel::SolidAndMeniscus, Some(2.0))
         );
         let spec = CycleSpec { law, ..spec };
         assert_eq!(json(&spec.run().unwrap()), json(&wet(2.0, 0.3, 3.0, d)));
     }
     let bad = CycleSpec {
-        law: ContactLaw::Md { lambda: 1.0 },
+        law: ContactLaw::md(1.0),
         drive: Drive::Spring(-1.0),
         max_load: 2.0,
     };

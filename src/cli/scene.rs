@@ -483,7 +483,7 @@ pub struct CycleArgs {
 
 pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
     use crate::cycle::{normalised_stiffness, CycleSpec, Drive};
-    use crate::physics::model::ContactLaw;
+    use crate::law::ContactLaw;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(read_scene(f)?),
         (None, Some(p)) => Some(preset_named(p)?),

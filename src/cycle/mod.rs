@@ -13,47 +13,11 @@
 //! Pbar dDbar` (the spring's stored energy is a state function), in units of pi w R times the
 //! approach unit.
 
-use crate::physics::md::{curve_point, non_contact_point, zero_radius_end};
-use crate::solver::context::x_at_radius;
-use crate::solver::LambdaContext;
+use crate::law::path::{check_drive, control_of, free_landing};
+use crate::law::{Law, LawError, Md};
 use serde::Serialize;
 
-pub mod two_zone;
-
-/// How the cycle is driven: the base held by rigid grips, a dead load, or a spring between them.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Drive {
-    /// Displacement control.
-    RigidGrips,
-    /// Load control.
-    DeadLoad,
-    /// A spring of normalised stiffness kbar in series.
-    Spring(f64),
-}
-
-/// Which part of the equilibrium path a point is on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Branch {
-    /// No force: the surfaces farther apart than the force range.
-    Free,
-    /// The Dugdale zone alone (A = 0).
-    NonContact,
-    /// In contact: the Maugis-Dugdale curve.
-    Contact,
-}
-
-impl Branch {
-    /// The branch's name in tables and JSON (`free`, `non_contact`, `contact`).
-    pub fn name(self) -> &'static str {
-        match self {
-            Branch::Free => "free",
-            Branch::NonContact => "non_contact",
-            Branch::Contact => "contact",
-        }
-    }
-}
+pub use crate::law::{Branch, Drive, PathPoint};
 
 /// The half of a cycle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -72,21 +36,6 @@ impl std::fmt::Display for Phase {
             Phase::Retract => "retract",
         })
     }
-}
-
-/// One equilibrium state on the path (normalised units).
-#[derive(Clone, Copy, Debug, Serialize)]
-pub struct PathPoint {
-    /// The branch it is on.
-    pub branch: Branch,
-    /// The approach (normalised).
-    pub approach: f64,
-    /// The load (normalised, compressive positive).
-    pub load: f64,
-    /// The contact radius (0 off contact).
-    pub a: f64,
-    /// Normalised radius of the cohesive zone: C on the non-contact branch, m A in contact.
-    pub c: f64,
 }
 
 /// One step of the cycle: the state the drive holds at one value of its control.
@@ -132,77 +81,6 @@ pub struct Cycle {
     pub hysteresis: Option<f64>,
 }
 
-fn control_of(p: &PathPoint, drive: Drive) -> f64 {
-    match drive {
-        Drive::RigidGrips => p.approach,
-        Drive::DeadLoad => p.load,
-        Drive::Spring(k) => p.approach + p.load / k,
-    }
-}
-
-/// The complete equilibrium path up to load `max_load`: free, non-contact, contact.
-/// `lambda` must be in the solver's domain (see [`cycle`]).
-pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> {
-    let end = zero_radius_end(lambda);
-    let (_, d0) = non_contact_point(lambda, 0.0);
-    let mut path = Vec::with_capacity(3 * n);
-    for i in 0..n {
-        let c = end.c * i as f64 / (n - 1) as f64;
-        let (p, d) = non_contact_point(lambda, c);
-        path.push(PathPoint {
-            branch: Branch::NonContact,
-            approach: d,
-            load: p,
-            a: 0.0,
-            c,
-        });
-    }
-    let Ok(ctx) = LambdaContext::new(lambda) else {
-        return Vec::new();
-    };
-    let a_max = ctx.solve_load(max_load).a;
-    // The jumps happen at loads of order one: the branch up to the radius at load 10 gets 2n
-    // points however large `max_load` is, and beyond it n more, spaced geometrically.
-    let a_mid = a_max.min(ctx.solve_load(10.0).a);
-    let mut radii: Vec<f64> = (1..=2 * n)
-        .map(|i| a_mid * (i as f64 / (2 * n) as f64).powf(1.5))
-        .collect();
-    if a_max > a_mid {
-        radii.extend((1..=n).map(|i| a_mid * (a_max / a_mid).powf(i as f64 / n as f64)));
-    }
-    for a in radii {
-        // Dense near A = 0, where the contact branch leaves the non-contact one.
-        let mu = x_at_radius(lambda, a).exp();
-        let p = curve_point(lambda, mu);
-        path.push(PathPoint {
-            branch: Branch::Contact,
-            approach: p.approach,
-            load: p.load,
-            a: p.a,
-            c: (p.m_minus_1 + 1.0) * p.a,
-        });
-    }
-    // The free segment before first contact of the force zones (no force), long enough for any
-    // spring jump to land on.
-    let lowest = path
-        .iter()
-        .map(|p| p.approach + p.load.min(0.0) * 1e3)
-        .fold(d0, f64::min);
-    let free: Vec<PathPoint> = (0..n)
-        .map(|i| {
-            let d = lowest - 1.0 + (d0 - lowest + 1.0) * i as f64 / n as f64;
-            PathPoint {
-                branch: Branch::Free,
-                approach: d,
-                load: 0.0,
-                a: 0.0,
-                c: 0.0,
-            }
-        })
-        .collect();
-    free.into_iter().chain(path).collect()
-}
-
 /// Where the path first comes back to `level` on a rising stretch, after index `from`.
 fn landing_forward(u: &[f64], from: usize, level: f64) -> Option<(usize, f64)> {
     (from + 1..u.len() - 1)
@@ -228,106 +106,61 @@ fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
     }
 }
 
-/// The checks every law's cycle shares: the final load and the spring.
-fn check_drive(drive: Drive, max_load: f64) -> Result<(), crate::solver::SolveError> {
-    if !(max_load > 0.0 && max_load <= 1e12) {
-        return Err(crate::solver::domain::DomainError {
-            name: "the largest load of the approach",
-            value: max_load,
-            range: "(0, 1e12]",
-            hint: "the approach must end in compression",
-        }
-        .into());
-    }
-    if let Drive::Spring(k) = drive {
-        if !(k > 0.0 && k.is_finite()) {
-            return Err(crate::solver::domain::DomainError {
-                name: "the spring stiffness kbar",
-                value: k,
-                range: "(0, inf)",
-                hint: "give a positive, finite stiffness",
-            }
-            .into());
-        }
-    }
-    Ok(())
-}
-
 /// The cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the solver's
 /// domain.
 pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
     crate::solver::domain::check_lambda(lambda)?;
     check_drive(drive, max_load)?;
-    let Ok(c) = run(&Md(lambda), drive, max_load);
-    Ok(c)
+    let md = Md { lambda };
+    let path = crate::law::md::equilibrium_path(lambda, max_load, crate::law::md::CYCLE_POINTS);
+    Ok(follow_law(&md, drive, path))
 }
 
-/// What a cycle needs of a contact law: its complete equilibrium path up to a load, and its
-/// exact jump-outs (the path's samples only bracket them). The drive, the stability, the jumps
-/// and the loop's area are the same for every law (`run`); a law implements this in its own
-/// module (MD here, the two-zone law in `two_zone.rs`).
-pub(crate) trait PathLaw {
-    /// Why the law's path could not be solved.
-    type Error;
-    /// The Maugis parameter reported with the cycle (the solid's).
-    fn lambda(&self) -> f64;
-    /// The path from free to `max_load`, its parameter rising along it.
-    fn path(&self, max_load: f64) -> Result<Vec<PathPoint>, Self::Error>;
-    /// Puts the jump-outs where the law's folds are.
-    fn refine_jumps(&self, drive: Drive, jumps: &mut [Jump]);
+/// The cycle of any law under `drive` up to the load `max_load`, after the law's and the
+/// drive's checks (each one line naming the value).
+pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
+    let path = law.cycle_path(drive, max_load)?;
+    Ok(follow_law(law, drive, path))
 }
 
-/// The Maugis-Dugdale law at this lambda (checked by the caller).
-struct Md(f64);
-
-impl PathLaw for Md {
-    type Error = std::convert::Infallible;
-    fn lambda(&self) -> f64 {
-        self.0
-    }
-    fn path(&self, max_load: f64) -> Result<Vec<PathPoint>, Self::Error> {
-        Ok(equilibrium_path(self.0, max_load, 400))
-    }
-    fn refine_jumps(&self, drive: Drive, jumps: &mut [Jump]) {
-        refine_jump_outs(self.0, drive, jumps)
-    }
-}
-
-/// The cycle of any law under `drive` (law and drive checked).
-fn run<L: PathLaw>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, L::Error> {
-    let path = law.path(max_load)?;
+/// The drive's steps, jumps and loop on a law's sampled path, each retract jump from the
+/// contact branch put at the law's exact fold (the samples only bracket it; a landing on the
+/// free branch moves with it).
+fn follow_law<L: Law + ?Sized>(law: &L, drive: Drive, path: Vec<PathPoint>) -> Cycle {
     let f = follow(&path, drive);
     let mut jumps = f.jumps;
-    law.refine_jumps(drive, &mut jumps);
-    Ok(Cycle {
-        lambda: law.lambda(),
+    for j in jumps
+        .iter_mut()
+        .filter(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
+    {
+        if let Some(p) = law.fold(drive, &j.from) {
+            if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
+                to.approach = free_landing(&p, drive);
+            }
+            j.from = p;
+        }
+    }
+    Cycle {
+        lambda: law.lambda().unwrap_or(f64::NAN),
         drive,
         path,
         stable: f.stable,
         steps: f.steps,
         jumps,
         hysteresis: f.hysteresis,
-    })
+    }
 }
 
 /// Why a cycle was not computed: a bad law, drive or load (the message names the quantity, the
 /// value and what to give), or a two-zone curve that could not be solved.
-#[derive(Debug, thiserror::Error)]
-pub enum CycleError {
-    /// The MD law or the drive.
-    #[error(transparent)]
-    Solve(#[from] crate::solver::SolveError),
-    /// The two-zone law.
-    #[error(transparent)]
-    Zones(#[from] crate::solver::two_zone::ZonesError),
-}
+pub type CycleError = LawError;
 
 /// An approach-retract cycle to compute: the options of `tabor cycle` and `tabor.cycle`, checked
 /// here for both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleSpec {
     /// The contact law.
-    pub law: crate::physics::model::ContactLaw,
+    pub law: crate::law::ContactLaw,
     /// How the base is driven.
     pub drive: Drive,
     /// The load the approach ends at (0 < max_load <= 1e12; the two-zone law's in total-w
@@ -338,15 +171,7 @@ pub struct CycleSpec {
 impl CycleSpec {
     /// The cycle, after the law's and the drive's checks (each one line naming the value).
     pub fn run(&self) -> Result<Cycle, CycleError> {
-        use crate::physics::model::ContactLaw;
-        Ok(match self.law {
-            ContactLaw::Md { lambda } => cycle(lambda, self.drive, self.max_load)?,
-            ContactLaw::SolidAndMeniscus {
-                lambda,
-                stress_ratio,
-                range_ratio,
-            } => two_zone::cycle(lambda, stress_ratio, range_ratio, self.drive, self.max_load)?,
-        })
+        run(&self.law, self.drive, self.max_load)
     }
 }
 
@@ -499,69 +324,6 @@ fn follow(path: &[PathPoint], drive: Drive) -> Followed {
     }
 }
 
-/// The retract's jump from the contact branch is a fold of the exact curve: under rigid grips
-/// the minimum of the approach, under dead load the minimum of the load (the pull-offs of the
-/// solver's context), and under a spring where `dPbar/dDbar = -kbar`. The path's samples only
-/// bracket it; this puts the jump where it is, to the solver's precision (the landing on the
-/// free branch moves with it).
-fn refine_jump_outs(lambda: f64, drive: Drive, jumps: &mut [Jump]) {
-    let Ok(ctx) = LambdaContext::new(lambda) else {
-        return;
-    };
-    let at = |a: f64| {
-        let p = curve_point(lambda, x_at_radius(lambda, a).exp());
-        PathPoint {
-            branch: Branch::Contact,
-            approach: p.approach,
-            load: p.load,
-            a: p.a,
-            c: (p.m_minus_1 + 1.0) * p.a,
-        }
-    };
-    for j in jumps
-        .iter_mut()
-        .filter(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
-    {
-        let exact = match drive {
-            Drive::RigidGrips => ctx.disp_pulloff(),
-            Drive::DeadLoad => ctx.load_pulloff,
-            Drive::Spring(k) => {
-                // Where the control's slope along the curve changes sign, by bisection in A
-                // around the sampled fold (the control rises with A on the stable side).
-                let slope = |a: f64| {
-                    let p = curve_point(lambda, x_at_radius(lambda, a).exp());
-                    p.dapproach_dmu + p.dload_dmu / k
-                };
-                let (mut lo, mut hi) = (0.8 * j.from.a, 1.25 * j.from.a + 1e-300);
-                if (slope(lo) > 0.0) == (slope(hi) > 0.0) {
-                    continue;
-                }
-                for _ in 0..200 {
-                    let m = 0.5 * (lo + hi);
-                    if (slope(m) > 0.0) == (slope(lo) > 0.0) {
-                        lo = m;
-                    } else {
-                        hi = m;
-                    }
-                }
-                let p = at(0.5 * (lo + hi));
-                j.from = p;
-                if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
-                    to.approach = p.approach + p.load / k;
-                }
-                continue;
-            }
-        };
-        if exact.a > 0.0 {
-            let p = at(exact.a);
-            if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
-                to.approach = p.approach;
-            }
-            j.from = p;
-        }
-    }
-}
-
 /// The normalised spring stiffness: k (N/m) times the approach unit over the force unit.
 pub fn normalised_stiffness(k: f64, c: &crate::physics::params::Contact) -> f64 {
     k * c.approach_scale() / c.force_scale()
@@ -584,6 +346,8 @@ pub fn kbar_text(kbar: f64, wet: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::law::md::equilibrium_path;
+    use crate::solver::LambdaContext;
 
     fn retract_jump(c: &Cycle) -> &Jump {
         c.jumps

@@ -6,8 +6,8 @@
 //! against the CPU on the force-map benchmark's curves; the fits themselves stay on the CPU
 //! (README, "The GPU and fits", says why with those figures).
 
-use super::path::SpringPath;
 use crate::kernel::layout::{FitCurve64, FitPoint64};
+use crate::law::follow::SpringPath;
 use rayon::prelude::*;
 
 /// The points of many curves on their contact pieces, ready for `Gpu::fit_states`.
@@ -29,7 +29,7 @@ pub fn pack(paths: &mut [SpringPath], deltas: &[Vec<f64>]) -> Batch {
     let curves = paths
         .iter()
         .map(|p| FitCurve64 {
-            lambda: p.law.lambda,
+            lambda: p.law.lambda().unwrap_or(f64::NAN),
             kbar: p.kbar,
         })
         .collect();
@@ -76,7 +76,7 @@ mod tests {
             (9.5, 2.0),
             (50.0, 0.05),
         ] {
-            let mut paths = vec![SpringPath::new(Model::Md, lambda, kbar, 8.0)];
+            let mut paths = vec![SpringPath::of(Model::Md.law(lambda), kbar, 8.0)];
             let low = paths[0].force_reach().min(0.0) - 1.0;
             let deltas = vec![(0..400)
                 .map(|k| low + (9.0 - low) * k as f64 / 399.0)

@@ -3,7 +3,7 @@
 //! cantilever base, larger is farther from the sample), `force_n` (positive when repulsive), and
 //! optionally `curve` (any id) or `x` and `y` (pixel indices of a force map) to hold many curves.
 
-use super::path::Direction;
+use crate::law::follow::Direction;
 use std::collections::HashMap;
 
 /// One approach-retract curve, points in the order measured.

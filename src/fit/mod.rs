@@ -5,7 +5,7 @@
 //! farther from the sample). With spring constant k, the base displacement past the contact point
 //! z_c is `Delta = z_c - height` (the tip's indentation plus its deflection F/k), and the model
 //! force at each height is the state of the model's equilibrium path followed under the spring
-//! (`path`): on retract it follows the stable branch until the force gradient reaches -k and then
+//! (`crate::law::follow`): on retract it follows the stable branch until the force gradient reaches -k and then
 //! jumps, as the measured curve does. Parameters: E*, w, lambda (or a fixed range z0), z_c and a
 //! force offset, fitted by Levenberg-Marquardt (MINPACK's, through the `levenberg-marquardt`
 //! crate) with finite-difference Jacobians that keep each point on its branch.
@@ -14,9 +14,8 @@ pub mod batch;
 pub mod data;
 pub mod humidity;
 pub mod interval;
-pub mod law;
+pub mod model;
 mod options;
-pub mod path;
 mod prepare;
 mod problem;
 mod result;
@@ -25,20 +24,21 @@ pub mod segments;
 mod summary;
 pub mod synthetic;
 
+pub use crate::law::follow::{Direction, SpringPath};
 pub use data::{read_curves, Curve, CurveSet, DataError};
-pub use law::Model;
+pub use model::Model;
 pub use options::*;
-pub use path::{Direction, SpringPath};
 pub use prepare::*;
 pub use problem::*;
 pub use result::*;
 use search::*;
 use summary::*;
 
+use crate::law::follow::{PathState, Side};
+use crate::law::{Law, Piece};
 use crate::physics::params::LJ_STRESS;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt, TerminationReason};
 use nalgebra::{storage::Owned, DMatrix, DVector, Dyn};
-use path::{PathState, Piece, Side};
 use serde::Serialize;
 use std::cell::RefCell;
 use std::f64::consts::PI;
@@ -166,7 +166,7 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
     };
     let w_ref = w_of(1.75);
     let hertz = fit_model(Model::Hertz, d, opt, start(w_ref, 1.0), w_ref, None);
-    let pulloff = |model: Model, lambda: f64| law::Law::new(model, lambda).pulloff();
+    let pulloff = |model: Model, lambda: f64| model.law(lambda).pulloff();
     // A closed form with adhesion, its w started from the measured pull-off with its own.
     let closed = |model| {
         let s = start(w_of(pulloff(model, 1.0)), 1.0);
@@ -272,7 +272,7 @@ fn fixed_z0_fit(
     w_ref: f64,
 ) -> Result<(ModelFit, interval::Intervals), Box<CurveFit>> {
     let best = better(dmt.clone(), jkr.clone());
-    let pc = law::Law::new(best.model, 1.0).pulloff();
+    let pc = best.model.law(1.0).pulloff();
     let mut s = from(&best, 1.0, pc);
     s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
     if crate::solver::domain::check_lambda(s.lambda).is_err() {
@@ -423,7 +423,7 @@ mod tests {
             // from its slopes at the nearest state, against differences of that distance.
             prob.fold_rows(&mut a, &base);
             let folds = (0..base.len())
-                .filter(|&i| d.at_jump[i] && base[i].piece != path::Piece::Free)
+                .filter(|&i| d.at_jump[i] && base[i].piece != Piece::Free)
                 .count();
             assert!(
                 folds > 0 || model == Model::Hertz,
@@ -485,7 +485,7 @@ mod tests {
                     "lambda {lambda}, point {i} on {:?}: analytic {a:e} against central {n:e}",
                     s.piece
                 );
-                if s.piece != path::Piece::Free && !s.clamped {
+                if s.piece != Piece::Free && !s.clamped {
                     assert!(a != 0.0, "lambda {lambda}, point {i}: no slope");
                     compared += 1;
                 }
@@ -521,7 +521,7 @@ mod tests {
                 let sp = prob.eval(&xp, Some(&base)).unwrap().1;
                 let sm = prob.eval(&xm, Some(&base)).unwrap().1;
                 for (i, b) in base.iter().enumerate() {
-                    if b.piece == path::Piece::Free || b.clamped {
+                    if b.piece == Piece::Free || b.clamped {
                         assert_eq!(dt[(i, k)], 0.0);
                         continue;
                     }

@@ -15,7 +15,7 @@ pub struct Prepared {
     /// Each point's side of its segment's measured jump (Any where none was measured).
     pub side: Vec<Side>,
     /// The last points before a measured jump: fitted by their distance to the model's curve
-    /// (`path::fold_distance`), which stays smooth in the parameters where the model's fold
+    /// (`law::follow::fold_distance`), which stays smooth in the parameters where the model's fold
     /// passes them.
     pub at_jump: Vec<bool>,
     /// The removed baseline `(b0, b1)`: force `b0 + b1 height` (N, N/m; b1 is 0 without

@@ -1,8 +1,9 @@
 //! The least-squares problem of one model on one curve (Levenberg-Marquardt), its Jacobian,
 //! and a fit's parameters, standard errors and pull-off.
 
-use super::law::Law;
 use super::*;
+use crate::law::follow as path;
+use crate::law::{ContactLaw, Law, TwoZones};
 
 /// Physical parameters of a model.
 #[derive(Clone, Copy, Debug)]
@@ -90,20 +91,12 @@ pub fn model_forces_from(
     if model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
         return None;
     }
-    forces_on(
-        Law::new(model, p.lambda),
-        &u,
-        p.zc,
-        height,
-        dir,
-        side,
-        hints,
-    )
+    forces_on(model.law(p.lambda), &u, p.zc, height, dir, side, hints)
 }
 
 /// [`model_forces_from`] of any law in its units `u`, with the contact point `zc` (m).
 pub(super) fn forces_on(
-    law: Law,
+    law: ContactLaw,
     u: &Units,
     zc: f64,
     height: &[f64],
@@ -145,13 +138,16 @@ pub fn law_units(
     radius: f64,
     spring: f64,
     meniscus: Option<(f64, f64)>,
-) -> (Law, Units) {
+) -> (ContactLaw, Units) {
     match meniscus {
         Some(m) if model == Model::SolidAndMeniscus => {
-            let (law, w) = law::solid_and_meniscus_of(p.e_star, p.w, p.lambda, radius, m);
-            (law, units(&Params { w, ..*p }, radius, spring))
+            let (law, w) = TwoZones::of_meniscus(p.e_star, p.w, p.lambda, radius, m);
+            (
+                ContactLaw::SolidAndMeniscus(law),
+                units(&Params { w, ..*p }, radius, spring),
+            )
         }
-        _ => (Law::new(model, p.lambda), units(p, radius, spring)),
+        _ => (model.law(p.lambda), units(p, radius, spring)),
     }
 }
 
@@ -243,7 +239,7 @@ impl Problem<'_> {
         self.model.has_lambda() && self.z0.is_none() && self.fixed_lambda.is_none()
     }
     /// The law and its units at p ([`law_units`]).
-    pub(super) fn law_units(&self, p: &Params) -> (Law, Units) {
+    pub(super) fn law_units(&self, p: &Params) -> (ContactLaw, Units) {
         law_units(self.model, p, self.radius, self.spring, self.meniscus)
     }
 
@@ -331,7 +327,7 @@ impl Problem<'_> {
     }
 
     /// The parameters, the law and its units at x; None where they leave the models' domain.
-    fn checked(&self, x: &DVector<f64>) -> Option<(Params, Law, Units)> {
+    fn checked(&self, x: &DVector<f64>) -> Option<(Params, ContactLaw, Units)> {
         let p = self.params(x);
         let (law, u) = self.law_units(&p);
         if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
@@ -349,7 +345,7 @@ impl Problem<'_> {
     fn states_near(
         &self,
         p: &Params,
-        law: Law,
+        law: ContactLaw,
         u: &Units,
         base: &[PathState],
         rows: impl Iterator<Item = usize>,
@@ -624,7 +620,7 @@ impl Problem<'_> {
     /// dPbar/dlambda at the point's Delta (fixed) and kbar, and the state's slide along its
     /// piece, `dt/dlambda = -(D_lambda + P_lambda / kbar) / g`. Zero on the free piece and for
     /// held points (their rows are taken by differences).
-    fn dload_dlambda(&self, law: &Law, u: &Units, s: &PathState) -> (f64, f64) {
+    fn dload_dlambda(&self, law: &ContactLaw, u: &Units, s: &PathState) -> (f64, f64) {
         if s.piece == Piece::Free || s.clamped {
             return (0.0, 0.0);
         }
@@ -988,7 +984,13 @@ pub(super) fn standard_errors(
 /// The most tensile load of a law's path (in its units `u`, contact point `zc`) under the
 /// cantilever (N, positive), along the fitted segment's direction: the path alone, not the
 /// states at the points.
-pub(super) fn model_pulloff(law: Law, u: &Units, zc: f64, d: &Prepared, opt: &FitOptions) -> f64 {
+pub(super) fn model_pulloff(
+    law: ContactLaw,
+    u: &Units,
+    zc: f64,
+    d: &Prepared,
+    opt: &FitOptions,
+) -> f64 {
     let top = d
         .height
         .iter()

@@ -3,7 +3,7 @@
 //! stress relaxation or creep, a pause after the retract), and some files keep the whole cycle
 //! in one segment.
 
-use super::path::Direction;
+use crate::law::follow::Direction;
 use crate::physics::domain::short;
 
 /// A run of one segment id moves the base by less than this share of the largest run's

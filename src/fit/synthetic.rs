@@ -2,11 +2,11 @@
 //! what the fitter's recovery test, its benchmark and the gallery example are made of.
 
 use super::data::Curve;
-use super::law::Law;
-use super::path::{Direction, SpringPath};
 use super::problem::{forces_on, law_units};
 use super::Model;
 use super::Params;
+use crate::law::follow::{Direction, SpringPath};
+use crate::law::ContactLaw;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
 
@@ -115,7 +115,7 @@ fn out_of_domain(lambda: f64) -> String {
 }
 
 /// The curve of `s` on the path of `law` in its units `u`, with its noise.
-fn noisy(s: &Synthetic, law: Law, u: &super::Units) -> Result<Curve, String> {
+fn noisy(s: &Synthetic, law: ContactLaw, u: &super::Units) -> Result<Curve, String> {
     let p = s.params;
     let path = SpringPath::of(law, u.kbar, s.depth);
     let reach = path.force_reach().min(0.0);

@@ -210,7 +210,7 @@ impl WetSummit {
                 s.name()
             ))
         })?;
-        let (c1, c2) = crate::cycle::two_zone::non_contact_ends_of(&ctx).map_err(zones_failed)?;
+        let (c1, c2) = crate::law::two_zone::non_contact_ends_of(&ctx).map_err(zones_failed)?;
         let z = &ctx.zones;
         let long = match z.shape() {
             Shape::Two { long } => long,
@@ -546,15 +546,20 @@ pub enum WetRough {
 impl WetRough {
     /// Summits of the contact law `law` (MD, or the solid with its meniscus), heights N(0,
     /// sigma^2) in the law's approach unit: the one entry of the command line and Python.
-    pub fn of_law(law: crate::ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
-        use crate::ContactLaw;
+    pub fn of_law(law: crate::law::ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
+        use crate::law::{ContactLaw, Md, TwoZones};
         match law {
-            ContactLaw::Md { lambda } => Ok(WetRough::Dry(Rough::new(lambda, sigma)?)),
-            ContactLaw::SolidAndMeniscus {
+            ContactLaw::Md(Md { lambda }) => Ok(WetRough::Dry(Rough::new(lambda, sigma)?)),
+            ContactLaw::SolidAndMeniscus(TwoZones {
                 lambda,
                 stress_ratio,
                 range_ratio,
-            } => WetRough::new(lambda, stress_ratio, range_ratio, sigma),
+            }) => WetRough::new(lambda, stress_ratio, range_ratio, sigma),
+            closed => Err(RoughError::Scene(format!(
+                "rough summits of the {} law are not modelled: give md summits (a lambda), or a \
+                 meniscus",
+                closed.model().label()
+            ))),
         }
     }
 

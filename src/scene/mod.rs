@@ -245,15 +245,20 @@ fn wet_cantilever_pulloff(
     }
     let (rho, eta, u) = humidity::wet_ratios(c, m)?;
     let kbar = k * u.approach / u.load;
-    let cyc =
-        crate::cycle::two_zone::cycle(c.lambda(), rho, eta, crate::cycle::Drive::Spring(kbar), 1.0)
-            .map_err(|_| {
-                ParamError::OutOfRange {
+    let cyc = crate::cycle::run(
+        &crate::law::TwoZones {
+            lambda: c.lambda(),
+            stress_ratio: rho,
+            range_ratio: eta,
+        },
+        crate::cycle::Drive::Spring(kbar),
+        1.0,
+    )
+    .map_err(|_| ParamError::OutOfRange {
         field: "control.cantilever_n_m",
         value: k,
         allowed: "a stiffness the two-zone cycle can follow (normalised value positive and finite)",
-    }
-            })?;
+    })?;
     // As for the dry scene: the load where the retract leaves the contact curve by a jump.
     let out = cyc
         .jumps

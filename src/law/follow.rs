@@ -2,7 +2,7 @@
 //! Hertz, DMT, JKR) followed under a spring on the way in or out, evaluated exactly at any base
 //! displacement (normalised units, docs/PHYSICS.md sections 1 and 4).
 //!
-//! The path is cut into pieces (the law's, from `fit::law`, which holds every law-specific
+//! The path is cut into pieces (the law's, [`Law::pieces`], which holds every law-specific
 //! equation), each parametrised by t with the state an explicit function of t:
 //! the free piece (no force, t = Dbar), Maugis-Dugdale's non-contact piece (t = C) and the
 //! contact piece (t = -ln mu for Maugis-Dugdale, t = A for the closed forms). Under a spring of
@@ -13,7 +13,8 @@
 //! with t, so a measured Delta maps to one state, found by a safeguarded Newton iteration on the
 //! exact curve: the nodes only bracket it.
 
-use super::law::{Law, Model};
+use super::{nodes, ContactLaw, Law, Piece, Pt};
+use crate::physics::model::ContactModel;
 use serde::{Deserialize, Serialize};
 
 /// Which way the base moves.
@@ -36,48 +37,7 @@ impl Direction {
     }
 }
 
-/// A piece of a model's equilibrium path, each with its own parameter t.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Piece {
-    /// Apart, no force: t is the approach Dbar.
-    Free,
-    /// Maugis-Dugdale apart, the Dugdale zone's outer radius t = C > 0 with no contact.
-    NonContact,
-    /// In contact: t = -ln mu for Maugis-Dugdale, t = A for the closed forms.
-    Contact,
-}
-
-/// A state and its slopes with respect to the piece's parameter.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pt {
-    /// The load Pbar.
-    pub load: f64,
-    /// The approach Dbar.
-    pub approach: f64,
-    /// The contact radius A (0 apart).
-    pub a: f64,
-    /// dPbar/dt.
-    pub dload: f64,
-    /// dDbar/dt.
-    pub dapproach: f64,
-    /// dA/dt.
-    pub da: f64,
-}
-
 impl Pt {
-    /// No state: every number NaN.
-    pub(crate) fn nan() -> Pt {
-        Pt {
-            load: f64::NAN,
-            approach: f64::NAN,
-            a: f64::NAN,
-            dload: f64::NAN,
-            dapproach: f64::NAN,
-            da: f64::NAN,
-        }
-    }
-
     /// The state a small step `dt` along the piece, to first order (the slopes are not moved):
     /// its error is about half the second derivative times dt^2, 1e-16 of the parameter's scale
     /// squared where dt is below 1e-8 of it.
@@ -165,8 +125,8 @@ struct Segment {
 /// The path of one model at one lambda under one spring, up to base displacement `delta_max`.
 #[derive(Clone, Debug)]
 pub struct SpringPath {
-    /// The law followed: a model at its Maugis parameter.
-    pub law: Law,
+    /// The law followed.
+    pub law: ContactLaw,
     /// The normalised spring stiffness kbar.
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
@@ -179,14 +139,9 @@ pub struct SpringPath {
 }
 
 impl SpringPath {
-    /// `lambda` in the solver's domain (used by Maugis-Dugdale only), `kbar > 0`, and the largest
-    /// base displacement the path must reach.
-    pub fn new(model: Model, lambda: f64, kbar: f64, delta_max: f64) -> SpringPath {
-        SpringPath::of(Law::new(model, lambda), kbar, delta_max)
-    }
-
-    /// The path of any law ([`SpringPath::new`] of a model at its lambda).
-    pub fn of(law: Law, kbar: f64, delta_max: f64) -> SpringPath {
+    /// The path of `law` (a lambda in the solver's domain) under a spring of normalised
+    /// stiffness `kbar > 0`, up to the largest base displacement it must reach.
+    pub fn of(law: ContactLaw, kbar: f64, delta_max: f64) -> SpringPath {
         let delta_of = |piece, t| {
             let p = law.state(piece, t);
             p.approach + p.load / kbar
@@ -195,7 +150,7 @@ impl SpringPath {
         // fixed lambda (the profile, the intervals) evaluates them once and only rescales
         // Delta with kbar (the two-zone law's nodes move with E* and w).
         let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
-            law.nodes(piece, t0, t1)
+            nodes(&law, piece, t0, t1)
                 .iter()
                 .map(|&(t, p)| Node {
                     t,
@@ -654,7 +609,7 @@ impl SpringPath {
     /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
     /// model). A point above the path's top is bracketed at the top, as the CPU holds it.
     pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
-        if self.law.model != Model::Md {
+        if self.law.model() != ContactModel::Md {
             return None;
         }
         let seg = containing(self.segments(Direction::Retract), delta)?;
@@ -792,7 +747,7 @@ fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
 
 /// The state on a given piece near parameter `t`: Newton steps from there. The Jacobian of a fit
 /// keeps each point on its branch this way, so that a finite difference never straddles a jump.
-pub fn near(law: Law, kbar: f64, delta: f64, piece: Piece, t: f64) -> Option<PathState> {
+pub fn near(law: ContactLaw, kbar: f64, delta: f64, piece: Piece, t: f64) -> Option<PathState> {
     if piece == Piece::Free {
         return Some(PathState {
             piece,
@@ -836,7 +791,7 @@ pub fn near(law: Law, kbar: f64, delta: f64, piece: Piece, t: f64) -> Option<Pat
 /// measured one where Delta rises with t. None where the iteration leaves the piece.
 #[allow(clippy::too_many_arguments)]
 pub fn fold_distance(
-    law: Law,
+    law: ContactLaw,
     kbar: f64,
     scale: f64,
     piece: Piece,

@@ -1,0 +1,304 @@
+//! Contact laws: one trait ([`Law`]) that every law tabor solves implements in its own file, and
+//! [`ContactLaw`], the serialisable value the front ends build, whose `impl` is the one place
+//! that matches on the law. A law's equilibrium path is a list of pieces after the free one,
+//! each state an explicit function of its piece's parameter t with its slopes in t (and in
+//! lambda where the law has one); its exact folds come from the law too. The followers are
+//! generic over it: [`follow::SpringPath`] (a path under a spring, evaluated at any base
+//! displacement: the fits) and `cycle` (the sampled path and its jumps under any drive).
+//!
+//! A new law is a file here implementing [`Law`], one [`ContactLaw`] variant with its arm in
+//! [`ContactLaw::law`], and its run of the conformance suite (`tests/law.rs`).
+
+use crate::physics::model::ContactModel;
+use serde::Serialize;
+
+mod cache;
+pub mod closed;
+pub mod follow;
+pub mod md;
+pub mod path;
+pub mod two_zone;
+
+pub use closed::{Dmt, Hertz, Jkr};
+pub use md::Md;
+pub use path::{Branch, Drive, PathPoint};
+pub use two_zone::TwoZones;
+
+/// A piece of a law's equilibrium path, each with its own parameter t.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Piece {
+    /// Apart, no force: t is the approach Dbar.
+    Free,
+    /// Apart with a cohesive zone (Maugis-Dugdale: its outer radius t = C > 0).
+    NonContact,
+    /// In contact: t = -ln mu for Maugis-Dugdale, t = A for the closed forms.
+    Contact,
+}
+
+/// A state and its slopes with respect to the piece's parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pt {
+    /// The load Pbar.
+    pub load: f64,
+    /// The approach Dbar.
+    pub approach: f64,
+    /// The contact radius A (0 apart).
+    pub a: f64,
+    /// dPbar/dt.
+    pub dload: f64,
+    /// dDbar/dt.
+    pub dapproach: f64,
+    /// dA/dt.
+    pub da: f64,
+}
+
+impl Pt {
+    /// No state: every number NaN.
+    pub(crate) fn nan() -> Pt {
+        Pt {
+            load: f64::NAN,
+            approach: f64::NAN,
+            a: f64::NAN,
+            dload: f64::NAN,
+            dapproach: f64::NAN,
+            da: f64::NAN,
+        }
+    }
+
+    /// The free piece's state at approach `t`: every law's.
+    pub(crate) fn free(t: f64) -> Pt {
+        Pt {
+            load: 0.0,
+            approach: t,
+            a: 0.0,
+            dload: 0.0,
+            dapproach: 1.0,
+            da: 0.0,
+        }
+    }
+}
+
+/// A law's identity in the per-thread cache of its costly values: its model and its numbers'
+/// bits (equal keys, equal states).
+pub type LawKey = (ContactModel, [u64; 3]);
+
+/// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
+/// to 1e-9; JKR: where its approach slope is still finite).
+pub const A_START: f64 = 1e-9;
+/// Nodes per piece: they only bracket folds and roots (folds closer than a node spacing, on a
+/// stretch shorter than that, are not resolved; such a stretch moves the force by less than it).
+pub const NODES: usize = 320;
+
+/// Why a law's path or states could not be had: the law's or the drive's numbers (one line
+/// naming the quantity, the value and what to give), or a two-zone curve that did not solve.
+#[derive(Debug, thiserror::Error)]
+pub enum LawError {
+    /// A Maugis-Dugdale lambda or a drive out of its domain.
+    #[error(transparent)]
+    Solve(#[from] crate::solver::SolveError),
+    /// The two-zone law.
+    #[error(transparent)]
+    Zones(#[from] crate::solver::two_zone::ZonesError),
+    /// An operation the law does not have (a closed form's cycle).
+    #[error("the {model} law has no {what}: use md (or solid_and_meniscus)", model = .model.label())]
+    Unsupported {
+        /// The law.
+        model: ContactModel,
+        /// The operation.
+        what: &'static str,
+    },
+}
+
+/// A contact law in the normalised units of docs/PHYSICS.md (the two-zone law in its total-w
+/// units): its equilibrium path as pieces, its states and slopes on them, its folds.
+pub trait Law {
+    /// The model in the common vocabulary.
+    fn model(&self) -> ContactModel;
+    /// The Maugis parameter (the solid's, for two zones); None for the closed forms.
+    fn lambda(&self) -> Option<f64>;
+    /// The state at parameter `t` of `piece` (NaN where there is none).
+    fn state(&self, piece: Piece, t: f64) -> Pt;
+    /// The slopes of the load and the approach with respect to lambda at fixed t on `piece`
+    /// (zero where the law has no lambda; NaN where they are taken by differences).
+    fn state_dlambda(&self, piece: Piece, t: f64) -> (f64, f64);
+    /// The approach at which the free piece ends and a force first acts.
+    fn free_end(&self) -> f64;
+    /// The contact piece's parameter at contact radius `a` (NaN where no state has it).
+    fn t_of_radius(&self, a: f64) -> f64;
+    /// The pieces after the free one, from the free end up, each with the parameter range it
+    /// is followed over: the contact piece from [`A_START`] up to radius `a_max`.
+    fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)>;
+    /// The load-controlled pull-off's magnitude |Pbar_c| (a fit's start for w; Maugis-Dugdale:
+    /// the Johnson-Greenwood fit, within 2% of the exact).
+    fn pulloff(&self) -> f64;
+    /// Whether a state exists at parameter `t` of `piece`.
+    fn on_piece(&self, piece: Piece, t: f64) -> bool {
+        let _ = piece;
+        t.is_finite()
+    }
+    /// How many nodes bracket a piece's folds and roots.
+    fn node_count(&self, piece: Piece) -> usize {
+        let _ = piece;
+        NODES
+    }
+    /// The cache's key of the law (its model and bits): equal keys, equal states.
+    fn key(&self) -> LawKey;
+    /// The complete equilibrium path up to `max_load`, sampled for a cycle under `drive` (free,
+    /// non-contact, contact; its parameter rising along it), after the law's and the drive's
+    /// checks.
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+        let _ = (drive, max_load);
+        Err(LawError::Unsupported {
+            model: self.model(),
+            what: "approach-retract cycle",
+        })
+    }
+    /// The exact fold of the contact branch under `drive` near the sampled one `near` (rigid
+    /// grips: the displacement-controlled pull-off; dead load: the load-controlled one; a
+    /// spring: where dPbar/dDbar = -kbar), where the law has it.
+    fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
+        let _ = (drive, near);
+        None
+    }
+}
+
+/// The states at the nodes of a piece between t0 and t1 (kept per thread: a fit at fixed
+/// lambda evaluates them once).
+pub fn nodes<L: Law + ?Sized>(
+    law: &L,
+    piece: Piece,
+    t0: f64,
+    t1: f64,
+) -> std::rc::Rc<Vec<(f64, Pt)>> {
+    cache::nodes(law.key(), piece, t0, t1, || {
+        let n = law.node_count(piece);
+        (0..n)
+            .map(|i| {
+                let t = t0 + (t1 - t0) * i as f64 / (n - 1) as f64;
+                (t, law.state(piece, t))
+            })
+            .collect()
+    })
+}
+
+/// A contact law tabor solves exactly, with its parameters: the value the front ends build and
+/// every operation takes (in the normalised units of docs/PHYSICS.md; the two-zone law in its
+/// total-w units). Serialised with its model's name under `model`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "model", rename_all = "snake_case")]
+pub enum ContactLaw {
+    /// Hertz: no adhesion.
+    Hertz,
+    /// DMT: Hertz plus the adhesive load `2 pi w R` outside the contact.
+    Dmt,
+    /// JKR: adhesion inside the contact, a crack at its edge.
+    Jkr,
+    /// Maugis-Dugdale: one Dugdale zone.
+    Md(Md),
+    /// The solid's Dugdale zone plus a water meniscus, a second zone (docs/PHYSICS.md section
+    /// 10).
+    SolidAndMeniscus(TwoZones),
+}
+
+impl ContactLaw {
+    /// MD at `lambda`, or with both of the second zone's ratios the two-zone law: the one
+    /// pairing check of every front end (a lone ratio is refused, naming both).
+    pub fn new(
+        lambda: f64,
+        stress_ratio: Option<f64>,
+        range_ratio: Option<f64>,
+    ) -> Result<ContactLaw, String> {
+        let ratios = crate::physics::two_zone::paired_ratios(stress_ratio, range_ratio)?;
+        Ok(ContactLaw::with_ratios(lambda, ratios))
+    }
+
+    /// MD at `lambda`, or with the second zone's (stress, range) ratios, already paired, the
+    /// two-zone law.
+    pub fn with_ratios(lambda: f64, ratios: Option<(f64, f64)>) -> ContactLaw {
+        match ratios {
+            None => ContactLaw::md(lambda),
+            Some((stress_ratio, range_ratio)) => {
+                ContactLaw::solid_and_meniscus(lambda, stress_ratio, range_ratio)
+            }
+        }
+    }
+
+    /// Maugis-Dugdale at `lambda`.
+    pub fn md(lambda: f64) -> ContactLaw {
+        ContactLaw::Md(Md { lambda })
+    }
+
+    /// The two-zone law: the solid's zone at its own Maugis parameter `lambda` and a second
+    /// zone of `stress_ratio` and `range_ratio` times its stress and range.
+    pub fn solid_and_meniscus(lambda: f64, stress_ratio: f64, range_ratio: f64) -> ContactLaw {
+        ContactLaw::SolidAndMeniscus(TwoZones {
+            lambda,
+            stress_ratio,
+            range_ratio,
+        })
+    }
+
+    /// The law itself: the one match on the variant.
+    pub fn law(&self) -> &dyn Law {
+        match self {
+            ContactLaw::Hertz => &Hertz,
+            ContactLaw::Dmt => &Dmt,
+            ContactLaw::Jkr => &Jkr,
+            ContactLaw::Md(l) => l,
+            ContactLaw::SolidAndMeniscus(l) => l,
+        }
+    }
+
+    /// The law's model name.
+    pub fn model(&self) -> ContactModel {
+        self.law().model()
+    }
+
+    /// The (solid's) Maugis parameter; None for the closed forms.
+    pub fn lambda(&self) -> Option<f64> {
+        self.law().lambda()
+    }
+}
+
+impl Law for ContactLaw {
+    fn model(&self) -> ContactModel {
+        self.law().model()
+    }
+    fn lambda(&self) -> Option<f64> {
+        self.law().lambda()
+    }
+    fn state(&self, piece: Piece, t: f64) -> Pt {
+        self.law().state(piece, t)
+    }
+    fn state_dlambda(&self, piece: Piece, t: f64) -> (f64, f64) {
+        self.law().state_dlambda(piece, t)
+    }
+    fn free_end(&self) -> f64 {
+        self.law().free_end()
+    }
+    fn t_of_radius(&self, a: f64) -> f64 {
+        self.law().t_of_radius(a)
+    }
+    fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
+        self.law().pieces(a_max)
+    }
+    fn pulloff(&self) -> f64 {
+        self.law().pulloff()
+    }
+    fn on_piece(&self, piece: Piece, t: f64) -> bool {
+        self.law().on_piece(piece, t)
+    }
+    fn node_count(&self, piece: Piece) -> usize {
+        self.law().node_count(piece)
+    }
+    fn key(&self) -> LawKey {
+        self.law().key()
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+        self.law().cycle_path(drive, max_load)
+    }
+    fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
+        self.law().fold(drive, near)
+    }
+}
