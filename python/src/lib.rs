@@ -790,8 +790,8 @@ fn cycle<'py>(
             )))
         }
     };
-    let law = tabor::physics::model::ContactLaw::new(lam, stress_ratio, range_ratio)
-        .map_err(PyValueError::new_err)?;
+    let law =
+        tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?;
     let spec = tabor::cycle::CycleSpec {
         law,
         drive,
