@@ -159,8 +159,6 @@ pub mod law;
 pub mod map;
 pub mod physics;
 pub mod profile;
-pub mod profile_spec;
-pub mod profile_two_zone;
 pub(crate) mod progress;
 #[cfg(feature = "render")]
 pub mod render;

@@ -323,7 +323,7 @@ fn contact_laws_serialise_with_their_model() {
 #[test]
 fn the_energy_release_rate_at_the_edge_is_w() {
     use tabor::physics::fields::MdGeometry;
-    use tabor::profile_two_zone::two_zone_profile;
+    use tabor::profile::two_zone::two_zone_profile;
     for law in laws() {
         let (_, t0, t1) = *law.pieces(3.0).last().unwrap();
         for k in 1..10 {

@@ -9,7 +9,7 @@ use common::rel;
 use std::f64::consts::PI;
 use tabor::physics::fields::MdGeometry;
 use tabor::profile::{profile, Given};
-use tabor::profile_two_zone::{two_zone_profile, TwoZoneProfile};
+use tabor::profile::two_zone::{two_zone_profile, TwoZoneProfile};
 
 const CASES: [(f64, f64, f64); 4] = [
     (1.0, 0.5, 3.0),
@@ -413,7 +413,7 @@ fn a_wet_scene_profile_is_the_scene_state_in_si() {
 /// law's own refusals.
 #[test]
 fn the_profile_spec_dispatches_on_the_law() {
-    use tabor::profile_spec::ProfileSpec;
+    use tabor::profile::spec::ProfileSpec;
     use tabor::ContactLaw;
     fn json<T: serde::Serialize>(v: &T) -> String {
         serde_json::to_string(v).unwrap()

@@ -153,7 +153,7 @@ fn run_two_zone(
     figure: &crate::render::Outputs,
     print: &crate::render::Print,
 ) -> anyhow::Result<()> {
-    use crate::profile_two_zone::{two_zone_profile, TwoZoneProfileError};
+    use crate::profile::two_zone::{two_zone_profile, TwoZoneProfileError};
     let l = a
         .lambda
         .context("give --lambda (the solid's Maugis parameter)")?;
@@ -205,7 +205,7 @@ fn run_wet(
         Given::Load(f) => Given::Load(f * c.force_scale() / u.load),
         g => g,
     };
-    let p = crate::profile_two_zone::two_zone_profile(c.lambda(), rho, eta, given, a.points)
+    let p = crate::profile::two_zone::two_zone_profile(c.lambda(), rho, eta, given, a.points)
         .context("--load-n")?;
     let mut p = p.to_si(&u);
     p.warnings.extend(h.warnings(c.radius));
@@ -229,7 +229,7 @@ fn run_wet(
 /// JSON or CSV, and the plot, of a two-zone profile.
 fn write_two_zone(
     a: &ProfileArgs,
-    p: &crate::profile_two_zone::TwoZoneProfile,
+    p: &crate::profile::two_zone::TwoZoneProfile,
     figure: &crate::render::Outputs,
     print: &crate::render::Print,
 ) -> anyhow::Result<()> {

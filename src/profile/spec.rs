@@ -1,10 +1,10 @@
 //! The one entry for a pressure-and-gap profile of any contact law (the command line's and
-//! Python's): the law's own module computes it, MD in `profile.rs`, the solid with its
-//! meniscus in `profile_two_zone.rs`.
+//! Python's): the law's own module computes it, MD in `profile/mod.rs`, the solid with its
+//! meniscus in `profile/two_zone.rs`.
 
 use crate::law::{ContactLaw, Md, TwoZones};
 use crate::profile::{profile, Given, Profile, ProfileError};
-use crate::profile_two_zone::{two_zone_profile, TwoZoneProfile, TwoZoneProfileError};
+use crate::profile::two_zone::{two_zone_profile, TwoZoneProfile, TwoZoneProfileError};
 use serde::Serialize;
 
 /// A profile to compute: the law, the state (load, approach or contact radius, in the law's

@@ -12,6 +12,9 @@ use crate::physics::params::Contact;
 use crate::solver::{LambdaContext, SolveError, Status};
 use serde::Serialize;
 
+pub mod spec;
+pub mod two_zone;
+
 /// What fixes the Maugis-Dugdale state.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Given {
