@@ -574,3 +574,17 @@ fn gauss_legendre_20() -> Vec<(f64, f64)> {
         })
         .collect()
 }
+
+/// The bound on the points re-solved is the library's, so every front end refuses the same
+/// number the same way, before any work.
+#[test]
+fn too_many_check_points_are_refused_by_the_library() {
+    let s = spec((0.1, 10.0, 4), (0.1, 1.0, 4));
+    let max = tabor::rough::map::MAX_CHECK;
+    let e = compute(&s, max + 1).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!("check {}: give at most {max} points to re-solve", max + 1)
+    );
+    assert!(compute(&s, 0).is_ok());
+}

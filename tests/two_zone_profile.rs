@@ -8,8 +8,8 @@ mod common;
 use common::rel;
 use std::f64::consts::PI;
 use tabor::physics::fields::MdGeometry;
-use tabor::profile::{profile, Given};
 use tabor::profile::two_zone::{two_zone_profile, TwoZoneProfile};
+use tabor::profile::{profile, Given};
 
 const CASES: [(f64, f64, f64); 4] = [
     (1.0, 0.5, 3.0),

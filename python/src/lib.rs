@@ -838,7 +838,7 @@ fn profile<'py>(
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let spec = tabor::profile_spec::ProfileSpec {
+    let spec = tabor::profile::spec::ProfileSpec {
         law: tabor::ContactLaw::new(lam, stress_ratio, range_ratio)
             .map_err(PyValueError::new_err)?,
         given: given_of(given, value)?,
@@ -898,7 +898,7 @@ impl AdhesionMap {
     ) -> PyResult<Self> {
         let (backend, precision) = (backend_of(backend)?, precision_of(precision)?);
         run(py, move || {
-            let spec: tabor::map::MapSpec = serde_json::from_str(&spec_json)?;
+            let spec = tabor::map::MapSpec::from_json(&spec_json)?;
             spec.validate()?;
             let (mut engine, _) = Engine::select(backend, adapter.as_deref())?;
             engine.set_precision(precision)?;

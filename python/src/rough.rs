@@ -98,9 +98,7 @@ pub fn rough_map<'py>(
         press_sigmas,
     };
     let m = run(py, move || {
-        if check > 100_000 {
-            anyhow::bail!("check {check}: give at most 100000 points to re-solve");
-        }
+        tabor::rough::map::check_checks(check)?;
         Ok(tabor::rough::map::compute(&spec, check)?)
     })?;
     let d = PyDict::new(py);

@@ -704,16 +704,15 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
     >>> m.region_counts
     {'hertz': 822, 'rigid': 566, 'dmt': 419, 'jkr': 1691, 'md': 598}
     """
-    defaults = {"log": (1e-3, 1e3), "above-pulloff": (1e-6, 1e3), "linear": (-2.0, 10.0)}
-    if load_axis not in defaults:
+    if load_axis not in ("log", "above-pulloff", "linear"):
         raise ValueError(f"load_axis = {load_axis!r}: give 'log', 'above-pulloff' or 'linear'")
-    lo, hi = defaults[load_axis]
+    # The axis's load range where none is given is the library's (map::LoadAxis::default_range).
     spec = {
         "lambda_min": _finite(lambda_min, "lambda_min"),
         "lambda_max": _finite(lambda_max, "lambda_max"),
         "nx": int(nx), "ny": int(ny), "load_axis": load_axis,
-        "load_min": _finite(lo if load_min is None else load_min, "load_min"),
-        "load_max": _finite(hi if load_max is None else load_max, "load_max"),
+        "load_min": None if load_min is None else _finite(load_min, "load_min"),
+        "load_max": None if load_max is None else _finite(load_max, "load_max"),
         "tolerance": _finite(tolerance, "tolerance"),
         "strength_ratios": [_finite(s, "strength_ratio") for s in strength_ratio],
     }

@@ -70,11 +70,7 @@ pub struct MapArgs {
 impl MapArgs {
     pub fn spec(&self) -> MapSpec {
         let load_axis: LoadAxis = self.load_axis.into();
-        let (lo, hi) = match load_axis {
-            LoadAxis::Log => (1e-3, 1e3),
-            LoadAxis::AbovePulloff => (1e-6, 1e3),
-            LoadAxis::Linear => (-2.0, 10.0),
-        };
+        let (lo, hi) = load_axis.default_range();
         MapSpec {
             lambda_min: self.lambda_min,
             lambda_max: self.lambda_max,

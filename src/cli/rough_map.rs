@@ -219,12 +219,8 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     let spec = a.spec();
     spec.validate()
         .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::ROUGH_MAP_FLAGS)))?;
-    if a.check > 100_000 {
-        anyhow::bail!(
-            "--check {}: give at most 100000 points to re-solve",
-            a.check
-        );
-    }
+    crate::rough::map::check_checks(a.check)
+        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &[("check", "--check")])))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print("rough-map")?;
     let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);

@@ -23,6 +23,18 @@ pub enum LoadAxis {
     Linear,
 }
 
+impl LoadAxis {
+    /// The axis's load range where none is given: Pbar 1e-3..1e3 (log), a gap of 1e-6..1e3
+    /// above the pull-off, Pbar -2..10 (linear: the tensile range and the pull-offs in view).
+    pub fn default_range(self) -> (f64, f64) {
+        match self {
+            LoadAxis::Log => (1e-3, 1e3),
+            LoadAxis::AbovePulloff => (1e-6, 1e3),
+            LoadAxis::Linear => (-2.0, 10.0),
+        }
+    }
+}
+
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 /// An adhesion map's grid and criteria; checked by [`MapSpec::validate`].
@@ -332,6 +344,28 @@ pub const MAX_MAP_POINTS: usize = 4096 * 4096;
 pub const LOG_LOAD_MIN: f64 = 1e-15;
 
 impl MapSpec {
+    /// A spec from JSON (the Python binding's), `load_min` and `load_max` taken from the
+    /// axis's [`LoadAxis::default_range`] where absent or null; not yet validated.
+    pub fn from_json(json: &str) -> Result<MapSpec, MapError> {
+        let bad = |e: serde_json::Error| MapError::Spec(format!("not a valid map spec: {e}"));
+        let mut v: serde_json::Value = serde_json::from_str(json).map_err(bad)?;
+        if let Some(o) = v.as_object_mut() {
+            let axis: LoadAxis = o
+                .get("load_axis")
+                .map(|a| serde_json::from_value(a.clone()))
+                .transpose()
+                .map_err(bad)?
+                .unwrap_or(LoadAxis::Log);
+            let (lo, hi) = axis.default_range();
+            for (key, default) in [("load_min", lo), ("load_max", hi)] {
+                if o.get(key).is_none_or(|x| x.is_null()) {
+                    o.insert(key.into(), default.into());
+                }
+            }
+        }
+        serde_json::from_value(v).map_err(bad)
+    }
+
     /// One clear line for a bad value, naming the quantity.
     pub fn validate(&self) -> Result<(), MapError> {
         use crate::physics::domain::{check_lambda_range, short, LOAD_MAX};
@@ -637,6 +671,31 @@ impl MapData {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_json_spec_takes_its_axis_default_loads() {
+        let base = r#""lambda_min":0.01,"lambda_max":100,"nx":4,"ny":4,"tolerance":0.05,"strength_ratios":[]"#;
+        for (axis, lo, hi) in [
+            ("log", 1e-3, 1e3),
+            ("above-pulloff", 1e-6, 1e3),
+            ("linear", -2.0, 10.0),
+        ] {
+            let s = MapSpec::from_json(&format!(
+                r#"{{{base},"load_axis":"{axis}","load_min":null}}"#
+            ))
+            .unwrap();
+            assert_eq!((s.load_min, s.load_max), (lo, hi), "{axis}");
+            assert_eq!(s.load_axis.default_range(), (lo, hi));
+        }
+        let s = MapSpec::from_json(&format!(
+            r#"{{{base},"load_axis":"linear","load_min":-1.5}}"#
+        ))
+        .unwrap();
+        assert_eq!((s.load_min, s.load_max), (-1.5, 10.0));
+        let e = MapSpec::from_json(&format!(r#"{{{base},"load_axis":"sideways"}}"#)).unwrap_err();
+        assert!(e.to_string().contains("sideways"), "{e}");
+    }
+
     use crate::solver::LambdaContext;
 
     #[test]

@@ -3,8 +3,8 @@
 //! meniscus in `profile/two_zone.rs`.
 
 use crate::law::{ContactLaw, Md, TwoZones};
-use crate::profile::{profile, Given, Profile, ProfileError};
 use crate::profile::two_zone::{two_zone_profile, TwoZoneProfile, TwoZoneProfileError};
+use crate::profile::{profile, Given, Profile, ProfileError};
 use serde::Serialize;
 
 /// A profile to compute: the law, the state (load, approach or contact radius, in the law's

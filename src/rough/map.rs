@@ -1051,6 +1051,20 @@ pub struct Check {
 /// The models tried, in order; region codes as in [`crate::map::Region`].
 pub const MODEL_REGIONS: [Region; 4] = [Region::Hertz, Region::Rigid, Region::Dmt, Region::Jkr];
 
+/// The most points of a map re-solved exactly to check it (each is a summit ensemble's
+/// pull-off search).
+pub const MAX_CHECK: usize = 100_000;
+
+/// The number of points to re-solve, checked (at most [`MAX_CHECK`]).
+pub fn check_checks(checks: usize) -> Result<(), RoughError> {
+    if checks > MAX_CHECK {
+        return Err(RoughError::Scene(format!(
+            "check {checks}: give at most {MAX_CHECK} points to re-solve"
+        )));
+    }
+    Ok(())
+}
+
 /// Computes the map on all cores: per lambda one table, then every sigma.
 pub fn compute(spec: &RoughMapSpec, checks: usize) -> Result<RoughMap, RoughError> {
     compute_with(spec, checks, &Engine::Cpu)
@@ -1139,6 +1153,7 @@ pub fn compute_with(
     engine: &Engine,
 ) -> Result<RoughMap, RoughError> {
     spec.validate()?;
+    check_checks(checks)?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
     let lambdas = crate::map::axis(spec.lambda_min, spec.lambda_max, nx, true);
