@@ -662,45 +662,8 @@ fn fit_curves<'py>(
         force.as_slice()?.to_vec(),
     );
     run_py(py, move || {
-        use tabor::fit::{Curve, Direction, FitOptions, Segments};
-        let o: serde_json::Value = serde_json::from_str(&options_json)?;
-        // Non-finite numbers come as text ("nan", "inf"), JSON having none.
-        let num = |k: &str| {
-            o.get(k).and_then(|v| {
-                v.as_f64()
-                    .or_else(|| v.as_str().and_then(|s| s.parse().ok()))
-            })
-        };
-        let opt = FitOptions {
-            radius: num("radius").unwrap_or(f64::NAN),
-            spring: num("spring").unwrap_or(f64::NAN),
-            poisson: num("poisson"),
-            segments: match o
-                .get("segment")
-                .and_then(|v| v.as_str())
-                .unwrap_or("retract")
-            {
-                "retract" => Segments::Retract,
-                "approach" => Segments::Approach,
-                "both" => Segments::Both,
-                other => {
-                    anyhow::bail!("segment={other:?}: use \"retract\", \"approach\" or \"both\"")
-                }
-            },
-            z0: num("z0"),
-            tilt: o.get("tilt").and_then(|v| v.as_bool()).unwrap_or(false),
-            tolerance: num("tolerance").unwrap_or(tabor::physics::model::DEFAULT_TOLERANCE),
-            humidity: o
-                .get("relative_humidity")
-                .map(|_| tabor::scene::humidity::HumidityInput {
-                    relative_humidity: num("relative_humidity").unwrap_or(f64::NAN),
-                    contact_angle_deg: num("contact_angle_deg").unwrap_or(0.0),
-                    surface_tension_n_m: num("surface_tension_n_m"),
-                    molar_volume_m3_mol: num("molar_volume_m3_mol"),
-                    temperature_k: num("temperature_k"),
-                }),
-            ..FitOptions::default()
-        };
+        use tabor::fit::{Curve, Direction, FitOptions};
+        let opt = FitOptions::from_json(&options_json).map_err(anyhow::Error::msg)?;
         // The library's check, as the command line makes it.
         if let Err(e) = opt.validate() {
             // Named as fit_curves' keyword.

@@ -68,6 +68,58 @@ impl Default for FitOptions {
     }
 }
 
+impl FitOptions {
+    /// The options from a JSON object (the Python binding's keywords: `radius`, `spring`,
+    /// `poisson`, `segment`, `z0`, `tilt`, `tolerance`, and the humidity's
+    /// `relative_humidity`, `contact_angle_deg`, `surface_tension_n_m`, `molar_volume_m3_mol`,
+    /// `temperature_k`); non-finite numbers come as text ("nan", "inf"), JSON having none, and
+    /// a missing radius or spring as NaN, which [`FitOptions::validate`] then refuses. Every
+    /// other default is [`FitOptions::default`]'s. Not yet validated.
+    pub fn from_json(json: &str) -> Result<FitOptions, String> {
+        let o: serde_json::Value =
+            serde_json::from_str(json).map_err(|e| format!("not valid fit options: {e}"))?;
+        let num = |k: &str| {
+            o.get(k).and_then(|v| {
+                v.as_f64()
+                    .or_else(|| v.as_str().and_then(|s| s.parse().ok()))
+            })
+        };
+        let segments = match o
+            .get("segment")
+            .and_then(|v| v.as_str())
+            .unwrap_or("retract")
+        {
+            "retract" => Segments::Retract,
+            "approach" => Segments::Approach,
+            "both" => Segments::Both,
+            other => {
+                return Err(format!(
+                    "segment={other:?}: use \"retract\", \"approach\" or \"both\""
+                ))
+            }
+        };
+        Ok(FitOptions {
+            radius: num("radius").unwrap_or(f64::NAN),
+            spring: num("spring").unwrap_or(f64::NAN),
+            poisson: num("poisson"),
+            segments,
+            z0: num("z0"),
+            tilt: o.get("tilt").and_then(|v| v.as_bool()).unwrap_or(false),
+            tolerance: num("tolerance").unwrap_or(crate::physics::model::DEFAULT_TOLERANCE),
+            humidity: o
+                .get("relative_humidity")
+                .map(|_| crate::scene::humidity::HumidityInput {
+                    relative_humidity: num("relative_humidity").unwrap_or(f64::NAN),
+                    contact_angle_deg: num("contact_angle_deg").unwrap_or(0.0),
+                    surface_tension_n_m: num("surface_tension_n_m"),
+                    molar_volume_m3_mol: num("molar_volume_m3_mol"),
+                    temperature_k: num("temperature_k"),
+                }),
+            ..FitOptions::default()
+        })
+    }
+}
+
 /// The Lennard-Jones range z0 a fit may fix lambda with (m): a few picometres to a micrometre
 /// (van der Waals: about 0.3 nm).
 pub const Z0_RANGE: (f64, f64) = (1e-12, 1e-6);
@@ -198,3 +250,27 @@ impl std::fmt::Display for OptionError {
 }
 
 impl std::error::Error for OptionError {}
+
+#[cfg(test)]
+mod json_tests {
+    use super::*;
+
+    #[test]
+    fn options_from_json_take_the_defaults_and_refuse_a_bad_segment() {
+        let o = FitOptions::from_json(r#"{"radius": 2e-8, "spring": "inf", "segment": "both"}"#)
+            .unwrap();
+        let d = FitOptions::default();
+        assert_eq!((o.radius, o.spring), (2e-8, f64::INFINITY));
+        assert_eq!(o.segments, Segments::Both);
+        assert_eq!(
+            (o.tolerance, o.baseline_fraction),
+            (d.tolerance, d.baseline_fraction)
+        );
+        assert!(o.humidity.is_none() && o.z0.is_none() && !o.tilt);
+        assert!(FitOptions::from_json("{}").unwrap().radius.is_nan());
+        let h = FitOptions::from_json(r#"{"relative_humidity": 0.4}"#).unwrap();
+        assert_eq!(h.humidity.unwrap().relative_humidity, 0.4);
+        let e = FitOptions::from_json(r#"{"segment": "sideways"}"#).unwrap_err();
+        assert!(e.contains("\"sideways\"") && e.contains("retract"), "{e}");
+    }
+}
