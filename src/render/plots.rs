@@ -71,6 +71,18 @@ pub(crate) const GREEN_: RGBColor = RGBColor(0, 158, 115);
 pub(crate) const GRAY_: RGBColor = RGBColor(120, 120, 120);
 pub(crate) const PURPLE_: RGBColor = RGBColor(204, 121, 167);
 
+/// A model's colour in every line figure, the hues of the map's regions (DMT blue, JKR orange),
+/// so that a model reads the same across figures; its name is [`ContactModel::label`].
+pub(crate) fn model_colour(m: ContactModel) -> RGBColor {
+    match m {
+        ContactModel::Hertz | ContactModel::Rigid => GRAY_,
+        ContactModel::Dmt => BLUE_,
+        ContactModel::Jkr => ORANGE_,
+        ContactModel::Md => GREEN_,
+        ContactModel::SolidAndMeniscus => PURPLE_,
+    }
+}
+
 /// Pull-off force against lambda under load and displacement control, with the DMT/Bradley and
 /// JKR limits and the Carpick-Ogletree-Salmeron fit.
 pub fn pulloff<DB: DrawingBackend>(
@@ -908,10 +920,7 @@ where
         )
     };
     let colour = profile_style;
-    let label = |m: ContactModel| match m {
-        ContactModel::SolidAndMeniscus => "two Dugdale zones",
-        m => m.label(),
-    };
+    let label = |m: ContactModel| m.label();
     // Pressure range: the MD and closed-form values; JKR's singular tension (infinite at r = a)
     // leaves the axes a little below the Dugdale stress.
     let finite = |m: &crate::profile::ModelProfile| -> Vec<f64> {
@@ -980,9 +989,7 @@ where
 fn profile_style(m: ContactModel) -> (RGBColor, u32) {
     match m {
         ContactModel::Md | ContactModel::SolidAndMeniscus => (BLACK, 4),
-        ContactModel::Hertz => (GRAY_, 2),
-        ContactModel::Dmt => (BLUE_, 2),
-        _ => (ORANGE_, 2),
+        m => (model_colour(m), 2),
     }
 }
 
@@ -1251,7 +1258,6 @@ fn fitted_models<'a>(
     md: &'a crate::fit::ModelFit,
     r: &'a crate::fit::CurveFit,
 ) -> Vec<(&'a crate::fit::ModelFit, RGBColor, &'static str)> {
-    use crate::fit::Model;
     let ok = r
         .models
         .iter()
@@ -1263,16 +1269,9 @@ fn fitted_models<'a>(
         .and_then(|h| h.shape_fit.as_ref())
         .map(|s| &s.fit)
         .filter(|m| m.status == crate::fit::FitStatus::Ok);
-    let closed = ok.chain(wet).map(|m| {
-        let (c, label) = match m.model {
-            Model::Hertz => (GRAY_, m.model.label()),
-            Model::Dmt => (ORANGE_, m.model.label()),
-            Model::Jkr => (BLUE_, m.model.label()),
-            Model::Md => (GREEN_, m.model.label()),
-            Model::SolidAndMeniscus => (PURPLE_, "two zones (solid + meniscus)"),
-        };
-        (m, c, label)
-    });
+    let closed = ok
+        .chain(wet)
+        .map(|m| (m, model_colour(m.model.into()), m.model.label()));
     std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
         .chain(closed)
         .collect()
