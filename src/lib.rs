@@ -156,6 +156,7 @@ pub mod io;
 #[doc(hidden)]
 pub mod kernel;
 pub mod map;
+pub mod numeric;
 pub mod physics;
 pub mod profile;
 pub mod profile_spec;

@@ -287,7 +287,7 @@ impl SpringPath {
         if !(sign * s_hi < 0.0) {
             return if s_lo > 0.0 { lo } else { hi };
         }
-        let r = crate::solver::root::secant_bracketed(
+        let r = crate::numeric::root::secant_bracketed(
             |t| sign * self.slope(piece, t),
             (lo, sign * s_lo),
             (hi, sign * s_hi),

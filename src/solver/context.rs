@@ -1,7 +1,7 @@
 //! The per-lambda context: pull-offs computed once, then many loads or approaches solved cheaply.
 
-use super::root::{bisect_sign, secant_bracketed, Stop};
 use super::{Control, SolveError, State, Status};
+use crate::numeric::root::{bisect_sign, secant_bracketed, Stop};
 use crate::physics::md::{curve_point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D};
 use crate::physics::real::{Dd, Real};
 use crate::physics::tolerances::carries_load_plus_2;

@@ -5,7 +5,6 @@ pub mod context;
 pub mod curve;
 pub mod limits;
 pub mod naive;
-pub mod root;
 pub mod start;
 pub mod two_zone;
 
