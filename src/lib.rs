@@ -150,10 +150,8 @@ pub mod fit;
 pub mod gpu;
 pub mod interrupt;
 pub mod io;
-// The WGSL kernels' sources, buffer layouts and CPU mirrors: the GPU host and the engine use
-// them; public only so that the shader and GPU tests can compare each kernel with its mirror
-// bit for bit. A user solves through `engine`, `map` or `solver`.
-#[doc(hidden)]
+// The WGSL kernels' sources, buffer layouts and CPU mirrors: documented, as `gpu` takes and
+// returns their types; most users solve through `engine`, `map` or `solver`.
 pub mod kernel;
 pub mod map;
 pub mod numeric;

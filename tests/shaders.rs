@@ -181,7 +181,7 @@ fn shader_constants_match_the_host() {
     ] {
         assert_eq!(wgsl_const(&m, name), v, "{name}");
     }
-    let size = tabor::physics::tolerances::WORKGROUP_SIZE as u32;
+    let size = tabor::kernel::prelude::WORKGROUP_SIZE as u32;
     let p64 = parse(&tabor::kernel::polish64_source());
     let fit64 = parse(&tabor::kernel::fit_states_source());
     for module in [&m, &p64, &fit64] {

@@ -278,7 +278,7 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
+const WORKGROUP: usize = crate::kernel::prelude::WORKGROUP_SIZE;
 /// Dispatches over an input bound in slices hold a multiple of this many points.
 const SLICE_POINTS: usize = 256;
 

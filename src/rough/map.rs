@@ -1118,8 +1118,8 @@ pub fn compute_with(
     spec.validate()?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
-    let lambdas = crate::map::axis(spec.lambda_min, spec.lambda_max, nx, true);
-    let sigmas = crate::map::axis(spec.sigma_min, spec.sigma_max, ny, true);
+    let lambdas = crate::numeric::grid::axis(spec.lambda_min, spec.lambda_max, nx, true);
+    let sigmas = crate::numeric::grid::axis(spec.sigma_min, spec.sigma_max, ny, true);
     let p = spec.press_sigmas;
     // The approaches the quadrature reaches: heights up to Z_MAP sigma above separations down
     // to -press sigma.

@@ -926,7 +926,7 @@ impl PulloffSweep {
 
     /// The roughnesses of the sweep, log-spaced.
     pub fn sigmas(&self) -> Vec<f64> {
-        crate::map::axis(self.sigma_min, self.sigma_max, self.points, true)
+        crate::numeric::grid::axis(self.sigma_min, self.sigma_max, self.points, true)
     }
 
     /// Checks, then one curve per lambda on all cores.

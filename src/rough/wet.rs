@@ -16,6 +16,7 @@
 
 use super::{domain, integrate, upper_tail, Leg, Mean, Rough, RoughCycle, RoughError};
 use super::{legs, separations, SummitBranch, Z_CUT, Z_FREE};
+use crate::physics::model::ContactLaw;
 use crate::physics::two_zone::{non_contact_both, non_contact_single, Shape, Zones};
 use crate::solver::two_zone::TwoZoneContext;
 use crate::solver::Status;
@@ -520,8 +521,7 @@ pub enum WetRough {
 impl WetRough {
     /// Summits of the contact law `law` (MD, or the solid with its meniscus), heights N(0,
     /// sigma^2) in the law's approach unit: the one entry of the command line and Python.
-    pub fn of_law(law: crate::ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
-        use crate::ContactLaw;
+    pub fn of_law(law: ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
         match law {
             ContactLaw::Md { lambda } => Ok(WetRough::Dry(Rough::new(lambda, sigma)?)),
             ContactLaw::SolidAndMeniscus {

@@ -29,7 +29,7 @@ pub struct Inference {
 
 /// A w (J/m^2) outside physical sense beside E* (Pa), as `tabor fit` bounds them, in words.
 fn implausible_w(w: f64, e_star: f64) -> Option<String> {
-    let (ok, values) = crate::fit::plausibility(e_star, w);
+    let (ok, values) = crate::physics::params::plausibility(e_star, w);
     (!ok).then(|| {
         format!("{values}: outside physical sense; check the units of the force (N), the radius (m) and E* (Pa)")
     })
