@@ -33,7 +33,6 @@ fn main() {
         "shaders/solve.wgsl",
         "shaders/curve64.wgsl",
         "shaders/polish64.wgsl",
-        "shaders/fit_states.wgsl",
         "src/physics/tolerances.rs",
         "src/kernel/prelude.rs",
     ] {
@@ -48,13 +47,11 @@ fn main() {
         &md,
         Capabilities::default(),
     );
-    // The f64 modules: the shared curve point, then each module's entry point.
-    let curve64 = prelude + &read("shaders/curve64.wgsl") + "\n";
-    for f in ["shaders/polish64.wgsl", "shaders/fit_states.wgsl"] {
-        validate(
-            &format!("shaders/curve64.wgsl + {f}"),
-            &(curve64.clone() + &read(f)),
-            Capabilities::FLOAT64,
-        );
-    }
+    // The f64 refinement: the f64 curve point, then its entry point.
+    let polish64 = prelude + &read("shaders/curve64.wgsl") + "\n" + &read("shaders/polish64.wgsl");
+    validate(
+        "shaders/curve64.wgsl + shaders/polish64.wgsl",
+        &polish64,
+        Capabilities::FLOAT64,
+    );
 }

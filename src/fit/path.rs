@@ -649,23 +649,6 @@ impl SpringPath {
         PathState::on(seg.piece, t, &p, false)
     }
 
-    /// A retract point for a batch on the GPU (`fit::batch`): where [`SpringPath::at`] solves
-    /// it on the Maugis-Dugdale contact piece, its bracket there in mu = exp(-t) (low, high)
-    /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
-    /// model). A point above the path's top is bracketed at the top, as the CPU holds it.
-    pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
-        if self.law.model != Model::Md {
-            return None;
-        }
-        let seg = containing(self.segments(Direction::Retract), delta)?;
-        if seg.piece != Piece::Contact {
-            return None;
-        }
-        let (lo, hi) = self.bracket(seg, delta);
-        let t = self.start_between(seg.piece, delta, lo, hi);
-        Some([(-hi.0).exp(), (-lo.0).exp(), (-t).exp()])
-    }
-
     /// The nodes around `delta` inside a segment, with their Delta and its slope (None at the
     /// segment's ends, which are not nodes).
     #[allow(clippy::type_complexity)]

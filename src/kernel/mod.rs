@@ -39,12 +39,3 @@ pub fn polish64_source() -> String {
         + "\n"
         + include_str!("../../shaders/polish64.wgsl")
 }
-
-/// The WGSL source of the force-map states (`shaders/fit_states.wgsl`, f64 like the refinement,
-/// whose curve point it shares), after the same prelude.
-pub fn fit_states_source() -> String {
-    prelude::wgsl_prelude()
-        + include_str!("../../shaders/curve64.wgsl")
-        + "\n"
-        + include_str!("../../shaders/fit_states.wgsl")
-}
