@@ -1,14 +1,22 @@
 //! Every WGSL shader is parsed and validated with naga at build time, as vello does, so a broken
 //! shader fails the build on a machine without a GPU (tests/shaders.rs also checks the struct
 //! layouts against the Rust side). The shaders are validated as the host builds them: after the
-//! prelude of constants it generates from `src/physics/tolerances.rs`.
+//! prelude of constants that `src/kernel/prelude.rs` generates from `src/physics/tolerances.rs`.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 
-/// The constants the host gives the shaders (the same file the crate compiles).
+/// The constants the host gives the shaders and their prelude (the same files the crate
+/// compiles, at the same paths).
 #[allow(dead_code)]
-mod tolerances {
-    include!("src/physics/tolerances.rs");
+mod physics {
+    pub mod tolerances {
+        include!("src/physics/tolerances.rs");
+    }
+}
+mod kernel {
+    pub mod prelude {
+        include!("src/kernel/prelude.rs");
+    }
 }
 
 fn validate(name: &str, src: &str, caps: Capabilities) {
@@ -25,13 +33,13 @@ fn main() {
         "shaders/solve.wgsl",
         "shaders/curve64.wgsl",
         "shaders/polish64.wgsl",
-        "shaders/fit_states.wgsl",
         "src/physics/tolerances.rs",
+        "src/kernel/prelude.rs",
     ] {
         println!("cargo:rerun-if-changed={f}");
     }
     let read = |f: &str| std::fs::read_to_string(f).unwrap_or_else(|e| panic!("{f}: {e}"));
-    let prelude = tolerances::wgsl_prelude();
+    let prelude = kernel::prelude::wgsl_prelude();
     // The f32 kernels are one module: the shared functions, then the entry points.
     let md = prelude.clone() + &read("shaders/md.wgsl") + "\n" + &read("shaders/solve.wgsl");
     validate(
@@ -39,13 +47,11 @@ fn main() {
         &md,
         Capabilities::default(),
     );
-    // The f64 modules: the shared curve point, then each module's entry point.
-    let curve64 = prelude + &read("shaders/curve64.wgsl") + "\n";
-    for f in ["shaders/polish64.wgsl", "shaders/fit_states.wgsl"] {
-        validate(
-            &format!("shaders/curve64.wgsl + {f}"),
-            &(curve64.clone() + &read(f)),
-            Capabilities::FLOAT64,
-        );
-    }
+    // The f64 refinement: the f64 curve point, then its entry point.
+    let polish64 = prelude + &read("shaders/curve64.wgsl") + "\n" + &read("shaders/polish64.wgsl");
+    validate(
+        "shaders/curve64.wgsl + shaders/polish64.wgsl",
+        &polish64,
+        Capabilities::FLOAT64,
+    );
 }

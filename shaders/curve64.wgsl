@@ -1,4 +1,4 @@
-// The f64 Maugis-Dugdale curve point shared by the f64 modules (polish64.wgsl, fit_states.wgsl),
+// The f64 Maugis-Dugdale curve point of the f64 refinement (polish64.wgsl, which follows it),
 // for adapters with SHADER_F64: src/physics/md.rs curve_point with its derivatives. WGSL has no
 // f64 transcendentals (SPIR-V's GLSL.std.450 exp, log and atan are 32-bit only); atan below uses
 // sqrt, division and a series. CPU mirror: src/kernel/cpu/polish64.rs.

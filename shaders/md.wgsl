@@ -108,7 +108,7 @@ const LOG2E: f32 = 1.4426950408889634;
 const INF: f32 = 3.0e38;
 // TABLE_NODES, CHEB_TERMS and the iteration's thresholds (F_NOISE, BRACKET_CLOSED,
 // SUB_ULP_STEP, BRACKET_BELOW, BRACKET_ABOVE, MAX_ITER) come from the host's prelude
-// (physics::tolerances::wgsl_prelude), shared with the CPU mirror.
+// (kernel::prelude::wgsl_prelude), shared with the CPU mirror.
 
 // (atan(mu), mu - atan(mu)) from one half-angle step and a polynomial, without loops (a
 // masked loop runs as long as its slowest lane). For mu > 1, atan(mu) = pi/2 - atan(1/mu).

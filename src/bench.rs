@@ -27,7 +27,7 @@ const REFERENCE_POINTS: &str = include_str!("../data/points.csv");
 impl Workload {
     /// A grid of `n_lambda` by `n_load` points plus the 300 reference states.
     pub fn new(n_lambda: usize, n_load: usize) -> Workload {
-        let mut lambdas: Vec<f64> = crate::map::axis(1e-4, 1e4, n_lambda, true);
+        let mut lambdas: Vec<f64> = crate::numeric::grid::axis(1e-4, 1e4, n_lambda, true);
         let grid_n = lambdas.len();
         let mut rdr = csv::Reader::from_reader(REFERENCE_POINTS.as_bytes());
         let table: Vec<(f64, f64, f64)> = rdr
@@ -46,7 +46,7 @@ impl Workload {
             .par_iter()
             .map(|&l| LambdaContext::new(l).expect("lambda in range"))
             .collect();
-        let gaps = crate::map::axis(1e-6, 1e3, n_load, true);
+        let gaps = crate::numeric::grid::axis(1e-6, 1e3, n_load, true);
         let grid: Vec<(usize, f64)> = (0..grid_n)
             .flat_map(|i| gaps.iter().map(move |&g| (i, g)))
             .collect();
@@ -605,8 +605,8 @@ impl AtlasMap {
 /// against the f64 solver, for the shipped f32 kernel (on the GPU if given, else its CPU
 /// mirror), the naive f32 and f64 methods and the closed forms.
 pub fn atlas(nx: usize, ny: usize, gpu: Option<&Gpu>) -> Result<Atlas, crate::gpu::GpuError> {
-    let lambdas = crate::map::axis(1e-6, 1e6, nx, true);
-    let gaps = crate::map::axis(1e-8, 1e6, ny, true);
+    let lambdas = crate::numeric::grid::axis(1e-6, 1e6, nx, true);
+    let gaps = crate::numeric::grid::axis(1e-8, 1e6, ny, true);
     let ctx: Vec<LambdaContext> = lambdas
         .par_iter()
         .map(|&l| LambdaContext::new(l).expect("lambda in range"))

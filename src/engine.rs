@@ -4,6 +4,7 @@
 use crate::gpu::Gpu;
 /// What can go wrong on an engine (only the GPU backend fails).
 pub use crate::gpu::GpuError as EngineError;
+use crate::kernel::kernel_lambda;
 use crate::kernel::layout::{KernelFlags, Lambda64, Out, Out64};
 use crate::kernel::prepare::{prepare64, split};
 use crate::kernel::start::Starts;
@@ -468,18 +469,6 @@ fn finish(
                 .unwrap_or_else(|| to_state64(lambdas[i as usize], value(i, v), o, r, control))
         })
         .collect())
-}
-
-/// The f32 kernels' lambda domain, narrower than the exact solver's: their tables, fits and
-/// f32 residuals were measured and tested over lambda 1e-8..1e8 only (README, Accuracy).
-pub const KERNEL_LAMBDA_MIN: f64 = 1e-8;
-/// See [`KERNEL_LAMBDA_MIN`].
-pub const KERNEL_LAMBDA_MAX: f64 = 1e8;
-
-/// Whether the kernels take this lambda; the engine solves the others on the CPU in f64 (by
-/// the exact solver, or the closed-form limits beyond its domain).
-pub fn kernel_lambda(lambda: f64) -> bool {
-    (KERNEL_LAMBDA_MIN..=KERNEL_LAMBDA_MAX).contains(&lambda)
 }
 
 /// Displacement control: approaches closer than this to the end of the branch, relative to

@@ -9,14 +9,16 @@
 //!
 //! # Layers
 //!
-//! Each uses only those above it in this list: [`physics`] (normalisation, domain, closed forms,
-//! the MD curve, fields, number types) -> [`solver`] (f64 contexts, root finding, batches,
-//! curves) -> [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda
-//! preparation, the CPU mirror of each shader) -> [`gpu`] (device, pipelines, dispatch) ->
-//! [`engine`] (backend choice, cross-check) -> [`map`], [`scene`], [`mod@cycle`], [`mod@profile`] ->
-//! [`render`] (feature `render`), [`export`], [`io`] -> the command line (feature `cli`). Without
-//! default features (`cargo build --lib --no-default-features`) the crate is the solver, kernels,
-//! GPU host, maps, scenes, cycles, profiles and fits, without the renderer or the terminal.
+//! Each uses only those before it in this list (`tests/architecture.rs` checks it): [`numeric`]
+//! (root finding, golden section, Gauss-Legendre) -> [`physics`] (normalisation, domain, closed
+//! forms, the MD curve, fields, number types) -> [`solver`] (f64 contexts, batches, curves) ->
+//! [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda preparation, the CPU
+//! mirror of each shader) -> [`gpu`] (device, pipelines, dispatch) -> [`engine`] (backend
+//! choice, cross-check) -> [`io`], [`interrupt`] -> [`map`], [`scene`], [`mod@cycle`],
+//! [`mod@profile`], [`fit`], [`rough`], [`dem`] -> [`render`] (feature `render`), [`export`] ->
+//! the command line (feature `cli`). Without default features (`cargo build --lib
+//! --no-default-features`) the crate is the solver, kernels, GPU host, maps, scenes, cycles,
+//! profiles and fits, without the renderer or the terminal.
 //!
 //! The crate root re-exports what most users need ([`solve_one`], [`LambdaContext`],
 //! [`Engine`], [`MapSpec`], [`solve_scene`], [`fit_curve`], [`Rough`], ...); the modules hold
@@ -150,13 +152,12 @@ pub mod fit;
 pub mod gpu;
 pub mod interrupt;
 pub mod io;
-// The WGSL kernels' sources, buffer layouts and CPU mirrors: the GPU host and the engine use
-// them; public only so that the shader and GPU tests can compare each kernel with its mirror
-// bit for bit. A user solves through `engine`, `map` or `solver`.
-#[doc(hidden)]
+// The WGSL kernels' sources, buffer layouts and CPU mirrors: documented, as `gpu` takes and
+// returns their types; most users solve through `engine`, `map` or `solver`.
 pub mod kernel;
 pub mod law;
 pub mod map;
+pub mod numeric;
 pub mod physics;
 pub mod profile;
 pub(crate) mod progress;

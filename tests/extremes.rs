@@ -157,7 +157,7 @@ fn zero_radius_end_under_displacement_control_for_small_lambda() {
 /// more (dA/dPbar is infinite there), and one evaluation for nearly all of them.
 #[test]
 fn the_one_evaluation_solve_matches_the_search() {
-    use tabor::solver::context::point;
+    use tabor::physics::md::point;
     use tabor::solver::{LambdaContext, Status};
     let lambdas: Vec<f64> = (0..33).map(|i| 10f64.powf(-8.0 + 0.5 * i as f64)).collect();
     let (mut worst, mut one, mut total, mut evals) = (0f64, 0usize, 0usize, 0usize);

@@ -1,5 +1,5 @@
 //! Force curves whose last retract point before the jump lies exactly at the fold (as measured
-//! curves do), made by a generator independent of the fitter's path evaluation (`fit::path`):
+//! curves do), made by a generator independent of the fitter's path evaluation (`law::follow`):
 //! the Maugis-Dugdale curve of `physics::md` under the spring, its fold and each state found here
 //! by bisection, the Dugdale zone's non-contact branch in closed form.
 

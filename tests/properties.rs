@@ -9,7 +9,8 @@ use proptest::prelude::*;
 use tabor::cycle::{cycle, Drive};
 use tabor::physics::domain::{self, Method, LAMBDA_MAX, LAMBDA_MIN, LOAD_MAX, RADIUS_MAX};
 use tabor::physics::md::curve_point;
-use tabor::solver::context::{point, x_at_radius};
+use tabor::physics::md::point;
+use tabor::solver::context::x_at_radius;
 use tabor::solver::{solve_one, Control, LambdaContext, State, Status};
 
 /// lambda log-uniform over 1e-30..1e30 (the exact solver's domain is 1e-26..1e26, the limits

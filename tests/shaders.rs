@@ -90,65 +90,6 @@ fn f64_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
 }
 
-/// The force-map states' module (the refinement's curve point, its own entry) likewise.
-#[test]
-fn fit_states_module_validates_and_matches_rust_layout() {
-    use tabor::kernel::layout::{FitCurve64, FitOut64, FitPoint64};
-    let m = f64_module(&tabor::kernel::fit_states_source());
-    let size_of = |name: &str| wgsl_size(&m, name);
-    assert_eq!(size_of("FitCurve64"), std::mem::size_of::<FitCurve64>());
-    assert_eq!(size_of("FitPoint64"), std::mem::size_of::<FitPoint64>());
-    assert_eq!(size_of("FitOut64"), std::mem::size_of::<FitOut64>());
-    assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
-    // Member by member: fields of one size swapped would keep the sizes.
-    let offsets = |name: &str| -> Vec<(String, usize)> {
-        let (_, t) = m
-            .types
-            .iter()
-            .find(|(_, t)| t.name.as_deref() == Some(name))
-            .unwrap();
-        let naga::TypeInner::Struct { members, .. } = &t.inner else {
-            panic!("{name} is not a struct")
-        };
-        members
-            .iter()
-            .map(|mm| (mm.name.clone().unwrap(), mm.offset as usize))
-            .collect()
-    };
-    use std::mem::offset_of;
-    let named = |v: &[(&str, usize)]| -> Vec<(String, usize)> {
-        v.iter().map(|&(n, o)| (n.to_string(), o)).collect()
-    };
-    assert_eq!(
-        offsets("FitCurve64"),
-        named(&[
-            ("lambda", offset_of!(FitCurve64, lambda)),
-            ("kbar", offset_of!(FitCurve64, kbar)),
-        ])
-    );
-    assert_eq!(
-        offsets("FitPoint64"),
-        named(&[
-            ("delta", offset_of!(FitPoint64, delta)),
-            ("mu_lo", offset_of!(FitPoint64, mu_lo)),
-            ("mu_hi", offset_of!(FitPoint64, mu_hi)),
-            ("mu_start", offset_of!(FitPoint64, mu_start)),
-            ("curve", offset_of!(FitPoint64, curve)),
-            ("pad0", offset_of!(FitPoint64, _pad)),
-        ])
-    );
-    assert_eq!(
-        offsets("FitOut64"),
-        named(&[
-            ("mu", offset_of!(FitOut64, mu)),
-            ("load", offset_of!(FitOut64, load)),
-            ("approach", offset_of!(FitOut64, approach)),
-            ("code", offset_of!(FitOut64, code)),
-            ("pad0", offset_of!(FitOut64, _pad)),
-        ])
-    );
-}
-
 /// The value of a named WGSL `const` of `m` (a scalar literal).
 fn wgsl_const(m: &naga::Module, name: &str) -> f64 {
     let (_, c) = m
@@ -181,10 +122,9 @@ fn shader_constants_match_the_host() {
     ] {
         assert_eq!(wgsl_const(&m, name), v, "{name}");
     }
-    let size = tabor::physics::tolerances::WORKGROUP_SIZE as u32;
+    let size = tabor::kernel::prelude::WORKGROUP_SIZE as u32;
     let p64 = parse(&tabor::kernel::polish64_source());
-    let fit64 = parse(&tabor::kernel::fit_states_source());
-    for module in [&m, &p64, &fit64] {
+    for module in [&m, &p64] {
         for e in &module.entry_points {
             assert_eq!(e.workgroup_size, [size, 1, 1], "{}", e.name);
         }

@@ -10,7 +10,6 @@
 //! force offset, fitted by Levenberg-Marquardt (MINPACK's, through the `levenberg-marquardt`
 //! crate) with finite-difference Jacobians that keep each point on its branch.
 
-pub mod batch;
 pub mod data;
 pub mod humidity;
 pub mod interval;

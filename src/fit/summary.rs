@@ -3,6 +3,7 @@
 //! curve).
 
 use super::*;
+use crate::physics::params::{plausibility, E_STAR_RANGE, W_MAX};
 
 /// The longest Lennard-Jones range a fitted zone may have and still be read as surface forces
 /// (m): a water meniscus's height reaches about this at high humidity.
@@ -141,7 +142,7 @@ pub(super) fn implausible(
     // A modulus or adhesion above physical sense first: that is the cause to name (forces in
     // nN, a wrong spring constant), whatever else the fit shows; a modulus below the range with
     // no point in contact is a curve that does not press (no contact).
-    let (plausible, values) = super::options::plausibility(p.e_star, p.w);
+    let (plausible, values) = plausibility(p.e_star, p.w);
     let above = !(p.e_star <= E_STAR_RANGE.1) || !(p.w <= W_MAX);
     if !plausible && (above || in_contact > 0) {
         return Some((

@@ -2,8 +2,7 @@
 //! dispatch with streamed readback.
 
 use crate::kernel::layout::{
-    control_code, FitCurve64, FitOut64, FitPoint64, GpuLambda, KernelFlags, Lambda64, Out, Out64,
-    Params, Point64,
+    control_code, GpuLambda, KernelFlags, Lambda64, Out, Out64, Params, Point64,
 };
 use crate::kernel::start::Starts;
 use crate::solver::Control;
@@ -169,8 +168,6 @@ enum Entry {
     Probe,
     /// The f64 refinement (`shaders/polish64.wgsl`, its own module).
     Polish,
-    /// A force map's curve points (`shaders/fit_states.wgsl`, f64, its own module).
-    FitStates,
 }
 
 impl Entry {
@@ -180,7 +177,6 @@ impl Entry {
             Entry::Points => "points",
             Entry::Probe => "probe",
             Entry::Polish => "polish",
-            Entry::FitStates => "fit_states",
         }
     }
 }
@@ -197,9 +193,6 @@ struct Variant {
 impl Variant {
     /// The WGSL `override` constants (names as in `shaders/md.wgsl` and `polish64.wgsl`).
     fn overrides(&self) -> Vec<(&'static str, f64)> {
-        if self.entry == Entry::FitStates {
-            return Vec::new();
-        }
         let mut v = vec![
             ("CONTROL", control_code(self.control) as f64),
             ("ROWS_ARE_GAPS", self.rows_are_gaps as u32 as f64),
@@ -222,8 +215,6 @@ pub struct Gpu {
     module: wgpu::ShaderModule,
     /// The f64 refinement's module, built on first use.
     polish_module: std::sync::OnceLock<wgpu::ShaderModule>,
-    /// The force-map states' module (f64), built on first use.
-    fit_module: std::sync::OnceLock<wgpu::ShaderModule>,
     pipeline_layout: wgpu::PipelineLayout,
     pipelines: Mutex<HashMap<Variant, wgpu::ComputePipeline>>,
     /// At most this many points per dispatch (0: as the limits allow); see `limit_dispatch`.
@@ -278,7 +269,7 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
-const WORKGROUP: usize = crate::physics::tolerances::WORKGROUP_SIZE;
+const WORKGROUP: usize = crate::kernel::prelude::WORKGROUP_SIZE;
 /// Dispatches over an input bound in slices hold a multiple of this many points.
 const SLICE_POINTS: usize = 256;
 
@@ -353,7 +344,6 @@ impl Gpu {
             layout,
             module,
             polish_module: std::sync::OnceLock::new(),
-            fit_module: std::sync::OnceLock::new(),
             pipeline_layout: pl,
             pipelines: Mutex::new(HashMap::new()),
             max_dispatch: std::sync::atomic::AtomicUsize::new(0),
@@ -383,17 +373,12 @@ impl Gpu {
             return Ok(p.clone());
         }
         let constants = v.overrides();
-        // The f64 modules are their own (the f32 one must build where f64 does not exist).
+        // The f64 module is its own (the f32 one must build where f64 does not exist).
         let module = match v.entry {
             Entry::Polish => self.f64_module(
                 &self.polish_module,
                 "polish64",
                 crate::kernel::polish64_source,
-            ),
-            Entry::FitStates => self.f64_module(
-                &self.fit_module,
-                "fit_states",
-                crate::kernel::fit_states_source,
             ),
             _ => &self.module,
         };
@@ -573,34 +558,6 @@ impl Gpu {
             points.len(),
             0,
             max_steps,
-        )
-    }
-
-    /// The states of a force map's curve points on their curves' Maugis-Dugdale contact pieces
-    /// (adapters with SHADER_F64): `curves` the lambdas and springs, `points` each point's base
-    /// displacement, bracket and start (see `fit::batch`).
-    pub fn fit_states(
-        &self,
-        curves: &[FitCurve64],
-        points: &[FitPoint64],
-    ) -> Result<Vec<FitOut64>, GpuError> {
-        if !self.f64 {
-            return Err(GpuError::NoF64(self.adapter.name.clone()));
-        }
-        let v = Variant {
-            entry: Entry::FitStates,
-            control: Control::Load,
-            rows_are_gaps: false,
-            naive: false,
-        };
-        self.run(
-            v,
-            curves,
-            bytemuck::cast_slice(points),
-            std::mem::size_of::<FitPoint64>(),
-            points.len(),
-            0,
-            0,
         )
     }
 

@@ -5,13 +5,27 @@
 
 pub mod cpu;
 pub mod layout;
+/// The kernels' launch shape and the WGSL prelude of shared constants.
+pub mod prelude;
 pub mod prepare;
 pub mod start;
+
+/// The f32 kernels' lambda domain, narrower than the exact solver's: their tables, fits and
+/// f32 residuals were measured and tested over lambda 1e-8..1e8 only (README, Accuracy).
+pub const KERNEL_LAMBDA_MIN: f64 = 1e-8;
+/// See [`KERNEL_LAMBDA_MIN`].
+pub const KERNEL_LAMBDA_MAX: f64 = 1e8;
+
+/// Whether the kernels take this lambda; the engine solves the others on the CPU in f64 (by
+/// the exact solver, or the closed-form limits beyond its domain).
+pub fn kernel_lambda(lambda: f64) -> bool {
+    (KERNEL_LAMBDA_MIN..=KERNEL_LAMBDA_MAX).contains(&lambda)
+}
 
 /// The WGSL source of the f32 kernels: the host's prelude of shared constants, the shared
 /// functions, then the entry points.
 pub fn shader_source() -> String {
-    crate::physics::tolerances::wgsl_prelude()
+    prelude::wgsl_prelude()
         + include_str!("../../shaders/md.wgsl")
         + "\n"
         + include_str!("../../shaders/solve.wgsl")
@@ -20,17 +34,8 @@ pub fn shader_source() -> String {
 /// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64), after the
 /// same prelude.
 pub fn polish64_source() -> String {
-    crate::physics::tolerances::wgsl_prelude()
+    prelude::wgsl_prelude()
         + include_str!("../../shaders/curve64.wgsl")
         + "\n"
         + include_str!("../../shaders/polish64.wgsl")
-}
-
-/// The WGSL source of the force-map states (`shaders/fit_states.wgsl`, f64 like the refinement,
-/// whose curve point it shares), after the same prelude.
-pub fn fit_states_source() -> String {
-    crate::physics::tolerances::wgsl_prelude()
-        + include_str!("../../shaders/curve64.wgsl")
-        + "\n"
-        + include_str!("../../shaders/fit_states.wgsl")
 }

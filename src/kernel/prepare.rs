@@ -3,8 +3,7 @@
 //! accurately enough (dA/dP is infinite there).
 
 use super::layout::{Branch, GpuLambda, Lambda64, CHEB_TERMS, TABLE_NODES};
-use crate::physics::md::{curve_point, CurvePoint};
-use crate::solver::context::point;
+use crate::physics::md::{curve_point, point, CurvePoint};
 use crate::solver::LambdaContext;
 use rayon::prelude::*;
 
@@ -122,7 +121,7 @@ pub fn prepare(lambda: f64) -> GpuLambda {
     // Outside the kernels' domain the lambda is marked invalid (the engine solves it on the CPU).
     let ctx = LambdaContext::new(lambda)
         .ok()
-        .filter(|_| crate::engine::kernel_lambda(lambda));
+        .filter(|_| super::kernel_lambda(lambda));
     let Some(ctx) = ctx else {
         return GpuLambda {
             lambda: lambda as f32,
@@ -136,7 +135,7 @@ pub fn prepare(lambda: f64) -> GpuLambda {
 /// The kernels' data for one lambda, from its f64 context.
 pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
     let lambda = ctx.lambda;
-    if !crate::engine::kernel_lambda(lambda) {
+    if !super::kernel_lambda(lambda) {
         return prepare(lambda);
     }
     let small = crate::physics::tolerances::carries_load_plus_2(lambda);
@@ -207,7 +206,7 @@ pub fn prepare_ctx(ctx: &LambdaContext) -> GpuLambda {
 
 /// Prepares one lambda for the f64 refinement (`shaders/polish64.wgsl`).
 pub fn prepare64(ctx: Option<&LambdaContext>, lambda: f64) -> Lambda64 {
-    let Some(ctx) = ctx.filter(|c| crate::engine::kernel_lambda(c.lambda)) else {
+    let Some(ctx) = ctx.filter(|c| super::kernel_lambda(c.lambda)) else {
         return Lambda64 {
             lambda,
             invalid: 1,

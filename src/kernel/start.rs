@@ -120,7 +120,7 @@ mod tests {
     /// unstarted one does, and needs far fewer iterations.
     #[test]
     fn the_started_kernel_iterates_less_with_the_same_accuracy() {
-        let axis = crate::map::axis(1e-3, 1e3, 400, true);
+        let axis = crate::numeric::grid::axis(1e-3, 1e3, 400, true);
         let ctx: Vec<Option<LambdaContext>> =
             axis.iter().map(|&l| LambdaContext::new(l).ok()).collect();
         let started = with_starts(&ctx, &axis, Control::Load);

@@ -14,7 +14,6 @@
 //! exact curve: the nodes only bracket it.
 
 use super::{nodes, ContactLaw, Law, Piece, Pt};
-use crate::physics::model::ContactModel;
 use serde::{Deserialize, Serialize};
 
 /// Which way the base moves.
@@ -242,7 +241,7 @@ impl SpringPath {
         if !(sign * s_hi < 0.0) {
             return if s_lo > 0.0 { lo } else { hi };
         }
-        let r = crate::solver::root::secant_bracketed(
+        let r = crate::numeric::root::secant_bracketed(
             |t| sign * self.slope(piece, t),
             (lo, sign * s_lo),
             (hi, sign * s_hi),
@@ -602,23 +601,6 @@ impl SpringPath {
         };
         let (p, t) = self.solve_between(seg.piece, delta, lo, hi);
         PathState::on(seg.piece, t, &p, false)
-    }
-
-    /// A retract point for a batch on the GPU (`fit::batch`): where [`SpringPath::at`] solves
-    /// it on the Maugis-Dugdale contact piece, its bracket there in mu = exp(-t) (low, high)
-    /// and the start the CPU takes; None where the CPU evaluates it otherwise (another piece or
-    /// model). A point above the path's top is bracketed at the top, as the CPU holds it.
-    pub(crate) fn contact_bracket(&self, delta: f64) -> Option<[f64; 3]> {
-        if self.law.model() != ContactModel::Md {
-            return None;
-        }
-        let seg = containing(self.segments(Direction::Retract), delta)?;
-        if seg.piece != Piece::Contact {
-            return None;
-        }
-        let (lo, hi) = self.bracket(seg, delta);
-        let t = self.start_between(seg.piece, delta, lo, hi);
-        Some([(-hi.0).exp(), (-lo.0).exp(), (-t).exp()])
     }
 
     /// The nodes around `delta` inside a segment, with their Delta and its slope (None at the

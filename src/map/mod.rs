@@ -3,10 +3,12 @@
 //! Maugis-Dugdale one.
 
 use crate::engine::Engine;
+use crate::numeric::grid::axis;
 use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
 use crate::physics::model::ContactModel;
 
-use crate::solver::context::{point, x_at_radius};
+use crate::physics::md::point;
+use crate::solver::context::x_at_radius;
 use crate::solver::{LambdaContext, State, Status};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -307,24 +309,6 @@ impl Default for ComputeOptions {
             check: 1000,
         }
     }
-}
-
-/// `n` points from `min` to `max`, log-spaced if `log`, with the ends exact.
-pub fn axis(min: f64, max: f64, n: usize, log: bool) -> Vec<f64> {
-    (0..n)
-        .map(|i| {
-            let t = if n == 1 {
-                0.0
-            } else {
-                i as f64 / (n - 1) as f64
-            };
-            if log {
-                10f64.powf(min.log10() + t * (max.log10() - min.log10()))
-            } else {
-                min + t * (max - min)
-            }
-        })
-        .collect()
 }
 
 #[derive(Debug, thiserror::Error)]

@@ -14,37 +14,14 @@
 //! sum over s < C (see [`MdGeometry::gap`]).
 
 use super::real::Real;
+use crate::numeric::legendre::{self, Order};
 use std::f64::consts::PI;
 use std::sync::OnceLock;
 
-/// Gauss-Legendre nodes and weights on [0, 1].
+/// The 96-point Gauss-Legendre rule on [0, 1].
 fn gauss_legendre() -> &'static [(f64, f64)] {
     static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
-    RULE.get_or_init(|| {
-        const N: usize = 96;
-        let mut rule = Vec::with_capacity(N);
-        for i in 0..N {
-            // Newton's method on P_N from the Chebyshev-like first guess.
-            let mut x = (PI * (i as f64 + 0.75) / (N as f64 + 0.5)).cos();
-            let mut dp = 1.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for n in 2..=N {
-                    let p2 = ((2 * n - 1) as f64 * x * p1 - (n - 1) as f64 * p0) / n as f64;
-                    (p0, p1) = (p1, p2);
-                }
-                dp = N as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            let w = 2.0 / ((1.0 - x * x) * dp * dp);
-            rule.push((0.5 * (1.0 + x), 0.5 * w));
-        }
-        rule
-    })
+    RULE.get_or_init(|| legendre::gauss_legendre(96, Order::FromOne))
 }
 
 /// The integral of `f` over [0, 1] to about machine precision for smooth `f`.

@@ -84,6 +84,12 @@ pub fn curve_point<T: Real>(lambda: T, mu: T) -> CurvePoint<T> {
     }
 }
 
+/// The curve point at `x = ln mu`, the parameter the solvers search in.
+#[inline]
+pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
+    curve_point(lambda, x.exp())
+}
+
 /// The slopes of A, Pbar and Dbar with respect to lambda at fixed mu (the curve point of
 /// [`curve_point`] as lambda moves): equation (1), `alpha A^2 + beta A = 1` with
 /// `alpha = lambda f1 / 2` and `beta = (4/3) lambda^2 f2`, differentiated at fixed f1, f2.

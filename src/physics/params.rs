@@ -97,6 +97,32 @@ pub fn small_strain_warning(a_over_r: f64) -> Option<String> {
     })
 }
 
+/// Fitted parameters outside these are taken for a failed fit (wrong units, a wrong spring
+/// constant or radius, or data the models cannot describe): E* (Pa), from the softest gels and
+/// cells (measured cell curves fit a few hundred Pa) to diamond, and w (J/m^2) above metallic
+/// adhesion. A w below the weakest van der Waals contact (1e-6) is
+/// no measurable adhesion (a Hertz curve), not a failure.
+pub const E_STAR_RANGE: (f64, f64) = (10.0, 1e12);
+/// The largest plausible work of adhesion w (J/m^2); see [`E_STAR_RANGE`].
+pub const W_MAX: f64 = 10.0;
+
+/// Whether a modulus E* (Pa) and a work of adhesion w (J/m^2) lie in the plausible ranges
+/// ([`E_STAR_RANGE`], [`W_MAX`]), and both values with their ranges in words: the one check of
+/// `fit` and `infer`.
+pub fn plausibility(e_star: f64, w: f64) -> (bool, String) {
+    let short = super::domain::short;
+    let ok = (E_STAR_RANGE.0..=E_STAR_RANGE.1).contains(&e_star) && w <= W_MAX;
+    let text = format!(
+        "E* = {} Pa (plausible {}..{} Pa), w = {} J/m^2 (plausible up to {} J/m^2)",
+        short(e_star),
+        short(E_STAR_RANGE.0),
+        short(E_STAR_RANGE.1),
+        short(w),
+        short(W_MAX)
+    );
+    (ok, text)
+}
+
 /// The Lennard-Jones law's largest stress in units of `w / z0`: `16 / (9 sqrt 3)`.
 pub const LJ_STRESS: f64 = 16.0 / (9.0 * 1.7320508075688772);
 

@@ -348,7 +348,7 @@ fn inner_root(zones: &Zones, long: usize, x: f64) -> Option<f64> {
     if !(f_hi < 0.0) {
         return None;
     }
-    let r = crate::solver::root::secant_bracketed(
+    let r = crate::numeric::root::secant_bracketed(
         phi,
         (lo, f_lo),
         (hi, f_hi),
@@ -495,7 +495,7 @@ pub fn non_contact_both(zones: &Zones, c_short: f64) -> Option<NonContactPoint> 
     if !(f_lo > 0.0 && f_hi < 0.0) {
         return None;
     }
-    let r = crate::solver::root::secant_bracketed(
+    let r = crate::numeric::root::secant_bracketed(
         diff,
         (lo, f_lo),
         (hi, f_hi),

@@ -11,6 +11,7 @@
 use super::{Leg, Rough, RoughError, Summit};
 use crate::engine::{CheckReport, Engine};
 use crate::map::Region;
+use crate::numeric::legendre::{gauss_legendre, Order};
 use crate::physics::closed::{jkr_approach, jkr_load};
 use crate::physics::domain::short;
 use crate::solver::{Control, Status};
@@ -504,30 +505,6 @@ fn exp_nonpositive<const FUSED: bool>(x: f64, table: &ExpTable) -> f64 {
     table.0[(kb % EXP_N as u64) as usize] * two_m * p
 }
 
-/// Gauss-Legendre nodes and weights on [0, 1].
-fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
-    (1..=n)
-        .map(|i| {
-            let mut x = (PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-            let mut dp = 0.0;
-            for _ in 0..100 {
-                let (mut p0, mut p1) = (1.0, x);
-                for k in 2..=n {
-                    let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                    (p0, p1) = (p1, p2);
-                }
-                dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-                let dx = p1 / dp;
-                x -= dx;
-                if dx.abs() < 1e-16 {
-                    break;
-                }
-            }
-            (0.5 * (1.0 - x), 1.0 / ((1.0 - x * x) * dp * dp))
-        })
-        .collect()
-}
-
 /// `G(h) = integral over [h, Z_MAP] of phi(t) (t - h)^(3/2) dt`, the Gaussian moment behind
 /// every Hertzian summit population (Greenwood and Williamson's F_3/2, truncated where the map
 /// truncates): a not-a-knot spline on a uniform grid of h, its nodes computed with t = h + u^2
@@ -589,7 +566,7 @@ struct Quad {
 impl Quad {
     fn new() -> Quad {
         let mut nodes = [(0.0, 0.0); GL_N];
-        nodes.copy_from_slice(&gauss_legendre(GL_N));
+        nodes.copy_from_slice(&gauss_legendre(GL_N, Order::FromZero));
         #[cfg(target_arch = "x86_64")]
         let avx2 = std::arch::is_x86_feature_detected!("avx2")
             && std::arch::is_x86_feature_detected!("fma");
@@ -1156,8 +1133,8 @@ pub fn compute_with(
     check_checks(checks)?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
-    let lambdas = crate::map::axis(spec.lambda_min, spec.lambda_max, nx, true);
-    let sigmas = crate::map::axis(spec.sigma_min, spec.sigma_max, ny, true);
+    let lambdas = crate::numeric::grid::axis(spec.lambda_min, spec.lambda_max, nx, true);
+    let sigmas = crate::numeric::grid::axis(spec.sigma_min, spec.sigma_max, ny, true);
     let p = spec.press_sigmas;
     // The approaches the quadrature reaches: heights up to Z_MAP sigma above separations down
     // to -press sigma.

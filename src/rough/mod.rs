@@ -11,6 +11,7 @@ pub mod map;
 pub mod scene;
 pub mod wet;
 
+use crate::numeric::golden::{Golden, Ties, Width};
 use crate::physics::domain::{short, DomainError};
 use crate::physics::md::{zero_radius_end, LAMBDA_D};
 use crate::solver::{LambdaContext, SolveError, Status};
@@ -529,6 +530,13 @@ pub(crate) fn integrate(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
 /// the least of a few samples.
 pub(crate) const PULLOFF_SAMPLES: usize = 64;
 
+/// The golden-section search of the pull-off and of the wet summits' folds.
+const GOLDEN: Golden = Golden {
+    width: Width::Relative(1e-15),
+    ties: Ties::Right,
+    max_iter: 200,
+};
+
 /// The most tensile retract load: the least of the `samples` (and, where they are fewer than
 /// `at_least`, of that many uniform samples over `[d_min, d_max]` of `load`), then a
 /// golden-section search for the minimum between its neighbours. Returns the separation and
@@ -554,29 +562,49 @@ pub(crate) fn pulloff_search(
     };
     let lo = pts[i.saturating_sub(1)].0;
     let hi = pts[(i + 1).min(pts.len() - 1)].0;
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut a, mut b) = (lo, hi);
-    let (mut c, mut e) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fe) = (load(c)?, load(e)?);
-    for _ in 0..200 {
-        if (b - a) <= 1e-15 * (1.0 + a.abs().max(b.abs())) {
-            break;
-        }
-        if fc < fe {
-            (b, e, fe) = (e, c, fc);
-            c = b - g * (b - a);
-            fc = load(c)?;
-        } else {
-            (a, c, fc) = (c, e, fe);
-            e = a + g * (b - a);
-            fe = load(e)?;
-        }
-    }
-    let best = [(c, fc), (e, fe), pts[i]]
+    let p = GOLDEN.search(load, lo, hi)?;
+    let best = [p.left, p.right, pts[i]]
         .into_iter()
         .min_by(|x, y| x.1.total_cmp(&y.1))
         .unwrap_or(pts[i]);
     Ok(best)
+}
+
+/// The mean over the summits of a statistical model on a leg at a separation.
+pub(crate) type MeanOf<'a> = &'a dyn Fn(Leg, f64) -> Result<Mean, RoughError>;
+
+/// The pull-off per summit of a statistical model (dry or wet: its `mean`) after pressing to
+/// `d_min`: the retract sampled at `samples` separations up to `free`, where every summit is
+/// free again, then refined.
+pub(crate) fn pulloff_after(
+    free: f64,
+    d_min: f64,
+    samples: usize,
+    mean: MeanOf,
+) -> Result<(f64, f64), RoughError> {
+    let d_max = free.max(d_min + 1e-9);
+    let leg = Leg::Retract { d_min };
+    let m = samples.max(3);
+    let retract: Vec<Mean> = (0..m)
+        .map(|i| mean(leg, d_min + (d_max - d_min) * i as f64 / (m - 1) as f64))
+        .collect::<Result<_, _>>()?;
+    retract_pulloff(&retract, d_min, d_max, 0, mean)
+}
+
+/// The most tensile retract load of a statistical model after pressing to `d_min`, from the
+/// samples `retract` (and, where those are fewer than `at_least`, from that many more up to
+/// `d_max`).
+pub(crate) fn retract_pulloff(
+    retract: &[Mean],
+    d_min: f64,
+    d_max: f64,
+    at_least: usize,
+    mean: MeanOf,
+) -> Result<(f64, f64), RoughError> {
+    let leg = Leg::Retract { d_min };
+    pulloff_search(retract, d_min, d_max, at_least, &|d| {
+        mean(leg, d).map(|m| m.load)
+    })
 }
 
 /// What a statistical cycle's range and sampling cannot show: summits still held at its largest
@@ -674,7 +702,9 @@ impl Rough {
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
         let (pulloff_separation, pulloff_load) =
-            self.pulloff(&retract, d_min, d_max, PULLOFF_SAMPLES)?;
+            retract_pulloff(&retract, d_min, d_max, PULLOFF_SAMPLES, &|leg, d| {
+                self.mean(leg, d)
+            })?;
         let hysteresis = self.hysteresis(d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
         let quadrature_error = approach
@@ -707,31 +737,8 @@ impl Rough {
     /// separations up to where every summit is free again, then refined. Returns the separation
     /// and the load.
     pub fn pulloff_after(&self, d_min: f64, samples: usize) -> Result<(f64, f64), RoughError> {
-        let d_max = self.free_separation().max(d_min + 1e-9);
-        let leg = Leg::Retract { d_min };
-        let retract: Vec<Mean> = (0..samples.max(3))
-            .map(|i| {
-                self.mean(
-                    leg,
-                    d_min + (d_max - d_min) * i as f64 / (samples.max(3) - 1) as f64,
-                )
-            })
-            .collect::<Result<_, _>>()?;
-        self.pulloff(&retract, d_min, d_max, 0)
-    }
-
-    /// The minimum of the retract load after pressing to `d_min`, from the samples `retract`
-    /// (and, where those are fewer than `at_least`, from that many more up to `d_max`).
-    fn pulloff(
-        &self,
-        retract: &[Mean],
-        d_min: f64,
-        d_max: f64,
-        at_least: usize,
-    ) -> Result<(f64, f64), RoughError> {
-        let leg = Leg::Retract { d_min };
-        pulloff_search(retract, d_min, d_max, at_least, &|d| {
-            self.mean(leg, d).map(|m| m.load)
+        pulloff_after(self.free_separation(), d_min, samples, &|leg, d| {
+            self.mean(leg, d)
         })
     }
 
@@ -919,7 +926,7 @@ impl PulloffSweep {
 
     /// The roughnesses of the sweep, log-spaced.
     pub fn sigmas(&self) -> Vec<f64> {
-        crate::map::axis(self.sigma_min, self.sigma_max, self.points, true)
+        crate::numeric::grid::axis(self.sigma_min, self.sigma_max, self.points, true)
     }
 
     /// Checks, then one curve per lambda on all cores.

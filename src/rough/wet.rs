@@ -16,6 +16,7 @@
 
 use super::{domain, integrate, upper_tail, Leg, Mean, Rough, RoughCycle, RoughError};
 use super::{legs, separations, SummitBranch, Z_CUT, Z_FREE};
+use crate::law::{ContactLaw, Md, TwoZones};
 use crate::physics::two_zone::{non_contact_both, non_contact_single, Shape, Zones};
 use crate::solver::two_zone::TwoZoneContext;
 use crate::solver::Status;
@@ -169,33 +170,6 @@ fn approach_of(z: &Zones, part: Part, p: f64) -> f64 {
     }
 }
 
-/// Golden-section search for the extremum of `f` on `[a, b]` (`sign` = 1: minimum, -1:
-/// maximum); returns the argument.
-fn golden(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, sign: f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut c, mut e) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fe) = (sign * f(c), sign * f(e));
-    for _ in 0..200 {
-        if (b - a) <= 1e-15 * (1.0 + a.abs().max(b.abs())) {
-            break;
-        }
-        if fc < fe {
-            (b, e, fe) = (e, c, fc);
-            c = b - g * (b - a);
-            fc = sign * f(c);
-        } else {
-            (a, c, fc) = (c, e, fe);
-            e = a + g * (b - a);
-            fe = sign * f(e);
-        }
-    }
-    if fc < fe {
-        c
-    } else {
-        e
-    }
-}
-
 fn zones_failed(e: impl std::fmt::Display) -> RoughError {
     RoughError::Scene(format!("the wet summit could not be solved: {e}"))
 }
@@ -248,7 +222,8 @@ impl WetSummit {
                 if i == 0 || i + 1 >= n {
                     return (ps[i], ds[i]);
                 }
-                let q = golden(|x| approach_of(z, probe, x), ps[i - 1], ps[i + 1], sign);
+                let q =
+                    super::GOLDEN.argmin(|x| sign * approach_of(z, probe, x), ps[i - 1], ps[i + 1]);
                 let dq = approach_of(z, probe, q);
                 if sign * dq < sign * ds[i] {
                     (q, dq)
@@ -546,8 +521,7 @@ pub enum WetRough {
 impl WetRough {
     /// Summits of the contact law `law` (MD, or the solid with its meniscus), heights N(0,
     /// sigma^2) in the law's approach unit: the one entry of the command line and Python.
-    pub fn of_law(law: crate::law::ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
-        use crate::law::{ContactLaw, Md, TwoZones};
+    pub fn of_law(law: ContactLaw, sigma: f64) -> Result<WetRough, RoughError> {
         match law {
             ContactLaw::Md(Md { lambda }) => Ok(WetRough::Dry(Rough::new(lambda, sigma)?)),
             ContactLaw::SolidAndMeniscus(TwoZones {
@@ -775,7 +749,9 @@ impl WetRough {
         let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
         let leg = Leg::Retract { d_min };
         let (pulloff_separation, pulloff_load) =
-            self.pulloff(&retract, d_min, d_max, super::PULLOFF_SAMPLES)?;
+            super::retract_pulloff(&retract, d_min, d_max, super::PULLOFF_SAMPLES, &|leg, d| {
+                self.mean(leg, d)
+            })?;
         let hysteresis = summit.hysteresis(sigma, d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
         let quadrature_error = approach
@@ -807,26 +783,8 @@ impl WetRough {
     /// The pull-off per summit after pressing to `d_min`: the retract sampled at `samples`
     /// separations up to where every summit is free again, then refined.
     pub fn pulloff_after(&self, d_min: f64, samples: usize) -> Result<(f64, f64), RoughError> {
-        let d_max = self.free_separation().max(d_min + 1e-9);
-        let leg = Leg::Retract { d_min };
-        let m = samples.max(3);
-        let retract: Vec<Mean> = (0..m)
-            .map(|i| self.mean(leg, d_min + (d_max - d_min) * i as f64 / (m - 1) as f64))
-            .collect::<Result<_, _>>()?;
-        self.pulloff(&retract, d_min, d_max, 0)
-    }
-
-    /// The most tensile retract load after pressing to `d_min` (the shared search).
-    fn pulloff(
-        &self,
-        retract: &[Mean],
-        d_min: f64,
-        d_max: f64,
-        at_least: usize,
-    ) -> Result<(f64, f64), RoughError> {
-        let leg = Leg::Retract { d_min };
-        super::pulloff_search(retract, d_min, d_max, at_least, &|d| {
-            self.mean(leg, d).map(|m| m.load)
+        super::pulloff_after(self.free_separation(), d_min, samples, &|leg, d| {
+            self.mean(leg, d)
         })
     }
 }

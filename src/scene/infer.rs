@@ -29,7 +29,7 @@ pub struct Inference {
 
 /// A w (J/m^2) outside physical sense beside E* (Pa), as `tabor fit` bounds them, in words.
 fn implausible_w(w: f64, e_star: f64) -> Option<String> {
-    let (ok, values) = crate::fit::plausibility(e_star, w);
+    let (ok, values) = crate::physics::params::plausibility(e_star, w);
     (!ok).then(|| {
         format!("{values}: outside physical sense; check the units of the force (N), the radius (m) and E* (Pa)")
     })
@@ -72,7 +72,7 @@ pub fn infer(pulloff_n: f64, radius: f64, e_star: f64, z0: f64) -> Result<Infere
             .map_or(f64::NAN, |ctx| -ctx.load_pulloff.load * pi * w * radius - f)
     };
     let w_md =
-        crate::solver::root::bisect_sign(|lw| g(lw.exp()), w_dmt.ln() - 1e-9, w_jkr.ln() + 1e-9)
+        crate::numeric::root::bisect_sign(|lw| g(lw.exp()), w_dmt.ln() - 1e-9, w_jkr.ln() + 1e-9)
             .exp();
     let ok = g(w_md).abs() < 1e-9 * f;
     let lam = Contact::new(radius, e_star, w_md, ForceRange::LennardJones(z0))?.lambda();
@@ -220,7 +220,7 @@ pub fn infer_wet(
         (None, None, v)
     } else {
         let g = |lw: f64| pulloff(lw.exp()).map_or(f64::NAN, |p| p - f);
-        let w = crate::solver::root::bisect_sign(g, w_lo.ln(), w_hi.ln()).exp();
+        let w = crate::numeric::root::bisect_sign(g, w_lo.ln(), w_hi.ln()).exp();
         let ok = (pulloff(w)? - f).abs() <= 1e-9 * f;
         let lam = contact(w)?.lambda();
         let v = format!(

@@ -1,8 +1,10 @@
 //! The per-lambda context: pull-offs computed once, then many loads or approaches solved cheaply.
 
-use super::root::{bisect_sign, secant_bracketed, Stop};
 use super::{Control, SolveError, State, Status};
-use crate::physics::md::{curve_point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D};
+use crate::numeric::root::{bisect_sign, secant_bracketed, Stop};
+use crate::physics::md::{
+    curve_point, point, zero_radius_end, CurvePoint, ZeroRadiusEnd, LAMBDA_D,
+};
 use crate::physics::real::{Dd, Real};
 use crate::physics::tolerances::carries_load_plus_2;
 
@@ -154,12 +156,6 @@ pub const START_MIN_STATES: usize = 16;
 /// A Newton solve stops where its correction of x is at most this (less near the pull-off) and
 /// carries that correction by the slopes: the second-order term it leaves out is below 1e-14.
 const ONE_STEP_DX: f64 = 1e-7;
-
-#[inline]
-/// The curve point at `x = ln mu`.
-pub fn point(lambda: f64, x: f64) -> CurvePoint<f64> {
-    curve_point(lambda, x.exp())
-}
 
 /// x = ln(mu) at which the contact radius equals `a` (A falls strictly with mu).
 pub fn x_at_radius(lambda: f64, a: f64) -> f64 {

@@ -1,9 +1,10 @@
 //! The whole Maugis-Dugdale curve of one lambda, stable and unstable parts, with the stability
 //! under both controls, ending at the A = 0 end (`tabor curve`).
 
-use super::context::{point, x_at_radius};
+use super::context::x_at_radius;
 use super::{LambdaContext, SolveError};
 use crate::physics::domain::{check_radius, DomainError};
+use crate::physics::md::point;
 use crate::physics::md::LAMBDA_D;
 use serde::Serialize;
 

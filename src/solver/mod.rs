@@ -1,11 +1,10 @@
 //! Solvers: the exact f64 reference (per-lambda context, batches on all cores). The f32 mirror
-//! of the shaders lives in `crate::kernel::cpu`.
+//! of the shaders is the kernel layer's (`kernel::cpu`), above this one.
 
 pub mod context;
 pub mod curve;
 pub mod limits;
 pub mod naive;
-pub mod root;
 pub mod start;
 pub mod two_zone;
 

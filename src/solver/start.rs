@@ -5,7 +5,7 @@
 //! It covers only the loads asked for, and is built only where its nodes are fewer than half
 //! the states of the lambda (grids, maps); scattered states keep the bracketed secant search.
 
-use super::context::point;
+use crate::physics::md::point;
 
 /// Node spacing in y = ln(xc - x): the Hermite error in x stays below about 1e-8 (95% of the
 /// states of `cargo bench --bench grid` need no second evaluation).

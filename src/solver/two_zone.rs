@@ -6,8 +6,9 @@
 //! `x = ln(mu_L)` of the longer-range zone.
 
 use super::context::LambdaContext;
-use super::root::{bisect_sign, secant_bracketed};
 use super::Status;
+use crate::numeric::golden::{Golden, Ties, Width};
+use crate::numeric::root::{bisect_sign, secant_bracketed, Stop};
 use crate::physics::domain::short;
 use crate::physics::md::LAMBDA_D;
 use crate::physics::two_zone::{gap, point, Shape, TwoZonePoint, Zones};
@@ -18,6 +19,12 @@ use std::f64::consts::PI;
 const X_START: f64 = -25.0;
 const X_END: f64 = 36.0;
 const X_STEP: f64 = 0.25;
+/// The golden-section refinement of a minimum between grid points.
+const GOLDEN: Golden = Golden {
+    width: Width::Absolute(1e-13),
+    ties: Ties::Left,
+    max_iter: 90,
+};
 /// The most negative x searched for large loads and radii.
 const X_FAR: f64 = -60.0;
 
@@ -314,39 +321,11 @@ fn first_minimum(f: &dyn Fn(f64) -> f64) -> Result<Option<f64>, Status> {
             if k == 1 {
                 return Err(Status::NotConverged);
             }
-            return Ok(Some(golden(f, xs[k - 2], xs[k])));
+            return Ok(Some(GOLDEN.argmin(f, xs[k - 2], xs[k])));
         }
         prev = v;
     }
     Ok(None)
-}
-
-fn golden(f: &dyn Fn(f64) -> f64, mut lo: f64, mut hi: f64) -> f64 {
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let mut x1 = hi - g * (hi - lo);
-    let mut x2 = lo + g * (hi - lo);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..90 {
-        if f1 <= f2 {
-            hi = x2;
-            (x2, f2) = (x1, f1);
-            x1 = hi - g * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            (x1, f1) = (x2, f2);
-            x2 = lo + g * (hi - lo);
-            f2 = f(x2);
-        }
-        if hi - lo < 1e-13 {
-            break;
-        }
-    }
-    if f1 <= f2 {
-        x1
-    } else {
-        x2
-    }
 }
 
 impl TwoZoneContext {
@@ -589,7 +568,7 @@ impl TwoZoneContext {
         }
         let r = secant_bracketed(f, (lo, f_lo), (hi, f_hi), 0.5 * (lo + hi), 1e-15, 300);
         let mut s = self.state_at_x(r.x);
-        if r.stop != super::root::Stop::Converged && s.status == Status::Ok {
+        if r.stop != Stop::Converged && s.status == Status::Ok {
             s.status = Status::NotConverged;
         }
         s

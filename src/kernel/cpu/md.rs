@@ -468,7 +468,7 @@ mod convergence_tests {
     #[test]
     fn classic_map_points_need_few_iterations() {
         let n = 300;
-        let axis = crate::map::axis(1e-3, 1e3, n, true);
+        let axis = crate::numeric::grid::axis(1e-3, 1e3, n, true);
         let prepared: Vec<GpuLambda> = axis.iter().map(|&l| prepare(l)).collect();
         let (mut total, mut most) = (0u32, 0u32);
         for g in &prepared {

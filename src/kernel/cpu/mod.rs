@@ -1,5 +1,4 @@
 //! CPU mirrors of the WGSL kernels, one file per kernel.
 
-pub mod fit_states;
 pub mod md;
 pub mod polish64;

@@ -1,4 +1,5 @@
-//! A bracketed, safeguarded Newton iteration that says why it stopped.
+//! Bracketed root finding: a safeguarded secant iteration that says why it stopped, and
+//! bisection on a sign to the last bit.
 
 /// Why a root search ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
