@@ -13,7 +13,7 @@
 //! Pbar dDbar` (the spring's stored energy is a state function), in units of pi w R times the
 //! approach unit.
 
-use crate::law::path::{check_drive, control_of, free_landing};
+use crate::law::path::{control_of, free_landing};
 use crate::law::{Law, LawError, Md};
 use serde::Serialize;
 
@@ -106,27 +106,18 @@ fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
     }
 }
 
-/// The cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the solver's
-/// domain.
-pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, crate::solver::SolveError> {
-    crate::solver::domain::check_lambda(lambda)?;
-    check_drive(drive, max_load)?;
-    let md = Md { lambda };
-    let path = crate::law::md::equilibrium_path(lambda, max_load, crate::law::md::CYCLE_POINTS);
-    Ok(follow_law(&md, drive, path))
+/// The Maugis-Dugdale cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the
+/// solver's domain ([`run`] of [`Md`]).
+pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
+    run(&Md { lambda }, drive, max_load)
 }
 
 /// The cycle of any law under `drive` up to the load `max_load`, after the law's and the
-/// drive's checks (each one line naming the value).
+/// drive's checks (each one line naming the value): the drive's steps, jumps and loop on the
+/// law's sampled path, each retract jump from the contact branch put at the law's exact fold
+/// (the samples only bracket it; a landing on the free branch moves with it).
 pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
     let path = law.cycle_path(drive, max_load)?;
-    Ok(follow_law(law, drive, path))
-}
-
-/// The drive's steps, jumps and loop on a law's sampled path, each retract jump from the
-/// contact branch put at the law's exact fold (the samples only bracket it; a landing on the
-/// free branch moves with it).
-fn follow_law<L: Law + ?Sized>(law: &L, drive: Drive, path: Vec<PathPoint>) -> Cycle {
     let f = follow(&path, drive);
     let mut jumps = f.jumps;
     for j in jumps
@@ -140,7 +131,7 @@ fn follow_law<L: Law + ?Sized>(law: &L, drive: Drive, path: Vec<PathPoint>) -> C
             j.from = p;
         }
     }
-    Cycle {
+    Ok(Cycle {
         lambda: law.lambda().unwrap_or(f64::NAN),
         drive,
         path,
@@ -148,7 +139,7 @@ fn follow_law<L: Law + ?Sized>(law: &L, drive: Drive, path: Vec<PathPoint>) -> C
         steps: f.steps,
         jumps,
         hysteresis: f.hysteresis,
-    }
+    })
 }
 
 /// Why a cycle was not computed: a bad law, drive or load (the message names the quantity, the

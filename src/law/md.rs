@@ -177,17 +177,11 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
     };
     let a_max = ctx.solve_load(max_load).a;
     let a_mid = a_max.min(ctx.solve_load(10.0).a);
-    for a in contact_radii(a_mid, a_max, n) {
-        let mu = x_at_radius(lambda, a).exp();
-        let p = curve_point(lambda, mu);
-        path.push(PathPoint {
-            branch: Branch::Contact,
-            approach: p.approach,
-            load: p.load,
-            a: p.a,
-            c: (p.m_minus_1 + 1.0) * p.a,
-        });
-    }
+    path.extend(
+        contact_radii(a_mid, a_max, n)
+            .into_iter()
+            .map(|a| contact_point(lambda, a)),
+    );
     let free = free_before(&path, d0, n);
     free.into_iter().chain(path).collect()
 }

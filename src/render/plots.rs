@@ -920,7 +920,6 @@ where
         )
     };
     let colour = profile_style;
-    let label = |m: ContactModel| m.label();
     // Pressure range: the MD and closed-form values; JKR's singular tension (infinite at r = a)
     // leaves the axes a little below the Dugdale stress.
     let finite = |m: &crate::profile::ModelProfile| -> Vec<f64> {
@@ -966,7 +965,7 @@ where
         for s in segs.into_iter().filter(|s| s.len() > 1) {
             let series = chart.draw_series(LineSeries::new(s, st))?;
             if first {
-                series.label(label(m.model)).legend(sample(st));
+                series.label(m.model.label()).legend(sample(st));
                 first = false;
             }
         }
