@@ -6,7 +6,8 @@
 //! meniscus = MD). A new law adds itself to `laws()`.
 
 use tabor::cycle::{self, Drive, Phase};
-use tabor::law::{ContactLaw, Law, Piece, A_START};
+use tabor::law::{ContactLaw, Law, Piece, Tip, A_START};
+use tabor::physics::tip::Shape;
 use tabor::physics::two_zone::Zones;
 use tabor::ContactModel;
 
@@ -19,6 +20,15 @@ fn laws() -> Vec<ContactLaw> {
         [(0.5, 0.2, 5.0), (2.0, 0.05, 10.0), (1.0, 3.0, 0.3)]
             .map(|(l, r, e)| ContactLaw::solid_and_meniscus(l, r, e)),
     );
+    v.extend(
+        [(1.0, 0.3), (1.5, 2.0), (3.0, 0.8), (4.0, 10.0)]
+            .map(|(n, l)| ContactLaw::Tip(Tip::new(Shape::Power { exponent: n }, l).unwrap())),
+    );
+    let capped = Shape::CappedCone {
+        rho: 1.5,
+        half_angle: 20f64.to_radians(),
+    };
+    v.extend([0.2, 3.0].map(|l| ContactLaw::Tip(Tip::new(capped, l).unwrap())));
     v
 }
 
@@ -139,14 +149,25 @@ fn lambda_slopes_are_the_differences() {
         .is_nan());
 }
 
-/// The most tensile load along the contact piece, sampled densely, and the smallest approach.
+/// The most tensile load along the contact piece and the smallest approach, sampled densely
+/// and again around each sampled extreme.
 fn contact_extremes(law: &ContactLaw) -> (f64, f64) {
-    let (_, t0, t1) = *law.pieces(4.0).last().unwrap();
-    (0..=20000)
-        .map(|i| law.state(Piece::Contact, t0 + (t1 - t0) * i as f64 / 20000.0))
-        .fold((f64::INFINITY, f64::INFINITY), |(p, d), s| {
-            (p.min(s.load), d.min(s.approach))
-        })
+    let (_, t0, t1) = *law.pieces(8.0).last().unwrap();
+    let n = 20000;
+    let h = (t1 - t0) / n as f64;
+    let at = |t: f64| law.state(Piece::Contact, t);
+    let lowest = |value: &dyn Fn(f64) -> f64| {
+        let (i, _) = (0..=n).map(|i| value(t0 + h * i as f64)).enumerate().fold(
+            (0, f64::INFINITY),
+            |b, (i, v)| if v < b.1 { (i, v) } else { b },
+        );
+        let centre = t0 + h * i as f64;
+        (0..=2000)
+            .map(|k| value(centre - h + h * k as f64 / 1000.0))
+            .filter(|v| v.is_finite())
+            .fold(f64::INFINITY, f64::min)
+    };
+    (lowest(&|t| at(t).load), lowest(&|t| at(t).approach))
 }
 
 /// The load-controlled pull-off a fit starts w from is the law's most tensile load on contact:
@@ -337,6 +358,42 @@ fn the_energy_release_rate_at_the_edge_is_w() {
                     mu: (-t).exp(),
                 }
                 .energy_release_over_w(),
+                // The J-integral through the zone, s0 times the gap at C over w: the gap from
+                // its Abel form in T by double-exponential quadrature (not the law's rule in phi).
+                ContactLaw::Tip(tip) => {
+                    let (a, c) = (s.a, s.a * (1.0 + (-t).exp().powi(2)).sqrt());
+                    let fa = tip.shape.abel(a).0;
+                    // T = C - (C - A) v^2 takes the 1/sqrt(C - T) out of the integrand; a
+                    // capped cone's joint (Fbar'' singular there) splits the range.
+                    let v_of = |x: f64| ((c - x) / (c - a)).sqrt();
+                    let mut cuts = vec![0.0, 1.0];
+                    if let Shape::CappedCone { rho, half_angle } = tip.shape {
+                        let b = rho * half_angle.cos();
+                        if a < b && b < c {
+                            cuts.insert(1, v_of(b));
+                        }
+                    }
+                    let profile: f64 = cuts
+                        .windows(2)
+                        .map(|w| {
+                            quadrature::double_exponential::integrate(
+                                |v: f64| {
+                                    let x = c - (c - a) * v * v;
+                                    (tip.shape.abel(x).0 - fa) * 2.0 * (c - a).sqrt()
+                                        / (c + x).sqrt()
+                                },
+                                w[0],
+                                w[1],
+                                1e-14,
+                            )
+                            .integral
+                        })
+                        .sum();
+                    let m = c / a;
+                    let mu = (m * m - 1.0).sqrt();
+                    let l = tip.lambda;
+                    l * profile + 4.0 / 3.0 * l * l * a * (mu * mu.atan() - m + 1.0)
+                }
                 ContactLaw::SolidAndMeniscus(z) => {
                     let p = two_zone_profile(
                         z.lambda,

@@ -62,7 +62,7 @@ macro_rules! closed_form {
             $pulloff
         }
         fn key(&self) -> LawKey {
-            ($model, [0; 3])
+            ($model, [0; 4])
         }
     };
 }

@@ -101,7 +101,7 @@ impl Law for Md {
         }
     }
     fn key(&self) -> LawKey {
-        (ContactModel::Md, [self.lambda.to_bits(), 0, 0])
+        (ContactModel::Md, [self.lambda.to_bits(), 0, 0, 0])
     }
     fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
         crate::solver::domain::check_lambda(self.lambda)

@@ -17,11 +17,13 @@ pub mod closed;
 pub mod follow;
 pub mod md;
 pub mod path;
+pub mod tip;
 pub mod two_zone;
 
 pub use closed::{Dmt, Hertz, Jkr};
 pub use md::Md;
 pub use path::{Branch, Drive, PathPoint};
+pub use tip::Tip;
 pub use two_zone::TwoZones;
 
 /// A piece of a law's equilibrium path, each with its own parameter t.
@@ -81,7 +83,7 @@ impl Pt {
 
 /// A law's identity in the per-thread cache of its costly values: its model and its numbers'
 /// bits (equal keys, equal states).
-pub type LawKey = (ContactModel, [u64; 3]);
+pub type LawKey = (ContactModel, [u64; 4]);
 
 /// The contact piece starts at this radius (Maugis-Dugdale: where it meets the non-contact piece
 /// to 1e-9; JKR: where its approach slope is still finite).
@@ -199,6 +201,9 @@ pub enum ContactLaw {
     /// The solid's Dugdale zone plus a water meniscus, a second zone (docs/PHYSICS.md section
     /// 10).
     SolidAndMeniscus(TwoZones),
+    /// Maugis-Dugdale on an axisymmetric tip (a power law or a capped cone; docs/PHYSICS.md
+    /// section 12), in the shape's units.
+    Tip(Tip),
 }
 
 impl ContactLaw {
@@ -247,6 +252,7 @@ impl ContactLaw {
             ContactLaw::Jkr => &Jkr,
             ContactLaw::Md(l) => l,
             ContactLaw::SolidAndMeniscus(l) => l,
+            ContactLaw::Tip(l) => l,
         }
     }
 

@@ -160,6 +160,7 @@ impl Law for TwoZones {
                 self.lambda.to_bits(),
                 self.stress_ratio.to_bits(),
                 self.range_ratio.to_bits(),
+                0,
             ],
         )
     }

@@ -9,6 +9,7 @@ pub mod md;
 pub mod model;
 pub mod params;
 pub mod real;
+pub mod tip;
 /// Every threshold of the contract and of the solvers' branching, named once.
 pub mod tolerances;
 pub mod two_zone;

@@ -1,0 +1,391 @@
+//! Maugis-Dugdale for an axisymmetric tip (docs/PHYSICS.md section 12): a power law (cone,
+//! sphere, blunt tips; pyramids as their equivalent cone) or a capped cone, in the shape's
+//! normalised units. Its path: the free piece, the non-contact piece (the zone alone, t = C),
+//! the contact piece (t = -ln mu, the radius A a root of equation (1t) at each mu).
+
+use super::path::{check_drive, contact_radii, free_before, Branch, Drive, PathPoint};
+use super::{cache, Law, LawError, LawKey, Piece, Pt, A_START};
+use crate::numeric::root::bisect_sign;
+use crate::physics::model::ContactModel;
+use crate::physics::tip::Shape;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+/// Maugis-Dugdale on a tip of shape `shape` at its Maugis parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Tip {
+    /// The tip in its normalised units.
+    #[serde(flatten)]
+    pub shape: Shape,
+    /// The shape's Maugis parameter `(3/2) s0 l / (E* d)` (section 12).
+    pub lambda: f64,
+}
+
+/// The lambda a tip is solved over (the sphere's is wider: section 5.1).
+pub const LAMBDA_RANGE: (f64, f64) = (1e-3, 1e3);
+
+/// A contact state at mu with its slopes in mu and in lambda.
+#[derive(Clone, Copy, Debug)]
+struct Contact {
+    a: f64,
+    m: f64,
+    load: f64,
+    approach: f64,
+    da: f64,
+    dload: f64,
+    dapproach: f64,
+    dload_dlambda: f64,
+    dapproach_dlambda: f64,
+}
+
+impl Tip {
+    /// The tip's law, after the checks of its numbers.
+    pub fn new(shape: Shape, lambda: f64) -> Result<Tip, LawError> {
+        let (lo, hi) = LAMBDA_RANGE;
+        if !(lambda >= lo && lambda <= hi) {
+            return Err(
+                crate::solver::SolveError::from(crate::solver::domain::DomainError {
+                    name: "the tip's Maugis parameter lambda",
+                    value: lambda,
+                    range: "[1e-3, 1e3]",
+                    hint: "a tip is solved for lambda from 1e-3 to 1e3 (change s0 or h0)",
+                })
+                .into(),
+            );
+        }
+        Ok(Tip { shape, lambda })
+    }
+
+    /// `K(mu) = mu atan mu - (m - 1)` of equation (1t) and its slope.
+    fn k(mu: f64, m: f64) -> (f64, f64) {
+        let at = mu.atan();
+        (
+            mu * at - mu * mu / (1.0 + m),
+            at + mu / (1.0 + mu * mu) - mu / m,
+        )
+    }
+
+    /// The contact radius at mu: the root in A of (1t), increasing in A.
+    fn radius(&self, mu: f64) -> f64 {
+        let lambda = self.lambda;
+        let m = mu.hypot(1.0);
+        let beta = 4.0 / 3.0 * lambda * lambda * Self::k(mu, m).0;
+        let g = |a: f64| {
+            let (j, ja, _) = self.shape.gap(a, mu);
+            (lambda * j + beta * a - 1.0, lambda * ja + beta)
+        };
+        if let Shape::Power { exponent: n } = self.shape {
+            let alpha = lambda * self.shape.gap(1.0, mu).0;
+            if n == 2.0 {
+                // Section 2's quadratic, without cancellation.
+                return 2.0 / (beta + (beta * beta + 4.0 * alpha).sqrt());
+            }
+            // Convex and increasing: Newton from an upper bound descends to the root.
+            let mut a = (1.0 / beta).min(alpha.powf(-1.0 / n));
+            for _ in 0..200 {
+                let (r, d) = (
+                    alpha * a.powf(n) + beta * a - 1.0,
+                    n * alpha * a.powf(n - 1.0) + beta,
+                );
+                let next = a - r / d;
+                if !(next < a) || next <= 0.0 {
+                    break;
+                }
+                a = next;
+            }
+            return a;
+        }
+        // A bracket by doubling from 1, then bisection-safeguarded Newton.
+        let (mut lo, mut hi) = (0.0, 1.0);
+        while g(hi).0 < 0.0 && hi < 1e300 {
+            lo = hi;
+            hi *= 2.0;
+        }
+        let mut a = 0.5 * (lo + hi);
+        for _ in 0..200 {
+            let (r, d) = g(a);
+            if r < 0.0 {
+                lo = a;
+            } else {
+                hi = a;
+            }
+            let newton = a - r / d;
+            let next = if newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if (next - a).abs() <= 1e-16 * a || hi - lo <= 1e-16 * hi {
+                a = next;
+                break;
+            }
+            a = next;
+        }
+        a
+    }
+
+    /// The contact state at mu (equations (1t) to (3t)) with its slopes.
+    fn contact(&self, mu: f64) -> Contact {
+        let lambda = self.lambda;
+        let m = mu.hypot(1.0);
+        let a = self.radius(mu);
+        let (j, ja, jmu) = self.shape.gap(a, mu);
+        let (k, dk) = Self::k(mu, m);
+        let ga = lambda * ja + 4.0 / 3.0 * lambda * lambda * k;
+        let da = -(lambda * jmu + 4.0 / 3.0 * lambda * lambda * dk * a) / ga;
+        let da_dlambda = -(j + 8.0 / 3.0 * lambda * k * a) / ga;
+        let (q, dq) = self.shape.load(a);
+        let (f, df) = self.shape.abel(a);
+        let s = mu + m * m * mu.atan();
+        let ds = 2.0 + 2.0 * mu * mu.atan();
+        Contact {
+            a,
+            m,
+            load: q - lambda * a * a * s,
+            approach: f - 4.0 / 3.0 * lambda * a * mu,
+            da,
+            dload: dq * da - lambda * (2.0 * a * da * s + a * a * ds),
+            dapproach: df * da - 4.0 / 3.0 * lambda * (da * mu + a),
+            dload_dlambda: dq * da_dlambda - s * (a * a + 2.0 * lambda * a * da_dlambda),
+            dapproach_dlambda: df * da_dlambda - 4.0 / 3.0 * mu * (a + lambda * da_dlambda),
+        }
+    }
+
+    /// The non-contact piece's end, the contact piece's A -> 0 limit: the root C of
+    /// `(pi lambda/2) fbar(C) + (2 (pi - 2) lambda^2/3) C = 1`.
+    pub fn zone_end(&self) -> f64 {
+        let lambda = self.lambda;
+        let qb = 2.0 * (PI - 2.0) * lambda * lambda / 3.0;
+        let h = |c: f64| PI * lambda / 2.0 * self.shape.profile(c).0 + qb * c - 1.0;
+        bisect_sign(h, 0.0, 1.0 / qb)
+    }
+
+    /// The contact branch's point at parameter t.
+    fn point(&self, t: f64) -> PathPoint {
+        let c = self.contact((-t).exp());
+        PathPoint {
+            branch: Branch::Contact,
+            approach: c.approach,
+            load: c.load,
+            a: c.a,
+            c: c.m * c.a,
+        }
+    }
+
+    /// The control's slope along the contact piece under `drive`.
+    fn control_slope(&self, drive: Drive, t: f64) -> f64 {
+        let p = self.state(Piece::Contact, t);
+        match drive {
+            Drive::RigidGrips => p.dapproach,
+            Drive::DeadLoad => p.dload,
+            Drive::Spring(k) => p.dapproach + p.dload / k,
+        }
+    }
+
+    /// The fold a retract under `drive` leaves the contact piece from: coming down from large
+    /// radii, the first t where the control stops rising; None where it rises all the way from
+    /// the A -> 0 end (the pull-off is at that end).
+    fn extreme(&self, drive: Drive) -> Option<f64> {
+        let t0 = self.t_of_radius(A_START);
+        let t1 = self.t_of_radius(1e3);
+        let n = 400;
+        let mut above = t1;
+        for i in (0..n).rev() {
+            let t = t0 + (t1 - t0) * i as f64 / n as f64;
+            if self.control_slope(drive, t) <= 0.0 {
+                return Some(bisect_sign(|t| self.control_slope(drive, t), t, above));
+            }
+            above = t;
+        }
+        None
+    }
+
+    /// The pull-off under `drive` (dead load or rigid grips): the state at the fold of the
+    /// contact branch, or its A -> 0 end where the branch has no fold.
+    pub fn pulloff_state(&self, drive: Drive) -> PathPoint {
+        match self.extreme(drive) {
+            Some(t) => self.point(t),
+            None => {
+                let c = self.zone_end();
+                let (load, approach) = (
+                    -PI * self.lambda / 2.0 * c * c,
+                    -4.0 / 3.0 * self.lambda * c,
+                );
+                PathPoint {
+                    branch: Branch::Contact,
+                    approach,
+                    load,
+                    a: 0.0,
+                    c,
+                }
+            }
+        }
+    }
+
+    /// The stable contact state (under a dead load) at load `p`, if the load is above the
+    /// pull-off.
+    pub fn at_load(&self, p: f64) -> Option<PathPoint> {
+        let t0 = self.extreme(Drive::DeadLoad)?;
+        let f = |t: f64| self.state(Piece::Contact, t).load - p;
+        if f(t0) > 0.0 {
+            return None;
+        }
+        let mut t1 = t0 + 1.0;
+        while f(t1) < 0.0 {
+            t1 += 1.0;
+            if t1 > 60.0 {
+                return None;
+            }
+        }
+        Some(self.point(bisect_sign(f, t0, t1)))
+    }
+}
+
+impl Law for Tip {
+    fn model(&self) -> ContactModel {
+        ContactModel::Md
+    }
+    fn lambda(&self) -> Option<f64> {
+        Some(self.lambda)
+    }
+    fn state(&self, piece: Piece, t: f64) -> Pt {
+        let lambda = self.lambda;
+        match piece {
+            Piece::Free => Pt::free(t),
+            Piece::NonContact => {
+                let (f, df) = self.shape.profile(t);
+                Pt {
+                    load: -PI * lambda / 2.0 * t * t,
+                    approach: f - 8.0 * lambda / (3.0 * PI) * t - 2.0 / (PI * lambda),
+                    a: 0.0,
+                    dload: -PI * lambda * t,
+                    dapproach: df - 8.0 * lambda / (3.0 * PI),
+                    da: 0.0,
+                }
+            }
+            Piece::Contact => {
+                let mu = (-t).exp();
+                let c = self.contact(mu);
+                Pt {
+                    load: c.load,
+                    approach: c.approach,
+                    a: c.a,
+                    dload: -mu * c.dload,
+                    dapproach: -mu * c.dapproach,
+                    da: -mu * c.da,
+                }
+            }
+        }
+    }
+    fn state_dlambda(&self, piece: Piece, t: f64) -> (f64, f64) {
+        let lambda = self.lambda;
+        match piece {
+            Piece::Free => (0.0, 0.0),
+            Piece::NonContact => (
+                -PI / 2.0 * t * t,
+                -8.0 / (3.0 * PI) * t + 2.0 / (PI * lambda * lambda),
+            ),
+            Piece::Contact => {
+                let c = self.contact((-t).exp());
+                (c.dload_dlambda, c.dapproach_dlambda)
+            }
+        }
+    }
+    fn free_end(&self) -> f64 {
+        -2.0 / (PI * self.lambda)
+    }
+    /// (1t) at fixed A is increasing in mu: a bracketed search in ln mu.
+    fn t_of_radius(&self, a: f64) -> f64 {
+        cache::radius(self.key(), a, || {
+            let lambda = self.lambda;
+            let h = |x: f64| {
+                let mu = x.exp();
+                let m = mu.hypot(1.0);
+                lambda * self.shape.gap(a, mu).0
+                    + 4.0 / 3.0 * lambda * lambda * Self::k(mu, m).0 * a
+                    - 1.0
+            };
+            -bisect_sign(h, -60.0, 60.0)
+        })
+    }
+    fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
+        vec![
+            (Piece::NonContact, 0.0, self.zone_end()),
+            (
+                Piece::Contact,
+                self.t_of_radius(A_START),
+                self.t_of_radius(a_max),
+            ),
+        ]
+    }
+    fn pulloff(&self) -> f64 {
+        self.pulloff_state(Drive::DeadLoad).load.abs()
+    }
+    fn key(&self) -> LawKey {
+        let shape = match self.shape {
+            Shape::Power { exponent } => [1, exponent.to_bits(), 0],
+            Shape::CappedCone { rho, half_angle } => [2, rho.to_bits(), half_angle.to_bits()],
+        };
+        (
+            ContactModel::Md,
+            [self.lambda.to_bits(), shape[0], shape[1], shape[2]],
+        )
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+        Tip::new(self.shape, self.lambda)?;
+        check_drive(drive, max_load)?;
+        let n = super::md::CYCLE_POINTS;
+        let c_end = self.zone_end();
+        let mut path: Vec<PathPoint> = (0..n)
+            .map(|i| {
+                let c = c_end * i as f64 / (n - 1) as f64;
+                let p = self.state(Piece::NonContact, c);
+                PathPoint {
+                    branch: Branch::NonContact,
+                    approach: p.approach,
+                    load: p.load,
+                    a: 0.0,
+                    c,
+                }
+            })
+            .collect();
+        let radius_at = |p: f64| self.at_load(p).map_or(f64::NAN, |s| s.a);
+        let a_max = radius_at(max_load);
+        let a_mid = a_max.min(radius_at(10.0));
+        if !(a_max > 0.0) {
+            return Err(LawError::Unsupported {
+                model: ContactModel::Md,
+                what: "state at the cycle's largest load (raise max_load)",
+            });
+        }
+        path.extend(
+            contact_radii(a_mid, a_max, n)
+                .into_iter()
+                .map(|a| self.point(self.t_of_radius(a))),
+        );
+        let d0 = self.free_end();
+        let free = free_before(&path, d0, n);
+        Ok(free.into_iter().chain(path).collect())
+    }
+    /// The fold nearest the sampled one: a bracket stepped out from it in t.
+    fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
+        if near.a <= 0.0 {
+            return None;
+        }
+        let slope = |t: f64| self.control_slope(drive, t);
+        let t = self.t_of_radius(near.a);
+        let (mut lo, mut hi) = (t - 0.05, t + 0.05);
+        for _ in 0..200 {
+            if slope(lo) < 0.0 && slope(hi) > 0.0 {
+                return Some(self.point(bisect_sign(slope, lo, hi)));
+            }
+            if slope(lo) >= 0.0 {
+                lo -= 0.05;
+            }
+            if slope(hi) <= 0.0 {
+                hi += 0.05;
+            }
+        }
+        None
+    }
+}

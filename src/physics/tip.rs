@@ -1,0 +1,433 @@
+//! Axisymmetric tips (docs/PHYSICS.md section 12): a tip's profile, its Abel transform and the
+//! Maugis-Dugdale gap integral over the zone, in the shape's normalised units; and the SI
+//! description of a tip (sphere, power law, cone, pyramid, capped cone) with its units.
+
+use crate::numeric::legendre::{gauss_legendre, Order};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::sync::OnceLock;
+
+/// A tip's shape in its normalised units (lengths in l, approaches in d; section 12).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(tag = "shape", rename_all = "snake_case")]
+pub enum Shape {
+    /// `fbar = r^n / k_n`, `Fbar = T^n` (the sphere is n = 2, the cone n = 1).
+    Power {
+        /// The exponent n >= 1.
+        exponent: f64,
+    },
+    /// The exact spherical cap of radius rho (in l) joined tangentially to a cone of half-angle
+    /// `half_angle` (radians) at `rho cos(half_angle)`.
+    CappedCone {
+        /// The cap's radius R / l.
+        rho: f64,
+        /// The cone's half-angle (radians, axis to flank).
+        half_angle: f64,
+    },
+}
+
+/// The Gauss-Legendre rule every integral here uses, on [0, 1].
+fn rule() -> &'static [(f64, f64)] {
+    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(64, Order::FromZero))
+}
+
+/// `k_n = n sqrt(pi) Gamma(n/2) / (2 Gamma((n+1)/2))`: the power law's `F = k_n B t^n`.
+pub fn k_n(n: f64) -> f64 {
+    n * PI.sqrt() * libm::tgamma(n / 2.0) / (2.0 * libm::tgamma((n + 1.0) / 2.0))
+}
+
+impl Shape {
+    /// The joint of a capped cone (`rho cos theta`), where the integrals are split.
+    fn joint(&self) -> Option<f64> {
+        match *self {
+            Shape::Power { .. } => None,
+            Shape::CappedCone { rho, half_angle } => Some(rho * half_angle.cos()),
+        }
+    }
+
+    /// The undeformed gap `fbar(r)` and its slope.
+    pub fn profile(&self, r: f64) -> (f64, f64) {
+        match *self {
+            Shape::Power { exponent: n } => {
+                let k = k_n(n);
+                (r.powf(n) / k, n * r.powf(n - 1.0) / k)
+            }
+            Shape::CappedCone { rho, half_angle } => {
+                let b = rho * half_angle.cos();
+                if r <= b {
+                    let q = (1.0 - (r / rho).powi(2)).sqrt();
+                    (r * r / (1.0 + q), r / q)
+                } else {
+                    let cot = 1.0 / half_angle.tan();
+                    (
+                        rho * rho + rho * r * cot - rho * rho / half_angle.sin(),
+                        rho * cot,
+                    )
+                }
+            }
+        }
+    }
+
+    /// The Abel transform `Fbar(T)` (the adhesion-free approach at contact radius T) and its
+    /// slope.
+    pub fn abel(&self, t: f64) -> (f64, f64) {
+        match *self {
+            Shape::Power { exponent: n } => (t.powf(n), n * t.powf(n - 1.0)),
+            Shape::CappedCone { rho, half_angle } => {
+                let b = rho * half_angle.cos();
+                let x = t / rho;
+                if t <= b {
+                    let at = x.atanh();
+                    (rho * t * at, rho * at + t / ((1.0 - x) * (1.0 + x)))
+                } else {
+                    let (sin, cos) = half_angle.sin_cos();
+                    let cot = cos / sin;
+                    let s = ((t - b) * (t + b)).sqrt();
+                    let g = ((rho + t) / (s + rho * sin)).ln() + cot * (b / t).acos();
+                    // The 1/s terms of the two logarithms' slopes cancel (section 12.2).
+                    let slope =
+                        g + t / (rho + t) + (rho * cos * cos - s * sin) / (sin * (s + rho * sin));
+                    (rho * t * g, rho * slope)
+                }
+            }
+        }
+    }
+
+    /// `Qbar(A) = (3/2) int_0^A T Fbar'(T) dT`, the adhesion-free load, and its slope.
+    pub fn load(&self, a: f64) -> (f64, f64) {
+        let slope = 1.5 * a * self.abel(a).1;
+        match *self {
+            Shape::Power { exponent: n } => (1.5 * n / (n + 1.0) * a.powf(n + 1.0), slope),
+            Shape::CappedCone { .. } => {
+                let b = self.joint().unwrap_or(f64::INFINITY);
+                let g = |t: f64| t * self.abel(t).1;
+                let mut q = integrate(&g, 0.0, a.min(b), false);
+                if a > b {
+                    q += integrate(&g, b, a, true);
+                }
+                (1.5 * q, slope)
+            }
+        }
+    }
+
+    /// The gap integral `Jbar(A, mu) = int_0^(atan mu) (Fbar(m A cos phi) - Fbar(A)) dphi` of
+    /// equation (1t) with its slopes in A and in mu.
+    pub fn gap(&self, a: f64, mu: f64) -> (f64, f64, f64) {
+        let m = mu.hypot(1.0);
+        let phi1 = mu.atan();
+        match *self {
+            Shape::Power { exponent: n } => {
+                let (j, i) = power_gap(n, m, phi1);
+                let an = a.powf(n);
+                (
+                    an * j,
+                    n * an / a * j,
+                    an * n * m.powf(n - 1.0) * i * mu / m,
+                )
+            }
+            Shape::CappedCone { .. } => {
+                let c = m * a;
+                let (fa, fa_d) = self.abel(a);
+                // Integrand triples (Jbar, dJbar/dA, the integral behind dJbar/dmu) at phi.
+                let at = |phi: f64| {
+                    let (cos, t) = (phi.cos(), c * phi.cos());
+                    let (f, d) = self.abel(t);
+                    [f - fa, d * m * cos - fa_d, d * cos]
+                };
+                let mut sum = [0.0; 3];
+                match self.joint() {
+                    // The joint inside the zone: the cone side [0, phi_b] has T - b ~ (phi_b - phi).
+                    Some(b) if a < b && b < c => {
+                        let phi_b = (b / c).acos();
+                        add_reversed(&at, 0.0, phi_b, &mut sum);
+                        add_plain(&at, phi_b, phi1, &mut sum);
+                    }
+                    _ => add_plain(&at, 0.0, phi1, &mut sum),
+                }
+                (sum[0], sum[1], a * mu / m * sum[2])
+            }
+        }
+    }
+}
+
+/// `J_n(mu)` and `int_0^phi1 cos^n phi dphi` for the power law, without cancellation as
+/// mu -> 0 (section 12.1).
+fn power_gap(n: f64, m: f64, phi1: f64) -> (f64, f64) {
+    let (mut j, mut i) = (0.0, 0.0);
+    for &(s, w) in rule() {
+        let phi = phi1 * s;
+        let e = 2.0 * m * (0.5 * (phi1 + phi)).sin() * (0.5 * (phi1 - phi)).sin();
+        j += w * (n * e.ln_1p()).exp_m1();
+        i += w * phi.cos().powf(n);
+    }
+    (j * phi1, i * phi1)
+}
+
+/// `int_lo^hi g`, by the rule; `smooth_at_lo`: the integrand goes like sqrt(t - lo) near lo, so
+/// t = lo + (hi - lo) s^2 first.
+fn integrate(g: &dyn Fn(f64) -> f64, lo: f64, hi: f64, smooth_at_lo: bool) -> f64 {
+    let h = hi - lo;
+    rule()
+        .iter()
+        .map(|&(s, w)| {
+            if smooth_at_lo {
+                w * g(lo + h * s * s) * 2.0 * s * h
+            } else {
+                w * g(lo + h * s) * h
+            }
+        })
+        .sum()
+}
+
+/// Adds `int_lo^hi g` for three integrands at once.
+fn add_plain(g: &dyn Fn(f64) -> [f64; 3], lo: f64, hi: f64, sum: &mut [f64; 3]) {
+    let h = hi - lo;
+    for &(s, w) in rule() {
+        let v = g(lo + h * s);
+        for k in 0..3 {
+            sum[k] += w * v[k] * h;
+        }
+    }
+}
+
+/// Adds `int_lo^hi g` where g goes like sqrt(hi - t) near hi (phi = hi - (hi - lo) s^2).
+fn add_reversed(g: &dyn Fn(f64) -> [f64; 3], lo: f64, hi: f64, sum: &mut [f64; 3]) {
+    let h = hi - lo;
+    for &(s, w) in rule() {
+        let v = g(hi - h * s * s);
+        for k in 0..3 {
+            sum[k] += w * v[k] * 2.0 * s * h;
+        }
+    }
+}
+
+/// A tip in SI units, as a scene gives it.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TipInput {
+    /// A sphere (its paraboloid), as `radius_m` gives it.
+    Sphere {
+        /// The radius (m).
+        radius_m: f64,
+    },
+    /// `f = B r^n`.
+    Power {
+        /// The exponent n >= 1.
+        exponent: f64,
+        /// B (m^(1-n)).
+        coefficient: f64,
+    },
+    /// A cone of half-angle alpha (axis to flank): `f = r cot(alpha)`.
+    Cone {
+        /// The half-angle (degrees).
+        half_angle_deg: f64,
+    },
+    /// A regular pyramid of `faces` faces, each at `face_angle_deg` to the axis, as the cone of
+    /// the same area function (section 12.1): an approximation.
+    Pyramid {
+        /// The number of faces (3: Berkovich; 4: a four-sided pyramid).
+        faces: u32,
+        /// The angle between the axis and each face's centre line (degrees).
+        face_angle_deg: f64,
+    },
+    /// A spherical cap of radius R joined tangentially to a cone of half-angle theta.
+    CappedCone {
+        /// The cap's radius (m).
+        radius_m: f64,
+        /// The cone's half-angle (degrees).
+        half_angle_deg: f64,
+    },
+}
+
+/// A tip's normalised units for a material pair: the shape in them, the radial length l (m),
+/// the approach unit d (m), the force unit `pi w l^2 / d` (N) and the Maugis parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TipUnits {
+    /// The shape in the normalised units.
+    pub shape: Shape,
+    /// The radial length l (m).
+    pub length_m: f64,
+    /// The approach unit d (m).
+    pub approach_m: f64,
+    /// The force unit `pi w l^2 / d` (N).
+    pub force_n: f64,
+    /// The Maugis parameter `(3/2) s0 l / (E* d)`.
+    pub lambda: f64,
+}
+
+/// Why a tip could not be had: the quantity, its value and what to give.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("tip {name} = {value}: {hint}")]
+pub struct TipError {
+    /// The quantity.
+    pub name: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// What to give instead.
+    pub hint: &'static str,
+}
+
+fn check(name: &'static str, value: f64, ok: bool, hint: &'static str) -> Result<f64, TipError> {
+    if ok && value.is_finite() {
+        Ok(value)
+    } else {
+        Err(TipError { name, value, hint })
+    }
+}
+
+impl TipInput {
+    /// The power law `(n, B)` the tip is, or the capped cone's (R, theta in radians).
+    fn power(&self) -> Result<Option<(f64, f64)>, TipError> {
+        let angle = |deg: f64| {
+            check(
+                "half_angle_deg",
+                deg,
+                deg > 0.0 && deg < 90.0,
+                "give an angle between 0 and 90 degrees (axis to flank)",
+            )
+        };
+        Ok(match *self {
+            TipInput::Sphere { radius_m } => {
+                let r = check(
+                    "radius_m",
+                    radius_m,
+                    radius_m > 0.0,
+                    "give a positive radius",
+                )?;
+                Some((2.0, 0.5 / r))
+            }
+            TipInput::Power {
+                exponent,
+                coefficient,
+            } => {
+                let n = check(
+                    "exponent",
+                    exponent,
+                    (1.0..=8.0).contains(&exponent),
+                    "give an exponent from 1 (a cone) to 8",
+                )?;
+                let b = check(
+                    "coefficient",
+                    coefficient,
+                    coefficient > 0.0,
+                    "give a positive B (m^(1-n))",
+                )?;
+                Some((n, b))
+            }
+            TipInput::Cone { half_angle_deg } => {
+                Some((1.0, 1.0 / angle(half_angle_deg)?.to_radians().tan()))
+            }
+            TipInput::Pyramid {
+                faces,
+                face_angle_deg,
+            } => {
+                if !(3..=64).contains(&faces) {
+                    return Err(TipError {
+                        name: "faces",
+                        value: faces as f64,
+                        hint: "give 3 (Berkovich) or more faces",
+                    });
+                }
+                let n = faces as f64;
+                let tan =
+                    angle(face_angle_deg)?.to_radians().tan() * (n * (PI / n).tan() / PI).sqrt();
+                Some((1.0, 1.0 / tan))
+            }
+            TipInput::CappedCone { .. } => None,
+        })
+    }
+
+    /// The half-angle of the cone a pyramid is solved as (degrees), where the tip is one.
+    pub fn equivalent_cone_deg(&self) -> Option<f64> {
+        match self {
+            TipInput::Pyramid { .. } => self
+                .power()
+                .ok()
+                .flatten()
+                .map(|(_, b)| (1.0 / b).atan().to_degrees()),
+            _ => None,
+        }
+    }
+
+    /// The tip's units for the reduced modulus `e_star`, the work of adhesion `w` and the
+    /// Dugdale stress `s0` (SI; checked by the caller).
+    pub fn units(&self, e_star: f64, w: f64, s0: f64) -> Result<TipUnits, TipError> {
+        let (shape, l, d) = match (self.power()?, *self) {
+            (Some((n, b)), _) => {
+                let kb = k_n(n) * b;
+                let l = (3.0 * PI * w / (4.0 * e_star * kb * kb)).powf(1.0 / (2.0 * n - 1.0));
+                (Shape::Power { exponent: n }, l, kb * l.powf(n))
+            }
+            (
+                None,
+                TipInput::CappedCone {
+                    radius_m,
+                    half_angle_deg,
+                },
+            ) => {
+                let r = check(
+                    "radius_m",
+                    radius_m,
+                    radius_m > 0.0,
+                    "give a positive radius",
+                )?;
+                let theta = check(
+                    "half_angle_deg",
+                    half_angle_deg,
+                    half_angle_deg > 0.0 && half_angle_deg < 90.0,
+                    "give an angle between 0 and 90 degrees (axis to flank)",
+                )?
+                .to_radians();
+                let l = (3.0 * PI * w * r * r / (4.0 * e_star)).cbrt();
+                (
+                    Shape::CappedCone {
+                        rho: r / l,
+                        half_angle: theta,
+                    },
+                    l,
+                    l * l / r,
+                )
+            }
+            (None, _) => unreachable!("every other tip is a power law"),
+        };
+        Ok(TipUnits {
+            shape,
+            length_m: l,
+            approach_m: d,
+            force_n: PI * w * l * l / d,
+            lambda: 1.5 * s0 * l / (e_star * d),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn k_n_is_the_gamma_ratio() {
+        // k_3 = 3 pi/4, k_4 = 8/3, k_1.5 from Gamma(0.75)/Gamma(1.25).
+        assert!((k_n(3.0) - 0.75 * PI).abs() < 1e-14);
+        assert!((k_n(4.0) - 8.0 / 3.0).abs() < 1e-14);
+        let g075 = 1.225_416_702_465_177_6_f64;
+        let g125 = 0.906_402_477_055_477_f64;
+        assert!((k_n(1.5) - 1.5 * PI.sqrt() * g075 / (2.0 * g125)).abs() < 1e-13);
+    }
+
+    #[test]
+    fn capped_cone_abel_is_continuous_and_its_slope_the_difference() {
+        let s = Shape::CappedCone {
+            rho: 3.0,
+            half_angle: 20f64.to_radians(),
+        };
+        let b = 3.0 * 20f64.to_radians().cos();
+        let (below, above) = (s.abel(b * (1.0 - 1e-12)), s.abel(b * (1.0 + 1e-12)));
+        assert!((below.0 - above.0).abs() < 1e-10 && (below.1 - above.1).abs() < 1e-5);
+        for t in [0.5, 2.0, 2.9, 4.0, 9.0] {
+            let h = 1e-6;
+            let diff = (s.abel(t + h).0 - s.abel(t - h).0) / (2.0 * h);
+            assert!((diff - s.abel(t).1).abs() < 1e-7 * diff.abs(), "at {t}");
+        }
+    }
+}

@@ -1,0 +1,177 @@
+//! Maugis-Dugdale on axisymmetric tips (docs/PHYSICS.md section 12): the sphere (n = 2) is
+//! section 2's Maugis-Dugdale to rounding, the power laws tend to their JKR pull-offs (the
+//! energy balance of a power-law punch, Borodich et al. 2014) as lambda grows and to the rigid
+//! tip's Dugdale force as it falls, the capped cone to its sphere and its cone at its ends, and
+//! the SI units are section 12.1's.
+
+use tabor::law::{Drive, Law, Md, Piece, Tip};
+use tabor::physics::tip::{k_n, Shape, TipInput};
+use tabor::LambdaContext;
+
+fn power(n: f64, lambda: f64) -> Tip {
+    Tip::new(Shape::Power { exponent: n }, lambda).unwrap()
+}
+
+/// n = 2 gives section 2's states, non-contact piece and pull-offs to 1e-13.
+#[test]
+fn the_square_power_law_is_the_sphere() {
+    for lambda in [0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 100.0] {
+        let (tip, md) = (power(2.0, lambda), Md { lambda });
+        let close = |x: f64, y: f64, what: &str| {
+            assert!(
+                (x - y).abs() <= 1e-13 * y.abs().max(1.0),
+                "lambda {lambda} {what}: {x} against {y}"
+            )
+        };
+        for a in [1e-3, 0.05, 0.3, 1.0, 2.5, 6.0] {
+            let t = md.t_of_radius(a);
+            close(tip.t_of_radius(a), t, "t at the radius");
+            let (p, q) = (tip.state(Piece::Contact, t), md.state(Piece::Contact, t));
+            close(p.a, q.a, "A");
+            close(p.load, q.load, "load");
+            close(p.approach, q.approach, "approach");
+            let (s, r) = (
+                tip.state_dlambda(Piece::Contact, t),
+                md.state_dlambda(Piece::Contact, t),
+            );
+            assert!(
+                (s.0 - r.0).abs() <= 1e-9 * r.0.abs().max(1.0),
+                "{s:?} {r:?}"
+            );
+        }
+        let end = tabor::physics::md::zero_radius_end(lambda);
+        close(tip.zone_end(), end.c, "the non-contact end");
+        let ctx = LambdaContext::new(lambda).unwrap();
+        let load = tip.pulloff_state(Drive::DeadLoad);
+        close(load.load, ctx.load_pulloff.load, "load-controlled pull-off");
+        let grips = tip.pulloff_state(Drive::RigidGrips);
+        let exact = ctx.disp_pulloff();
+        close(grips.load, exact.load, "displacement-controlled pull-off");
+        close(grips.approach, exact.approach, "its approach");
+    }
+}
+
+/// As lambda grows the pull-offs tend to the JKR power-law punch's:
+/// `Pbar_c = -sqrt(6) A_c^(3/2) (2n-1)/(2(n+1))` at `A_c = (sqrt(6)/n)^(2/(2n-1))`, and under
+/// rigid grips the state at `A_d = (sqrt(2/3)/n)^(2/(2n-1))`, the difference falling like
+/// lambda^(-2/3) or faster.
+#[test]
+fn power_laws_tend_to_their_jkr_pulloffs() {
+    for n in [1.0, 1.5, 2.0, 3.0, 4.0] {
+        let e = 2.0 / (2.0 * n - 1.0);
+        let a_c = (6f64.sqrt() / n).powf(e);
+        let jkr = -6f64.sqrt() * a_c.powf(1.5) * (2.0 * n - 1.0) / (2.0 * (n + 1.0));
+        let a_d = ((2.0f64 / 3.0).sqrt() / n).powf(e);
+        let jkr_d = 1.5 * n / (n + 1.0) * a_d.powf(n + 1.0) - (6.0 * a_d.powi(3)).sqrt();
+        let errs: Vec<(f64, f64)> = [100.0, 1000.0]
+            .iter()
+            .map(|&l| {
+                let t = power(n, l);
+                (
+                    (t.pulloff_state(Drive::DeadLoad).load / jkr - 1.0).abs(),
+                    (t.pulloff_state(Drive::RigidGrips).load / jkr_d - 1.0).abs(),
+                )
+            })
+            .collect();
+        assert!(errs[1].0 < 0.02 && errs[1].1 < 0.03, "n {n}: {errs:?}");
+        assert!(errs[1].0 < 0.25 * errs[0].0, "n {n}: {errs:?}");
+        assert!(errs[1].1 < 0.25 * errs[0].1, "n {n}: {errs:?}");
+    }
+}
+
+/// As lambda falls the tip barely deforms: the load-controlled pull-off tends to the Dugdale
+/// tension over the disc where the undeformed gap is below h0, `-(pi lambda/2) C0^2` with
+/// `fbar(C0) = 2/(pi lambda)` (the sphere's -2).
+#[test]
+fn power_laws_tend_to_the_rigid_tips_force() {
+    for n in [1.0, 1.5, 2.0, 3.0, 4.0] {
+        let rigid = |l: f64| {
+            let c0 = (2.0 * k_n(n) / (std::f64::consts::PI * l)).powf(1.0 / n);
+            -std::f64::consts::PI * l / 2.0 * c0 * c0
+        };
+        let errs: Vec<f64> = [1e-2, 1e-3]
+            .iter()
+            .map(|&l| (power(n, l).pulloff_state(Drive::DeadLoad).load / rigid(l) - 1.0).abs())
+            .collect();
+        assert!(errs[1] < 0.05 && errs[1] < 0.6 * errs[0], "n {n}: {errs:?}");
+    }
+}
+
+/// A capped cone whose cap is large against the contact is the sphere (to order (A/rho)^2),
+/// and one whose cap is small is the cone: their pull-off forces in newtons agree.
+#[test]
+fn capped_cones_are_their_sphere_and_their_cone_at_the_ends() {
+    let lambda = 1.0;
+    let big = Tip::new(
+        Shape::CappedCone {
+            rho: 1e3,
+            half_angle: 20f64.to_radians(),
+        },
+        lambda,
+    )
+    .unwrap()
+    .pulloff_state(Drive::DeadLoad)
+    .load;
+    let sphere = LambdaContext::new(lambda).unwrap().load_pulloff.load;
+    assert!((big / sphere - 1.0).abs() < 1e-5, "{big} {sphere}");
+    // E* = w = 1; s0 gives the cone lambda 1; a cap of 1e-4 against a contact of order 0.1.
+    let (e, w) = (1.0, 1.0);
+    let s0 = std::f64::consts::PI / 3.0 / 20f64.to_radians().tan();
+    let newtons = |tip: TipInput| {
+        let u = tip.units(e, w, s0).unwrap();
+        let law = Tip::new(u.shape, u.lambda).unwrap();
+        law.pulloff_state(Drive::DeadLoad).load * u.force_n
+    };
+    let cone = newtons(TipInput::Cone {
+        half_angle_deg: 20.0,
+    });
+    let capped = newtons(TipInput::CappedCone {
+        radius_m: 1e-4,
+        half_angle_deg: 20.0,
+    });
+    assert!((capped / cone - 1.0).abs() < 1e-2, "{capped} {cone}");
+}
+
+/// The SI units: the sphere's are section 1's, and every tip's satisfy `E* d^2 / l = 3 pi w / 4`
+/// with `lambda = (3/2) s0 l / (E* d)`; a pyramid is the cone of its area (Berkovich: 70.30 deg).
+#[test]
+fn tip_units_are_section_twelves() {
+    let (e, w, s0) = (1e9, 0.05, 1e8);
+    let r = 20e-9;
+    let u = TipInput::Sphere { radius_m: r }.units(e, w, s0).unwrap();
+    let k = 4.0 / 3.0 * e;
+    let pi = std::f64::consts::PI;
+    let lambda = 2.0 * s0 * (r / (pi * w * k * k)).cbrt();
+    assert!((u.lambda / lambda - 1.0).abs() < 1e-14);
+    assert!((u.force_n / (pi * w * r) - 1.0).abs() < 1e-14);
+    assert!((u.length_m / (pi * w * r * r / k).cbrt() - 1.0).abs() < 1e-14);
+    for tip in [
+        TipInput::Cone {
+            half_angle_deg: 20.0,
+        },
+        TipInput::Power {
+            exponent: 4.0,
+            coefficient: 1e21,
+        },
+        TipInput::CappedCone {
+            radius_m: r,
+            half_angle_deg: 20.0,
+        },
+    ] {
+        let u = tip.units(e, w, s0).unwrap();
+        let balance = e * u.approach_m * u.approach_m / u.length_m / (3.0 * pi * w / 4.0);
+        assert!((balance - 1.0).abs() < 1e-13, "{tip:?}: {balance}");
+    }
+    let berkovich = TipInput::Pyramid {
+        faces: 3,
+        face_angle_deg: 65.27,
+    };
+    let alpha = berkovich.equivalent_cone_deg().unwrap();
+    assert!((alpha - 70.30).abs() < 0.01, "{alpha}");
+    let e = TipInput::Cone {
+        half_angle_deg: 95.0,
+    }
+    .units(1e9, 0.05, 1e8)
+    .unwrap_err();
+    assert!(e.to_string().contains("half_angle_deg = 95"), "{e}");
+}
