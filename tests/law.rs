@@ -361,7 +361,7 @@ fn the_energy_release_rate_at_the_edge_is_w() {
                 // The J-integral through the zone, s0 times the gap at C over w: the gap from
                 // its Abel form in T by double-exponential quadrature (not the law's rule in phi).
                 ContactLaw::Tip(tip) => {
-                    let (a, c) = (s.a, s.a * (1.0 + (-t).exp().powi(2)).sqrt());
+                    let (a, c) = (s.a, tip.at_radius(s.a).c);
                     let fa = tip.shape.abel(a).0;
                     // T = C - (C - A) v^2 takes the 1/sqrt(C - T) out of the integrand; a
                     // capped cone's joint (Fbar'' singular there) splits the range.

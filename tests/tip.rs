@@ -12,7 +12,8 @@ fn power(n: f64, lambda: f64) -> Tip {
     Tip::new(Shape::Power { exponent: n }, lambda).unwrap()
 }
 
-/// n = 2 gives section 2's states, non-contact piece and pull-offs to 1e-13.
+/// n = 2 gives section 2's states at the same radius, its non-contact piece and its pull-offs
+/// to 1e-13 (the slopes to 1e-9).
 #[test]
 fn the_square_power_law_is_the_sphere() {
     for lambda in [0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 100.0] {
@@ -24,20 +25,22 @@ fn the_square_power_law_is_the_sphere() {
             )
         };
         for a in [1e-3, 0.05, 0.3, 1.0, 2.5, 6.0] {
-            let t = md.t_of_radius(a);
-            close(tip.t_of_radius(a), t, "t at the radius");
-            let (p, q) = (tip.state(Piece::Contact, t), md.state(Piece::Contact, t));
+            let p = tip.state(Piece::Contact, tip.t_of_radius(a));
+            let q = md.state(Piece::Contact, md.t_of_radius(a));
             close(p.a, q.a, "A");
             close(p.load, q.load, "load");
             close(p.approach, q.approach, "approach");
-            let (s, r) = (
-                tip.state_dlambda(Piece::Contact, t),
-                md.state_dlambda(Piece::Contact, t),
-            );
-            assert!(
-                (s.0 - r.0).abs() <= 1e-9 * r.0.abs().max(1.0),
-                "{s:?} {r:?}"
-            );
+            // Slopes along the branch per unit radius (differences of terms of order one near
+            // the A -> 0 end: to 1e-9).
+            for (x, y) in [
+                (p.dload / p.da, q.dload / q.da),
+                (p.dapproach / p.da, q.dapproach / q.da),
+            ] {
+                assert!(
+                    (x - y).abs() <= 1e-9 * y.abs().max(1.0),
+                    "lambda {lambda}: {x} {y}"
+                );
+            }
         }
         let end = tabor::physics::md::zero_radius_end(lambda);
         close(tip.zone_end(), end.c, "the non-contact end");
@@ -174,4 +177,81 @@ fn tip_units_are_section_twelves() {
     .units(1e9, 0.05, 1e8)
     .unwrap_err();
     assert!(e.to_string().contains("half_angle_deg = 95"), "{e}");
+}
+
+fn scene(json: &str) -> Result<tabor::scene::Solved, String> {
+    let input: tabor::scene::SceneInput = serde_json::from_str(json).map_err(|e| e.to_string())?;
+    tabor::scene::solve(&input).map_err(|e| e.to_string())
+}
+
+/// A cone's scene in SI units, near the JKR end (a short force range): its load-controlled
+/// pull-off is the JKR cone's `-(54/pi) w^2 tan^3(alpha) / E*` (section 12.1) and its contact
+/// radius there `18 w tan^2(alpha) / (pi E*)`; every load's zone lies outside its contact.
+#[test]
+fn a_cone_scene_pulls_off_at_the_jkr_cones_force() {
+    let (e, w, alpha) = (1e6, 0.05, 70f64.to_radians());
+    let json = format!(
+        r#"{{"e_star_pa": {e}, "work_of_adhesion_j_m2": {w}, "h0_m": 3e-10,
+            "tip": {{"shape": "cone", "half_angle_deg": 70}}, "loads_n": [0, 1e-6]}}"#
+    );
+    let tabor::scene::Solved::Tip(r) = scene(&json).unwrap() else {
+        panic!("a cone is a tip scene")
+    };
+    assert!(r.lambda > 100.0, "{}", r.lambda);
+    let jkr = -54.0 / std::f64::consts::PI * w * w * alpha.tan().powi(3) / e;
+    assert!(
+        (r.pulloff_force_load_control_N / jkr - 1.0).abs() < 2e-3,
+        "{} {jkr}",
+        r.pulloff_force_load_control_N
+    );
+    let a_c = 18.0 * w * alpha.tan().powi(2) / (std::f64::consts::PI * e);
+    assert!((r.pulloff_contact_radius_load_control_m / a_c - 1.0).abs() < 1e-2);
+    for l in &r.loads {
+        assert!(l.zone_radius_m.unwrap() > l.contact_radius_m.unwrap());
+        assert_eq!(l.model, "jkr", "{l:?}");
+    }
+}
+
+/// A sphere given as the tip is the sphere's scene, key for key; bad tips get one line naming
+/// the key and the value.
+#[test]
+fn a_spherical_tip_is_the_sphere_and_bad_tips_are_refused() {
+    let base =
+        r#""e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05, "s0_pa": 1e8, "loads_n": [0, 1e-8]"#;
+    let as_tip = scene(&format!(
+        r#"{{{base}, "tip": {{"shape": "sphere", "radius_m": 2e-8}}}}"#
+    ))
+    .unwrap();
+    let as_radius = scene(&format!(r#"{{{base}, "radius_m": 2e-8}}"#)).unwrap();
+    assert_eq!(
+        serde_json::to_string(&as_tip).unwrap(),
+        serde_json::to_string(&as_radius).unwrap()
+    );
+    for (tip, words) in [
+        (
+            r#"{"shape": "cone", "half_angle_deg": 95}"#,
+            "half_angle_deg = 95",
+        ),
+        (
+            r#"{"shape": "power", "exponent": 0.5, "coefficient": 1}"#,
+            "exponent = 0.5",
+        ),
+        (
+            r#"{"shape": "pyramid", "faces": 2, "face_angle_deg": 60}"#,
+            "faces = 2",
+        ),
+    ] {
+        let e = scene(&format!(r#"{{{base}, "tip": {tip}}}"#)).unwrap_err();
+        assert!(e.contains(words) && !e.contains('\n'), "{e}");
+    }
+    let both = scene(&format!(
+        r#"{{{base}, "radius_m": 2e-8, "tip": {{"shape": "cone", "half_angle_deg": 70}}}}"#
+    ))
+    .unwrap_err();
+    assert!(both.contains("radius_m"), "{both}");
+    let wet = scene(&format!(
+        r#"{{{base}, "humidity": {{"relative_humidity": 0.4, "contact_angle_deg": 20}}, "tip": {{"shape": "cone", "half_angle_deg": 70}}}}"#
+    ))
+    .unwrap_err();
+    assert!(wet.contains("humidity") && !wet.contains('\n'), "{wet}");
 }

@@ -508,9 +508,7 @@ fn scene<'py>(
     preset: Option<String>,
 ) -> PyResult<Bound<'py, PyAny>> {
     run_py(py, move || {
-        Ok(tabor::scene::solve_scene(&scene_input(
-            scene_json, preset,
-        )?)?)
+        Ok(tabor::scene::solve(&scene_input(scene_json, preset)?)?)
     })
 }
 

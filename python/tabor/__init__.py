@@ -769,8 +769,12 @@ class Scene:
         ``radius_m``) or ``e_star_pa`` (Pa) and ``radius_m`` (m); ``work_of_adhesion_j_m2``
         (J/m^2) or ``surface_energies_j_m2``; the range as ``z0_m`` (m), ``s0_pa`` (Pa) or
         ``h0_m`` (m); ``loads_n`` (N) or ``load_range_n``; optional ``tolerance``,
-        ``atomic_spacing_m``, ``shear_strength_pa``, ``control`` and ``humidity``. Or use
-        :meth:`from_file` or :meth:`preset`.
+        ``atomic_spacing_m``, ``shear_strength_pa``, ``control`` and ``humidity``. A tip other
+        than a sphere replaces ``radius_m``: ``"tip": {"shape": "cone", "half_angle_deg": a}``,
+        ``{"shape": "pyramid", "faces": 3, "face_angle_deg": 65.27}`` (as its equivalent cone),
+        ``{"shape": "power", "exponent": n, "coefficient": B}`` (B in m^(1-n)) or
+        ``{"shape": "capped_cone", "radius_m": R, "half_angle_deg": a}`` (docs/PHYSICS.md
+        section 12). Or use :meth:`from_file` or :meth:`preset`.
 
     Attributes
     ----------
@@ -782,6 +786,8 @@ class Scene:
         The simplest model adequate at every load in contact.
     load_n, contact_radius_m, approach_m : numpy.ndarray
         Per load, in N and m (NaN where no contact).
+    zone_radius_m : numpy.ndarray
+        Per load, the Dugdale zone's outer radius in m (a tip's scene; NaN for a sphere's).
     model : numpy.ndarray
         Per load, the adequate model.
     warnings : list of list of str
@@ -820,8 +826,11 @@ class Scene:
             [l["contact_radius_m"] if l["contact_radius_m"] is not None else nan for l in loads])
         self.approach_m = np.array(
             [l["approach_m"] if l["approach_m"] is not None else nan for l in loads])
+        self.zone_radius_m = np.array(
+            [l["zone_radius_m"] if l.get("zone_radius_m") is not None else nan for l in loads])
         self.model = np.array([l["model"] for l in loads])
-        self.warnings = [l["warnings"] for l in loads]
+        # A tip's warnings are the scene's, the same at every load.
+        self.warnings = [l.get("warnings", _report.get("warnings", [])) for l in loads]
 
     @classmethod
     def from_file(cls, path):

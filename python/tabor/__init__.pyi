@@ -101,6 +101,7 @@ class Scene:
     load_n: Array
     contact_radius_m: Array
     approach_m: Array
+    zone_radius_m: Array
     model: npt.NDArray[np.str_]
     warnings: List[List[str]]
     def __init__(self, scene: Optional[Dict[str, Any]] = None, *, _report: Optional[Dict[str, Any]] = None) -> None: ...

@@ -3,7 +3,8 @@
 use super::Format;
 use crate::io::write_output;
 use crate::render::Kind;
-use crate::scene::{infer, preset, preset_names, solve_scene, SceneInput, SceneResult};
+use crate::scene::tip::TipSceneResult;
+use crate::scene::{infer, preset, preset_names, SceneInput, SceneResult, Solved};
 use anyhow::{bail, Context};
 use clap::Args;
 use std::fmt::Write as _;
@@ -58,7 +59,19 @@ pub fn scene(a: SceneArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print("scene")?;
-    let r = solve_scene(&input)?;
+    let r = match crate::scene::solve(&input)? {
+        Solved::Sphere(r) => *r,
+        Solved::Tip(r) => {
+            if !figure.is_empty() {
+                bail!("--plot is not available for a scene with a tip other than a sphere yet: leave it out");
+            }
+            let text = match a.format {
+                Format::Json => serde_json::to_string_pretty(&r)? + "\n",
+                _ => tip_scene_text(&r),
+            };
+            return write_output(&a.output, text.as_bytes()).context("writing the scene");
+        }
+    };
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         _ => scene_text(&r),
@@ -165,6 +178,65 @@ fn si(x: f64, unit: &str) -> String {
         Some((s, p)) => format!("{:.4} {p}{unit}", x / s),
         None => format!("{x:.4e} {unit}"),
     }
+}
+
+/// A tip scene as text: the tip and its units, the pull-offs, each load's state.
+pub fn tip_scene_text(r: &TipSceneResult) -> String {
+    let mut t = String::new();
+    let _ = writeln!(t, "{}", r.name);
+    let tip = serde_json::to_string(&r.tip).unwrap_or_default();
+    let _ = writeln!(t, "  tip {tip}");
+    if let Some(a) = r.equivalent_cone_half_angle_deg {
+        let _ = writeln!(
+            t,
+            "  solved as the equivalent cone of half-angle {a:.2} deg"
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  E* = {}, w = {} J/m^2, s0 = {}",
+        si(r.e_star_pa, "Pa"),
+        r.work_of_adhesion_j_m2,
+        si(r.s0_pa, "Pa")
+    );
+    let _ = writeln!(
+        t,
+        "  Maugis parameter of the tip lambda = {:.4} (units: radius {}, approach {}, force {})",
+        r.lambda,
+        si(r.units.length_m, "m"),
+        si(r.units.approach_m, "m"),
+        si(r.units.force_n, "N")
+    );
+    for w in &r.warnings {
+        let _ = writeln!(t, "  warning: {w}");
+    }
+    let _ = writeln!(
+        t,
+        "  pull-off force: {} (load control, at contact radius {}), {} (displacement control)",
+        si(r.pulloff_force_load_control_N, "N"),
+        si(r.pulloff_contact_radius_load_control_m, "m"),
+        si(r.pulloff_force_displacement_control_N, "N")
+    );
+    let _ = writeln!(t, "  recommended model: {}", r.recommended_model);
+    let _ = writeln!(
+        t,
+        "  {:>12} {:>12} {:>12} {:>12} {:>8}  why",
+        "load", "radius a", "zone c", "approach", "model"
+    );
+    for l in &r.loads {
+        let f = |x: Option<f64>, u: &str| x.map_or("-".into(), |v| si(v, u));
+        let _ = writeln!(
+            t,
+            "  {:>12} {:>12} {:>12} {:>12} {:>8}  {}",
+            si(l.load_n, "N"),
+            f(l.contact_radius_m, "m"),
+            f(l.zone_radius_m, "m"),
+            f(l.approach_m, "m"),
+            l.model,
+            l.why
+        );
+    }
+    t
 }
 
 pub fn scene_text(r: &SceneResult) -> String {

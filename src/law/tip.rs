@@ -1,10 +1,10 @@
 //! Maugis-Dugdale for an axisymmetric tip (docs/PHYSICS.md section 12): a power law (cone,
 //! sphere, blunt tips; pyramids as their equivalent cone) or a capped cone, in the shape's
 //! normalised units. Its path: the free piece, the non-contact piece (the zone alone, t = C),
-//! the contact piece (t = -ln mu, the radius A a root of equation (1t) at each mu).
+//! the contact piece (t = ln A, mu the root of equation (1t) at each A).
 
 use super::path::{check_drive, contact_radii, free_before, Branch, Drive, PathPoint};
-use super::{cache, Law, LawError, LawKey, Piece, Pt, A_START};
+use super::{Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::numeric::root::bisect_sign;
 use crate::physics::model::ContactModel;
 use crate::physics::tip::Shape;
@@ -24,7 +24,7 @@ pub struct Tip {
 /// The lambda a tip is solved over (the sphere's is wider: section 5.1).
 pub const LAMBDA_RANGE: (f64, f64) = (1e-3, 1e3);
 
-/// A contact state at mu with its slopes in mu and in lambda.
+/// A contact state at radius A with its slopes in A and in lambda.
 #[derive(Clone, Copy, Debug)]
 struct Contact {
     a: f64,
@@ -65,75 +65,59 @@ impl Tip {
         )
     }
 
-    /// The contact radius at mu: the root in A of (1t), increasing in A.
-    fn radius(&self, mu: f64) -> f64 {
+    /// ln mu at contact radius `a`: (1t) at fixed A rises with mu (`dJbar/dmu > 0`, K rising),
+    /// so one root, by Newton's method safeguarded in a bracket (for any profile; at fixed mu
+    /// (1t) may have several roots in A where `Fbar'` is not monotone, as at a capped cone's
+    /// joint, so the contact piece is parametrised by A).
+    fn ln_mu_at(&self, a: f64) -> f64 {
         let lambda = self.lambda;
-        let m = mu.hypot(1.0);
-        let beta = 4.0 / 3.0 * lambda * lambda * Self::k(mu, m).0;
-        let g = |a: f64| {
-            let (j, ja, _) = self.shape.gap(a, mu);
-            (lambda * j + beta * a - 1.0, lambda * ja + beta)
+        let h = |x: f64| {
+            let mu = x.exp();
+            let m = mu.hypot(1.0);
+            let (j, _, jmu) = self.shape.gap(a, mu);
+            let (k, dk) = Self::k(mu, m);
+            (
+                lambda * j + 4.0 / 3.0 * lambda * lambda * k * a - 1.0,
+                mu * (lambda * jmu + 4.0 / 3.0 * lambda * lambda * dk * a),
+            )
         };
-        if let Shape::Power { exponent: n } = self.shape {
-            let alpha = lambda * self.shape.gap(1.0, mu).0;
-            if n == 2.0 {
-                // Section 2's quadratic, without cancellation.
-                return 2.0 / (beta + (beta * beta + 4.0 * alpha).sqrt());
-            }
-            // Convex and increasing: Newton from an upper bound descends to the root.
-            let mut a = (1.0 / beta).min(alpha.powf(-1.0 / n));
-            for _ in 0..200 {
-                let (r, d) = (
-                    alpha * a.powf(n) + beta * a - 1.0,
-                    n * alpha * a.powf(n - 1.0) + beta,
-                );
-                let next = a - r / d;
-                if !(next < a) || next <= 0.0 {
-                    break;
-                }
-                a = next;
-            }
-            return a;
-        }
-        // A bracket by doubling from 1, then bisection-safeguarded Newton.
-        let (mut lo, mut hi) = (0.0, 1.0);
-        while g(hi).0 < 0.0 && hi < 1e300 {
-            lo = hi;
-            hi *= 2.0;
-        }
-        let mut a = 0.5 * (lo + hi);
+        let (mut lo, mut hi) = (-60.0, 60.0);
+        // A start from the sphere's DMT-side scale: C ~ a few units.
+        let mut x = (2.0 / a.max(1e-300)).ln().clamp(lo, hi);
         for _ in 0..200 {
-            let (r, d) = g(a);
+            let (r, d) = h(x);
             if r < 0.0 {
-                lo = a;
+                lo = x;
             } else {
-                hi = a;
+                hi = x;
             }
-            let newton = a - r / d;
+            let newton = x - r / d;
             let next = if newton > lo && newton < hi {
                 newton
             } else {
                 0.5 * (lo + hi)
             };
-            if (next - a).abs() <= 1e-16 * a || hi - lo <= 1e-16 * hi {
-                a = next;
-                break;
+            if (next - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) || hi - lo <= 1e-15 {
+                return next;
             }
-            a = next;
+            x = next;
         }
-        a
+        x
     }
 
-    /// The contact state at mu (equations (1t) to (3t)) with its slopes.
-    fn contact(&self, mu: f64) -> Contact {
+    /// The contact state at radius `a` (equations (1t) to (3t)) with its slopes in A and in
+    /// lambda.
+    fn contact_at(&self, a: f64) -> Contact {
         let lambda = self.lambda;
+        let mu = self.ln_mu_at(a).exp();
         let m = mu.hypot(1.0);
-        let a = self.radius(mu);
         let (j, ja, jmu) = self.shape.gap(a, mu);
         let (k, dk) = Self::k(mu, m);
-        let ga = lambda * ja + 4.0 / 3.0 * lambda * lambda * k;
-        let da = -(lambda * jmu + 4.0 / 3.0 * lambda * lambda * dk * a) / ga;
-        let da_dlambda = -(j + 8.0 / 3.0 * lambda * k * a) / ga;
+        // (1t) is G(A, mu) = 0: dmu/dA and dmu/dlambda by implicit differentiation.
+        let g_a = lambda * ja + 4.0 / 3.0 * lambda * lambda * k;
+        let g_mu = lambda * jmu + 4.0 / 3.0 * lambda * lambda * dk * a;
+        let dmu = -g_a / g_mu;
+        let dmu_dlambda = -(j + 8.0 / 3.0 * lambda * k * a) / g_mu;
         let (q, dq) = self.shape.load(a);
         let (f, df) = self.shape.abel(a);
         let s = mu + m * m * mu.atan();
@@ -143,11 +127,11 @@ impl Tip {
             m,
             load: q - lambda * a * a * s,
             approach: f - 4.0 / 3.0 * lambda * a * mu,
-            da,
-            dload: dq * da - lambda * (2.0 * a * da * s + a * a * ds),
-            dapproach: df * da - 4.0 / 3.0 * lambda * (da * mu + a),
-            dload_dlambda: dq * da_dlambda - s * (a * a + 2.0 * lambda * a * da_dlambda),
-            dapproach_dlambda: df * da_dlambda - 4.0 / 3.0 * mu * (a + lambda * da_dlambda),
+            da: 1.0,
+            dload: dq - 2.0 * lambda * a * s - lambda * a * a * ds * dmu,
+            dapproach: df - 4.0 / 3.0 * lambda * (mu + a * dmu),
+            dload_dlambda: -a * a * s - lambda * a * a * ds * dmu_dlambda,
+            dapproach_dlambda: -4.0 / 3.0 * a * (mu + lambda * dmu_dlambda),
         }
     }
 
@@ -160,9 +144,14 @@ impl Tip {
         bisect_sign(h, 0.0, 1.0 / qb)
     }
 
-    /// The contact branch's point at parameter t.
+    /// The contact branch's state at radius `a`, with its zone radius.
+    pub fn at_radius(&self, a: f64) -> PathPoint {
+        self.point(a.ln())
+    }
+
+    /// The contact branch's point at parameter t = ln A.
     fn point(&self, t: f64) -> PathPoint {
-        let c = self.contact((-t).exp());
+        let c = self.contact_at(t.exp());
         PathPoint {
             branch: Branch::Contact,
             approach: c.approach,
@@ -222,12 +211,23 @@ impl Tip {
         }
     }
 
+    /// Where the contact piece is stable under a dead load: from the dead-load fold up, or
+    /// all of it where the load rises from the A -> 0 end on.
+    pub fn stable_from(&self) -> f64 {
+        self.extreme(Drive::DeadLoad)
+            .unwrap_or_else(|| self.t_of_radius(A_START))
+    }
+
     /// The stable contact state (under a dead load) at load `p`, if the load is above the
     /// pull-off.
     pub fn at_load(&self, p: f64) -> Option<PathPoint> {
-        let t0 = self.extreme(Drive::DeadLoad)?;
+        self.at_load_above(self.stable_from(), p)
+    }
+
+    /// [`Tip::at_load`] with the stable piece's start `t0` known ([`Tip::stable_from`]).
+    pub fn at_load_above(&self, t0: f64, p: f64) -> Option<PathPoint> {
         let f = |t: f64| self.state(Piece::Contact, t).load - p;
-        if f(t0) > 0.0 {
+        if !(f(t0) <= 0.0) {
             return None;
         }
         let mut t1 = t0 + 1.0;
@@ -264,15 +264,15 @@ impl Law for Tip {
                 }
             }
             Piece::Contact => {
-                let mu = (-t).exp();
-                let c = self.contact(mu);
+                let a = t.exp();
+                let c = self.contact_at(a);
                 Pt {
                     load: c.load,
                     approach: c.approach,
                     a: c.a,
-                    dload: -mu * c.dload,
-                    dapproach: -mu * c.dapproach,
-                    da: -mu * c.da,
+                    dload: a * c.dload,
+                    dapproach: a * c.dapproach,
+                    da: a * c.da,
                 }
             }
         }
@@ -286,7 +286,7 @@ impl Law for Tip {
                 -8.0 / (3.0 * PI) * t + 2.0 / (PI * lambda * lambda),
             ),
             Piece::Contact => {
-                let c = self.contact((-t).exp());
+                let c = self.contact_at(t.exp());
                 (c.dload_dlambda, c.dapproach_dlambda)
             }
         }
@@ -294,19 +294,9 @@ impl Law for Tip {
     fn free_end(&self) -> f64 {
         -2.0 / (PI * self.lambda)
     }
-    /// (1t) at fixed A is increasing in mu: a bracketed search in ln mu.
+    /// The contact piece's parameter is ln A.
     fn t_of_radius(&self, a: f64) -> f64 {
-        cache::radius(self.key(), a, || {
-            let lambda = self.lambda;
-            let h = |x: f64| {
-                let mu = x.exp();
-                let m = mu.hypot(1.0);
-                lambda * self.shape.gap(a, mu).0
-                    + 4.0 / 3.0 * lambda * lambda * Self::k(mu, m).0 * a
-                    - 1.0
-            };
-            -bisect_sign(h, -60.0, 60.0)
-        })
+        a.ln()
     }
     fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
         vec![
@@ -367,23 +357,26 @@ impl Law for Tip {
         let free = free_before(&path, d0, n);
         Ok(free.into_iter().chain(path).collect())
     }
-    /// The fold nearest the sampled one: a bracket stepped out from it in t.
+    /// The fold nearest the sampled one: under dead load or rigid grips the retract's fold
+    /// ([`Tip::pulloff_state`]'s), under a spring the sign change of its control's slope in the
+    /// cell of a fixed grid in t nearest the sampled fold (so the result does not depend on
+    /// where in that cell the sample lay).
     fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
         if near.a <= 0.0 {
             return None;
         }
+        if !matches!(drive, Drive::Spring(_)) {
+            return self.extreme(drive).map(|t| self.point(t));
+        }
         let slope = |t: f64| self.control_slope(drive, t);
-        let t = self.t_of_radius(near.a);
-        let (mut lo, mut hi) = (t - 0.05, t + 0.05);
-        for _ in 0..200 {
-            if slope(lo) < 0.0 && slope(hi) > 0.0 {
-                return Some(self.point(bisect_sign(slope, lo, hi)));
-            }
-            if slope(lo) >= 0.0 {
-                lo -= 0.05;
-            }
-            if slope(hi) <= 0.0 {
-                hi += 0.05;
+        let h = 0.01;
+        let k0 = (self.t_of_radius(near.a) / h).floor() as i64;
+        for d in 0..400 {
+            for k in [k0 + d, k0 - d - 1] {
+                let (lo, hi) = (k as f64 * h, (k + 1) as f64 * h);
+                if slope(lo) < 0.0 && slope(hi) > 0.0 {
+                    return Some(self.point(bisect_sign(slope, lo, hi)));
+                }
             }
         }
         None

@@ -13,6 +13,8 @@ use crate::solver::{LambdaContext, State, Status};
 use rayon::prelude::*;
 use serde::Serialize;
 
+pub mod tip;
+
 /// The load axis of a map.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -236,6 +238,8 @@ pub struct MapData {
     pub large_deformation: Vec<LargeDeformationLine>,
     /// Where the time went.
     pub timings: Timings,
+    /// The tip's shape, for a map of a tip that is not a sphere (`tip::compute_tip`).
+    pub tip: Option<crate::physics::tip::Shape>,
 }
 
 /// Per-point records for classification and drawing: single precision is ample for colours
@@ -531,6 +535,7 @@ pub fn compute_with(
             classify_s,
             render_s: 0.0,
         },
+        tip: None,
     })
 }
 

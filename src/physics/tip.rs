@@ -38,6 +38,32 @@ pub fn k_n(n: f64) -> f64 {
 }
 
 impl Shape {
+    /// The shape's name (a figure's title).
+    pub fn name(&self) -> &'static str {
+        match *self {
+            Shape::Power { exponent } if exponent == 1.0 => "a cone",
+            Shape::Power { exponent } if exponent == 2.0 => "a sphere",
+            Shape::Power { .. } => "a power-law tip",
+            Shape::CappedCone { .. } => "a capped cone",
+        }
+    }
+
+    /// The shape in a sentence (a figure's caption).
+    pub fn describe(&self) -> String {
+        match *self {
+            Shape::Power { exponent } if exponent == 1.0 => {
+                "A cone f = r cot α; its map holds for every half-angle α (its units absorb cot α)".into()
+            }
+            Shape::Power { exponent } => format!(
+                "A power-law tip f = B r^{exponent}; its map holds for every B (its units absorb it)"
+            ),
+            Shape::CappedCone { rho, half_angle } => format!(
+                "A spherical cap of radius R = {rho:.3} l joined to a cone of half-angle {:.1}°",
+                half_angle.to_degrees()
+            ),
+        }
+    }
+
     /// The joint of a capped cone (`rho cos theta`), where the integrals are split.
     fn joint(&self) -> Option<f64> {
         match *self {
@@ -199,6 +225,60 @@ fn add_reversed(g: &dyn Fn(f64) -> [f64; 3], lo: f64, hi: f64, sum: &mut [f64; 3
         for k in 0..3 {
             sum[k] += w * v[k] * 2.0 * s * h;
         }
+    }
+}
+
+/// The radius where `q(A)` rises through `target` above `from`, by bisection (q increasing).
+fn rising_root(q: impl Fn(f64) -> f64, target: f64, from: f64) -> f64 {
+    let mut hi = from.max(1e-300) * 2.0 + 1.0;
+    while q(hi) < target {
+        hi *= 2.0;
+        if hi > 1e150 {
+            return f64::NAN;
+        }
+    }
+    crate::numeric::root::bisect_sign(|a| q(a) - target, from, hi)
+}
+
+impl Shape {
+    /// The rigid tip's Dugdale force `(pi lambda/2) C0^2`, `fbar(C0) = 2/(pi lambda)`: the
+    /// tension over the disc where the undeformed gap is below h0 (the sphere's 2).
+    pub fn rigid_force(&self, lambda: f64) -> f64 {
+        let c0 = rising_root(|c| self.profile(c).0, 2.0 / (PI * lambda), 0.0);
+        PI * lambda / 2.0 * c0 * c0
+    }
+
+    /// The closed forms' radii at load `p` for the shape: Sneddon's punch, the DMT-type (the
+    /// punch under `p` plus the rigid tip's force `f0`) and the JKR-type on its stable side
+    /// (NaN where the form has no contact).
+    pub fn closed_radii(&self, p: f64, f0: f64) -> [f64; 3] {
+        let shape = self;
+        let q = |a: f64| shape.load(a).0;
+        let hertz = if p > 0.0 {
+            rising_root(q, p, 0.0)
+        } else {
+            f64::NAN
+        };
+        let dmt = if p + f0 > 0.0 {
+            rising_root(q, p + f0, 0.0)
+        } else {
+            f64::NAN
+        };
+        // JKR-type: Qbar(A) - sqrt(6 A^3), stable where its slope (3/2) A Fbar'(A) - (3/2) sqrt(6 A)
+        // is positive; its minimum by bisection on that slope.
+        let jkr_load = |a: f64| q(a) - (6.0 * a * a * a).sqrt();
+        let slope = |a: f64| shape.abel(a).1 * a - (6.0 * a).sqrt();
+        let mut hi = 1.0;
+        while slope(hi) < 0.0 && hi < 1e150 {
+            hi *= 2.0;
+        }
+        let a_c = crate::numeric::root::bisect_sign(slope, 0.0, hi);
+        let jkr = if p >= jkr_load(a_c) {
+            rising_root(jkr_load, p, a_c)
+        } else {
+            f64::NAN
+        };
+        [hertz, dmt, jkr]
     }
 }
 
@@ -404,6 +484,20 @@ impl TipInput {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// For the sphere's shape the closed radii are section 3's: Hertz A^3 = P, DMT A^3 = P + 2,
+    /// JKR A^3 = P + 3 + sqrt(9 + 6 P), and the rigid force is 2.
+    #[test]
+    fn closed_radii_of_the_square_power_law_are_the_spheres() {
+        let shape = Shape::Power { exponent: 2.0 };
+        assert!((shape.rigid_force(0.3) - 2.0).abs() < 1e-14);
+        for p in [0.5, 2.0, 10.0] {
+            let [h, d, j] = shape.closed_radii(p, 2.0);
+            assert!((h - p.cbrt()).abs() < 1e-12);
+            assert!((d - (p + 2.0).cbrt()).abs() < 1e-12);
+            assert!((j - (p + 3.0 + (9.0 + 6.0 * p).sqrt()).cbrt()).abs() < 1e-12);
+        }
+    }
 
     #[test]
     fn k_n_is_the_gamma_ratio() {

@@ -135,10 +135,11 @@ fn kind(q: Option<Quantity>) -> Kind {
 }
 
 /// The y-axis description (markup: an overbar on the normalised load).
-fn y_desc(axis: LoadAxis) -> &'static str {
-    match axis {
-        LoadAxis::AbovePulloff => "load above pull-off  \\bar{P} − \\bar{P}_{c}",
-        _ => "load  \\bar{P} = P/(πwR)",
+fn y_desc(axis: LoadAxis, tip: bool) -> &'static str {
+    match (axis, tip) {
+        (LoadAxis::AbovePulloff, _) => "load above pull-off  \\bar{P} − \\bar{P}_{c}",
+        (_, false) => "load  \\bar{P} = P/(πwR)",
+        (_, true) => "load  \\bar{P} = P d/(πwl²)",
     }
 }
 
@@ -252,9 +253,10 @@ where
     let legend = entries(d, &traced);
     let pad = 32;
     let tol = format!("{}%", sp.tolerance * 100.0);
-    let caption = match q {
-        None => super::wrap(root, &format!("Each point shows the simplest model whose contact radius A is within {tol} of the exact Maugis-Dugdale (MD) one: Hertz |A_{{H}}/A − 1| ≤ {tol} (loads ≥ 0); Bradley (rigid) (πλ/2)·max(A², |Δ|) ≤ {tol}; DMT |A_{{DMT}}/A − 1| ≤ {tol}; JKR |A_{{JKR}}/A − 1| ≤ {tol}; else MD. White: below the pull-off, no contact."), NOTE, w - 2 * pad),
-        Some(_) => Vec::new(),
+    let caption = match (q, d.tip) {
+        (None, Some(shape)) => super::wrap(root, &format!("{}. Each point shows the simplest of the tip's closed forms whose contact radius A is within {tol} of the exact Maugis-Dugdale (MD) one: Sneddon's punch (Hertz, loads ≥ 0); rigid (πλ/2)·max(F(A), |Δ|) ≤ {tol}; DMT-type (the punch plus the rigid tip's Dugdale force); JKR-type (the punch's energy balance); else MD. λ and the load in the tip's units (docs/PHYSICS.md section 12). White: below the pull-off, no contact.", shape.describe()), NOTE, w - 2 * pad),
+        (None, None) => super::wrap(root, &format!("Each point shows the simplest model whose contact radius A is within {tol} of the exact Maugis-Dugdale (MD) one: Hertz |A_{{H}}/A − 1| ≤ {tol} (loads ≥ 0); Bradley (rigid) (πλ/2)·max(A², |Δ|) ≤ {tol}; DMT |A_{{DMT}}/A − 1| ≤ {tol}; JKR |A_{{JKR}}/A − 1| ≤ {tol}; else MD. White: below the pull-off, no contact."), NOTE, w - 2 * pad),
+        (Some(_), _) => Vec::new(),
     };
     let bottom = super::legend_rows_height(root, &legend, NOTE, w - 2 * pad)
         + caption.len() as i32 * super::line_height(NOTE)
@@ -266,9 +268,10 @@ where
     } else {
         (upper.clone(), upper.clone())
     };
-    let title = match q {
-        None => format!("Adhesion map (tolerance {tol})"),
-        Some(q) => q.title().to_string(),
+    let title = match (q, d.tip) {
+        (None, Some(shape)) => format!("Adhesion map of {} (tolerance {tol})", shape.name()),
+        (None, None) => format!("Adhesion map (tolerance {tol})"),
+        (Some(q), _) => q.title().to_string(),
     };
     let x_range = (sp.lambda_min..sp.lambda_max).log_scale();
     let builder = || {
@@ -446,7 +449,7 @@ where
         chart.draw_series(std::iter::once(el))?;
     }
     let (x_desc, y_desc) = match panel {
-        Panel::Full => ("Maugis parameter  λ", y_desc(sp.load_axis)),
+        Panel::Full => ("Maugis parameter  λ", y_desc(sp.load_axis, d.tip.is_some())),
         Panel::Inset => ("λ", "\\bar{P}"),
     };
     super::house_axes(chart.configure_mesh(), x_desc, y_desc)

@@ -46,6 +46,10 @@ pub struct SceneInput {
     pub source: Option<String>,
     /// Ambient humidity: a water meniscus as a second Dugdale zone (docs/PHYSICS.md section 10).
     pub humidity: Option<super::humidity::HumidityInput>,
+    /// A tip other than a sphere (docs/PHYSICS.md section 12): a cone, pyramid, power law or
+    /// capped cone, instead of `radius_m`; a sphere given here is `radius_m`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tip: Option<crate::physics::tip::TipInput>,
 }
 
 /// The control of a scene's experiment.
@@ -62,6 +66,27 @@ pub enum SceneControl {
 
 /// The contact of a scene: its materials, radius, w and force range, checked.
 pub fn contact_of(s: &SceneInput) -> Result<Contact, ParamError> {
+    // A spherical tip is the radius; any other tip is a scene of its own (scene::tip).
+    let s = &match s.tip {
+        None => s.clone(),
+        Some(crate::physics::tip::TipInput::Sphere { radius_m }) => {
+            if s.radius_m.is_some() || s.body1.is_some() || s.body2.is_some() {
+                return Err(ParamError::Missing(
+                    "give the sphere once: as radius_m (or the bodies) or as the tip, not both",
+                ));
+            }
+            SceneInput {
+                radius_m: Some(radius_m),
+                tip: None,
+                ..s.clone()
+            }
+        }
+        Some(_) => {
+            return Err(ParamError::Missing(
+                "this takes a sphere: a scene with a cone, pyramid, power-law or capped-cone tip is solved by `tabor scene` (and Python's tabor.scene)",
+            ))
+        }
+    };
     if (s.body1.is_some() || s.body2.is_some()) && (s.e_star_pa.is_some() || s.radius_m.is_some()) {
         return Err(ParamError::Missing(
             "give the bodies (body1 and body2) or e_star_pa and radius_m, not both",

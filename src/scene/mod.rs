@@ -9,6 +9,7 @@ pub mod humidity;
 mod infer;
 mod input;
 mod presets;
+pub mod tip;
 
 pub use fit::{fit_pairs, PairsFit};
 pub use infer::{infer, infer_wet, wet_options, Inference, WetInference};
@@ -162,7 +163,29 @@ fn why(region: Region, c: &crate::map::Criteria, tol: f64) -> String {
 /// Most loads one scene solves (its report is kept in memory).
 pub const MAX_SCENE_LOADS: usize = 100_000;
 
-/// Solves a scene: its contact, pull-offs, the state at each load and the recommended model.
+/// A scene solved: a sphere's report, or a tip's.
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum Solved {
+    /// A sphere (radius_m, bodies, or a spherical tip).
+    Sphere(Box<SceneResult>),
+    /// Another tip (docs/PHYSICS.md section 12).
+    Tip(Box<tip::TipSceneResult>),
+}
+
+/// Solves a scene of any tip: a sphere's (`radius_m`, the bodies or `"tip": {"shape":
+/// "sphere"}`) by [`solve_scene`], any other by [`tip::solve_tip_scene`].
+pub fn solve(s: &SceneInput) -> Result<Solved, ParamError> {
+    match &s.tip {
+        None | Some(crate::physics::tip::TipInput::Sphere { .. }) => {
+            Ok(Solved::Sphere(Box::new(solve_scene(s)?)))
+        }
+        Some(t) => Ok(Solved::Tip(Box::new(tip::solve_tip_scene(s, t)?))),
+    }
+}
+
+/// Solves a sphere's scene: its contact, pull-offs, the state at each load and the recommended
+/// model.
 pub fn solve_scene(s: &SceneInput) -> Result<SceneResult, ParamError> {
     let c = contact_of(s)?;
     let tol = checked_tolerance(s)?;

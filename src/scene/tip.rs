@@ -1,0 +1,250 @@
+//! A scene with a tip that is not a sphere (docs/PHYSICS.md section 12): its pull-offs, and at
+//! each load the contact and zone radii, the approach and the simplest adequate model for that
+//! shape (Sneddon's adhesion-free punch, the DMT-type and JKR-type closed forms, or the exact
+//! Maugis-Dugdale law).
+
+use super::{checked_tolerance, scene_loads, SceneInput};
+use crate::law::{Drive, Tip};
+use crate::physics::params::ParamError;
+use crate::physics::tip::{TipInput, TipUnits};
+use crate::solver::Status;
+use serde::Serialize;
+
+/// A tip scene's state at one load.
+#[derive(Clone, Debug, Serialize)]
+pub struct TipLoadResult {
+    /// The load (N, compressive positive).
+    pub load_n: f64,
+    /// The load in the tip's force unit.
+    pub load_normalised: f64,
+    /// Whether the state was found (no contact below the load-controlled pull-off).
+    pub status: Status,
+    /// The contact radius (m).
+    pub contact_radius_m: Option<f64>,
+    /// The Dugdale zone's outer radius (m).
+    pub zone_radius_m: Option<f64>,
+    /// The approach (m).
+    pub approach_m: Option<f64>,
+    /// Sneddon's (adhesion-free) contact radius error relative to Maugis-Dugdale's.
+    pub err_hertz: Option<f64>,
+    /// The DMT-type radius's error (Sneddon's punch under the load plus the rigid tip's force).
+    pub err_dmt: Option<f64>,
+    /// The JKR-type radius's error (the energy balance of the punch).
+    pub err_jkr: Option<f64>,
+    /// The simplest adequate model at this load, for this shape.
+    pub model: &'static str,
+    /// Why, in words.
+    pub why: String,
+}
+
+/// A tip scene solved.
+#[derive(Clone, Debug, Serialize)]
+#[allow(non_snake_case)] // the JSON keys name their unit: ..._N
+pub struct TipSceneResult {
+    /// The scene's name.
+    pub name: String,
+    /// The tip as given.
+    pub tip: TipInput,
+    /// For a pyramid: the half-angle of the cone of the same area function it is solved as.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub equivalent_cone_half_angle_deg: Option<f64>,
+    /// Reduced modulus E* (Pa).
+    pub e_star_pa: f64,
+    /// Work of adhesion (J/m^2).
+    pub work_of_adhesion_j_m2: f64,
+    /// Dugdale stress (Pa).
+    pub s0_pa: f64,
+    /// The shape's normalised units and its Maugis parameter.
+    pub units: TipUnits,
+    /// The shape's Maugis parameter `(3/2) s0 l / (E* d)`.
+    pub lambda: f64,
+    /// The tolerance a simpler model must meet.
+    pub tolerance: f64,
+    /// Pull-off force under load control (N, tensile negative).
+    pub pulloff_force_load_control_N: f64,
+    /// Pull-off force under displacement control (N).
+    pub pulloff_force_displacement_control_N: f64,
+    /// Contact radius at the load-controlled pull-off (m; 0 where contact is lost at zero
+    /// radius).
+    pub pulloff_contact_radius_load_control_m: f64,
+    /// The simplest model adequate over the scene's loads.
+    pub recommended_model: &'static str,
+    /// The state at each load.
+    pub loads: Vec<TipLoadResult>,
+    /// Where the idealisation is stretched.
+    pub warnings: Vec<String>,
+    /// Where the values came from.
+    pub source: Option<String>,
+}
+
+/// The tip scene's material pair: E*, w and s0 (the force range's reduction needs no radius).
+fn materials(s: &SceneInput) -> Result<(f64, f64, f64), ParamError> {
+    if s.radius_m.is_some() || s.body1.is_some() || s.body2.is_some() {
+        return Err(ParamError::Missing(
+            "a scene with a tip takes e_star_pa and the tip, not radius_m or bodies (give a sphere as \"tip\": {\"shape\": \"sphere\", \"radius_m\": R})",
+        ));
+    }
+    for (given, key) in [
+        (s.humidity.is_some(), "humidity"),
+        (s.shear_strength_pa.is_some(), "shear_strength_pa"),
+        (s.atomic_spacing_m.is_some(), "atomic_spacing_m"),
+        (
+            matches!(s.control, Some(super::SceneControl::CantileverNM(_))),
+            "control.cantilever_n_m",
+        ),
+    ] {
+        if given {
+            return Err(ParamError::Conflict(format!(
+                "{key} is not available for a tip other than a sphere: leave it out (or give the sphere's radius_m)"
+            )));
+        }
+    }
+    let probe = SceneInput {
+        radius_m: Some(1.0),
+        tip: None,
+        ..s.clone()
+    };
+    let c = super::contact_of(&probe)?;
+    Ok((c.e_star, c.work, c.s0))
+}
+
+/// Solves a scene whose `tip` is given.
+pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult, ParamError> {
+    let (e_star, w, s0) = materials(s)?;
+    let tol = checked_tolerance(s)?;
+    let bad_tip = |e: crate::physics::tip::TipError| ParamError::OutOfRange {
+        field: e.name,
+        value: e.value,
+        allowed: e.hint,
+    };
+    let u = tip.units(e_star, w, s0).map_err(bad_tip)?;
+    let law = Tip::new(u.shape, u.lambda).map_err(|_| ParamError::OutOfRange {
+        field: "the tip's Maugis parameter lambda of these inputs",
+        value: u.lambda,
+        allowed: "in 1e-3..1e3 (check the units of E*, w and the force range)",
+    })?;
+    let dead = law.pulloff_state(Drive::DeadLoad);
+    let grips = law.pulloff_state(Drive::RigidGrips);
+    let f0 = u.shape.rigid_force(u.lambda);
+    let loads = scene_loads(s)?
+        .into_iter()
+        .map(|p| {
+            if !p.is_finite() {
+                return Err(ParamError::OutOfRange {
+                    field: "loads_n",
+                    value: p,
+                    allowed: "finite (N)",
+                });
+            }
+            let pn = p / u.force_n;
+            let state = law.at_load(pn);
+            let radii = u.shape.closed_radii(pn, f0);
+            Ok(match state {
+                None => TipLoadResult {
+                    load_n: p,
+                    load_normalised: pn,
+                    status: Status::NoContact,
+                    contact_radius_m: None,
+                    zone_radius_m: None,
+                    approach_m: None,
+                    err_hertz: None,
+                    err_dmt: None,
+                    err_jkr: None,
+                    model: "none",
+                    why: "the load is below the pull-off: no contact".into(),
+                },
+                Some(st) => {
+                    let err = |x: f64| (x.is_finite()).then(|| (x / st.a - 1.0).abs());
+                    let errs = radii.map(err);
+                    let names = ["hertz", "dmt", "jkr"];
+                    let first = errs.iter().position(|e| e.is_some_and(|e| e <= tol));
+                    let pct = |e: Option<f64>| e.map_or("none".into(), |e| format!("{:.1}%", 100.0 * e));
+                    let (model, why) = match first {
+                        Some(i) => (
+                            names[i],
+                            format!(
+                                "the {}-type radius is within {} ({})",
+                                ["Sneddon (Hertz)", "DMT", "JKR"][i],
+                                pct(Some(tol)),
+                                pct(errs[i])
+                            ),
+                        ),
+                        None => (
+                            "md",
+                            format!(
+                                "no closed form is within {}: DMT-type off by {}, JKR-type off by {}",
+                                pct(Some(tol)),
+                                pct(errs[1]),
+                                pct(errs[2])
+                            ),
+                        ),
+                    };
+                    TipLoadResult {
+                        load_n: p,
+                        load_normalised: pn,
+                        status: Status::Ok,
+                        contact_radius_m: Some(st.a * u.length_m),
+                        zone_radius_m: Some(st.c * u.length_m),
+                        approach_m: Some(st.approach * u.approach_m),
+                        err_hertz: errs[0],
+                        err_dmt: errs[1],
+                        err_jkr: errs[2],
+                        model,
+                        why,
+                    }
+                }
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let order = ["hertz", "dmt", "jkr", "md"];
+    let recommended_model = loads
+        .iter()
+        .filter(|l| l.status == Status::Ok)
+        .map(|l| order.iter().position(|m| *m == l.model).unwrap_or(3))
+        .max()
+        .map_or("none", |i| order[i]);
+    Ok(TipSceneResult {
+        name: s.name.clone().unwrap_or_else(|| "scene".into()),
+        tip: *tip,
+        equivalent_cone_half_angle_deg: tip.equivalent_cone_deg(),
+        e_star_pa: e_star,
+        work_of_adhesion_j_m2: w,
+        s0_pa: s0,
+        units: u,
+        lambda: u.lambda,
+        tolerance: tol,
+        pulloff_force_load_control_N: dead.load * u.force_n,
+        pulloff_force_displacement_control_N: grips.load * u.force_n,
+        pulloff_contact_radius_load_control_m: dead.a * u.length_m,
+        recommended_model,
+        loads,
+        warnings: tip_warnings(tip),
+        source: s.source.clone(),
+    })
+}
+
+/// Where the tip stretches the idealisation: steep flanks (the half-space theory needs small
+/// slopes) and pyramids (solved as a cone).
+fn tip_warnings(tip: &TipInput) -> Vec<String> {
+    let mut w = Vec::new();
+    let half_angle = match *tip {
+        TipInput::Cone { half_angle_deg } | TipInput::CappedCone { half_angle_deg, .. } => {
+            Some(half_angle_deg)
+        }
+        TipInput::Pyramid { .. } => tip.equivalent_cone_deg(),
+        _ => None,
+    };
+    if let Some(a) = half_angle.filter(|&a| a < 60.0) {
+        w.push(format!(
+            "the flank's slope cot({a:.1} deg) = {:.2} is not small: Sneddon's half-space theory, which this law rests on, is an approximation for so sharp a tip",
+            1.0 / a.to_radians().tan()
+        ));
+    }
+    if let TipInput::Pyramid { faces, .. } = tip {
+        w.push(format!(
+            "a {faces}-sided pyramid is solved as the cone of the same area function (half-angle {:.2} deg): its contact is not a circle",
+            tip.equivalent_cone_deg().unwrap_or(f64::NAN)
+        ));
+    }
+    w
+}
