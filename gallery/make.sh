@@ -20,8 +20,8 @@ $T map --quantity approach --load-axis above-pulloff --out $G/map_approach.png
 $T map --quantity err-jkr --out $G/map_err_jkr.png
 $T map --quantity err-dmt --out $G/map_err_dmt.png
 # Tips: the cone's map (every half-angle) and a capped cone's, beside the sphere's map.png.
-$T map --tip cone --nx 256 --ny 256 --out $G/map_cone.png --svg $G/map_cone.svg
-$T map --tip capped-cone:1:20 --nx 160 --ny 120 --out $G/map_capped_cone.png
+$T map --tip cone --nx 192 --ny 144 --out $G/map_cone.png --svg $G/map_cone.svg
+$T map --tip capped-cone:1:20 --nx 96 --ny 72 --out $G/map_capped_cone.png
 $T plot pulloff --out $G/pulloff.png --svg $G/pulloff.svg --pdf $G/pulloff.pdf
 $T plot curves --lambda 0.1,1,10 --out $G/curves.png --svg $G/curves.svg
 if [ "${BENCH:-replot}" = measure ]; then

@@ -226,18 +226,43 @@ impl Tip {
 
     /// [`Tip::at_load`] with the stable piece's start `t0` known ([`Tip::stable_from`]).
     pub fn at_load_above(&self, t0: f64, p: f64) -> Option<PathPoint> {
-        let f = |t: f64| self.state(Piece::Contact, t).load - p;
-        if !(f(t0) <= 0.0) {
+        let f = |t: f64| {
+            let s = self.state(Piece::Contact, t);
+            (s.load - p, s.dload)
+        };
+        if !(f(t0).0 <= 0.0) {
             return None;
         }
-        let mut t1 = t0 + 1.0;
-        while f(t1) < 0.0 {
-            t1 += 1.0;
-            if t1 > 60.0 {
+        let (mut lo, mut hi) = (t0, t0 + 1.0);
+        while f(hi).0 < 0.0 {
+            lo = hi;
+            hi += 1.0;
+            if hi > 60.0 {
                 return None;
             }
         }
-        Some(self.point(bisect_sign(f, t0, t1)))
+        // Newton's method on the load, kept in the bracket (bisection where it would leave it).
+        let mut t = 0.5 * (lo + hi);
+        for _ in 0..200 {
+            let (r, d) = f(t);
+            if r < 0.0 {
+                lo = t;
+            } else {
+                hi = t;
+            }
+            let newton = t - r / d;
+            let next = if newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            let done = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0);
+            t = next;
+            if done || hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1.0) {
+                break;
+            }
+        }
+        Some(self.point(t))
     }
 }
 
