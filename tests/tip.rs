@@ -255,3 +255,30 @@ fn a_spherical_tip_is_the_sphere_and_bad_tips_are_refused() {
     .unwrap_err();
     assert!(wet.contains("humidity") && !wet.contains('\n'), "{wet}");
 }
+
+/// `tabor cycle --tip cone --lambda 1`: a cycle of the cone's law through the command line,
+/// whose retract leaves contact at the law's rigid-grip fold; a tip with a scene is refused.
+#[test]
+fn a_cones_cycle_from_the_command_line() {
+    let run = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let out = run(&["cycle", "--tip", "cone", "--lambda", "1", "--format", "json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let c: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let fold = power(1.0, 1.0).pulloff_state(Drive::RigidGrips);
+    let jump = c["jumps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["phase"] == "retract" && j["from"]["branch"] == "contact")
+        .expect("a retract jump off contact");
+    let load = jump["from"]["load"].as_f64().unwrap();
+    assert!((load - fold.load).abs() <= 1e-12 * fold.load.abs(), "{load} {}", fold.load);
+    let bad = run(&["cycle", "--tip", "wedge", "--lambda", "1"]);
+    let e = String::from_utf8_lossy(&bad.stderr);
+    assert!(!bad.status.success() && e.contains("--tip wedge"), "{e}");
+}

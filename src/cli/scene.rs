@@ -542,6 +542,10 @@ pub struct CycleArgs {
     /// The second zone's range over the solid's, h2/h1 (with --stress-ratio).
     #[arg(long)]
     pub range_ratio: Option<f64>,
+    /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
+    /// parameter and loads in its units: cone, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    #[arg(long, conflicts_with_all = ["scene", "preset", "stress_ratio", "range_ratio"])]
+    pub tip: Option<String>,
     #[arg(long, short, default_value = "-")]
     pub output: String,
     #[arg(long, value_parser = super::formats(&["csv", "json"]), default_value_t = Format::Csv)]
@@ -630,8 +634,14 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         Some((rho, eta, _)) => Some((*rho, *eta)),
         None => super::two_zone_ratios(a.stress_ratio, a.range_ratio)?,
     };
+    let law = match a.tip.as_deref() {
+        Some(t) => {
+            ContactLaw::Tip(crate::law::Tip::new(super::tip_shape(t)?, lambda).context("--lambda")?)
+        }
+        None => ContactLaw::with_ratios(lambda, ratios),
+    };
     let c = CycleSpec {
-        law: ContactLaw::with_ratios(lambda, ratios),
+        law,
         drive,
         max_load: a.max_load,
     }
