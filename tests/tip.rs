@@ -266,8 +266,14 @@ fn a_cones_cycle_from_the_command_line() {
             .output()
             .unwrap()
     };
-    let out = run(&["cycle", "--tip", "cone", "--lambda", "1", "--format", "json"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&[
+        "cycle", "--tip", "cone", "--lambda", "1", "--format", "json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let c: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let fold = power(1.0, 1.0).pulloff_state(Drive::RigidGrips);
     let jump = c["jumps"]
@@ -277,7 +283,11 @@ fn a_cones_cycle_from_the_command_line() {
         .find(|j| j["phase"] == "retract" && j["from"]["branch"] == "contact")
         .expect("a retract jump off contact");
     let load = jump["from"]["load"].as_f64().unwrap();
-    assert!((load - fold.load).abs() <= 1e-12 * fold.load.abs(), "{load} {}", fold.load);
+    assert!(
+        (load - fold.load).abs() <= 1e-12 * fold.load.abs(),
+        "{load} {}",
+        fold.load
+    );
     let bad = run(&["cycle", "--tip", "wedge", "--lambda", "1"]);
     let e = String::from_utf8_lossy(&bad.stderr);
     assert!(!bad.status.success() && e.contains("--tip wedge"), "{e}");

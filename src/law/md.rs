@@ -2,7 +2,9 @@
 //! range `h0`. Its path: the free piece, the non-contact piece (the zone alone, t = C, a
 //! quadratic in C), the contact piece (t = -ln mu, mu = m - 1 + ... by `physics::md`).
 
-use super::path::{check_drive, contact_radii, free_before, Branch, Drive, PathPoint};
+use super::path::{
+    check_drive, contact_radii, free_before, non_contact_path, Branch, Drive, PathPoint,
+};
 use super::{cache, Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
 use crate::physics::model::ContactModel;
@@ -160,18 +162,7 @@ fn contact_point(lambda: f64, a: f64) -> PathPoint {
 pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> {
     let end = zero_radius_end(lambda);
     let (_, d0) = non_contact_point(lambda, 0.0);
-    let mut path = Vec::with_capacity(3 * n);
-    for i in 0..n {
-        let c = end.c * i as f64 / (n - 1) as f64;
-        let (p, d) = non_contact_point(lambda, c);
-        path.push(PathPoint {
-            branch: Branch::NonContact,
-            approach: d,
-            load: p,
-            a: 0.0,
-            c,
-        });
-    }
+    let mut path = non_contact_path(&Md { lambda }, end.c, n);
     let Ok(ctx) = LambdaContext::new(lambda) else {
         return Vec::new();
     };

@@ -89,6 +89,27 @@ pub fn check_drive(drive: Drive, max_load: f64) -> Result<(), crate::solver::Sol
     Ok(())
 }
 
+/// The non-contact piece sampled for a cycle: `n` points from C = 0 to `c_end`.
+pub(crate) fn non_contact_path<L: super::Law + ?Sized>(
+    law: &L,
+    c_end: f64,
+    n: usize,
+) -> Vec<PathPoint> {
+    (0..n)
+        .map(|i| {
+            let c = c_end * i as f64 / (n - 1) as f64;
+            let p = law.state(super::Piece::NonContact, c);
+            PathPoint {
+                branch: Branch::NonContact,
+                approach: p.approach,
+                load: p.load,
+                a: 0.0,
+                c,
+            }
+        })
+        .collect()
+}
+
 /// The free segment before the force zones first meet (no force), from far enough below the
 /// lowest approach (and load, scaled) of `path` for any spring's jump to land on, up to the
 /// approach `d0` where the force starts: `n` points.

@@ -3,9 +3,11 @@
 //! normalised units. Its path: the free piece, the non-contact piece (the zone alone, t = C),
 //! the contact piece (t = ln A, mu the root of equation (1t) at each A).
 
-use super::path::{check_drive, contact_radii, free_before, Branch, Drive, PathPoint};
+use super::path::{
+    check_drive, contact_radii, free_before, non_contact_path, Branch, Drive, PathPoint,
+};
 use super::{Law, LawError, LawKey, Piece, Pt, A_START};
-use crate::numeric::root::bisect_sign;
+use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::model::ContactModel;
 use crate::physics::tip::Shape;
 use serde::Serialize;
@@ -24,14 +26,13 @@ pub struct Tip {
 /// The lambda a tip is solved over (the sphere's is wider: section 5.1).
 pub const LAMBDA_RANGE: (f64, f64) = (1e-3, 1e3);
 
-/// A contact state at radius A with its slopes in A and in lambda.
+/// A contact state at radius A with its slopes in A (dA/dA = 1) and in lambda.
 #[derive(Clone, Copy, Debug)]
 struct Contact {
     a: f64,
     m: f64,
     load: f64,
     approach: f64,
-    da: f64,
     dload: f64,
     dapproach: f64,
     dload_dlambda: f64,
@@ -81,28 +82,9 @@ impl Tip {
                 mu * (lambda * jmu + 4.0 / 3.0 * lambda * lambda * dk * a),
             )
         };
-        let (mut lo, mut hi) = (-60.0, 60.0);
         // A start from the sphere's DMT-side scale: C ~ a few units.
-        let mut x = (2.0 / a.max(1e-300)).ln().clamp(lo, hi);
-        for _ in 0..200 {
-            let (r, d) = h(x);
-            if r < 0.0 {
-                lo = x;
-            } else {
-                hi = x;
-            }
-            let newton = x - r / d;
-            let next = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            if (next - x).abs() <= 4.0 * f64::EPSILON * x.abs().max(1.0) || hi - lo <= 1e-15 {
-                return next;
-            }
-            x = next;
-        }
-        x
+        let x0 = (2.0 / a.max(1e-300)).ln().clamp(-60.0, 60.0);
+        newton_bracketed(h, -60.0, 60.0, x0)
     }
 
     /// The contact state at radius `a` (equations (1t) to (3t)) with its slopes in A and in
@@ -127,7 +109,6 @@ impl Tip {
             m,
             load: q - lambda * a * a * s,
             approach: f - 4.0 / 3.0 * lambda * a * mu,
-            da: 1.0,
             dload: dq - 2.0 * lambda * a * s - lambda * a * a * ds * dmu,
             dapproach: df - 4.0 / 3.0 * lambda * (mu + a * dmu),
             dload_dlambda: -a * a * s - lambda * a * a * ds * dmu_dlambda,
@@ -219,12 +200,7 @@ impl Tip {
     }
 
     /// The stable contact state (under a dead load) at load `p`, if the load is above the
-    /// pull-off.
-    pub fn at_load(&self, p: f64) -> Option<PathPoint> {
-        self.at_load_above(self.stable_from(), p)
-    }
-
-    /// [`Tip::at_load`] with the stable piece's start `t0` known ([`Tip::stable_from`]).
+    /// pull-off, the stable piece starting at `t0` ([`Tip::stable_from`]).
     pub fn at_load_above(&self, t0: f64, p: f64) -> Option<PathPoint> {
         let f = |t: f64| {
             let s = self.state(Piece::Contact, t);
@@ -241,27 +217,7 @@ impl Tip {
                 return None;
             }
         }
-        // Newton's method on the load, kept in the bracket (bisection where it would leave it).
-        let mut t = 0.5 * (lo + hi);
-        for _ in 0..200 {
-            let (r, d) = f(t);
-            if r < 0.0 {
-                lo = t;
-            } else {
-                hi = t;
-            }
-            let newton = t - r / d;
-            let next = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            let done = (next - t).abs() <= 4.0 * f64::EPSILON * t.abs().max(1.0);
-            t = next;
-            if done || hi - lo <= 4.0 * f64::EPSILON * hi.abs().max(1.0) {
-                break;
-            }
-        }
+        let t = newton_bracketed(f, lo, hi, 0.5 * (lo + hi));
         Some(self.point(t))
     }
 }
@@ -297,7 +253,7 @@ impl Law for Tip {
                     a: c.a,
                     dload: a * c.dload,
                     dapproach: a * c.dapproach,
-                    da: a * c.da,
+                    da: a,
                 }
             }
         }
@@ -350,21 +306,9 @@ impl Law for Tip {
         Tip::new(self.shape, self.lambda)?;
         check_drive(drive, max_load)?;
         let n = super::md::CYCLE_POINTS;
-        let c_end = self.zone_end();
-        let mut path: Vec<PathPoint> = (0..n)
-            .map(|i| {
-                let c = c_end * i as f64 / (n - 1) as f64;
-                let p = self.state(Piece::NonContact, c);
-                PathPoint {
-                    branch: Branch::NonContact,
-                    approach: p.approach,
-                    load: p.load,
-                    a: 0.0,
-                    c,
-                }
-            })
-            .collect();
-        let radius_at = |p: f64| self.at_load(p).map_or(f64::NAN, |s| s.a);
+        let mut path = non_contact_path(self, self.zone_end(), n);
+        let t0 = self.stable_from();
+        let radius_at = |p: f64| self.at_load_above(t0, p).map_or(f64::NAN, |s| s.a);
         let a_max = radius_at(max_load);
         let a_mid = a_max.min(radius_at(10.0));
         if !(a_max > 0.0) {

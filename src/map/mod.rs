@@ -332,6 +332,19 @@ pub const MAX_MAP_POINTS: usize = 4096 * 4096;
 pub const LOG_LOAD_MIN: f64 = 1e-15;
 
 impl MapSpec {
+    /// The grid's lambdas (log) and its rows' load coordinates (log but on the linear axis).
+    pub fn axes(&self) -> (Vec<f64>, Vec<f64>) {
+        (
+            axis(self.lambda_min, self.lambda_max, self.nx, true),
+            axis(
+                self.load_min,
+                self.load_max,
+                self.ny,
+                self.load_axis != LoadAxis::Linear,
+            ),
+        )
+    }
+
     /// A spec from JSON (the Python binding's), `load_min` and `load_max` taken from the
     /// axis's [`LoadAxis::default_range`] where absent or null; not yet validated.
     pub fn from_json(json: &str) -> Result<MapSpec, MapError> {
@@ -453,13 +466,7 @@ pub fn compute_with(
     spec.validate()?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
-    let lambdas = axis(spec.lambda_min, spec.lambda_max, nx, true);
-    let rows = axis(
-        spec.load_min,
-        spec.load_max,
-        ny,
-        spec.load_axis != LoadAxis::Linear,
-    );
+    let (lambdas, rows) = spec.axes();
     let ctx = crate::engine::contexts(&lambdas);
     let solve = |rows: &[f64]| match spec.load_axis {
         LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, rows),

@@ -4,7 +4,7 @@
 //! tolerance of the exact Maugis-Dugdale one. Solved on the CPU in f64, column by column (a
 //! power law's map holds for every B: its units absorb it).
 
-use super::{axis, extend_adequate_runs, LoadAxis, MapData, MapError, MapSpec, Points, Region};
+use super::{extend_adequate_runs, LoadAxis, MapData, MapError, MapSpec, Points, Region};
 use crate::law::{Law, Piece, Tip};
 use crate::physics::tip::Shape;
 use crate::solver::Status;
@@ -95,13 +95,7 @@ pub fn compute_tip(spec: &MapSpec, shape: Shape, keep_exact: bool) -> Result<Map
     }
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
-    let lambdas = axis(spec.lambda_min, spec.lambda_max, nx, true);
-    let rows = axis(
-        spec.load_min,
-        spec.load_max,
-        ny,
-        spec.load_axis != LoadAxis::Linear,
-    );
+    let (lambdas, rows) = spec.axes();
     let mut progress = crate::progress::Progress::new("solving", nx as u64, "columns");
     let mut columns: Vec<(f64, Vec<TipPoint>)> = Vec::with_capacity(nx);
     for chunk in lambdas.chunks(16) {

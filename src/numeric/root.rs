@@ -1,5 +1,5 @@
-//! Bracketed root finding: a safeguarded secant iteration that says why it stopped, and
-//! bisection on a sign to the last bit.
+//! Bracketed root finding: a safeguarded secant iteration that says why it stopped, Newton's
+//! method kept in its bracket, and bisection on a sign to the last bit.
 
 /// Why a root search ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -99,6 +99,39 @@ pub fn secant_bracketed(
         iterations: max_iter,
         stop: Stop::MaxIterations,
     }
+}
+
+/// The root of an increasing `f` in `[lo, hi]` (`f(lo) < 0 <= f(hi)`) by Newton's method from
+/// `x0`, `f` giving the value and the slope: each step narrows the bracket, and a step that
+/// would leave it is a bisection. Stops when a step, or the bracket, is within 4 ulp.
+pub fn newton_bracketed(
+    mut f: impl FnMut(f64) -> (f64, f64),
+    mut lo: f64,
+    mut hi: f64,
+    x0: f64,
+) -> f64 {
+    let close =
+        |a: f64, b: f64, scale: f64| (a - b).abs() <= 4.0 * f64::EPSILON * scale.abs().max(1.0);
+    let mut x = x0;
+    for _ in 0..200 {
+        let (r, d) = f(x);
+        if r < 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - r / d;
+        let next = if newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if close(next, x, x) || close(hi, lo, hi) {
+            return next;
+        }
+        x = next;
+    }
+    x
 }
 
 /// Bisection on the sign of `s(x)`, with `s(lo) < 0 < s(hi)`, to the last representable bit.

@@ -26,7 +26,7 @@ pub enum ParamError {
     Domain(#[from] super::domain::DomainError),
 }
 
-fn check(
+pub(crate) fn check(
     field: &'static str,
     value: f64,
     ok: bool,

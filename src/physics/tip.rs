@@ -2,6 +2,7 @@
 //! Maugis-Dugdale gap integral over the zone, in the shape's normalised units; and the SI
 //! description of a tip (sphere, power law, cone, pyramid, capped cone) with its units.
 
+use super::params::{check, ParamError};
 use crate::numeric::legendre::{gauss_legendre, Order};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -129,9 +130,9 @@ impl Shape {
             Shape::CappedCone { .. } => {
                 let b = self.joint().unwrap_or(f64::INFINITY);
                 let g = |t: f64| t * self.abel(t).1;
-                let mut q = integrate(&g, 0.0, a.min(b), false);
+                let mut q = integrate(&g, 0.0, a.min(b), Ends::Smooth);
                 if a > b {
-                    q += integrate(&g, b, a, true);
+                    q += integrate(&g, b, a, Ends::SqrtAtLo);
                 }
                 (1.5 * q, slope)
             }
@@ -167,10 +168,10 @@ impl Shape {
                     // The joint inside the zone: the cone side [0, phi_b] has T - b ~ (phi_b - phi).
                     Some(b) if a < b && b < c => {
                         let phi_b = (b / c).acos();
-                        add_reversed(&at, 0.0, phi_b, &mut sum);
-                        add_plain(&at, phi_b, phi1, &mut sum);
+                        accumulate(&at, 0.0, phi_b, Ends::SqrtAtHi, &mut sum);
+                        accumulate(&at, phi_b, phi1, Ends::Smooth, &mut sum);
                     }
-                    _ => add_plain(&at, 0.0, phi1, &mut sum),
+                    _ => accumulate(&at, 0.0, phi1, Ends::Smooth, &mut sum),
                 }
                 (sum[0], sum[1], a * mu / m * sum[2])
             }
@@ -191,42 +192,44 @@ fn power_gap(n: f64, m: f64, phi1: f64) -> (f64, f64) {
     (j * phi1, i * phi1)
 }
 
-/// `int_lo^hi g`, by the rule; `smooth_at_lo`: the integrand goes like sqrt(t - lo) near lo, so
-/// t = lo + (hi - lo) s^2 first.
-fn integrate(g: &dyn Fn(f64) -> f64, lo: f64, hi: f64, smooth_at_lo: bool) -> f64 {
-    let h = hi - lo;
-    rule()
-        .iter()
-        .map(|&(s, w)| {
-            if smooth_at_lo {
-                w * g(lo + h * s * s) * 2.0 * s * h
-            } else {
-                w * g(lo + h * s) * h
-            }
-        })
-        .sum()
+/// Where an integrand goes like the square root of the distance to an end of its range.
+#[derive(Clone, Copy)]
+enum Ends {
+    /// Smooth at both ends: t = lo + (hi - lo) s.
+    Smooth,
+    /// Like sqrt(t - lo) near lo: t = lo + (hi - lo) s^2.
+    SqrtAtLo,
+    /// Like sqrt(hi - t) near hi: t = hi - (hi - lo) s^2.
+    SqrtAtHi,
 }
 
-/// Adds `int_lo^hi g` for three integrands at once.
-fn add_plain(g: &dyn Fn(f64) -> [f64; 3], lo: f64, hi: f64, sum: &mut [f64; 3]) {
+/// Adds `int_lo^hi g` (N integrands at once) to `sum`, by the rule after the substitution that
+/// makes the integrand smooth at its ends.
+fn accumulate<const N: usize>(
+    g: &dyn Fn(f64) -> [f64; N],
+    lo: f64,
+    hi: f64,
+    ends: Ends,
+    sum: &mut [f64; N],
+) {
     let h = hi - lo;
     for &(s, w) in rule() {
-        let v = g(lo + h * s);
-        for k in 0..3 {
-            sum[k] += w * v[k] * h;
+        let (v, scale) = match ends {
+            Ends::Smooth => (g(lo + h * s), h),
+            Ends::SqrtAtLo => (g(lo + h * s * s), 2.0 * s * h),
+            Ends::SqrtAtHi => (g(hi - h * s * s), 2.0 * s * h),
+        };
+        for k in 0..N {
+            sum[k] += w * v[k] * scale;
         }
     }
 }
 
-/// Adds `int_lo^hi g` where g goes like sqrt(hi - t) near hi (phi = hi - (hi - lo) s^2).
-fn add_reversed(g: &dyn Fn(f64) -> [f64; 3], lo: f64, hi: f64, sum: &mut [f64; 3]) {
-    let h = hi - lo;
-    for &(s, w) in rule() {
-        let v = g(hi - h * s * s);
-        for k in 0..3 {
-            sum[k] += w * v[k] * 2.0 * s * h;
-        }
-    }
+/// `int_lo^hi g` for one integrand.
+fn integrate(g: &dyn Fn(f64) -> f64, lo: f64, hi: f64, ends: Ends) -> f64 {
+    let mut sum = [0.0];
+    accumulate(&|t| [g(t)], lo, hi, ends, &mut sum);
+    sum[0]
 }
 
 /// The radius where `q(A)` rises through `target` above `from`, by bisection (q increasing).
@@ -337,47 +340,26 @@ pub struct TipUnits {
     pub lambda: f64,
 }
 
-/// Why a tip could not be had: the quantity, its value and what to give.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("tip {name} = {value}: {hint}")]
-pub struct TipError {
-    /// The quantity.
-    pub name: &'static str,
-    /// Its value.
-    pub value: f64,
-    /// What to give instead.
-    pub hint: &'static str,
+/// A half-angle in degrees, checked (axis to flank, between 0 and 90).
+fn half_angle(field: &'static str, deg: f64) -> Result<f64, ParamError> {
+    check(
+        field,
+        deg,
+        deg > 0.0 && deg < 90.0,
+        "between 0 and 90 degrees (axis to flank)",
+    )
 }
 
-fn check(name: &'static str, value: f64, ok: bool, hint: &'static str) -> Result<f64, TipError> {
-    if ok && value.is_finite() {
-        Ok(value)
-    } else {
-        Err(TipError { name, value, hint })
-    }
+/// A radius in metres, checked.
+fn radius(radius_m: f64) -> Result<f64, ParamError> {
+    check("radius_m", radius_m, radius_m > 0.0, "positive (m)")
 }
 
 impl TipInput {
     /// The power law `(n, B)` the tip is, or the capped cone's (R, theta in radians).
-    fn power(&self) -> Result<Option<(f64, f64)>, TipError> {
-        let angle = |deg: f64| {
-            check(
-                "half_angle_deg",
-                deg,
-                deg > 0.0 && deg < 90.0,
-                "give an angle between 0 and 90 degrees (axis to flank)",
-            )
-        };
+    fn power(&self) -> Result<Option<(f64, f64)>, ParamError> {
         Ok(match *self {
-            TipInput::Sphere { radius_m } => {
-                let r = check(
-                    "radius_m",
-                    radius_m,
-                    radius_m > 0.0,
-                    "give a positive radius",
-                )?;
-                Some((2.0, 0.5 / r))
-            }
+            TipInput::Sphere { radius_m } => Some((2.0, 0.5 / radius(radius_m)?)),
             TipInput::Power {
                 exponent,
                 coefficient,
@@ -386,33 +368,36 @@ impl TipInput {
                     "exponent",
                     exponent,
                     (1.0..=8.0).contains(&exponent),
-                    "give an exponent from 1 (a cone) to 8",
+                    "from 1 (a cone) to 8",
                 )?;
                 let b = check(
                     "coefficient",
                     coefficient,
                     coefficient > 0.0,
-                    "give a positive B (m^(1-n))",
+                    "positive (B in m^(1-n))",
                 )?;
                 Some((n, b))
             }
-            TipInput::Cone { half_angle_deg } => {
-                Some((1.0, 1.0 / angle(half_angle_deg)?.to_radians().tan()))
-            }
+            TipInput::Cone { half_angle_deg } => Some((
+                1.0,
+                1.0 / half_angle("half_angle_deg", half_angle_deg)?
+                    .to_radians()
+                    .tan(),
+            )),
             TipInput::Pyramid {
                 faces,
                 face_angle_deg,
             } => {
-                if !(3..=64).contains(&faces) {
-                    return Err(TipError {
-                        name: "faces",
-                        value: faces as f64,
-                        hint: "give 3 (Berkovich) or more faces",
-                    });
-                }
-                let n = faces as f64;
-                let tan =
-                    angle(face_angle_deg)?.to_radians().tan() * (n * (PI / n).tan() / PI).sqrt();
+                let n = check(
+                    "faces",
+                    faces as f64,
+                    (3..=64).contains(&faces),
+                    "from 3 (Berkovich) to 64",
+                )?;
+                let tan = half_angle("face_angle_deg", face_angle_deg)?
+                    .to_radians()
+                    .tan()
+                    * (n * (PI / n).tan() / PI).sqrt();
                 Some((1.0, 1.0 / tan))
             }
             TipInput::CappedCone { .. } => None,
@@ -433,7 +418,7 @@ impl TipInput {
 
     /// The tip's units for the reduced modulus `e_star`, the work of adhesion `w` and the
     /// Dugdale stress `s0` (SI; checked by the caller).
-    pub fn units(&self, e_star: f64, w: f64, s0: f64) -> Result<TipUnits, TipError> {
+    pub fn units(&self, e_star: f64, w: f64, s0: f64) -> Result<TipUnits, ParamError> {
         let (shape, l, d) = match (self.power()?, *self) {
             (Some((n, b)), _) => {
                 let kb = k_n(n) * b;
@@ -447,19 +432,8 @@ impl TipInput {
                     half_angle_deg,
                 },
             ) => {
-                let r = check(
-                    "radius_m",
-                    radius_m,
-                    radius_m > 0.0,
-                    "give a positive radius",
-                )?;
-                let theta = check(
-                    "half_angle_deg",
-                    half_angle_deg,
-                    half_angle_deg > 0.0 && half_angle_deg < 90.0,
-                    "give an angle between 0 and 90 degrees (axis to flank)",
-                )?
-                .to_radians();
+                let r = radius(radius_m)?;
+                let theta = half_angle("half_angle_deg", half_angle_deg)?.to_radians();
                 let l = (3.0 * PI * w * r * r / (4.0 * e_star)).cbrt();
                 (
                     Shape::CappedCone {

@@ -112,12 +112,7 @@ fn materials(s: &SceneInput) -> Result<(f64, f64, f64), ParamError> {
 pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult, ParamError> {
     let (e_star, w, s0) = materials(s)?;
     let tol = checked_tolerance(s)?;
-    let bad_tip = |e: crate::physics::tip::TipError| ParamError::OutOfRange {
-        field: e.name,
-        value: e.value,
-        allowed: e.hint,
-    };
-    let u = tip.units(e_star, w, s0).map_err(bad_tip)?;
+    let u = tip.units(e_star, w, s0)?;
     let law = Tip::new(u.shape, u.lambda).map_err(|_| ParamError::OutOfRange {
         field: "the tip's Maugis parameter lambda of these inputs",
         value: u.lambda,
@@ -126,75 +121,11 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
     let dead = law.pulloff_state(Drive::DeadLoad);
     let grips = law.pulloff_state(Drive::RigidGrips);
     let f0 = u.shape.rigid_force(u.lambda);
+    // The stable piece's start, found once for every load.
+    let t0 = law.stable_from();
     let loads = scene_loads(s)?
         .into_iter()
-        .map(|p| {
-            if !p.is_finite() {
-                return Err(ParamError::OutOfRange {
-                    field: "loads_n",
-                    value: p,
-                    allowed: "finite (N)",
-                });
-            }
-            let pn = p / u.force_n;
-            let state = law.at_load(pn);
-            let radii = u.shape.closed_radii(pn, f0);
-            Ok(match state {
-                None => TipLoadResult {
-                    load_n: p,
-                    load_normalised: pn,
-                    status: Status::NoContact,
-                    contact_radius_m: None,
-                    zone_radius_m: None,
-                    approach_m: None,
-                    err_hertz: None,
-                    err_dmt: None,
-                    err_jkr: None,
-                    model: "none",
-                    why: "the load is below the pull-off: no contact".into(),
-                },
-                Some(st) => {
-                    let err = |x: f64| (x.is_finite()).then(|| (x / st.a - 1.0).abs());
-                    let errs = radii.map(err);
-                    let names = ["hertz", "dmt", "jkr"];
-                    let first = errs.iter().position(|e| e.is_some_and(|e| e <= tol));
-                    let pct = |e: Option<f64>| e.map_or("none".into(), |e| format!("{:.1}%", 100.0 * e));
-                    let (model, why) = match first {
-                        Some(i) => (
-                            names[i],
-                            format!(
-                                "the {}-type radius is within {} ({})",
-                                ["Sneddon (Hertz)", "DMT", "JKR"][i],
-                                pct(Some(tol)),
-                                pct(errs[i])
-                            ),
-                        ),
-                        None => (
-                            "md",
-                            format!(
-                                "no closed form is within {}: DMT-type off by {}, JKR-type off by {}",
-                                pct(Some(tol)),
-                                pct(errs[1]),
-                                pct(errs[2])
-                            ),
-                        ),
-                    };
-                    TipLoadResult {
-                        load_n: p,
-                        load_normalised: pn,
-                        status: Status::Ok,
-                        contact_radius_m: Some(st.a * u.length_m),
-                        zone_radius_m: Some(st.c * u.length_m),
-                        approach_m: Some(st.approach * u.approach_m),
-                        err_hertz: errs[0],
-                        err_dmt: errs[1],
-                        err_jkr: errs[2],
-                        model,
-                        why,
-                    }
-                }
-            })
-        })
+        .map(|p| load_result(&law, t0, &u, f0, tol, p))
         .collect::<Result<Vec<_>, _>>()?;
     let order = ["hertz", "dmt", "jkr", "md"];
     let recommended_model = loads
@@ -220,6 +151,84 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         loads,
         warnings: tip_warnings(tip),
         source: s.source.clone(),
+    })
+}
+
+/// The state of a tip scene at load `p` (N): the stable state above `t0`
+/// ([`Tip::stable_from`]), its radii in metres, and the simplest of the shape's closed forms
+/// (force `f0` of the rigid tip) within `tol`.
+fn load_result(
+    law: &Tip,
+    t0: f64,
+    u: &TipUnits,
+    f0: f64,
+    tol: f64,
+    p: f64,
+) -> Result<TipLoadResult, ParamError> {
+    if !p.is_finite() {
+        return Err(ParamError::OutOfRange {
+            field: "loads_n",
+            value: p,
+            allowed: "finite (N)",
+        });
+    }
+    let pn = p / u.force_n;
+    let state = law.at_load_above(t0, pn);
+    let radii = u.shape.closed_radii(pn, f0);
+    Ok(match state {
+        None => TipLoadResult {
+            load_n: p,
+            load_normalised: pn,
+            status: Status::NoContact,
+            contact_radius_m: None,
+            zone_radius_m: None,
+            approach_m: None,
+            err_hertz: None,
+            err_dmt: None,
+            err_jkr: None,
+            model: "none",
+            why: "the load is below the pull-off: no contact".into(),
+        },
+        Some(st) => {
+            let err = |x: f64| (x.is_finite()).then(|| (x / st.a - 1.0).abs());
+            let errs = radii.map(err);
+            let names = ["hertz", "dmt", "jkr"];
+            let first = errs.iter().position(|e| e.is_some_and(|e| e <= tol));
+            let pct = |e: Option<f64>| e.map_or("none".into(), |e| format!("{:.1}%", 100.0 * e));
+            let (model, why) = match first {
+                Some(i) => (
+                    names[i],
+                    format!(
+                        "the {}-type radius is within {} ({})",
+                        ["Sneddon (Hertz)", "DMT", "JKR"][i],
+                        pct(Some(tol)),
+                        pct(errs[i])
+                    ),
+                ),
+                None => (
+                    "md",
+                    format!(
+                        "no closed form is within {}: DMT-type off by {}, JKR-type off by {}",
+                        pct(Some(tol)),
+                        pct(errs[1]),
+                        pct(errs[2])
+                    ),
+                ),
+            };
+            TipLoadResult {
+                load_n: p,
+                load_normalised: pn,
+                status: Status::Ok,
+                contact_radius_m: Some(st.a * u.length_m),
+                zone_radius_m: Some(st.c * u.length_m),
+                approach_m: Some(st.approach * u.approach_m),
+                err_hertz: errs[0],
+                err_dmt: errs[1],
+                err_jkr: errs[2],
+                model,
+                why,
+            }
+        }
     })
 }
 
