@@ -292,3 +292,80 @@ fn a_cones_cycle_from_the_command_line() {
     let e = String::from_utf8_lossy(&bad.stderr);
     assert!(!bad.status.success() && e.contains("--tip wedge"), "{e}");
 }
+
+/// `tabor solve --tip`: `power:2` gives `tabor solve`'s Maugis-Dugdale states (another code
+/// path) at a load, an approach and a radius; a table gives the single states' bytes; below a
+/// pull-off the status is `no_contact` with no numbers.
+#[test]
+fn tip_states_from_the_command_line() {
+    let run = |args: &[&str], stdin: Option<&str>| {
+        use std::io::Write;
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+            .args(args)
+            .stdin(std::process::Stdio::piped())
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        let mut input = child.stdin.take().unwrap();
+        input.write_all(stdin.unwrap_or("").as_bytes()).unwrap();
+        drop(input);
+        let out = child.wait_with_output().unwrap();
+        assert!(
+            out.status.success(),
+            "{args:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let json = |args: &[&str]| -> serde_json::Value {
+        let mut all = args.to_vec();
+        all.extend(["--format", "json"]);
+        serde_json::from_str(&run(&all, None)).unwrap()
+    };
+    for (flag, value) in [
+        ("--load", "0.5"),
+        ("--approach", "0.3"),
+        ("--radius-a", "0.7"),
+    ] {
+        for lambda in ["0.3", "1", "5"] {
+            let tip = json(&["solve", "--tip", "power:2", "--lambda", lambda, flag, value]);
+            let md = json(&["solve", "--lambda", lambda, flag, value]);
+            let (t, m) = (&tip["results"][0], &md["results"][0]);
+            assert_eq!(t["status"], "ok", "{flag} {value} lambda {lambda}: {t}");
+            for (a, b) in [("load", "load"), ("approach", "approach"), ("A", "A")] {
+                let (x, y) = (t[a].as_f64().unwrap(), m[b].as_f64().unwrap());
+                assert!(
+                    (x - y).abs() <= 1e-12 * y.abs().max(1.0),
+                    "{flag} {value} lambda {lambda}: {a} {x} against {y}"
+                );
+            }
+        }
+    }
+    let none = json(&["solve", "--tip", "cone", "--lambda", "1", "--load", "-50"]);
+    assert_eq!(none["results"][0]["status"], "no_contact");
+    assert!(none["results"][0]["A"].is_null(), "{none}");
+    let one = |load: &str| {
+        run(
+            &[
+                "solve",
+                "--tip",
+                "capped-cone:1:20",
+                "--lambda",
+                "2",
+                "--load",
+                load,
+                "--format",
+                "csv",
+            ],
+            None,
+        )
+    };
+    let table = run(
+        &["solve", "--tip", "capped-cone:1:20", "--input", "-"],
+        Some("lambda,load\n2,0.5\n2,-50\n"),
+    );
+    let (a, b) = (one("0.5"), one("-50"));
+    let expect = format!("{}{}", a, b.lines().nth(1).unwrap().to_string() + "\n");
+    assert_eq!(table, expect);
+}

@@ -46,6 +46,11 @@ pub struct SolveArgs {
     /// The second zone's range over the solid's, h2/h1.
     #[arg(long)]
     pub range_ratio: Option<f64>,
+    /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
+    /// parameter and the load, approach and radii in its units, on the CPU: cone, power:N or
+    /// capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    #[arg(long, conflicts_with_all = ["stress_ratio", "range_ratio"])]
+    pub tip: Option<String>,
     /// Output format (default: text for one state, csv for a file).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
@@ -156,14 +161,14 @@ pub enum Given {
 }
 
 impl Given {
-    fn flag(self) -> &'static str {
+    pub(super) fn flag(self) -> &'static str {
         match self {
             Given::Load => "--load",
             Given::Displacement => "--approach",
             Given::Radius => "--radius-a",
         }
     }
-    fn name(self) -> &'static str {
+    pub(super) fn name(self) -> &'static str {
         match self {
             Given::Load => "load",
             Given::Displacement => "displacement",
@@ -174,6 +179,9 @@ impl Given {
 
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     let ratios = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
+    if let Some(tip) = &a.tip {
+        return super::tip::solve(&a, super::tip_shape(tip)?);
+    }
     if let Some(input) = &a.input {
         if let Some((rho, eta)) = ratios {
             return solve_two_zone_file(&a, input, (rho, eta));
@@ -563,7 +571,7 @@ fn radius_text(ctx: &LambdaContext, s: &crate::solver::RadiusState) -> String {
 
 /// A CSV or JSON table of results written as it is computed: the header (or the JSON opening),
 /// chunks of rows, then the JSON metadata and the commit. Memory stays one chunk.
-struct StreamTable {
+pub(super) struct StreamTable {
     out: Output,
     shown: String,
     json: bool,
@@ -571,7 +579,11 @@ struct StreamTable {
 }
 
 impl StreamTable {
-    fn start(out: Output, format: Format, header: &[&str]) -> anyhow::Result<StreamTable> {
+    pub(super) fn start(
+        out: Output,
+        format: Format,
+        header: &[&str],
+    ) -> anyhow::Result<StreamTable> {
         let shown = out.name().display().to_string();
         let mut t = StreamTable {
             out,
@@ -598,7 +610,7 @@ impl StreamTable {
 
     /// One chunk of rows: each item as a JSON object or as CSV fields, formatted on all cores
     /// (in slices, joined in order: the same bytes as one writer would give).
-    fn rows<T: Sync>(
+    pub(super) fn rows<T: Sync>(
         &mut self,
         items: &[T],
         json: impl Fn(&T) -> serde_json::Value + Sync,
@@ -642,7 +654,7 @@ impl StreamTable {
     }
 
     /// Closes the JSON with `metadata` (built from the row count), and puts the output in place.
-    fn finish(
+    pub(super) fn finish(
         mut self,
         metadata: impl FnOnce(usize) -> anyhow::Result<serde_json::Value>,
     ) -> anyhow::Result<()> {

@@ -9,6 +9,7 @@ mod profile;
 mod rough;
 mod rough_map;
 pub(crate) mod scene;
+mod tip;
 
 use clap::{Parser, Subcommand, ValueEnum};
 

@@ -35,6 +35,10 @@ struct Contact {
     approach: f64,
     dload: f64,
     dapproach: f64,
+    /// The sizes of the terms the slopes are differences of: their rounding is ~1e-16 of
+    /// these (near A = 0 the terms grow like 1/A while the slopes fall).
+    dload_terms: f64,
+    dapproach_terms: f64,
     dload_dlambda: f64,
     dapproach_dlambda: f64,
 }
@@ -111,6 +115,8 @@ impl Tip {
             approach: f - 4.0 / 3.0 * lambda * a * mu,
             dload: dq - 2.0 * lambda * a * s - lambda * a * a * ds * dmu,
             dapproach: df - 4.0 / 3.0 * lambda * (mu + a * dmu),
+            dload_terms: dq.abs() + 2.0 * lambda * a * s.abs() + (lambda * a * a * ds * dmu).abs(),
+            dapproach_terms: df.abs() + 4.0 / 3.0 * lambda * (mu.abs() + (a * dmu).abs()),
             dload_dlambda: -a * a * s - lambda * a * a * ds * dmu_dlambda,
             dapproach_dlambda: -4.0 / 3.0 * a * (mu + lambda * dmu_dlambda),
         }
@@ -142,13 +148,17 @@ impl Tip {
         }
     }
 
-    /// The control's slope along the contact piece under `drive`.
-    fn control_slope(&self, drive: Drive, t: f64) -> f64 {
-        let p = self.state(Piece::Contact, t);
+    /// The control's slope along the contact piece under `drive` (per unit A), and the size of
+    /// the terms it is a difference of.
+    fn control_slope(&self, drive: Drive, t: f64) -> (f64, f64) {
+        let c = self.contact_at(t.exp());
         match drive {
-            Drive::RigidGrips => p.dapproach,
-            Drive::DeadLoad => p.dload,
-            Drive::Spring(k) => p.dapproach + p.dload / k,
+            Drive::RigidGrips => (c.dapproach, c.dapproach_terms),
+            Drive::DeadLoad => (c.dload, c.dload_terms),
+            Drive::Spring(k) => (
+                c.dapproach + c.dload / k,
+                c.dapproach_terms + c.dload_terms / k.abs(),
+            ),
         }
     }
 
@@ -162,8 +172,11 @@ impl Tip {
         let mut above = t1;
         for i in (0..n).rev() {
             let t = t0 + (t1 - t0) * i as f64 / n as f64;
-            if self.control_slope(drive, t) <= 0.0 {
-                return Some(bisect_sign(|t| self.control_slope(drive, t), t, above));
+            // A fold only where the slope falls clearly below zero: near A = 0 a rising
+            // control's slope tends to zero under a rounding noise that can cross it.
+            let (slope, terms) = self.control_slope(drive, t);
+            if slope <= -1e-13 * terms {
+                return Some(bisect_sign(|t| self.control_slope(drive, t).0, t, above));
             }
             above = t;
         }
@@ -192,19 +205,24 @@ impl Tip {
         }
     }
 
-    /// Where the contact piece is stable under a dead load: from the dead-load fold up, or
-    /// all of it where the load rises from the A -> 0 end on.
-    pub fn stable_from(&self) -> f64 {
-        self.extreme(Drive::DeadLoad)
+    /// Where the contact piece is stable under `drive` (a dead load or rigid grips): from its
+    /// fold up, or all of it where the control rises from the A -> 0 end on.
+    pub fn stable_from(&self, drive: Drive) -> f64 {
+        self.extreme(drive)
             .unwrap_or_else(|| self.t_of_radius(A_START))
     }
 
-    /// The stable contact state (under a dead load) at load `p`, if the load is above the
-    /// pull-off, the stable piece starting at `t0` ([`Tip::stable_from`]).
-    pub fn at_load_above(&self, t0: f64, p: f64) -> Option<PathPoint> {
+    /// The contact state stable under `drive` at `value` of its control (the load under a dead
+    /// load, the approach under rigid grips), the stable piece starting at `t0`
+    /// ([`Tip::stable_from`]); None below the control's pull-off (no contact) or beyond
+    /// A = e^60.
+    pub fn stable_at(&self, drive: Drive, t0: f64, value: f64) -> Option<PathPoint> {
         let f = |t: f64| {
             let s = self.state(Piece::Contact, t);
-            (s.load - p, s.dload)
+            match drive {
+                Drive::RigidGrips => (s.approach - value, s.dapproach),
+                _ => (s.load - value, s.dload),
+            }
         };
         if !(f(t0).0 <= 0.0) {
             return None;
@@ -219,6 +237,22 @@ impl Tip {
         }
         let t = newton_bracketed(f, lo, hi, 0.5 * (lo + hi));
         Some(self.point(t))
+    }
+
+    /// The state stable under `drive` at `value` of its control ([`Tip::stable_at`] from that
+    /// drive's fold).
+    pub fn state_under(&self, drive: Drive, value: f64) -> Option<PathPoint> {
+        self.stable_at(drive, self.stable_from(drive), value)
+    }
+
+    /// The stable state under a dead load `p` ([`Tip::stable_at`]).
+    pub fn at_load_above(&self, t0: f64, p: f64) -> Option<PathPoint> {
+        self.stable_at(Drive::DeadLoad, t0, p)
+    }
+
+    /// Whether the contact piece at radius `a` is stable under `drive` (its control rises).
+    pub fn stable_under(&self, drive: Drive, a: f64) -> bool {
+        self.control_slope(drive, self.t_of_radius(a)).0 > 0.0
     }
 }
 
@@ -307,7 +341,7 @@ impl Law for Tip {
         check_drive(drive, max_load)?;
         let n = super::md::CYCLE_POINTS;
         let mut path = non_contact_path(self, self.zone_end(), n);
-        let t0 = self.stable_from();
+        let t0 = self.stable_from(Drive::DeadLoad);
         let radius_at = |p: f64| self.at_load_above(t0, p).map_or(f64::NAN, |s| s.a);
         let a_max = radius_at(max_load);
         let a_mid = a_max.min(radius_at(10.0));
@@ -337,7 +371,7 @@ impl Law for Tip {
         if !matches!(drive, Drive::Spring(_)) {
             return self.extreme(drive).map(|t| self.point(t));
         }
-        let slope = |t: f64| self.control_slope(drive, t);
+        let slope = |t: f64| self.control_slope(drive, t).0;
         let h = 0.01;
         let k0 = (self.t_of_radius(near.a) / h).floor() as i64;
         for d in 0..400 {

@@ -5,7 +5,7 @@
 //! power law's map holds for every B: its units absorb it).
 
 use super::{extend_adequate_runs, LoadAxis, MapData, MapError, MapSpec, Points, Region};
-use crate::law::{Law, Piece, Tip};
+use crate::law::{Drive, Law, Piece, Tip};
 use crate::physics::tip::Shape;
 use crate::solver::Status;
 use rayon::prelude::*;
@@ -40,7 +40,7 @@ fn column(shape: Shape, lambda: f64, spec: &MapSpec, rows: &[f64]) -> (f64, Vec<
     let Ok(law) = Tip::new(shape, lambda) else {
         return (f64::NAN, Vec::new());
     };
-    let t0 = law.stable_from();
+    let t0 = law.stable_from(Drive::DeadLoad);
     let pulloff = law.state(Piece::Contact, t0).load;
     let f0 = shape.rigid_force(lambda);
     let points = rows

@@ -42,8 +42,8 @@ impl Shape {
     /// The shape's name (a figure's title).
     pub fn name(&self) -> &'static str {
         match *self {
-            Shape::Power { exponent } if exponent == 1.0 => "a cone",
-            Shape::Power { exponent } if exponent == 2.0 => "a sphere",
+            Shape::Power { exponent: 1.0 } => "a cone",
+            Shape::Power { exponent: 2.0 } => "a sphere",
             Shape::Power { .. } => "a power-law tip",
             Shape::CappedCone { .. } => "a capped cone",
         }
@@ -52,7 +52,7 @@ impl Shape {
     /// The shape in a sentence (a figure's caption).
     pub fn describe(&self) -> String {
         match *self {
-            Shape::Power { exponent } if exponent == 1.0 => {
+            Shape::Power { exponent: 1.0 } => {
                 "A cone f = r cot α; its map holds for every half-angle α (its units absorb cot α)".into()
             }
             Shape::Power { exponent } => format!(
@@ -171,6 +171,13 @@ impl Shape {
                         accumulate(&at, 0.0, phi_b, Ends::SqrtAtHi, &mut sum);
                         accumulate(&at, phi_b, phi1, Ends::Smooth, &mut sum);
                     }
+                    // The joint inside the contact: the integrand (on the cone, T > A) has its
+                    // branch point T = b just beyond phi1, at phi_b = acos(b/C).
+                    Some(b) if b <= a => {
+                        let beyond = (b / c).acos() - phi1;
+                        accumulate_before(&at, 0.0, phi1, beyond, &mut sum)
+                    }
+                    // The zone on the cap: the sphere's F, analytic on [A, C].
                     _ => accumulate(&at, 0.0, phi1, Ends::Smooth, &mut sum),
                 }
                 (sum[0], sum[1], a * mu / m * sum[2])
@@ -222,6 +229,26 @@ fn accumulate<const N: usize>(
         for k in 0..N {
             sum[k] += w * v[k] * scale;
         }
+    }
+}
+
+/// Adds `int_lo^hi g` to `sum` where g is singular a distance `beyond` past `hi`: on panels
+/// growing geometrically from `hi`, each four times as wide as its distance from the singular
+/// point, so that the rule converges on each as on a smooth integrand.
+fn accumulate_before<const N: usize>(
+    g: &dyn Fn(f64) -> [f64; N],
+    lo: f64,
+    hi: f64,
+    beyond: f64,
+    sum: &mut [f64; N],
+) {
+    // (At least 1e-15 of the range: the panels must shrink no further than rounding.)
+    let (mut right, mut dist) = (hi, beyond.max(1e-15 * (hi - lo)));
+    while right > lo {
+        let left = (right - 4.0 * dist).max(lo);
+        accumulate(g, left, right, Ends::Smooth, sum);
+        dist += right - left;
+        right = left;
     }
 }
 

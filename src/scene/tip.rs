@@ -122,7 +122,7 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
     let grips = law.pulloff_state(Drive::RigidGrips);
     let f0 = u.shape.rigid_force(u.lambda);
     // The stable piece's start, found once for every load.
-    let t0 = law.stable_from();
+    let t0 = law.stable_from(Drive::DeadLoad);
     let loads = scene_loads(s)?
         .into_iter()
         .map(|p| load_result(&law, t0, &u, f0, tol, p))
