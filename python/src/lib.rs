@@ -403,6 +403,72 @@ fn solve_radius<'py>(
     Ok(d)
 }
 
+/// States of a tip's law (`tabor solve --tip`): per row the state given by the load, the
+/// approach or the contact radius, in the tip's units, on all cores chunk by chunk.
+#[pyfunction]
+fn solve_tip<'py>(
+    py: Python<'py>,
+    tip: &str,
+    lam: PyReadonlyArray1<'py, f64>,
+    value: PyReadonlyArray1<'py, f64>,
+    given: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tabor::law::tip::{self, Given};
+    let shape: tabor::physics::tip::Shape = tip.parse().map_err(PyValueError::new_err)?;
+    let given = match given {
+        "load" => Given::Load,
+        "approach" => Given::Approach,
+        "radius" => Given::Radius,
+        g => return Err(PyValueError::new_err(format!("given = {g:?}"))),
+    };
+    let (lam, value) = (lam.as_slice()?, value.as_slice()?);
+    let n = lam.len().min(value.len());
+    let outs: [Bound<'py, PyArray1<f64>>; 4] =
+        std::array::from_fn(|_| PyArray1::<f64>::zeros(py, n, false));
+    let out_code = PyArray1::<u8>::zeros(py, n, false);
+    // SAFETY: the arrays were just created here and no other reference to them exists yet.
+    let (mut cols, sc) = unsafe {
+        (
+            outs.iter()
+                .map(|o| o.as_slice_mut())
+                .collect::<Result<Vec<_>, _>>()?,
+            out_code.as_slice_mut()?,
+        )
+    };
+    let mut start = 0;
+    while start < n {
+        let end = (start + CHUNK).min(n);
+        let r = start..end;
+        let (lam, value) = (&lam[r.clone()], &value[r.clone()]);
+        let mut parts: Vec<&mut [f64]> = cols.iter_mut().map(|c| &mut c[r.clone()]).collect();
+        let code = &mut sc[r];
+        run_here(py, move || {
+            use rayon::prelude::*;
+            let states: Vec<_> = lam
+                .par_iter()
+                .zip(value)
+                .map(|(&l, &v)| tip::solve(shape, l, given, v))
+                .collect();
+            for (i, (status, p)) in states.into_iter().enumerate() {
+                let v = p.map_or([f64::NAN; 4], |p| [p.load, p.approach, p.a, p.c]);
+                for (k, part) in parts.iter_mut().enumerate() {
+                    part[i] = v[k];
+                }
+                code[i] = status as u8;
+            }
+            Ok(())
+        })?;
+        py.check_signals()?;
+        start = end;
+    }
+    let d = PyDict::new(py);
+    for (name, o) in ["load", "approach", "A", "C"].into_iter().zip(outs) {
+        d.set_item(name, o)?;
+    }
+    d.set_item("status_code", out_code)?;
+    Ok(d)
+}
+
 /// Per lambda, how `solve` answers a load or an approach (`tabor::physics::domain::method`):
 /// 1 the exact solver, 2 the DMT limit, 3 the JKR limit, 0 none.
 #[pyfunction]
@@ -724,7 +790,7 @@ fn fit_curves<'py>(
 /// An approach-retract cycle: drive "grips", "dead_load" or "spring" (with `stiffness`); with
 /// `stress_ratio` and `range_ratio`, of the solid plus a second zone (a meniscus).
 #[pyfunction]
-#[pyo3(signature = (lam, drive, stiffness, max_load, stress_ratio=None, range_ratio=None))]
+#[pyo3(signature = (lam, drive, stiffness, max_load, stress_ratio=None, range_ratio=None, tip=None))]
 fn cycle<'py>(
     py: Python<'py>,
     lam: f64,
@@ -733,6 +799,7 @@ fn cycle<'py>(
     max_load: f64,
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
+    tip: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
     use tabor::cycle::Drive;
     let drive = match (drive, stiffness) {
@@ -751,8 +818,23 @@ fn cycle<'py>(
             )))
         }
     };
-    let law =
-        tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?;
+    let law = match tip {
+        Some(t) => {
+            if stress_ratio.is_some() || range_ratio.is_some() {
+                return Err(PyValueError::new_err(
+                    "tip= has no second zone: leave stress_ratio and range_ratio out",
+                ));
+            }
+            let shape = t.parse().map_err(PyValueError::new_err)?;
+            tabor::ContactLaw::Tip(
+                tabor::law::Tip::new(shape, lam)
+                    .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
+            )
+        }
+        None => {
+            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?
+        }
+    };
     let spec = tabor::cycle::CycleSpec {
         law,
         drive,
@@ -1018,6 +1100,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
     m.add_function(wrap_pyfunction!(python_names, m)?)?;
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
+    m.add_function(wrap_pyfunction!(solve_tip, m)?)?;
     m.add_function(wrap_pyfunction!(status_names, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form, m)?)?;

@@ -223,7 +223,7 @@ def _status(codes, shape):
 
 
 def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precision="f32",
-          check=1000, adapter=None):
+          check=1000, adapter=None, tip=None):
     """Maugis-Dugdale states, broadcast over ``lam`` and exactly one of ``load``,
     ``approach`` or ``radius`` (``tabor solve``).
 
@@ -258,6 +258,12 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         errors in ``metadata["cross_check"]``.
     adapter : str, optional
         Use the first GPU adapter whose name contains this text.
+    tip : str, optional
+        A tip that is not a sphere (``tabor solve --tip``, docs/PHYSICS.md section 12):
+        ``"cone"``, ``"power:N"`` or ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its
+        Maugis parameter (1e-3 .. 1e3) and the values in its units; on the CPU in f64. The
+        result then has ``A``, ``load``, ``approach``, ``C`` (the zone's outer radius),
+        ``status`` and ``message``.
 
     Returns
     -------
@@ -297,6 +303,8 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
                          f"(got {', '.join(given) or 'none'})")
     value = {"load": load, "approach": approach, "radius": radius}[given[0]]
     (lam_f, val_f), shape = _flat(lam, value, names=["lam", given[0]])
+    if tip is not None:
+        return _solve_tip(tip, lam_f, val_f, given[0], shape)
     lam_key = "lam" if given[0] == "radius" else "lam_any"
     _check_scalar(lam_key, lam, lam_f)
     _check_scalar(given[0], value, val_f)
@@ -324,6 +332,22 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         code[code != 1] = 0
     out["method"] = _METHODS[code].reshape(shape)
     return Result(out, meta)
+
+
+def _solve_tip(tip, lam_f, val_f, given, shape):
+    """``solve(..., tip=...)``: the tip's states (``tabor solve --tip``)."""
+    if not isinstance(tip, str):
+        raise TypeError(f"tip = {tip!r}: give a string such as \"cone\" or \"power:3\"")
+    r = _tabor.solve_tip(tip, lam_f, val_f, "approach" if given == "approach" else given)
+    out = {k: np.asarray(r[k]).reshape(shape) for k in ("A", "load", "approach", "C")}
+    out["status"] = _status(np.asarray(r["status_code"]), shape)
+    why = {"ok": "", "no_contact": "below the pull-off of this control: no contact",
+           "invalid_input": f"lam outside 1e-3..1e3 for a tip, or {given} not a finite "
+                            f"number{' above 0' if given == 'radius' else ''}"}
+    out["message"] = np.array([why.get(s, s) for s in out["status"].ravel()],
+                              dtype=object).reshape(shape)
+    control = {"load": "load", "approach": "displacement", "radius": "radius"}[given]
+    return Result(out, {"backend": "cpu", "precision": "f64", "control": control, "tip": tip})
 
 
 def pulloff(lam, stress_ratio=None, range_ratio=None):
@@ -1350,7 +1374,7 @@ def _refused(message):
 
 
 def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
-          range_ratio=None):
+          range_ratio=None, tip=None):
     """An approach-retract cycle (``tabor cycle``): the equilibrium path followed under rigid
     grips, dead load or a spring, its jumps and the energy lost per cycle.
 
@@ -1368,6 +1392,10 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
     stress_ratio, range_ratio : float, optional
         A second Dugdale zone (a water meniscus: its stress and range over the solid's; both or
         neither): the cycle of both zones, in the units of the total w.
+    tip : str, optional
+        A tip that is not a sphere (``tabor cycle --tip``): ``"cone"``, ``"power:N"`` or
+        ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its Maugis parameter and the
+        loads in its units (docs/PHYSICS.md section 12).
 
     Returns
     -------
@@ -1396,7 +1424,7 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
     opt = lambda v, n: None if v is None else _real(v, n)
     c = _tabor.cycle(_real(lam, "lam"), drive, opt(stiffness, "stiffness"),
                      _real(max_load, "max_load"), opt(stress_ratio, "stress_ratio"),
-                     opt(range_ratio, "range_ratio"))
+                     opt(range_ratio, "range_ratio"), tip)
     steps = c["steps"]
     out = {
         "phase": np.array([s["phase"] for s in steps]),

@@ -41,6 +41,7 @@ def solve(
     precision: Precision = "f32",
     check: int = 1000,
     adapter: Optional[str] = None,
+    tip: Optional[str] = None,
 ) -> Result: ...
 def pulloff(
     lam: ArrayLike, stress_ratio: Optional[float] = None, range_ratio: Optional[float] = None
@@ -170,6 +171,7 @@ def cycle(
     max_load: float = 2.0,
     stress_ratio: Optional[float] = None,
     range_ratio: Optional[float] = None,
+    tip: Optional[str] = None,
 ) -> Result: ...
 def profile(
     lam: float,

@@ -49,3 +49,47 @@ def test_bad_tips_are_refused_in_one_line():
     bad = dict(cone_scene(), tip={"shape": "cone", "half_angle_deg": 95})
     with pytest.raises(ValueError, match="half_angle_deg = 95"):
         tabor.Scene(bad)
+
+
+def test_tip_states_are_the_spheres_and_the_command_lines():
+    """``tabor.solve(..., tip=)``: ``power:2`` is the sphere's Maugis-Dugdale (another code
+    path) to 1e-12; a cone's states equal ``tabor solve --tip``'s digits; below the pull-off the
+    status is ``no_contact`` with NaN numbers; a bad tip or lambda is refused or flagged."""
+    lam = np.array([0.3, 1.0, 5.0])
+    for key, value in (("load", 0.5), ("approach", 0.3), ("radius", 0.7)):
+        t = tabor.solve(lam, tip="power:2", **{key: value})
+        m = tabor.solve(lam, **{key: value})
+        assert list(t["status"]) == ["ok"] * 3
+        for k in ("A", "load", "approach"):
+            np.testing.assert_allclose(t[k], m[k], rtol=1e-12, atol=1e-12)
+        assert np.all(t["C"] > t["A"])
+    r = tabor.solve([1.0, 1.0, 0.0], load=[0.5, -50.0, 0.5], tip="cone")
+    assert list(r["status"]) == ["ok", "no_contact", "invalid_input"]
+    assert np.isnan(r["A"][1]) and r["message"][1].startswith("below the pull-off")
+    binary = ROOT / "target" / "release" / "tabor"
+    if binary.exists():
+        out = subprocess.run([str(binary), "solve", "--tip", "cone", "--lambda", "1", "--load",
+                              "0.5", "--format", "json"], capture_output=True, text=True,
+                             check=True)
+        cli = json.loads(out.stdout)["results"][0]
+        for k in ("A", "C", "load", "approach"):
+            assert r[k][0] == cli[k]
+    with pytest.raises(ValueError, match="tip wedge"):
+        tabor.solve(1.0, load=0.5, tip="wedge")
+
+
+def test_a_tips_cycle_leaves_contact_at_its_rigid_grip_fold():
+    """``tabor.cycle(lam, tip=...)``: the retract's jump off contact starts at the law's
+    rigid-grip fold, which ``solve(..., tip=)`` at that approach confirms as the last stable
+    state (a little below it there is no contact)."""
+    c = tabor.cycle(1.0, tip="cone")
+    jump = [j for j in c.metadata["jumps"]
+            if j["phase"] == "retract" and j["from"]["branch"] == "contact"][0]
+    d = jump["from"]["approach"]
+    above = tabor.solve(1.0, approach=d + 1e-12, tip="cone")
+    below = tabor.solve(1.0, approach=d - 1e-6, tip="cone")
+    assert above["status"][()] == "ok" and below["status"][()] == "no_contact"
+    # The approach is stationary at the fold: the load 1e-12 above it moves like sqrt(1e-12).
+    assert above["load"][()] == pytest.approx(jump["from"]["load"], rel=1e-5)
+    with pytest.raises(ValueError, match="second zone"):
+        tabor.cycle(1.0, tip="cone", stress_ratio=0.5, range_ratio=2.0)

@@ -532,40 +532,10 @@ pub(crate) fn write_with_figure(
     Ok(())
 }
 
-/// A `--tip` value as a shape in its normalised units.
+/// A `--tip` value as a shape in its normalised units ([`Shape`]'s parser, its message named
+/// as the flag).
+///
+/// [`Shape`]: crate::physics::tip::Shape
 pub fn tip_shape(s: &str) -> anyhow::Result<crate::physics::tip::Shape> {
-    use crate::physics::tip::Shape;
-    let parts: Vec<&str> = s.split(':').collect();
-    let num = |p: &str, what: &str| -> anyhow::Result<f64> {
-        p.parse::<f64>().map_err(|_| {
-            anyhow::anyhow!("--tip {s}: {what} {p:?} is not a number; give cone, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG")
-        })
-    };
-    let shape = match parts.as_slice() {
-        ["cone"] => Shape::Power { exponent: 1.0 },
-        ["sphere"] => Shape::Power { exponent: 2.0 },
-        ["power", n] => {
-            let n = num(n, "the exponent")?;
-            if !(1.0..=8.0).contains(&n) {
-                anyhow::bail!(
-                    "--tip {s}: the exponent {n} is out of range: give one from 1 (a cone) to 8"
-                );
-            }
-            Shape::Power { exponent: n }
-        }
-        ["capped-cone", rho, deg] => {
-            let (rho, deg) = (num(rho, "the cap's radius")?, num(deg, "the half-angle")?);
-            if !(rho > 0.0 && rho.is_finite() && deg > 0.0 && deg < 90.0) {
-                anyhow::bail!("--tip {s}: give a positive cap radius (in l) and a half-angle between 0 and 90 degrees");
-            }
-            Shape::CappedCone {
-                rho,
-                half_angle: deg.to_radians(),
-            }
-        }
-        _ => anyhow::bail!(
-            "--tip {s}: give cone, sphere, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG"
-        ),
-    };
-    Ok(shape)
+    s.parse().map_err(|e| anyhow::anyhow!("--{e}"))
 }

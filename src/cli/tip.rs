@@ -4,7 +4,7 @@
 use super::basic::{Given, SolveArgs, StreamTable, CHUNK_ROWS};
 use super::Format;
 use crate::io::{fmt17, write_output, Output};
-use crate::law::{Drive, PathPoint, Tip};
+use crate::law::{tip, Drive, PathPoint, Tip};
 use crate::physics::tip::Shape;
 use crate::solver::Status;
 use anyhow::{bail, Context};
@@ -21,30 +21,19 @@ struct Row {
 
 const HEADER: [&str; 7] = ["lambda", "given", "load", "approach", "A", "C", "status"];
 
-/// The state of `shape` at `lambda` given by `value` of `given`: under a dead load or rigid
-/// grips the state stable under that control (no contact below its pull-off), at a radius the
-/// contact branch's point there, stable or not.
+/// The state of `shape` at `lambda` given by `value` of `given` ([`crate::law::tip::solve`]).
 fn state(shape: Shape, lambda: f64, given: Given, value: f64) -> Row {
-    let row = |status, point| Row {
+    let given = match given {
+        Given::Load => tip::Given::Load,
+        Given::Displacement => tip::Given::Approach,
+        Given::Radius => tip::Given::Radius,
+    };
+    let (status, point) = tip::solve(shape, lambda, given, value);
+    Row {
         lambda,
         value,
         status,
         point,
-    };
-    let Ok(tip) = Tip::new(shape, lambda) else {
-        return row(Status::InvalidInput, None);
-    };
-    if !value.is_finite() || (given == Given::Radius && !(value > 0.0)) {
-        return row(Status::InvalidInput, None);
-    }
-    let point = match given {
-        Given::Radius => Some(tip.at_radius(value)),
-        Given::Load => tip.state_under(Drive::DeadLoad, value),
-        Given::Displacement => tip.state_under(Drive::RigidGrips, value),
-    };
-    match point {
-        Some(p) => row(Status::Ok, Some(p)),
-        None => row(Status::NoContact, None),
     }
 }
 

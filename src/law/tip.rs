@@ -10,6 +10,7 @@ use super::{Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::model::ContactModel;
 use crate::physics::tip::Shape;
+use crate::solver::Status;
 use serde::Serialize;
 use std::f64::consts::PI;
 
@@ -253,6 +254,38 @@ impl Tip {
     /// Whether the contact piece at radius `a` is stable under `drive` (its control rises).
     pub fn stable_under(&self, drive: Drive, a: f64) -> bool {
         self.control_slope(drive, self.t_of_radius(a)).0 > 0.0
+    }
+}
+
+/// What a tip's state is given by.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Given {
+    /// The load: the state stable under a dead load.
+    Load,
+    /// The approach: the state stable under rigid grips.
+    Approach,
+    /// The contact radius: the contact branch's point there, stable or not.
+    Radius,
+}
+
+/// The state of `shape` at `lambda` given by `value` of `given`, with its status: `NoContact`
+/// below the pull-off of the control, `InvalidInput` for a lambda outside [`LAMBDA_RANGE`], a
+/// value that is not finite or a radius not above zero (the point then None).
+pub fn solve(shape: Shape, lambda: f64, given: Given, value: f64) -> (Status, Option<PathPoint>) {
+    let Ok(tip) = Tip::new(shape, lambda) else {
+        return (Status::InvalidInput, None);
+    };
+    if !value.is_finite() || (given == Given::Radius && !(value > 0.0)) {
+        return (Status::InvalidInput, None);
+    }
+    let point = match given {
+        Given::Radius => Some(tip.at_radius(value)),
+        Given::Load => tip.state_under(Drive::DeadLoad, value),
+        Given::Approach => tip.state_under(Drive::RigidGrips, value),
+    };
+    match point {
+        Some(p) => (Status::Ok, Some(p)),
+        None => (Status::NoContact, None),
     }
 }
 

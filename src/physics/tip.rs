@@ -313,6 +313,45 @@ impl Shape {
     }
 }
 
+/// A shape as the command line and Python give it, in its normalised units: `cone`, `sphere`,
+/// `power:N` or `capped-cone:R_OVER_L:HALF_ANGLE_DEG` (the cap's radius in the length unit l).
+impl std::str::FromStr for Shape {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Shape, String> {
+        let usage = "give cone, sphere, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG";
+        let num = |p: &str, what: &str| -> Result<f64, String> {
+            p.parse::<f64>()
+                .map_err(|_| format!("tip {s}: {what} {p:?} is not a number; {usage}"))
+        };
+        let parts: Vec<&str> = s.split(':').collect();
+        match parts.as_slice() {
+            ["cone"] => Ok(Shape::Power { exponent: 1.0 }),
+            ["sphere"] => Ok(Shape::Power { exponent: 2.0 }),
+            ["power", n] => {
+                let n = num(n, "the exponent")?;
+                if !(1.0..=8.0).contains(&n) {
+                    return Err(format!(
+                        "tip {s}: the exponent {n} is out of range: give one from 1 (a cone) to 8"
+                    ));
+                }
+                Ok(Shape::Power { exponent: n })
+            }
+            ["capped-cone", rho, deg] => {
+                let (rho, deg) = (num(rho, "the cap's radius")?, num(deg, "the half-angle")?);
+                if !(rho > 0.0 && rho.is_finite() && deg > 0.0 && deg < 90.0) {
+                    return Err(format!("tip {s}: give a positive cap radius (in l) and a half-angle between 0 and 90 degrees"));
+                }
+                Ok(Shape::CappedCone {
+                    rho,
+                    half_angle: deg.to_radians(),
+                })
+            }
+            _ => Err(format!("tip {s}: {usage}")),
+        }
+    }
+}
+
 /// A tip in SI units, as a scene gives it.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
