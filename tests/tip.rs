@@ -369,3 +369,95 @@ fn tip_states_from_the_command_line() {
     let expect = format!("{}{}", a, b.lines().nth(1).unwrap().to_string() + "\n");
     assert_eq!(table, expect);
 }
+
+/// Tip profiles: the adhesion-free pressure integrates to the shape's load `Qbar(A)` (the
+/// cone's log-singular apex included), `power:2` is `tabor profile`'s Maugis-Dugdale field, and
+/// the gap at the zone's edge is the range (J = w) for a cone and a capped cone.
+#[test]
+fn tip_profiles_carry_their_load_and_close_at_the_range() {
+    use tabor::law::ContactLaw;
+    use tabor::profile::spec::{LawProfile, ProfileSpec};
+    use tabor::profile::Given;
+    // 2 pi int_0^A p r dr by r = A sin(theta) and a fine composite Simpson rule.
+    let load_of = |shape: Shape, a: f64| {
+        let n = 20_000;
+        let h = std::f64::consts::FRAC_PI_2 / n as f64;
+        let f = |th: f64| {
+            let r = a * th.sin();
+            shape.hertz_pressure(a, r).unwrap_or(0.0) * r * a * th.cos()
+        };
+        let mut s = f(0.0) + f(std::f64::consts::FRAC_PI_2);
+        for i in 1..n {
+            s += f(i as f64 * h) * if i % 2 == 1 { 4.0 } else { 2.0 };
+        }
+        2.0 * std::f64::consts::PI * s * h / 3.0
+    };
+    let capped = Shape::CappedCone {
+        rho: 1.0,
+        half_angle: 20f64.to_radians(),
+    };
+    for shape in [
+        Shape::Power { exponent: 1.0 },
+        Shape::Power { exponent: 1.5 },
+        Shape::Power { exponent: 3.0 },
+        capped,
+    ] {
+        for a in [0.3, 1.0, 2.5] {
+            let (want, _) = shape.load(a);
+            let got = load_of(shape, a);
+            assert!(
+                (got - want).abs() <= 1e-6 * want,
+                "{shape:?} A {a}: pressure integrates to {got}, the load is {want}"
+            );
+        }
+    }
+    let run = |law: ContactLaw| {
+        ProfileSpec {
+            law,
+            given: Given::Load(0.5),
+            points: 200,
+        }
+        .run()
+        .unwrap()
+    };
+    let (LawProfile::Tip(t), LawProfile::Md(m)) = (
+        run(ContactLaw::Tip(power(2.0, 1.0))),
+        run(ContactLaw::md(1.0)),
+    ) else {
+        panic!("the laws' own profiles")
+    };
+    // The same state, and at each of the tip's radii section 8's closed-form field.
+    let md = &m.models[0];
+    let (a, c) = (md.a.unwrap(), md.c.unwrap());
+    assert!((t.a.unwrap() - a).abs() <= 1e-13 * a && (t.c.unwrap() - c).abs() <= 1e-13 * c);
+    let field = tabor::physics::fields::MdGeometry {
+        lambda: 1.0,
+        a,
+        mu: ((c - a) * (c + a)).sqrt() / a,
+    };
+    for i in 0..t.r.len() {
+        let r = t.r[i];
+        if (r - c).abs() <= 1e-12 * c {
+            continue; // the Dugdale stress ends at C: the two C differ by rounding
+        }
+        let (p, q) = (t.pressure[i].unwrap(), field.pressure(r));
+        assert!((p - q).abs() <= 1e-11, "r {r}: pressure {p} against {q}");
+        let (g, h) = (t.gap[i], field.gap(r));
+        assert!(
+            (g - h).abs() <= 1e-11 * h.max(1.0),
+            "r {r}: gap {g} against {h}"
+        );
+    }
+    for law in [power(1.0, 0.3), Tip::new(capped, 3.0).unwrap()] {
+        let LawProfile::Tip(p) = run(ContactLaw::Tip(law)) else {
+            panic!("a tip's profile")
+        };
+        let j = p.energy_release_rate_over_w.unwrap();
+        assert!((j - 1.0).abs() <= 1e-10, "{:?}: J/w = {j}", law.shape);
+        // Zero gap inside the contact, open and rising outside it.
+        let a = p.a.unwrap();
+        for (r, g) in p.r.iter().zip(&p.gap) {
+            assert!(if *r <= a { *g == 0.0 } else { *g > 0.0 }, "r {r}: gap {g}");
+        }
+    }
+}

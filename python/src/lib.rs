@@ -870,7 +870,7 @@ fn given_of(given: &str, value: f64) -> PyResult<tabor::profile::Given> {
 /// Pressure and gap profiles: `given` load|approach|radius; with both of the second zone's
 /// ratios the two-zone state's (`tabor profile --stress-ratio --range-ratio`).
 #[pyfunction]
-#[pyo3(signature = (lam, given, value, points, stress_ratio=None, range_ratio=None))]
+#[pyo3(signature = (lam, given, value, points, stress_ratio=None, range_ratio=None, tip=None))]
 #[allow(clippy::too_many_arguments)]
 fn profile<'py>(
     py: Python<'py>,
@@ -880,10 +880,22 @@ fn profile<'py>(
     points: usize,
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
+    tip: Option<&str>,
 ) -> PyResult<Bound<'py, PyAny>> {
+    let law = match tip {
+        Some(t) => {
+            let shape = t.parse().map_err(PyValueError::new_err)?;
+            tabor::ContactLaw::Tip(
+                tabor::law::Tip::new(shape, lam)
+                    .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
+            )
+        }
+        None => {
+            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?
+        }
+    };
     let spec = tabor::profile::spec::ProfileSpec {
-        law: tabor::ContactLaw::new(lam, stress_ratio, range_ratio)
-            .map_err(PyValueError::new_err)?,
+        law,
         given: given_of(given, value)?,
         points,
     };

@@ -1441,7 +1441,7 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
 
 
 def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio=None,
-            range_ratio=None):
+            range_ratio=None, tip=None):
     """Pressure and gap inside and around the contact (``tabor profile``) for the MD state
     given by exactly one of ``load``, ``approach``, ``radius``, and Hertz, DMT and JKR at the
     same load.
@@ -1457,6 +1457,12 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
     stress_ratio, range_ratio : float, optional
         A second Dugdale zone: the two-zone profile (model ``two_zone`` first, with both zone
         edges), then Hertz, DMT and JKR of the total w.
+    tip : str, optional
+        A tip that is not a sphere (``tabor profile --tip``): ``"cone"``, ``"power:N"`` or
+        ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its Maugis parameter and the
+        values in its units. The result is then the one state's ``r``, ``pressure`` (NaN at a
+        cone's apex), ``gap``, ``a``, ``c``, ``load``, ``approach``, ``status`` and
+        ``energy_release_rate_over_w``.
 
     Returns
     -------
@@ -1488,7 +1494,14 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
     # its model "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
     p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
                        int(points), _optional(stress_ratio, "stress_ratio"),
-                       _optional(range_ratio, "range_ratio"))
+                       _optional(range_ratio, "range_ratio"), tip)
+    if tip is not None:
+        # A tip's profile (``tabor profile --tip``): one state, its arrays at the top level.
+        p["r"] = np.array(p["r"], dtype=float)
+        p["pressure"] = np.array([np.nan if q is None else q for q in p["pressure"]],
+                                 dtype=float)
+        p["gap"] = np.array(p["gap"], dtype=float)
+        return p
     for m in p["models"]:
         m["r"] = np.array(m["r"], dtype=float)
         m["pressure"] = np.array([np.nan if q is None else q for q in m["pressure"]],

@@ -181,6 +181,7 @@ def profile(
     points: int = 400,
     stress_ratio: Optional[float] = None,
     range_ratio: Optional[float] = None,
+    tip: Optional[str] = None,
 ) -> Dict[str, Any]: ...
 def rough(
     lam: float,

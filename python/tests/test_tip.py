@@ -93,3 +93,21 @@ def test_a_tips_cycle_leaves_contact_at_its_rigid_grip_fold():
     assert above["load"][()] == pytest.approx(jump["from"]["load"], rel=1e-5)
     with pytest.raises(ValueError, match="second zone"):
         tabor.cycle(1.0, tip="cone", stress_ratio=0.5, range_ratio=2.0)
+
+
+def test_a_tips_profile_closes_at_the_range():
+    """``tabor.profile(lam, load=, tip=)``: the gap at the zone's edge is the range (J = w),
+    zero inside the contact; the cone's apex pressure is NaN (log-infinite); the same numbers
+    as ``tabor profile --tip``."""
+    p = tabor.profile(1.0, load=0.5, tip="cone")
+    assert p["status"] == "ok"
+    assert p["energy_release_rate_over_w"] == pytest.approx(1.0, abs=1e-10)
+    inside = p["r"] <= p["a"]
+    assert np.all(p["gap"][inside] == 0) and np.all(p["gap"][~inside] > 0)
+    assert np.isnan(p["pressure"][0]) and np.all(np.isfinite(p["pressure"][1:]))
+    binary = ROOT / "target" / "release" / "tabor"
+    if binary.exists():
+        out = subprocess.run([str(binary), "profile", "--tip", "cone", "--lambda", "1",
+                              "--load", "0.5"], capture_output=True, text=True, check=True)
+        cli = json.loads(out.stdout)
+        assert cli["gap"] == p["gap"].tolist() and cli["a"] == p["a"]

@@ -37,6 +37,11 @@ pub struct ProfileArgs {
     /// The second zone's range over the solid's, h2/h1.
     #[arg(long)]
     pub range_ratio: Option<f64>,
+    /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
+    /// parameter and the values in its units: cone, power:N or
+    /// capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    #[arg(long, conflicts_with_all = ["scene", "preset", "stress_ratio", "range_ratio", "plot"])]
+    pub tip: Option<String>,
     /// Sampling points on the uniform part of the r grid (more are added near a and c).
     #[arg(long, default_value_t = 400)]
     pub points: usize,
@@ -62,6 +67,9 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print("profile")?;
+    if let Some(t) = &a.tip {
+        return run_tip(&a, super::tip_shape(t)?);
+    }
     if let Some((rho, eta)) = super::two_zone_ratios(a.stress_ratio, a.range_ratio)? {
         return run_two_zone(&a, rho, eta, &figure, &print);
     }
@@ -257,6 +265,56 @@ fn write_two_zone(
     .context("writing the profile")?;
     for w in &p.warnings {
         eprintln!("warning: {w}");
+    }
+    Ok(())
+}
+
+/// `tabor profile --tip`: a tip state's pressure and gap in its units (JSON, or CSV
+/// `r,pressure,gap`).
+fn run_tip(a: &ProfileArgs, shape: crate::physics::tip::Shape) -> anyhow::Result<()> {
+    use crate::profile::spec::{LawProfile, ProfileSpec};
+    let lambda = a.lambda.context("give --lambda with --tip")?;
+    let given = match (a.load, a.approach, a.radius_a) {
+        (Some(p), None, None) => Given::Load(p),
+        (None, Some(d), None) => Given::Approach(d),
+        (None, None, Some(r)) => Given::Radius(r),
+        _ => bail!("give one of --load, --approach or --radius-a"),
+    };
+    if a.load_n.is_some() {
+        bail!("--load-n needs a scene (--scene or --preset); with --tip give --load");
+    }
+    let law = crate::law::Tip::new(shape, lambda).context("--lambda")?;
+    let spec = ProfileSpec {
+        law: crate::law::ContactLaw::Tip(law),
+        given,
+        points: a.points,
+    };
+    let p = match spec.run() {
+        Ok(LawProfile::Tip(p)) => p,
+        Ok(_) => unreachable!("a tip's law gives a tip's profile"),
+        Err(e) => bail!(super::with_flags(&e.to_string(), &[("points", "--points")])),
+    };
+    let text = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(["r", "pressure", "gap"])?;
+            for ((r, q), g) in p.r.iter().zip(&p.pressure).zip(&p.gap) {
+                w.write_record([fmt17(*r), q.map_or(String::new(), fmt17), fmt17(*g)])?;
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        _ => serde_json::to_string_pretty(&p)? + "\n",
+    };
+    crate::io::write_output(&a.output, text.as_bytes())?;
+    match (p.a, p.c, p.energy_release_rate_over_w) {
+        (Some(ra), Some(rc), Some(j)) => eprintln!(
+            "{}, lambda = {}: contact radius A = {}, Dugdale zone to C = {}, J/w = {j:.12}",
+            p.tip,
+            crate::solver::domain::short(lambda),
+            crate::solver::domain::short(ra),
+            crate::solver::domain::short(rc)
+        ),
+        _ => eprintln!("no contact: the value given is below the pull-off of its control"),
     }
     Ok(())
 }

@@ -37,18 +37,6 @@ fn state(shape: Shape, lambda: f64, given: Given, value: f64) -> Row {
     }
 }
 
-/// The shape with its numbers, as `--tip` gives them.
-fn label(shape: Shape) -> String {
-    match shape {
-        Shape::Power { exponent: 1.0 } => "a cone".into(),
-        Shape::Power { exponent } => format!("the power law f = B r^{exponent}"),
-        Shape::CappedCone { rho, half_angle } => format!(
-            "a capped cone (cap radius {rho} l, half-angle {} degrees)",
-            half_angle.to_degrees()
-        ),
-    }
-}
-
 fn values(r: &Row) -> [f64; 4] {
     match r.point {
         Some(p) => [p.load, p.approach, p.a, p.c],
@@ -74,7 +62,7 @@ fn row_json(r: &Row) -> serde_json::Value {
 pub fn solve(a: &SolveArgs, shape: Shape) -> anyhow::Result<()> {
     let meta = |given: Given, rows: Option<usize>| {
         json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64",
-               "tip": label(shape), "control": given.name(), "points": rows})
+               "tip": shape.label(), "control": given.name(), "points": rows})
     };
     if let Some(input) = &a.input {
         let given = a.control.unwrap_or(Given::Load);
@@ -172,7 +160,7 @@ fn text(tip: &Tip, given: Given, r: &Row) -> String {
     let _ = writeln!(
         t,
         "Maugis-Dugdale on {}, lambda = {} ({} given; units of docs/PHYSICS.md section 12)",
-        label(tip.shape),
+        tip.shape.label(),
         crate::solver::domain::short(r.lambda),
         given.name()
     );

@@ -56,6 +56,18 @@ impl Shape {
         }
     }
 
+    /// The shape with its numbers, in the tip's units (a state's or a profile's heading).
+    pub fn label(&self) -> String {
+        match *self {
+            Shape::Power { exponent: 1.0 } => "a cone".into(),
+            Shape::Power { exponent } => format!("the power law f = B r^{exponent}"),
+            Shape::CappedCone { rho, half_angle } => format!(
+                "a capped cone (cap radius {rho} l, half-angle {} degrees)",
+                half_angle.to_degrees()
+            ),
+        }
+    }
+
     /// The shape in a sentence (a figure's caption).
     pub fn describe(&self) -> String {
         match *self {
@@ -190,6 +202,63 @@ impl Shape {
                 (sum[0], sum[1], a * mu / m * sum[2])
             }
         }
+    }
+}
+
+impl Shape {
+    /// The adhesion-free (Hertz-type) pressure at radius `r` of a contact of radius `a`,
+    /// `(3/(4 pi)) int_r^A Fbar'(T) dT / sqrt(T^2 - r^2)` in section 8's pressure unit (the
+    /// non-singular punch pressure of Sneddon's solution), taken in `u = sqrt(T^2 - r^2)`;
+    /// None at a cone's apex, where it is logarithmically infinite.
+    pub fn hertz_pressure(&self, a: f64, r: f64) -> Option<f64> {
+        if r >= a {
+            return Some(0.0);
+        }
+        let big_u = ((a - r) * (a + r)).sqrt();
+        let g = |u: f64| {
+            let t = r.hypot(u);
+            self.abel(t).1 / t
+        };
+        let integral = match *self {
+            Shape::Power { exponent: n } if r == 0.0 => {
+                // `int_0^A n u^(n-2) du`, infinite for the cone.
+                if n <= 1.0 {
+                    return None;
+                }
+                n / (n - 1.0) * a.powf(n - 1.0)
+            }
+            // T^(n-2) changes on the scale r near u = 0: [0, r] directly, beyond in ln u.
+            Shape::Power { .. } if r < big_u => {
+                integrate(&g, 0.0, r, Ends::Smooth)
+                    + integrate(
+                        &|x: f64| g(x.exp()) * x.exp(),
+                        r.ln(),
+                        big_u.ln(),
+                        Ends::Smooth,
+                    )
+            }
+            Shape::Power { .. } => integrate(&g, 0.0, big_u, Ends::Smooth),
+            // The cone side's slope has a square-root kink at the joint.
+            Shape::CappedCone { .. } => match self.joint() {
+                Some(b) if r < b && b < a => {
+                    let ub = ((b - r) * (b + r)).sqrt();
+                    integrate(&g, 0.0, ub, Ends::Smooth) + integrate(&g, ub, big_u, Ends::SqrtAtLo)
+                }
+                _ => integrate(&g, 0.0, big_u, Ends::Smooth),
+            },
+        };
+        Some(0.75 / PI * integral)
+    }
+
+    /// The adhesion-free gap outside a contact of radius `a` at `r > a`,
+    /// `(2/pi) int_A^r (Fbar(T) - Fbar(A)) dT / sqrt(r^2 - T^2)` in the approach unit: the
+    /// integral of equation (1t) with r for C.
+    pub fn hertz_gap(&self, a: f64, r: f64) -> f64 {
+        if r <= a {
+            return 0.0;
+        }
+        let mu = ((r - a) * (r + a)).sqrt() / a;
+        2.0 / PI * self.gap(a, mu).0
     }
 }
 

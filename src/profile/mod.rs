@@ -13,6 +13,7 @@ use crate::solver::{LambdaContext, SolveError, Status};
 use serde::Serialize;
 
 pub mod spec;
+pub mod tip;
 pub mod two_zone;
 
 /// What fixes the Maugis-Dugdale state.

@@ -3,6 +3,7 @@
 //! meniscus in `profile/two_zone.rs`.
 
 use crate::law::{ContactLaw, Md, TwoZones};
+use crate::profile::tip::{tip_profile, TipProfile, TipProfileError};
 use crate::profile::two_zone::{two_zone_profile, TwoZoneProfile, TwoZoneProfileError};
 use crate::profile::{profile, Given, Profile, ProfileError};
 use serde::Serialize;
@@ -28,6 +29,8 @@ pub enum LawProfile {
     Md(Profile),
     /// The solid's Dugdale zone plus a meniscus.
     SolidAndMeniscus(TwoZoneProfile),
+    /// A tip that is not a sphere.
+    Tip(TipProfile),
 }
 
 /// Why a profile was not computed: the law's own error, which names the value.
@@ -39,6 +42,9 @@ pub enum LawProfileError {
     /// The two-zone law.
     #[error(transparent)]
     SolidAndMeniscus(#[from] TwoZoneProfileError),
+    /// A tip's law.
+    #[error(transparent)]
+    Tip(#[from] TipProfileError),
     /// A law without a profile here (the closed forms are drawn beside Maugis-Dugdale's).
     #[error(transparent)]
     Law(#[from] crate::law::LawError),
@@ -62,6 +68,7 @@ impl ProfileSpec {
                 self.given,
                 self.points,
             )?),
+            ContactLaw::Tip(t) => LawProfile::Tip(tip_profile(t, self.given, self.points)?),
             closed => {
                 return Err(crate::law::LawError::Unsupported {
                     model: closed.model(),
