@@ -161,6 +161,14 @@ pub enum Given {
 }
 
 impl Given {
+    /// The input table's column of the value given.
+    pub(super) fn column(self) -> &'static str {
+        match self {
+            Given::Load => "load",
+            Given::Displacement => "approach",
+            Given::Radius => "A",
+        }
+    }
     pub(super) fn flag(self) -> &'static str {
         match self {
             Given::Load => "--load",
@@ -423,11 +431,7 @@ fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> an
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
-    let column = match given {
-        Given::Load => "load",
-        Given::Displacement => "approach",
-        Given::Radius => "A",
-    };
+    let column = given.column();
     let mut reader = crate::io::PointReader::open(input, column)?;
     let mut table = StreamTable::start(Output::create(&a.output)?, format, &TWO_ZONE_HEADER)?;
     eprintln!("backend: CPU f64 (two zones: stress ratio {rho}, range ratio {eta})");

@@ -72,11 +72,7 @@ pub fn solve(a: &SolveArgs, shape: Shape) -> anyhow::Result<()> {
             }
             f => f,
         };
-        let column = match given {
-            Given::Load => "load",
-            Given::Displacement => "approach",
-            Given::Radius => "A",
-        };
+        let column = given.column();
         let mut reader = crate::io::PointReader::open(input, column)?;
         let mut table = StreamTable::start(Output::create(&a.output)?, format, &HEADER)?;
         eprintln!("backend: CPU f64 (a tip is solved on the CPU)");
