@@ -476,7 +476,7 @@ fn finish(
 /// resolve the gap (below lambda_D the contact radius goes like sqrt(Dbar - Dbar_c)): measured
 /// with the kernel's CPU mirror over lambda 1e-4..1e4, its error of A reaches 3.7e-5 between
 /// 1e-3 and 1e-2 of the end and it can even miss the contact closer in, while beyond 1e-2 it
-/// stays below 4.4e-6 (`tests/atlas.rs` pins this).
+/// stays below 4.4e-6 (`tests/suite/atlas.rs` pins this).
 pub const DISP_F32_END_GAP: f64 = 1e-2;
 
 /// Whether the f32 kernel's result for this state is held to its contract ([`GPU_TOLERANCE`]);

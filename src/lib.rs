@@ -9,7 +9,7 @@
 //!
 //! # Layers
 //!
-//! Each uses only those before it in this list (`tests/architecture.rs` checks it): [`numeric`]
+//! Each uses only those before it in this list (`tests/suite/architecture.rs` checks it): [`numeric`]
 //! (root finding, golden section, Gauss-Legendre) -> [`physics`] (normalisation, domain, closed
 //! forms, the MD curve, fields, number types) -> [`solver`] (f64 contexts, batches, curves) ->
 //! [`kernel`] (wgpu-free: the byte layout shared with WGSL, the per-lambda preparation, the CPU

@@ -4,19 +4,28 @@
 # Run from anywhere: bash tests/run_all.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each stage's start, with the seconds spent so far (where a slow run spends its time).
+stage() { echo "== $1 (at $SECONDS s)" >&2; }
+stage "the Rust tests"
 cargo test --release
 # The C library for particle codes (libtabor_dem, sharing the compiled tabor above), its tests
 # and the C example compiled and run against it; the committed header is the generated one.
+stage "the C library"
 cargo build --release -p tabor-capi
 cargo test --release -p tabor-capi
 cargo test --release -p tabor-capi-header
 # The library's documentation builds without a warning (broken links included).
+stage "the documentation"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
 # The Python tests compare with the command line: target/release/tabor, built by `cargo test`
-# above (a separate `cargo build` would compile tabor again without the tests' features).
+# above (a separate `cargo build` would compile tabor again without the tests' features). The
+# extension links the library compiled there (python/Cargo.toml takes its default features).
+stage "the Python package"
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install -q --upgrade pip
 "$venv/bin/python" -m pip install -q pytest nanite afmformats
 "$venv/bin/python" -m pip install -q ./python
+stage "the Python tests"
 "$venv/bin/python" -m pytest -q python/tests
+stage "done"

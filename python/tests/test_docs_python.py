@@ -3,7 +3,7 @@
 is run in a scratch directory and, where a ```text block follows it, must print those lines
 (trailing spaces ignored). A block that is a fragment (it cannot run alone) carries
 `<!-- check: skip (REASON) -->` on the line before its fence, as the shell examples do
-(tests/docs_examples.rs)."""
+(tests/suite/docs_examples.rs)."""
 
 import pathlib
 import re

@@ -176,7 +176,7 @@ def test_asperities_equal_the_command_line_and_refuse_as_it_does(tmp_path):
 
 
 def test_topography_equals_the_command_line(tmp_path):
-    # Three paraboloid bumps of known radius on a flat (as tests/rough.rs makes them).
+    # Three paraboloid bumps of known radius on a flat (as tests/suite/rough.rs makes them).
     ny, nx, px = 40, 60, 1e-8
     y, x = np.mgrid[0:ny, 0:nx] * px
     z = np.zeros((ny, nx))

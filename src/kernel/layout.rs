@@ -1,5 +1,5 @@
 //! The data the kernels read, byte for byte: each struct has a twin in `shaders/md.wgsl`
-//! (checked by `tests/shaders.rs`).
+//! (checked by `tests/suite/shaders.rs`).
 
 use bytemuck::{Pod, Zeroable};
 

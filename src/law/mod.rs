@@ -7,7 +7,7 @@
 //! displacement: the fits) and `cycle` (the sampled path and its jumps under any drive).
 //!
 //! A new law is a file here implementing [`Law`], one [`ContactLaw`] variant with its arm in
-//! [`ContactLaw::law`], and its run of the conformance suite (`tests/law.rs`).
+//! [`ContactLaw::law`], and its run of the conformance suite (`tests/suite/law.rs`).
 
 use crate::physics::model::ContactModel;
 use serde::Serialize;

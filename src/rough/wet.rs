@@ -77,7 +77,7 @@ const TABLE: usize = 3000;
 /// The stable contact curve at radii from its fold (or near A = 0) up to a largest approach:
 /// approach and load against A, interpolated by 4-point Lagrange cubics in A (smooth there, also
 /// at the fold where the load against the approach has a square-root end). The interpolation
-/// error is measured in `tests/rough_wet.rs` against the solver's state at the approach.
+/// error is measured in `tests/suite/rough_wet.rs` against the solver's state at the approach.
 struct ContactTable {
     a: Vec<f64>,
     d: Vec<f64>,

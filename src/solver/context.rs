@@ -12,7 +12,7 @@ use crate::physics::tolerances::carries_load_plus_2;
 const X_TOL: f64 = 1e-15;
 const MAX_ITER: u32 = 100;
 /// Width of the search bracket in x below the pull-off: enough for loads up to 1e12 at every
-/// lambda in 1e-26..1e26 (measured against the oracle table, tests/domain.rs).
+/// lambda in 1e-26..1e26 (measured against the oracle table, tests/suite/domain.rs).
 const BRACKET: f64 = 60.0;
 pub use crate::physics::tolerances::TABLE_NODES;
 /// The first table node's distance from the pull-off in x; node k lies at TABLE_DX0 2^k.

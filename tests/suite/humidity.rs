@@ -3,7 +3,7 @@
 //! independent reference (the MD solver and reference tables, closed-form limits, quadrature of
 //! the Abel sums that does not use the closed forms of the gaps).
 
-mod common;
+use crate::common;
 
 use common::{num, rel, table};
 use std::f64::consts::PI;

@@ -378,14 +378,15 @@ fn a_humid_si_scene_reports_the_wet_and_the_dry_pulloff() {
         serde_json::from_str(&std::fs::read_to_string(&dry_path).unwrap()).unwrap();
     let d = dry.solve(40).unwrap();
     let mut last = d.pulloff_force_n;
-    for rh in [0.3, 0.6, 0.9] {
+    for rh in [0.3, 0.9] {
         let p = humid_scene(
             &dir,
             "wet.json",
             &format!(r#", "humidity": {{"relative_humidity": {rh}, "contact_angle_deg": 20}}"#),
         );
         let s: RoughScene = serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
-        let r = s.solve(40).unwrap();
+        // 16 reported separations: the pull-off is searched for at 64 whatever the number.
+        let r = s.solve(16).unwrap();
         // The dry comparison is the dry scene's own pull-off (same press: -3 sigma).
         let dry_f = r.dry_pulloff_force_n.unwrap();
         assert!(
@@ -530,11 +531,12 @@ fn vanishing_roughness_loses_the_wet_summits_grips_loop() {
 
 #[test]
 fn the_wet_loss_is_never_negative() {
-    // lambda 0.001: a nearly rigid solid whose loops are tiny; reported as -8.6e-13 before.
+    // lambda 0.001: a nearly rigid solid whose loops are tiny; reported as -8.6e-13 before (the
+    // loss comes from the summits' own loops, whatever the sampling: 40 separations).
     for (lambda, sigma, d_min) in [(0.001, 0.63, -1.89), (0.001, 3.0, -9.0), (0.01, 0.1, -0.3)] {
         let c = WetRough::new(lambda, 0.2, 5.0, sigma)
             .unwrap()
-            .cycle(lambda, d_min, None, 400)
+            .cycle(lambda, d_min, None, 40)
             .unwrap();
         assert!(c.hysteresis >= 0.0, "lambda {lambda}: {}", c.hysteresis);
     }

@@ -133,7 +133,7 @@ fn colours_along_a_line(png: &[u8]) -> usize {
 fn crisp_png(svg: &str, width: u32) -> Vec<u8> {
     use resvg::{tiny_skia, usvg};
     let mut db = usvg::fontdb::Database::new();
-    db.load_font_data(include_bytes!("../assets/fonts/DejaVuSans.ttf").to_vec());
+    db.load_font_data(include_bytes!("../../assets/fonts/DejaVuSans.ttf").to_vec());
     db.set_sans_serif_family("DejaVu Sans");
     let opt = usvg::Options {
         fontdb: std::sync::Arc::new(db),

@@ -291,7 +291,7 @@ fn violations(rel: &Path, src: &str) -> Vec<String> {
     let file = Path::new("src").join(rel).display().to_string();
     let Some((from, from_name)) = layer(&own[0]) else {
         return vec![format!(
-            "{file}: module `{}` has no layer: place it in tests/architecture.rs and docs/ARCHITECTURE.md",
+            "{file}: module `{}` has no layer: place it in tests/suite/architecture.rs and docs/ARCHITECTURE.md",
             own[0]
         )];
     };
@@ -335,7 +335,7 @@ fn the_library_keeps_its_layers() {
         let module = p.is_dir() || p.extension().is_some_and(|x| x == "rs");
         if module && name != "lib" && name != "main" && layer(&name).is_none() {
             bad.push(format!(
-                "src/{name}: module has no layer: place it in tests/architecture.rs and docs/ARCHITECTURE.md"
+                "src/{name}: module has no layer: place it in tests/suite/architecture.rs and docs/ARCHITECTURE.md"
             ));
             unplaced.push(name);
         }

@@ -1,7 +1,7 @@
 //! Stability of the f64 solver over the extreme ranges: a dense sweep, the JKR and DMT limits,
 //! the A -> 0 end and both sides of lambda_D.
 
-mod common;
+use crate::common;
 use tabor::physics::closed::{dmt_radius, jkr_approach, jkr_radius};
 use tabor::physics::md::{curve_point, LAMBDA_D};
 use tabor::solver::{LambdaContext, Status};

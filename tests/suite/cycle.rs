@@ -1,6 +1,6 @@
 //! The non-contact branch against the reference tables and its limits.
 
-mod common;
+use crate::common;
 use common::*;
 use tabor::physics::md::non_contact_point;
 

@@ -242,8 +242,8 @@ fn small_sigma_mdjkr_border_is_a_curve() {
             let md_out = Summit::new(lambda).unwrap().delta_out;
             let d_hi = (-d_out_jkr).max(-md_out) + 6.0 * sigma;
             let (mut worst, mut scale) = (0.0f64, 0.0f64);
-            for k in 0..=300 {
-                let d = d_min + (d_hi - d_min) * k as f64 / 300.0;
+            for k in 0..=120 {
+                let d = d_min + (d_hi - d_min) * k as f64 / 120.0;
                 let md = r.mean(Leg::Retract { d_min }, d).unwrap().load;
                 let jkr = jkr_rough_n(sigma, d_min, d, 400);
                 worst = worst.max((md - jkr).abs());

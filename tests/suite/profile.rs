@@ -1,7 +1,7 @@
 //! Inside the contact: the state at a given radius against the reference curves, and the
 //! pressure and gap fields against the MD equations, the closed forms and their limits.
 
-mod common;
+use crate::common;
 use common::*;
 use std::f64::consts::PI;
 use tabor::physics::fields::{

@@ -1,6 +1,6 @@
 //! The f64 reference solver against the 50-digit reference tables.
 
-mod common;
+use crate::common;
 use common::*;
 use tabor::physics::md::LAMBDA_D;
 use tabor::solver::{LambdaContext, Status};

@@ -3,7 +3,7 @@
 //! edge against its range, the J-integral against w1 + w2, the MD profile as the second zone
 //! vanishes, and the command line's outputs and refusals.
 
-mod common;
+use crate::common;
 
 use common::rel;
 use std::f64::consts::PI;

@@ -3,7 +3,7 @@
 //! range, the closed-form limits beyond it (their asymptotic difference from MD against the
 //! oracle, their switch-over from MD), and the refusals elsewhere.
 
-mod common;
+use crate::common;
 use common::*;
 use tabor::physics::closed::{jkr_approach, jkr_load};
 use tabor::physics::domain::{self, Method, DMT_LIMIT_MAX, LAMBDA_MAX, LAMBDA_MIN};

@@ -2,7 +2,7 @@
 //! over the extreme ranges (a dense sweep), and the naive methods really do fail where
 //! PHYSICS.md says they do, so a regression in either direction is caught.
 
-mod common;
+use crate::common;
 use common::logspace;
 use tabor::kernel::cpu::md::{solve_f32, KernelFlags};
 use tabor::kernel::prepare::{prepare, split};

@@ -2,7 +2,7 @@
 //! Without an adapter these tests skip with a printed reason; with TABOR_REQUIRE_GPU=1 (set by
 //! .ci/run, which installs Mesa's software Vulkan driver) a missing adapter fails them.
 
-mod common;
+use crate::common;
 use common::*;
 use tabor::engine::{Backend, Engine, Precision};
 use tabor::gpu::Gpu;
