@@ -5,12 +5,12 @@
 //! line, and its limits hold (MD towards DMT and JKR, two zones of one range or without a
 //! meniscus = MD). A new law adds itself to `laws()`.
 
+use std::sync::OnceLock;
 use tabor::cycle::{self, Drive, Phase};
 use tabor::law::{ContactLaw, Law, Piece, Tip, A_START};
 use tabor::physics::tip::Shape;
 use tabor::physics::two_zone::Zones;
 use tabor::ContactModel;
-use std::sync::OnceLock;
 
 /// Every law, at parameters across its range: the closed forms, MD from the DMT side to the
 /// JKR side, two zones with the meniscus longer, much longer and shorter than the solid's zone.
