@@ -5,6 +5,7 @@ pub mod domain;
 pub mod f32math;
 pub mod fields;
 pub mod md;
+pub mod measured;
 /// The names of the contact models, one vocabulary for every part of tabor.
 pub mod model;
 pub mod params;

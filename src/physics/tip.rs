@@ -2,6 +2,7 @@
 //! Maugis-Dugdale gap integral over the zone, in the shape's normalised units; and the SI
 //! description of a tip (sphere, power law, cone, pyramid, capped cone) with its units.
 
+use super::measured::Profile;
 use super::params::{check, ParamError};
 use crate::numeric::legendre::{gauss_legendre, Order};
 use serde::{Deserialize, Serialize};
@@ -25,6 +26,10 @@ pub enum Shape {
         /// The cone's half-angle (radians, axis to flank).
         half_angle: f64,
     },
+    /// A measured profile (section 12.3), in the units: interpolated, its tangent beyond its
+    /// last point. Held for the life of the process (a shape is `Copy`; a scene leaks one
+    /// table of a few kilobytes).
+    Measured(&'static Profile),
 }
 
 /// The Gauss-Legendre rule every integral here uses, on [0, 1].
@@ -53,6 +58,7 @@ impl Shape {
             Shape::Power { exponent: 2.0 } => "a sphere",
             Shape::Power { .. } => "a power-law tip",
             Shape::CappedCone { .. } => "a capped cone",
+            Shape::Measured(_) => "a measured tip",
         }
     }
 
@@ -64,6 +70,10 @@ impl Shape {
             Shape::CappedCone { rho, half_angle } => format!(
                 "a capped cone (cap radius {rho} l, half-angle {} degrees)",
                 half_angle.to_degrees()
+            ),
+            Shape::Measured(p) => format!(
+                "a measured profile ({} points to r = {:.4} l)",
+                p.points, p.largest_radius
             ),
         }
     }
@@ -81,13 +91,17 @@ impl Shape {
                 "A spherical cap of radius R = {rho:.3} l joined to a cone of half-angle {:.1}°",
                 half_angle.to_degrees()
             ),
+            Shape::Measured(p) => format!(
+                "A measured profile of {} points to r = {:.3} l, continued by its tangent",
+                p.points, p.largest_radius
+            ),
         }
     }
 
     /// The joint of a capped cone (`rho cos theta`), where the integrals are split.
     fn joint(&self) -> Option<f64> {
         match *self {
-            Shape::Power { .. } => None,
+            Shape::Power { .. } | Shape::Measured(_) => None,
             Shape::CappedCone { rho, half_angle } => Some(rho * half_angle.cos()),
         }
     }
@@ -111,6 +125,10 @@ impl Shape {
                         rho * cot,
                     )
                 }
+            }
+            Shape::Measured(p) => {
+                let (f, d, _) = p.eval(r);
+                (f, d)
             }
         }
     }
@@ -138,6 +156,7 @@ impl Shape {
                     (rho * t * g, rho * slope)
                 }
             }
+            Shape::Measured(p) => p.abel(t),
         }
     }
 
@@ -155,6 +174,9 @@ impl Shape {
                 }
                 (1.5 * q, slope)
             }
+            // Sneddon's load: (3/2) int_0^A T Fbar'(T) dT = (3/2) int_0^A r^2 fbar'(r) dr /
+            // sqrt(A^2 - r^2) (the identity holds term by term for every power r^n).
+            Shape::Measured(p) => (1.5 * p.load_integral(a), slope),
         }
     }
 
@@ -173,7 +195,7 @@ impl Shape {
                     an * n * m.powf(n - 1.0) * i * mu / m,
                 )
             }
-            Shape::CappedCone { .. } => {
+            Shape::CappedCone { .. } | Shape::Measured(_) => {
                 let c = m * a;
                 let (fa, fa_d) = self.abel(a);
                 // Integrand triples (Jbar, dJbar/dA, the integral behind dJbar/dmu) at phi.
@@ -239,7 +261,7 @@ impl Shape {
             }
             Shape::Power { .. } => integrate(&g, 0.0, big_u, Ends::Smooth),
             // The cone side's slope has a square-root kink at the joint.
-            Shape::CappedCone { .. } => match self.joint() {
+            Shape::CappedCone { .. } | Shape::Measured(_) => match self.joint() {
                 Some(b) if r < b && b < a => {
                     let ub = ((b - r) * (b + r)).sqrt();
                     integrate(&g, 0.0, ub, Ends::Smooth) + integrate(&g, ub, big_u, Ends::SqrtAtLo)
@@ -444,7 +466,7 @@ impl std::str::FromStr for Shape {
 }
 
 /// A tip in SI units, as a scene gives it.
-#[derive(Clone, Copy, Debug, PartialEq, Deserialize, Serialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(tag = "shape", rename_all = "snake_case", deny_unknown_fields)]
 pub enum TipInput {
     /// A sphere (its paraboloid), as `radius_m` gives it.
@@ -478,6 +500,15 @@ pub enum TipInput {
         radius_m: f64,
         /// The cone's half-angle (degrees).
         half_angle_deg: f64,
+    },
+    /// A measured profile (SEM, blind tip reconstruction): the height `z_m` above the apex at
+    /// each radius `r_m` (m), from the axis outwards; interpolated by the monotone cubic and
+    /// continued by its tangent beyond the last point (section 12.3).
+    Profile {
+        /// The radii (m), from 0 rising.
+        r_m: Vec<f64>,
+        /// The heights (m), never falling.
+        z_m: Vec<f64>,
     },
 }
 
@@ -557,7 +588,7 @@ impl TipInput {
                     * (n * (PI / n).tan() / PI).sqrt();
                 Some((1.0, 1.0 / tan))
             }
-            TipInput::CappedCone { .. } => None,
+            TipInput::CappedCone { .. } | TipInput::Profile { .. } => None,
         })
     }
 
@@ -576,7 +607,7 @@ impl TipInput {
     /// The tip's units for the reduced modulus `e_star`, the work of adhesion `w` and the
     /// Dugdale stress `s0` (SI; checked by the caller).
     pub fn units(&self, e_star: f64, w: f64, s0: f64) -> Result<TipUnits, ParamError> {
-        let (shape, l, d) = match (self.power()?, *self) {
+        let (shape, l, d) = match (self.power()?, self) {
             (Some((n, b)), _) => {
                 let kb = k_n(n) * b;
                 let l = (3.0 * PI * w / (4.0 * e_star * kb * kb)).powf(1.0 / (2.0 * n - 1.0));
@@ -584,7 +615,7 @@ impl TipInput {
             }
             (
                 None,
-                TipInput::CappedCone {
+                &TipInput::CappedCone {
                     radius_m,
                     half_angle_deg,
                 },
@@ -600,6 +631,33 @@ impl TipInput {
                     l,
                     l * l / r,
                 )
+            }
+            (None, TipInput::Profile { r_m, z_m }) => {
+                let p = Profile::new(r_m, z_m)
+                    .map_err(|e| ParamError::Conflict(format!("tip: {e}")))?;
+                // l where F(l)^2 / l = 3 pi w / (4 E*), d = F(l): the power law's units for
+                // any profile (F(l)^2 / l rises: F grows at least like l for a convex tip).
+                let target = 3.0 * PI * w / (4.0 * e_star);
+                let excess = |l: f64| {
+                    let f = p.abel(l).0;
+                    f * f / l - target
+                };
+                let (mut lo, mut hi) = (p.largest_radius * 1e-12, p.largest_radius);
+                while excess(hi) < 0.0 && hi < 1e12 * p.largest_radius {
+                    hi *= 4.0;
+                }
+                while excess(lo) > 0.0 && lo > 1e-300 {
+                    lo *= 1e-4;
+                }
+                if !(excess(lo) <= 0.0 && excess(hi) >= 0.0) {
+                    return Err(ParamError::Conflict(format!(
+                        "tip: the measured profile's length unit was not found (E* = {e_star} Pa, w = {w} J/m^2): check the units of r_m and z_m (metres)"
+                    )));
+                }
+                let l = crate::numeric::root::bisect_sign(excess, lo, hi);
+                let d = p.abel(l).0;
+                let scaled: &'static Profile = Box::leak(Box::new(p.scaled(l, d)));
+                (Shape::Measured(scaled), l, d)
             }
             (None, _) => unreachable!("every other tip is a power law"),
         };

@@ -71,6 +71,10 @@ pub struct TipSceneResult {
     pub recommended_model: &'static str,
     /// The state at each load.
     pub loads: Vec<TipLoadResult>,
+    /// For a measured profile: the error its interpolation may bring to the results (relative;
+    /// an upper estimate from the table at every other point).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub profile_error: Option<f64>,
     /// Where the idealisation is stretched.
     pub warnings: Vec<String>,
     /// Where the values came from.
@@ -134,9 +138,40 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         .map(|l| order.iter().position(|m| *m == l.model).unwrap_or(3))
         .max()
         .map_or("none", |i| order[i]);
+    let mut warnings = tip_warnings(tip);
+    let mut profile_error = None;
+    if let crate::physics::tip::Shape::Measured(p) = u.shape {
+        let last_m = p.largest_radius * u.length_m;
+        // The radii the states rest on: the least contact radius above 0, the widest zone.
+        let narrowest = loads
+            .iter()
+            .filter_map(|l| l.contact_radius_m)
+            .chain([dead.a * u.length_m, grips.a * u.length_m])
+            .filter(|&a| a > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let widest = loads
+            .iter()
+            .filter_map(|l| l.zone_radius_m)
+            .fold(dead.c.max(grips.c) * u.length_m, f64::max);
+        let e = p.error_between(narrowest.min(widest) / u.length_m, widest / u.length_m);
+        profile_error = Some(e);
+        warnings.push(format!(
+            "the measured profile ({} points to r = {} m) gives these results within {:.1e} (relative; an upper estimate: over the radii they rest on, its interpolant's Abel transform differs by that from that of every other point)",
+            p.points,
+            crate::physics::domain::short(last_m),
+            e
+        ));
+        if widest > last_m {
+            warnings.push(format!(
+                "the Dugdale zone reaches r = {} m, beyond the measured profile's last radius {} m: the tip is continued there by its tangent",
+                crate::physics::domain::short(widest),
+                crate::physics::domain::short(last_m)
+            ));
+        }
+    }
     Ok(TipSceneResult {
         name: s.name.clone().unwrap_or_else(|| "scene".into()),
-        tip: *tip,
+        tip: tip.clone(),
         equivalent_cone_half_angle_deg: tip.equivalent_cone_deg(),
         e_star_pa: e_star,
         work_of_adhesion_j_m2: w,
@@ -149,7 +184,8 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         pulloff_contact_radius_load_control_m: dead.a * u.length_m,
         recommended_model,
         loads,
-        warnings: tip_warnings(tip),
+        profile_error,
+        warnings,
         source: s.source.clone(),
     })
 }

@@ -461,3 +461,129 @@ fn tip_profiles_carry_their_load_and_close_at_the_range() {
         }
     }
 }
+
+/// A scene's tip as a measured table of heights at `n` radii up to `r_max` (m).
+fn tabulated(f: impl Fn(f64) -> f64, r_max: f64, n: usize) -> String {
+    let r: Vec<f64> = (0..n).map(|i| r_max * i as f64 / (n - 1) as f64).collect();
+    let z: Vec<f64> = r.iter().map(|&x| f(x)).collect();
+    format!(
+        r#"{{"shape": "profile", "r_m": {}, "z_m": {}}}"#,
+        serde_json::to_string(&r).unwrap(),
+        serde_json::to_string(&z).unwrap()
+    )
+}
+
+/// A measured profile of a sphere, a blunt power law and a capped cone gives the exact tip's
+/// pull-offs and per-load radii and approach within the error the scene states for its table
+/// (the sphere's table is exact: the monotone cubic's three-point slopes are a parabola's)
+/// (section 12.3); the table's tangent beyond its last point is said where the zone reaches it,
+/// and bad tables are refused in one line naming the point.
+#[test]
+fn a_tabulated_tip_is_its_shape_within_the_stated_error() {
+    let base = r#""e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05, "s0_pa": 5e7, "loads_n": [0, 2e-9, 1e-8]"#;
+    let theta = 20f64.to_radians();
+    let (r_cap, b) = (2e-8, 2e-8 * theta.cos());
+    let capped = move |r: f64| {
+        if r <= b {
+            r_cap - (r_cap * r_cap - r * r).sqrt()
+        } else {
+            r_cap - r_cap / theta.sin() + r / theta.tan()
+        }
+    };
+    let cases: [(&str, String, String); 3] = [
+        (
+            "sphere",
+            r#"{"shape": "sphere", "radius_m": 2e-8}"#.into(),
+            tabulated(|r| r * r / 4e-8, 3e-8, 60),
+        ),
+        (
+            "power 3",
+            r#"{"shape": "power", "exponent": 3, "coefficient": 1e15}"#.into(),
+            tabulated(|r| 1e15 * r.powi(3), 3e-8, 100),
+        ),
+        (
+            "capped cone",
+            r#"{"shape": "capped_cone", "radius_m": 2e-8, "half_angle_deg": 20}"#.into(),
+            tabulated(capped, 4e-8, 150),
+        ),
+    ];
+    for (what, exact, table) in cases {
+        let exact = match scene(&format!(r#"{{{base}, "tip": {exact}}}"#)).unwrap() {
+            tabor::scene::Solved::Tip(r) => *r,
+            // The sphere given as a tip is solved as the sphere's scene: take its exact tip law
+            // through the square power law instead.
+            tabor::scene::Solved::Sphere(_) => match scene(&format!(
+                r#"{{{base}, "tip": {{"shape": "power", "exponent": 2, "coefficient": 2.5e7}}}}"#
+            ))
+            .unwrap()
+            {
+                tabor::scene::Solved::Tip(r) => *r,
+                _ => unreachable!(),
+            },
+        };
+        let tabor::scene::Solved::Tip(m) = scene(&format!(r#"{{{base}, "tip": {table}}}"#))
+            .unwrap_or_else(|e| panic!("{what}: {e}"))
+        else {
+            panic!("a table is a tip scene")
+        };
+        let stated = m.profile_error.unwrap();
+        assert!(
+            m.warnings
+                .iter()
+                .any(|w| w.contains("gives these results within")),
+            "{:?}",
+            m.warnings
+        );
+        let mut worst: f64 = 0.0;
+        let mut rel = |a: f64, b: f64| worst = worst.max((a / b - 1.0).abs());
+        rel(
+            m.pulloff_force_load_control_N,
+            exact.pulloff_force_load_control_N,
+        );
+        rel(
+            m.pulloff_force_displacement_control_N,
+            exact.pulloff_force_displacement_control_N,
+        );
+        for (x, y) in m.loads.iter().zip(&exact.loads) {
+            rel(x.contact_radius_m.unwrap(), y.contact_radius_m.unwrap());
+            rel(x.zone_radius_m.unwrap(), y.zone_radius_m.unwrap());
+            rel(x.approach_m.unwrap(), y.approach_m.unwrap());
+        }
+        println!("{what}: stated error {stated:.2e}, largest relative difference {worst:.2e}");
+        assert!(
+            // The stated error bounds the table's; 1e-10 is the solver's and quadrature's floor.
+            stated < 1e-2 && worst <= stated + 1e-10,
+            "{what}: {worst} against {stated}"
+        );
+    }
+    // A table ending inside the zone is continued by its tangent, and said so.
+    let short = tabulated(|r| r * r / 4e-8, 4e-9, 40);
+    let tabor::scene::Solved::Tip(m) = scene(&format!(r#"{{{base}, "tip": {short}}}"#)).unwrap()
+    else {
+        panic!()
+    };
+    assert!(
+        m.warnings
+            .iter()
+            .any(|w| w.contains("beyond the measured profile")),
+        "{:?}",
+        m.warnings
+    );
+    for (table, words) in [
+        (
+            r#"{"shape": "profile", "r_m": [0, 1e-9, 2e-9, 3e-9], "z_m": [0, 1e-10, 5e-11, 2e-10]}"#,
+            "z_m[2] = 5e-11",
+        ),
+        (
+            r#"{"shape": "profile", "r_m": [0, 1e-9, 2e-9], "z_m": [0, 1e-10, 2e-10]}"#,
+            "at least 4",
+        ),
+        (
+            r#"{"shape": "profile", "r_m": [0, 1e-9, 2e-9, 3e-9], "z_m": [0, 1e-10, 2e-10]}"#,
+            "one height per radius",
+        ),
+    ] {
+        let e = scene(&format!(r#"{{{base}, "tip": {table}}}"#)).unwrap_err();
+        assert!(e.contains(words) && !e.contains('\n'), "{e}");
+    }
+}
