@@ -45,6 +45,41 @@ def test_a_tip_scene_is_the_command_lines(tmp_path):
     assert tabor.Scene(scene).warnings[0] == cli["warnings"]
 
 
+def test_a_measured_profile_is_the_command_lines_and_states_its_error(tmp_path):
+    """A measured capped cone (80 points) through ``tabor.Scene``: the command line's report,
+    key for key, with the table's error stated and within it of the exact capped cone."""
+    theta, big_r = math.radians(20), 20e-9
+    r = np.linspace(0.0, 4e-8, 80)
+    b = big_r * math.cos(theta)
+    z = np.where(r <= b, big_r - np.sqrt(np.maximum(big_r**2 - r**2, 0.0)),
+                 big_r - big_r / math.sin(theta) + r / math.tan(theta))
+    base = dict(cone_scene(2e-9), loads_n=[0.0, 5e-9])
+    measured = dict(base, tip={"shape": "profile", "r_m": r.tolist(), "z_m": z.tolist()})
+    exact = dict(base, tip={"shape": "capped_cone", "radius_m": big_r, "half_angle_deg": 20})
+    m, e = tabor.Scene(measured).report, tabor.Scene(exact).report
+    err = m["profile_error"]
+    assert 0 < err < 1e-2
+    assert any("gives these results within" in w for w in m["warnings"])
+    for key in ("pulloff_force_load_control_N", "pulloff_force_displacement_control_N"):
+        assert m[key] == pytest.approx(e[key], rel=err)
+    path = tmp_path / "measured.json"
+    path.write_text(json.dumps(measured))
+    binary = ROOT / "target" / "release" / "tabor"
+    if not binary.exists():
+        if os.environ.get("CI") == "true":
+            pytest.fail("no tabor binary under target/release: run cargo build --release first")
+        pytest.skip("SKIPPED: no tabor binary under target/release (cargo build --release)")
+    cli = json.loads(subprocess.run([str(binary), "scene", str(path), "--format", "json"],
+                                    check=True, capture_output=True, text=True).stdout)
+    # The report holds the table as arrays; everything else is the command line's, key for key.
+    assert {k: v for k, v in m.items() if k != "tip"} == {k: v for k, v in cli.items() if k != "tip"}
+    np.testing.assert_array_equal(m["tip"]["r_m"], cli["tip"]["r_m"])
+    bad = dict(base, tip={"shape": "profile", "r_m": [0, 1e-9, 2e-9, 3e-9],
+                          "z_m": [0, 1e-10, 5e-11, 2e-10]})
+    with pytest.raises(ValueError, match=r"z_m\[2\] = 5e-11"):
+        tabor.Scene(bad)
+
+
 def test_bad_tips_are_refused_in_one_line():
     bad = dict(cone_scene(), tip={"shape": "cone", "half_angle_deg": 95})
     with pytest.raises(ValueError, match="half_angle_deg = 95"):
