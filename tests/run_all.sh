@@ -18,8 +18,7 @@ cargo test --release -p tabor-capi-header
 stage "the documentation"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
 # The Python tests compare with the command line: target/release/tabor, built by `cargo test`
-# above (a separate `cargo build` would compile tabor again without the tests' features). The
-# extension links the library compiled there (python/Cargo.toml takes its default features).
+# above (a separate `cargo build` would compile tabor again without the tests' features).
 stage "the Python package"
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
