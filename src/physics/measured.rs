@@ -212,12 +212,9 @@ impl Profile {
             + (t2 * t - 2.0 * t2 + t) * h * s0
             + (3.0 * t2 - 2.0 * t2 * t) * z1
             + (t2 * t - t2) * h * s1;
-        let df = (6.0 * t2 - 6.0 * t) * (z0 - z1) / h
-            + (3.0 * t2 - 4.0 * t + 1.0) * s0
-            + (3.0 * t2 - 2.0 * t) * s1;
-        let ddf =
-            ((12.0 * t - 6.0) * (z0 - z1) / h + (6.0 * t - 4.0) * s0 + (6.0 * t - 2.0) * s1) / h;
-        (f, df, ddf)
+        // The slope and curvature from the interval's slope polynomial (the closed forms' too).
+        let [c0, c1, c2] = self.c[k];
+        (f, c0 + (c1 + c2 * t) * t, (c1 + 2.0 * c2 * t) / h)
     }
 
     /// `int_0^(pi/2) sin^j(phi) f'(T sin phi) dphi` combined into `F/T`, `F'` (weights 1, 2, 3

@@ -166,7 +166,7 @@ fn contact_extremes(law: &ContactLaw) -> (f64, f64) {
             .collect()
     });
     all.iter()
-        .find(|(l, _)| format!("{l:?}") == format!("{law:?}"))
+        .find(|(l, _)| l == law)
         .map(|(_, e)| *e)
         .expect("a law of laws()")
 }
