@@ -337,7 +337,7 @@ fn shape_of(
     if !points.is_empty() && fit.status == FitStatus::Ok {
         // Delta chi^2 = m (rms^2 - rms_fit^2) / s^2, s^2 from the fit's residual (5 parameters)
         // with the floor of a noise-free curve, as the Maugis-Dugdale fit's profile.
-        let m = d.force.len() as f64;
+        let m = d.count as f64;
         let fmax = d.force.iter().fold(0.0f64, |a, f| a.max(f.abs()));
         let rms = fit.rms_residual_n;
         let s2 = (rms * rms * m / (m - 5.0).max(1.0)).max((1e-13 * fmax).powi(2));

@@ -234,7 +234,7 @@ pub fn profile_intervals(
     md: &ModelFit,
     profile: &[ModelFit],
 ) -> Intervals {
-    let m = d.force.len() as f64;
+    let m = d.count as f64;
     let (f_scale, z_scale) = scales(d);
     // The noise from the residual, at least rounding.
     let floor = 1e-13 * f_scale;
@@ -324,6 +324,31 @@ pub fn profile_intervals(
     out
 }
 
+/// Each interval widened to hold the fit `md`'s value (tip radius `radius`, m): a fit
+/// finished on a curve's points after its profile was taken on the curve's bins lies within
+/// about a Delta chi^2 of 1 of the bins' minimum, which the intervals are centred on.
+pub fn hold(iv: &mut Intervals, md: &ModelFit, radius: f64) {
+    let z0 = md
+        .lambda
+        .map(|l| super::z0_from_lambda(md.e_star_pa, md.work_of_adhesion_j_m2, radius, l));
+    for (q, v) in [
+        (&mut iv.e_star_pa, Some(md.e_star_pa)),
+        (&mut iv.work_of_adhesion_j_m2, Some(md.work_of_adhesion_j_m2)),
+        (&mut iv.lambda, md.lambda),
+        (&mut iv.contact_point_m, Some(md.contact_point_m)),
+        (&mut iv.z0_m, z0),
+    ] {
+        let Some(v) = v.filter(|v| v.is_finite()) else {
+            continue;
+        };
+        for [lo, hi] in q.iter_mut().flatten() {
+            // An open end stays open.
+            *lo = lo.map(|l| l.min(v));
+            *hi = hi.map(|h| h.max(v));
+        }
+    }
+}
+
 /// The interval of quantity `q` (0 E*, 1 w, 2 the contact point, 3 z0) at level `k`: the
 /// minimum over the profile's fits within the level of Delta chi^2 plus the quantity's own
 /// quadratic term at that fit, from its moments.
@@ -379,7 +404,7 @@ fn nest(q: &mut [Option<Interval>; 2]) {
 /// The intervals of a fit with lambda fixed by z0 (no profile): parabolic, from the covariance,
 /// in the logarithms of E* and w (so that they stay positive).
 pub fn fixed_z0_intervals(d: &Prepared, md: &ModelFit) -> Intervals {
-    let m = d.force.len() as f64;
+    let m = d.count as f64;
     let (f_scale, z_scale) = scales(d);
     let floor = 1e-13 * f_scale;
     let s2 = (rss(md, m) / (m - 4.0).max(1.0)).max(floor * floor);

@@ -10,6 +10,7 @@
 //! force offset, fitted by Levenberg-Marquardt (MINPACK's, through the `levenberg-marquardt`
 //! crate) with finite-difference Jacobians that keep each point on its branch.
 
+mod bins;
 pub mod data;
 pub mod humidity;
 pub mod interval;
@@ -149,11 +150,12 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
 }
 
 /// The models fitted to a prepared curve, the adequate one chosen.
-fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
-    let est = estimates(d, opt.radius, opt.spring);
+fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
+    let est = estimates(raw, opt.radius, opt.spring);
+
     let pull = est
         .pulloff
-        .max(10.0 * d.noise)
+        .max(10.0 * raw.noise)
         .max(1e-6 * est.e_star * opt.radius * opt.radius);
     let w_of = |pc_bar: f64| pull / (pc_bar * PI * opt.radius);
     let start = |w: f64, lambda: f64| Params {
@@ -164,12 +166,19 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
         f0: 0.0,
     };
     let w_ref = w_of(1.75);
-    let hertz = fit_model(Model::Hertz, d, opt, start(w_ref, 1.0), w_ref, None);
+    // The closed forms on the points: their fits are few and short, and the search of
+    // Maugis-Dugdale starts from them.
+    let hertz = fit_model(Model::Hertz, raw, opt, start(w_ref, 1.0), w_ref, None);
+    // The search of Maugis-Dugdale runs on the curve in bins where it has many points
+    // ([`Prepared::binned`]); what was measured (the pull-off, the largest load, the points)
+    // is read from its points.
+    let binned = raw.binned();
+    let d = binned.as_ref().unwrap_or(raw);
     let pulloff = |model: Model, lambda: f64| model.law(lambda).pulloff();
     // A closed form with adhesion, its w started from the measured pull-off with its own.
     let closed = |model| {
         let s = start(w_of(pulloff(model, 1.0)), 1.0);
-        fit_model(model, d, opt, s, w_ref, None)
+        fit_model(model, raw, opt, s, w_ref, None)
     };
     let (dmt, jkr) = (closed(Model::Dmt), closed(Model::Jkr));
     // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
@@ -180,7 +189,11 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
         } else {
             est.e_star
         },
-        w: if m.status == FitStatus::Ok {
+        // A closed form whose adhesion collapsed (w far below what the measured pull-off
+        // says) would start Maugis-Dugdale where w has no grip on the misfit: the pull-off's w.
+        w: if m.status == FitStatus::Ok
+            && m.work_of_adhesion_j_m2 * pulloff(m.model, 1.0) / pc_md > 1e-2 * w_of(pc_md)
+        {
             m.work_of_adhesion_j_m2 * pulloff(m.model, 1.0) / pc_md
         } else {
             w_of(pc_md)
@@ -217,7 +230,17 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
                     fit_model(Model::Md, d, opt, s, w_ref, Some(l))
                 })
                 .collect();
-            let md = free_fit(d, opt, w_ref, profile.clone());
+            let mut md = free_fit(d, opt, w_ref, profile.clone());
+            let mut profile = profile;
+            if binned.is_some() {
+                // The bins' scatter set from the fit found (see `recalibrate`), for the noise
+                // that the intervals read from its misfit.
+                let n = raw.count as f64;
+                let gap = n * rms_on(&md, raw, opt, w_ref).powi(2) - n * md.rms_residual_n.powi(2);
+                for f in profile.iter_mut().chain(std::iter::once(&mut md)) {
+                    recalibrate(f, gap, n);
+                }
+            }
             let iv = if md.status == FitStatus::Ok {
                 interval::profile_intervals(d, opt, w_ref, &md, &profile)
             } else {
@@ -230,11 +253,79 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, d: &Prepared) -> CurveFit {
     let stuck = md.status == FitStatus::Ok
         && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
         && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
-    let mut out = summarize(curve, opt, d, md, vec![hertz, dmt, jkr], &iv);
+    // Fitted on the bins: each fit finished on the points, the intervals holding the answer.
+    let (md, models, iv) = match binned {
+        Some(_) => {
+            let finish = |f: ModelFit| finish_on_points(f, raw, opt, w_ref);
+            let mut iv = iv;
+            let md = keep_spread(finish(md.clone()), &md);
+            interval::hold(&mut iv, &md, opt.radius);
+            (md, vec![hertz, dmt, jkr], iv)
+        }
+        None => (md, vec![hertz, dmt, jkr], iv),
+    };
+    let mut out = summarize(curve, opt, raw, md, models, &iv);
     if stuck && out.status == FitStatus::Ok {
-        out = unmoved(out, curve, d, opt);
+        out = unmoved(out, curve, raw, opt);
     }
     out
+}
+
+/// A fit made on a curve's bins, finished on its points from there: the points' own minimum, which the bins' curvature moves by about a Delta chi^2 of
+/// 1, reached in a few iterations. Where the finish fails or does worse, the bins' fit with its
+/// misfit read on the points.
+fn finish_on_points(
+    f: ModelFit,
+    raw: &Prepared,
+    opt: &FitOptions,
+    w_ref: f64,
+) -> ModelFit {
+    if !f.rms_residual_n.is_finite() {
+        return f;
+    }
+    let on_points = rms_on(&f, raw, opt, w_ref);
+    let g = fit_model_for(f.model, raw, opt, f.params(), w_ref, None, PATIENCE, None);
+    if f.status == FitStatus::Ok && g.status == FitStatus::Ok && g.rms_residual_n <= on_points {
+        ModelFit {
+            iterations: f.iterations + g.iterations,
+            ..g
+        }
+    } else {
+        ModelFit {
+            rms_residual_n: on_points,
+            ..f
+        }
+    }
+}
+
+/// A fit on a curve's bins with `gap` (N^2) added to its residual sum over `n` points: the
+/// bins' scatter is estimated from the points about each bin's line, which runs low (a bin ends
+/// where its scatter grows), and is set instead so that the best fit's sum on the bins is its
+/// sum on the points. Differences of the sums, which the profile reads, do not change.
+fn recalibrate(f: &mut ModelFit, gap: f64, n: f64) {
+    let rss = n * f.rms_residual_n.powi(2) + gap;
+    if gap.is_finite() && rss >= 0.0 {
+        f.rms_residual_n = (rss / n).sqrt();
+    }
+}
+
+/// The free fit finished on the points with the standard errors of the bins' fit, which the
+/// profile's region widened ([`search::widen_by_region`]).
+fn keep_spread(finished: ModelFit, binned: &ModelFit) -> ModelFit {
+    ModelFit {
+        e_star_pa_stderr: binned.e_star_pa_stderr,
+        work_of_adhesion_j_m2_stderr: binned.work_of_adhesion_j_m2_stderr,
+        lambda_stderr: binned.lambda_stderr,
+        contact_point_m_stderr: binned.contact_point_m_stderr,
+        stop: if binned.stop.ends_with("(lambda from the profile)")
+            && !finished.stop.ends_with("(lambda from the profile)")
+        {
+            format!("{} (lambda from the profile)", finished.stop)
+        } else {
+            finished.stop
+        },
+        ..finished
+    }
 }
 
 /// A fit that ended where it started: `not_converged`, with the likely causes, keeping what

@@ -14,6 +14,15 @@ pub struct Prepared {
     pub dir: Vec<Direction>,
     /// Each point's side of its segment's measured jump (Any where none was measured).
     pub side: Vec<Side>,
+    /// Each point's weight: 1, or a bin's count of points ([`Prepared::binned`]).
+    pub weight: Vec<f64>,
+    /// The bins' scatter about their means (N^2), the part of a residual sum of squares that
+    /// the weighted means do not carry; 0 for a curve not binned.
+    pub within: f64,
+    /// The number of measured points the fitted ones stand for.
+    pub count: usize,
+    /// The scales of the fit's parameters: the largest force (N) and the height span (m).
+    pub scales: (f64, f64),
     /// The last points before a measured jump: fitted by their distance to the model's curve
     /// (`law::follow::fold_distance`), which stays smooth in the parameters where the model's fold
     /// passes them.
@@ -115,7 +124,12 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
     let dir: Vec<Direction> = fitted.iter().map(|&i| curve.segment[i]).collect();
     let side = measured_sides(&force, &dir, noise);
     let at_jump = last_before_jump(&side, &dir);
+    let scales = scales_of(&force, &height);
     Ok(Prepared {
+        weight: vec![1.0; force.len()],
+        within: 0.0,
+        count: force.len(),
+        scales,
         side,
         at_jump,
         dir,
@@ -126,6 +140,14 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         notes,
         dwell,
     })
+}
+
+/// The scales of a curve's fit parameters: its largest force (N) and its height span (m).
+fn scales_of(force: &[f64], height: &[f64]) -> (f64, f64) {
+    let f = force.iter().fold(0.0f64, |m, f| m.max(f.abs())).max(1e-30);
+    let hspan = height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
+        - height.iter().cloned().fold(f64::INFINITY, f64::min);
+    (f, hspan.max(1e-30))
 }
 
 /// Whether a segment's forces (baseline removed) rise above the baseline: beyond five times

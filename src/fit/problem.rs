@@ -321,7 +321,7 @@ impl Problem<'_> {
             states
                 .iter()
                 .enumerate()
-                .map(|(i, s)| self.residual(&p, &u, i, s)),
+                .map(|(i, s)| self.residual(&p, &u, i, s) * d.weight[i].sqrt()),
         );
         r.iter().all(|v| v.is_finite()).then_some((r, states))
     }
@@ -526,6 +526,20 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
+        let mut j = self.unweighted_jacobian()?;
+        // A bin's row counts as its points: its residual is scaled by the root of its count.
+        for (i, w) in self.data.weight.iter().enumerate() {
+            if *w != 1.0 {
+                j.row_mut(i).scale_mut(w.sqrt());
+            }
+        }
+        Some(j)
+    }
+}
+
+impl Problem<'_> {
+    /// The Jacobian of the residuals, each point's row before its weight.
+    fn unweighted_jacobian(&self) -> Option<DMatrix<f64>> {
         *self.jacobians.borrow_mut() += 1;
         let base = match self.states.borrow().clone() {
             Some(s) => s,
@@ -556,9 +570,6 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
         });
         Some(j)
     }
-}
-
-impl Problem<'_> {
     /// The Jacobian from the state's slopes. With u = (ln E*, ln w), the force is
     /// `F = Fs(w) P(Delta, kbar)` with `Delta = (z_c - h) / Ds`, `Ds ~ w^(2/3) E*^(-2/3)` and
     /// `kbar = k Ds / Fs ~ w^(-1/3) E*^(-2/3)`; along the branch `dP/dDelta = P'/g` and
@@ -804,16 +815,22 @@ pub(super) fn fit_md_from(
     )
 }
 
-/// The scales of a curve's fit parameters: its largest force (N) and its height span (m).
+/// The rms residual (N) of the fit `f` on the points of `d`: a fit made on a curve's bins,
+/// read on its points (NaN where its parameters cannot be evaluated). On bins: over their
+/// weighted means alone, without their scatter.
+pub(super) fn rms_on(f: &ModelFit, d: &Prepared, opt: &FitOptions, w_ref: f64) -> f64 {
+    let fixed = f.lambda.filter(|_| opt.z0.is_none());
+    let prob = Problem::new(f.model, d, opt, w_ref, fixed);
+    let x = prob.internal(&f.params());
+    prob.eval(&x, None).map_or(f64::NAN, |(r, _)| {
+        (r.norm_squared() / d.count as f64).sqrt() * prob.f_scale
+    })
+}
+
+/// The scales of a curve's fit parameters: its largest force (N) and its height span (m),
+/// those of its points where it is binned.
 pub(super) fn scales(d: &Prepared) -> (f64, f64) {
-    let f = d
-        .force
-        .iter()
-        .fold(0.0f64, |m, f| m.max(f.abs()))
-        .max(1e-30);
-    let hspan = d.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max)
-        - d.height.iter().cloned().fold(f64::INFINITY, f64::min);
-    (f, hspan.max(1e-30))
+    d.scales
 }
 
 impl<'a> Problem<'a> {
@@ -893,9 +910,10 @@ pub(super) fn fit_model_for(
         );
     let (status, rms, cov, jtj_inv) = match &evaluated {
         Some((r, _)) if ok || matches!(report.termination, TerminationReason::LostPatience) => {
-            let m = r.len();
+            // A binned curve's residual sum: its weighted bins and the scatter inside them.
+            let m = d.count;
             let n = prob.n();
-            let rss = r.norm_squared();
+            let rss = r.norm_squared() + d.within / (prob.f_scale * prob.f_scale);
             let rms = (rss / m as f64).sqrt() * prob.f_scale;
             // A scout's covariance is never read (only its misfit and parameters): its final
             // Jacobian is skipped.

@@ -162,7 +162,7 @@ pub(super) fn widen_by_region(
 ) -> ModelFit {
     // The 3-sigma region of the profile and of the minima found: Delta chi^2 = (RSS - RSS_min) / s^2 <= 9, its edges
     // interpolated in ln lambda between profile points.
-    let m = d.force.len() as f64;
+    let m = d.count as f64;
     let rss = |f: &ModelFit| f.rms_residual_n.powi(2) * m;
     let s2 = rss(&md) / (m - 5.0).max(1.0);
     let lam = md.lambda.unwrap_or(1.0);
