@@ -284,10 +284,16 @@ fn finish_on_points(
         return f;
     }
     let on_points = rms_on(&f, raw, opt, w_ref);
-    let g = fit_model_for(f.model, raw, opt, f.params(), w_ref, None, PATIENCE, None);
-    if f.status == FitStatus::Ok && g.status == FitStatus::Ok && g.rms_residual_n <= on_points {
+    // A noisy curve's (only those are binned): the tolerance of the profile's fits, far below
+    // the noise.
+    let g = fit_model_tol(f.model, raw, opt, f.params(), w_ref, None, FINISH_PATIENCE, None, Some(PROFILE_TOL));
+    // A finish stopped by its short budget has still moved downhill from a converged fit.
+    let moved = g.status == FitStatus::Ok || g.stop == stop_text(&TerminationReason::LostPatience);
+    if f.status == FitStatus::Ok && moved && g.rms_residual_n <= on_points {
         ModelFit {
             iterations: f.iterations + g.iterations,
+            status: FitStatus::Ok,
+            stop: format!("{}; finished on the points", f.stop),
             ..g
         }
     } else {
@@ -297,6 +303,11 @@ fn finish_on_points(
         }
     }
 }
+
+/// The iteration budget of a finish on the points (MINPACK's, as [`PATIENCE`]): it starts
+/// within about a Delta chi^2 of 1 of its minimum, and a misfit that crawls along a flat valley
+/// from there would spend the whole of a full fit's budget for nothing the intervals see.
+const FINISH_PATIENCE: usize = 5;
 
 /// A fit on a curve's bins with `gap` (N^2) added to its residual sum over `n` points: the
 /// bins' scatter is estimated from the points about each bin's line, which runs low (a bin ends
@@ -317,13 +328,6 @@ fn keep_spread(finished: ModelFit, binned: &ModelFit) -> ModelFit {
         work_of_adhesion_j_m2_stderr: binned.work_of_adhesion_j_m2_stderr,
         lambda_stderr: binned.lambda_stderr,
         contact_point_m_stderr: binned.contact_point_m_stderr,
-        stop: if binned.stop.ends_with("(lambda from the profile)")
-            && !finished.stop.ends_with("(lambda from the profile)")
-        {
-            format!("{} (lambda from the profile)", finished.stop)
-        } else {
-            finished.stop
-        },
         ..finished
     }
 }

@@ -869,7 +869,8 @@ impl<'a> Problem<'a> {
 pub(super) const PATIENCE: usize = 150;
 pub(super) const SCOUT_PATIENCE: usize = 3;
 
-/// The relative tolerance (MINPACK's ftol and xtol) of a fit at fixed lambda. Such fits only
+/// The relative tolerance (MINPACK's ftol and xtol) of a fit at fixed lambda, and of a noisy
+/// curve's fit finished on its points. Such fits only
 /// place the profile of the misfit, read as Delta chi^2 = Delta RSS / s^2 with s^2 = RSS / (m -
 /// 5). A fit stops when a step would reduce the RSS by less than this fraction, which leaves it
 /// within a few times that of its minimum: Delta chi^2 moves by about 1e-10 m, far below the
@@ -888,6 +889,24 @@ pub(super) fn fit_model_for(
     patience: usize,
     hints: Option<&[PathState]>,
 ) -> ModelFit {
+    let tol = fixed_lambda.map(|_| PROFILE_TOL);
+    fit_model_tol(model, d, opt, start, w_ref, fixed_lambda, patience, hints, tol)
+}
+
+/// [`fit_model_for`] with MINPACK's relative tolerances `tol` (ftol and xtol; None: the
+/// crate's).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn fit_model_tol(
+    model: Model,
+    d: &Prepared,
+    opt: &FitOptions,
+    start: Params,
+    w_ref: f64,
+    fixed_lambda: Option<f64>,
+    patience: usize,
+    hints: Option<&[PathState]>,
+    tol: Option<f64>,
+) -> ModelFit {
     let mut prob = Problem::new(model, d, opt, w_ref, fixed_lambda);
     prob.x = prob.internal(&start);
     *prob.hints.borrow_mut() = hints
@@ -895,8 +914,8 @@ pub(super) fn fit_model_for(
         .map(<[_]>::to_vec);
     let scout = patience == SCOUT_PATIENCE;
     let mut lm = LevenbergMarquardt::new().with_patience(patience);
-    if fixed_lambda.is_some() {
-        lm = lm.with_ftol(PROFILE_TOL).with_xtol(PROFILE_TOL);
+    if let Some(t) = tol {
+        lm = lm.with_ftol(t).with_xtol(t);
     }
     let (prob, report) = lm.minimize(prob);
     let x = prob.x.clone();
