@@ -1115,8 +1115,9 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         ``not_converged``) and ``message``; ``e_star_pa``, ``work_of_adhesion_j_m2``,
         ``lambda``, ``tabor_parameter``, ``z0_m``, ``contact_point_m``, each with ``_stderr``;
         the 95% and 68% profile-likelihood intervals ``*_interval_95`` and ``*_interval_68``
-        (tuples, None for an end the data leave open); ``lambda_determined`` and
-        ``lambda_bound``; ``rms_residual_n``, ``pulloff_force_measured_n``,
+        (tuples, None for an end the data leave open); ``lambda_determined``,
+        ``lambda_bound``, ``lambda_set_95`` (lambda's 95% set, one interval or several) and
+        ``lambda_basins`` (second basins of lambda's profile up to the 99% level); ``rms_residual_n``, ``pulloff_force_measured_n``,
         ``pulloff_force_model_n``; ``models`` (Hertz, DMT, JKR); ``adequate_model`` and
         ``why``; ``verdict``; ``warnings``; ``dwell`` for a curve with one. With
         ``relative_humidity``, ``humidity``: the ``meniscus``, the fitted model's load-controlled

@@ -18,6 +18,24 @@ use serde::Serialize;
 /// Delta chi^2 of the 68% and 95% levels (one parameter).
 pub const LEVELS: [f64; 2] = [1.0, 3.841458820694124];
 
+/// The Delta chi^2 of the 99% level (one parameter): a second basin of lambda's profile below
+/// it is reported, and leaves lambda undetermined.
+pub const LEVEL_99: f64 = 6.634896601021214;
+
+/// A basin of lambda's profile apart from the best fit's: a local minimum of Delta chi^2 that
+/// the 95% interval about the best fit does not hold, up to the 99% level.
+#[derive(Clone, Debug, Serialize)]
+pub struct Basin {
+    /// Its lambda.
+    pub lambda: f64,
+    /// Its Delta chi^2 above the best fit.
+    pub delta_chi2: f64,
+    /// E* there (Pa).
+    pub e_star_pa: f64,
+    /// w there (J/m^2).
+    pub work_of_adhesion_j_m2: f64,
+}
+
 /// An interval `[low, high]`, `None` for an end the data leave open.
 pub type Interval = [Option<f64>; 2];
 
@@ -37,6 +55,11 @@ pub struct Intervals {
     pub z0_m: [Option<Interval>; 2],
     /// Fits at fixed lambda added to the profile to place the crossings.
     pub extra_fits: usize,
+    /// The basins of lambda's profile apart from the best fit's, up to the 99% level.
+    pub basins: Vec<Basin>,
+    /// lambda's 95% set: the interval about the best fit, and one about each basin below the
+    /// 95% level that the profile separates from it (in order of lambda).
+    pub lambda_set_95: Vec<Interval>,
 }
 
 /// A fit on the profile: its ln lambda, Delta chi^2 and the fit.
@@ -289,6 +312,7 @@ pub fn profile_intervals(
         }
         lambda[k] = Some(ends);
     }
+    let (basins, set95) = basins(&search, &mut pts, lambda[1].unwrap_or([None, None]));
     // The other quantities: min over the profile's fits of chi + (theta - theta_l)^2 / var_l.
     let determined: Vec<bool> = lambda
         .iter()
@@ -301,6 +325,7 @@ pub fn profile_intervals(
         extra_fits: extra,
         ..Intervals::default()
     };
+    out.extra_fits += basins.len();
     for (k, &lam) in lambda.iter().enumerate() {
         out.e_star_pa[k] = quantity(0, k);
         out.work_of_adhesion_j_m2[k] = quantity(1, k);
@@ -321,7 +346,125 @@ pub fn profile_intervals(
     ] {
         nest(q);
     }
+    // A second basin below the 99% level is as plausible as the 95% sets say: its E*, w,
+    // contact point and z0 are held by their 95% intervals (at 68% where it is below that
+    // level), so that what lambda's ambiguity does to them shows.
+    for b in &basins {
+        for k in 0..2 {
+            if b.0.delta_chi2 <= LEVELS[k] || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
+                let z0 = super::z0_from_lambda(b.1.e_star_pa, b.1.work_of_adhesion_j_m2, opt.radius, b.0.lambda);
+                for (q, v) in [
+                    (&mut out.e_star_pa[k], b.1.e_star_pa),
+                    (&mut out.work_of_adhesion_j_m2[k], b.1.work_of_adhesion_j_m2),
+                    (&mut out.contact_point_m[k], b.1.contact_point_m),
+                    (&mut out.z0_m[k], z0),
+                ] {
+                    if let Some([lo, hi]) = q.as_mut() {
+                        *lo = lo.map(|l| l.min(v));
+                        *hi = hi.map(|h| h.max(v));
+                    }
+                }
+            }
+        }
+    }
+    out.basins = basins.into_iter().map(|b| b.0).collect();
+    out.lambda_set_95 = set95;
     out
+}
+
+/// The basins of lambda's profile apart from the best fit's (each with its fit) and lambda's
+/// 95% set, given the 95% interval spanning every point below that level (`hull`, its outer
+/// ends placed by [`Search::crossing`]). The profile's points below the level form runs in
+/// lambda; the set is those runs, their inner ends placed as the crossings are. A basin is a
+/// local minimum of the points below the 99% level that a point above the 95% level separates
+/// from the best fit's run; a free fit from it finds its bottom where it stays between the
+/// point's neighbours (a fixed-lambda point only samples it).
+fn basins(search: &Search, pts: &mut Vec<Point>, hull: Interval) -> (Vec<(Basin, ModelFit)>, Vec<Interval>) {
+    let level = LEVELS[1];
+    let sorted = |pts: &[Point]| {
+        let mut o: Vec<usize> = (0..pts.len()).collect();
+        o.sort_by(|&a, &b| pts[a].x.total_cmp(&pts[b].x));
+        o
+    };
+    let o = sorted(pts);
+    let best = o.iter().position(|&i| pts[i].free).unwrap_or(0);
+    // The run of the best fit: the sorted points below the level about it.
+    let (mut lo, mut hi) = (best, best);
+    while lo > 0 && pts[o[lo - 1]].chi <= level {
+        lo -= 1;
+    }
+    while hi + 1 < o.len() && pts[o[hi + 1]].chi <= level {
+        hi += 1;
+    }
+    let candidates: Vec<usize> = (0..o.len())
+        .filter(|&k| {
+            let c = pts[o[k]].chi;
+            c <= LEVEL_99
+                && !(lo..=hi).contains(&k)
+                && (k == 0 || c <= pts[o[k - 1]].chi)
+                && (k + 1 == o.len() || c <= pts[o[k + 1]].chi)
+        })
+        .collect();
+    let mut found: Vec<(Basin, ModelFit)> = Vec::new();
+    for k in candidates {
+        let i = o[k];
+        let from = pts[i].fit.clone();
+        let (left, right) = (
+            k.checked_sub(1).map_or(f64::NEG_INFINITY, |j| pts[o[j]].x),
+            o.get(k + 1).map_or(f64::INFINITY, |&j| pts[j].x),
+        );
+        let f = fit_md_from(&from, search.d, search.opt, from.params(), search.w_ref, None, PATIENCE);
+        let refined = f
+            .lambda
+            .filter(|l| f.rms_residual_n.is_finite() && l.ln() > left && l.ln() < right)
+            .map(|_| (search.chi)(&f))
+            .filter(|&c| c <= pts[i].chi);
+        let (fit, chi) = match refined {
+            Some(c) => (f, c),
+            None => (from, pts[i].chi),
+        };
+        let lambda = fit.lambda.unwrap_or(f64::NAN);
+        found.push((
+            Basin {
+                lambda,
+                delta_chi2: chi,
+                e_star_pa: fit.e_star_pa,
+                work_of_adhesion_j_m2: fit.work_of_adhesion_j_m2,
+            },
+            fit,
+        ));
+    }
+    // The 95% set: each run's inner ends between its last point below the level and the next
+    // point above it, sqrt(Delta chi^2) linear in ln lambda; the outer ends the hull's.
+    let mut set: Vec<Interval> = Vec::new();
+    let mut k = 0;
+    while k < o.len() {
+        if pts[o[k]].chi > level {
+            k += 1;
+            continue;
+        }
+        let first = k;
+        while k + 1 < o.len() && pts[o[k + 1]].chi <= level {
+            k += 1;
+        }
+        let cross = |inner: usize, outer: usize| {
+            let (a, b) = (&pts[o[inner]], &pts[o[outer]]);
+            let (ra, rb) = (a.chi.sqrt(), b.chi.min(1e12).sqrt());
+            let t = if rb > ra { ((level.sqrt() - ra) / (rb - ra)).clamp(0.0, 1.0) } else { 0.5 };
+            Some((a.x + t * (b.x - a.x)).exp())
+        };
+        let low = if first == 0 { None } else { cross(first, first - 1) };
+        let high = if k + 1 == o.len() { None } else { cross(k, k + 1) };
+        set.push([low, high]);
+        k += 1;
+    }
+    if let Some(last) = set.last_mut() {
+        last[1] = hull[1];
+    }
+    if let Some(first) = set.first_mut() {
+        first[0] = hull[0];
+    }
+    (found, set)
 }
 
 /// Each interval widened to hold the fit `md`'s value (tip radius `radius`, m): a fit

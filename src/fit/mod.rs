@@ -88,6 +88,8 @@ pub(super) fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFi
         z0_m_interval_95: None,
         lambda_determined: None,
         lambda_bound: None,
+        lambda_set_95: Vec::new(),
+        lambda_basins: Vec::new(),
         noise_from_residual_n: None,
         adequate_model: None,
         why: String::new(),

@@ -157,8 +157,16 @@ pub struct CurveFit {
     pub z0_m_interval_95: Option<interval::Interval>,
     /// Whether the 95% interval of lambda is bounded at both ends.
     pub lambda_determined: Option<bool>,
-    /// What the data say of lambda at 95% ("lambda > 4.1 at 95%", or the interval).
+    /// What the data say of lambda at 95% ("lambda > 4.1 at 95%", or the interval), with any
+    /// second basin.
     pub lambda_bound: Option<String>,
+    /// lambda's 95% set: one interval, or several where the profile has separate basins below
+    /// the 95% level (in order of lambda; `lambda_interval_95` spans them all).
+    pub lambda_set_95: Vec<interval::Interval>,
+    /// The basins of lambda's profile apart from the best fit's, up to the 99% level: each
+    /// leaves lambda undetermined, and the 95% intervals of E*, w, the contact point and z0
+    /// hold its values.
+    pub lambda_basins: Vec<interval::Basin>,
     /// The noise the closed forms are tested at against Maugis-Dugdale (Delta chi^2): the
     /// residual's rms over the degrees of freedom (N).
     pub noise_from_residual_n: Option<f64>,

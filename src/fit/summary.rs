@@ -243,14 +243,40 @@ pub(super) fn put_intervals(out: &mut CurveFit, iv: &interval::Intervals) {
     out.contact_point_m_interval_95 = c95;
     out.z0_m_interval_68 = z68;
     out.z0_m_interval_95 = z95;
+    out.lambda_set_95 = iv.lambda_set_95.clone();
+    out.lambda_basins = iv.basins.clone();
     if let Some([lo, hi]) = l95 {
-        out.lambda_determined = Some(lo.is_some() && hi.is_some());
-        out.lambda_bound = Some(match (lo, hi) {
-            (Some(lo), Some(hi)) => format!("{} <= lambda <= {} at 95%", sig(lo), sig(hi)),
-            (Some(lo), None) => format!("lambda > {} at 95% (no upper bound: towards JKR the curve cannot tell lambda apart)", sig(lo)),
-            (None, Some(hi)) => format!("lambda < {} at 95% (no lower bound: towards DMT the curve cannot tell lambda apart)", sig(hi)),
-            (None, None) => "lambda is not bounded at 95% (0.01..1000 fit equally well)".to_string(),
-        });
+        // Determined: one bounded interval at 95%, and no second basin below 99%.
+        out.lambda_determined = Some(
+            lo.is_some() && hi.is_some() && iv.basins.is_empty() && iv.lambda_set_95.len() <= 1,
+        );
+        let end = |e: Option<f64>| e.map_or("open".to_string(), sig);
+        let mut bound = if iv.lambda_set_95.len() > 1 {
+            let parts: Vec<String> = iv
+                .lambda_set_95
+                .iter()
+                .map(|[a, b]| format!("[{}, {}]", end(*a), end(*b)))
+                .collect();
+            format!("lambda's 95% set is a union: {}", parts.join(" or "))
+        } else {
+            match (lo, hi) {
+                (Some(lo), Some(hi)) => format!("{} <= lambda <= {} at 95%", sig(lo), sig(hi)),
+                (Some(lo), None) => format!("lambda > {} at 95% (no upper bound: towards JKR the curve cannot tell lambda apart)", sig(lo)),
+                (None, Some(hi)) => format!("lambda < {} at 95% (no lower bound: towards DMT the curve cannot tell lambda apart)", sig(hi)),
+                (None, None) => "lambda is not bounded at 95% (0.01..1000 fit equally well)".to_string(),
+            }
+        };
+        for b in &iv.basins {
+            bound += &format!(
+                "; a second basin at lambda = {} (Delta chi^2 = {:.2}{}, E* = {} Pa, w = {} J/m^2)",
+                sig(b.lambda),
+                b.delta_chi2,
+                if b.delta_chi2 <= interval::LEVELS[1] { ", inside the 95% set" } else { ", within 99%" },
+                sig(b.e_star_pa),
+                sig(b.work_of_adhesion_j_m2)
+            );
+        }
+        out.lambda_bound = Some(bound);
     }
 }
 
