@@ -19,9 +19,9 @@ use super::Prepared;
 
 /// How far above its expectation (in its standard deviations) the scatter of a bin's points
 /// about their straight line may go before the bin ends.
-pub const LINE_Z: f64 = 1.5;
+pub const LINE_Z: f64 = 1.0;
 /// The most points in one bin.
-pub const MAX_BIN: usize = 64;
+pub const MAX_BIN: usize = 16;
 /// A curve is binned only where bins take it below this share of its points.
 const WORTH: f64 = 0.7;
 /// Curves with fewer points are fitted on their points: their fits are fast, and bins would
@@ -33,7 +33,11 @@ impl Prepared {
     /// noise-free or short curve, or one with few points to merge.
     pub fn binned(&self) -> Option<Prepared> {
         let n = self.force.len();
-        if n < MIN_TO_BIN || !(self.noise > 0.0) || self.weight.iter().any(|&w| w != 1.0) {
+        // A curve without measurable noise (a model's own curve) keeps its points.
+        if n < MIN_TO_BIN
+            || !(self.noise > 1e-6 * self.scales.0)
+            || self.weight.iter().any(|&w| w != 1.0)
+        {
             return None;
         }
         // Runs of one direction and side, the points before a jump alone.

@@ -933,3 +933,54 @@ fn coverage_near_the_jkr_end_with_soft_springs() {
         "a determined lambda's interval holds the truth in {determined_held} of {determined}"
     );
 }
+
+/// Long noisy curves are searched on their bins and finished on their points: over 100 curves of
+/// 2000 points (lambda 0.05..50, three springs, noise 1% and 2% of the pull-off) the 95%
+/// intervals hold the truth as the points' own fits do, and every fit reaches the noise floor.
+#[test]
+fn binned_long_curves_keep_their_coverage() {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(23);
+    let cases: Vec<(f64, f64, f64, u64)> = (0..100)
+        .map(|i| {
+            let lambda = 0.05 * 1000f64.powf(rng.random::<f64>());
+            let spring = [2.0, 10.0, 40.0][i % 3];
+            let noise = [0.01, 0.02][(i / 3) % 2] * 1.75 * std::f64::consts::PI * 0.05 * 20e-9;
+            (lambda, spring, noise, i as u64 + 2000)
+        })
+        .collect();
+    let out: Vec<(bool, [bool; 3], f64, bool)> = cases
+        .par_iter()
+        .map(|&(lambda, spring, noise, seed)| {
+            let (mut s, opt) = case(Model::Md, lambda, spring, noise, seed);
+            s.points = 2000;
+            let r = fit_curve(&synthetic(&s), &opt);
+            if r.status != FitStatus::Ok {
+                return (false, [false; 3], f64::NAN, false);
+            }
+            (
+                true,
+                [
+                    holds(r.e_star_pa_interval_95, 1.5e9),
+                    holds(r.work_of_adhesion_j_m2_interval_95, 0.05),
+                    holds(r.lambda_interval_95, lambda),
+                ],
+                r.rms_residual_n.unwrap() / noise,
+                r.stop.ends_with("finished on the points"),
+            )
+        })
+        .collect();
+    let n = out.len() as f64;
+    let binned = out.iter().filter(|o| o.3).count();
+    let held: Vec<f64> = (0..3)
+        .map(|k| out.iter().filter(|o| o.1[k]).count() as f64 / n)
+        .collect();
+    let worst = out.iter().map(|o| (o.2 - 1.0).abs()).fold(0.0, f64::max);
+    eprintln!("{binned} of {n} curves fitted on bins: 95% held E* {:.2} w {:.2} lambda {:.2}; rms/noise worst {worst:.3} from 1", held[0], held[1], held[2]);
+    assert!(out.iter().all(|o| o.0), "every curve fitted");
+    assert!(binned >= 50, "{binned} curves fitted on bins");
+    assert!(worst < 0.1, "a fit above the noise floor: {worst}");
+    for (k, name) in ["E*", "w", "lambda"].iter().enumerate() {
+        // 95% within what 100 binomial draws allow (sd 2.2%).
+        assert!(held[k] >= 0.9, "{name}'s 95% interval holds the truth in {}", held[k]);
+    }
+}
