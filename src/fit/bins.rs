@@ -216,7 +216,9 @@ mod tests {
         let jumps = d.at_jump.iter().filter(|&&j| j).count();
         assert!(jumps > 0);
         assert_eq!(
-            (0..b.force.len()).filter(|&i| b.at_jump[i] && b.weight[i] == 1.0).count(),
+            (0..b.force.len())
+                .filter(|&i| b.at_jump[i] && b.weight[i] == 1.0)
+                .count(),
             jumps
         );
         // At the truth, each bin's mean against the model at its mean height, and against
@@ -239,6 +241,11 @@ mod tests {
             start += k;
         }
         let s2 = 1e-20;
-        assert!((at_mean - mean_of).abs() < s2, "{} against {}", at_mean / s2, mean_of / s2);
+        assert!(
+            (at_mean - mean_of).abs() < s2,
+            "{} against {}",
+            at_mean / s2,
+            mean_of / s2
+        );
     }
 }

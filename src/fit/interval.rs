@@ -312,7 +312,7 @@ pub fn profile_intervals(
         }
         lambda[k] = Some(ends);
     }
-    let (basins, set95) = basins(&search, &mut pts, lambda[1].unwrap_or([None, None]));
+    let (basins, set95) = basins(&search, &pts, lambda[1].unwrap_or([None, None]));
     // The other quantities: min over the profile's fits of chi + (theta - theta_l)^2 / var_l.
     let determined: Vec<bool> = lambda
         .iter()
@@ -350,9 +350,14 @@ pub fn profile_intervals(
     // contact point and z0 are held by their 95% intervals (at 68% where it is below that
     // level), so that what lambda's ambiguity does to them shows.
     for b in &basins {
-        for k in 0..2 {
-            if b.0.delta_chi2 <= LEVELS[k] || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
-                let z0 = super::z0_from_lambda(b.1.e_star_pa, b.1.work_of_adhesion_j_m2, opt.radius, b.0.lambda);
+        for (k, level) in LEVELS.iter().enumerate() {
+            if b.0.delta_chi2 <= *level || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
+                let z0 = super::z0_from_lambda(
+                    b.1.e_star_pa,
+                    b.1.work_of_adhesion_j_m2,
+                    opt.radius,
+                    b.0.lambda,
+                );
                 for (q, v) in [
                     (&mut out.e_star_pa[k], b.1.e_star_pa),
                     (&mut out.work_of_adhesion_j_m2[k], b.1.work_of_adhesion_j_m2),
@@ -379,7 +384,11 @@ pub fn profile_intervals(
 /// local minimum of the points below the 99% level that a point above the 95% level separates
 /// from the best fit's run; a free fit from it finds its bottom where it stays between the
 /// point's neighbours (a fixed-lambda point only samples it).
-fn basins(search: &Search, pts: &mut Vec<Point>, hull: Interval) -> (Vec<(Basin, ModelFit)>, Vec<Interval>) {
+fn basins(
+    search: &Search,
+    pts: &[Point],
+    hull: Interval,
+) -> (Vec<(Basin, ModelFit)>, Vec<Interval>) {
     let level = LEVELS[1];
     let sorted = |pts: &[Point]| {
         let mut o: Vec<usize> = (0..pts.len()).collect();
@@ -413,7 +422,15 @@ fn basins(search: &Search, pts: &mut Vec<Point>, hull: Interval) -> (Vec<(Basin,
             k.checked_sub(1).map_or(f64::NEG_INFINITY, |j| pts[o[j]].x),
             o.get(k + 1).map_or(f64::INFINITY, |&j| pts[j].x),
         );
-        let f = fit_md_from(&from, search.d, search.opt, from.params(), search.w_ref, None, PATIENCE);
+        let f = fit_md_from(
+            &from,
+            search.d,
+            search.opt,
+            from.params(),
+            search.w_ref,
+            None,
+            PATIENCE,
+        );
         let refined = f
             .lambda
             .filter(|l| f.rms_residual_n.is_finite() && l.ln() > left && l.ln() < right)
@@ -450,11 +467,23 @@ fn basins(search: &Search, pts: &mut Vec<Point>, hull: Interval) -> (Vec<(Basin,
         let cross = |inner: usize, outer: usize| {
             let (a, b) = (&pts[o[inner]], &pts[o[outer]]);
             let (ra, rb) = (a.chi.sqrt(), b.chi.min(1e12).sqrt());
-            let t = if rb > ra { ((level.sqrt() - ra) / (rb - ra)).clamp(0.0, 1.0) } else { 0.5 };
+            let t = if rb > ra {
+                ((level.sqrt() - ra) / (rb - ra)).clamp(0.0, 1.0)
+            } else {
+                0.5
+            };
             Some((a.x + t * (b.x - a.x)).exp())
         };
-        let low = if first == 0 { None } else { cross(first, first - 1) };
-        let high = if k + 1 == o.len() { None } else { cross(k, k + 1) };
+        let low = if first == 0 {
+            None
+        } else {
+            cross(first, first - 1)
+        };
+        let high = if k + 1 == o.len() {
+            None
+        } else {
+            cross(k, k + 1)
+        };
         set.push([low, high]);
         k += 1;
     }
@@ -476,7 +505,10 @@ pub fn hold(iv: &mut Intervals, md: &ModelFit, radius: f64) {
         .map(|l| super::z0_from_lambda(md.e_star_pa, md.work_of_adhesion_j_m2, radius, l));
     for (q, v) in [
         (&mut iv.e_star_pa, Some(md.e_star_pa)),
-        (&mut iv.work_of_adhesion_j_m2, Some(md.work_of_adhesion_j_m2)),
+        (
+            &mut iv.work_of_adhesion_j_m2,
+            Some(md.work_of_adhesion_j_m2),
+        ),
         (&mut iv.lambda, md.lambda),
         (&mut iv.contact_point_m, Some(md.contact_point_m)),
         (&mut iv.z0_m, z0),

@@ -276,19 +276,24 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
 /// A fit made on a curve's bins, finished on its points from there: the points' own minimum, which the bins' curvature moves by about a Delta chi^2 of
 /// 1, reached in a few iterations. Where the finish fails or does worse, the bins' fit with its
 /// misfit read on the points.
-fn finish_on_points(
-    f: ModelFit,
-    raw: &Prepared,
-    opt: &FitOptions,
-    w_ref: f64,
-) -> ModelFit {
+fn finish_on_points(f: ModelFit, raw: &Prepared, opt: &FitOptions, w_ref: f64) -> ModelFit {
     if !f.rms_residual_n.is_finite() {
         return f;
     }
     let on_points = rms_on(&f, raw, opt, w_ref);
     // A noisy curve's (only those are binned): the tolerance of the profile's fits, far below
     // the noise.
-    let g = fit_model_tol(f.model, raw, opt, f.params(), w_ref, None, FINISH_PATIENCE, None, Some(PROFILE_TOL));
+    let g = fit_model_tol(
+        f.model,
+        raw,
+        opt,
+        f.params(),
+        w_ref,
+        None,
+        FINISH_PATIENCE,
+        None,
+        Some(PROFILE_TOL),
+    );
     // A finish stopped by its short budget has still moved downhill from a converged fit.
     let moved = g.status == FitStatus::Ok || g.stop == stop_text(&TerminationReason::LostPatience);
     if f.status == FitStatus::Ok && moved && g.rms_residual_n <= on_points {

@@ -890,7 +890,17 @@ pub(super) fn fit_model_for(
     hints: Option<&[PathState]>,
 ) -> ModelFit {
     let tol = fixed_lambda.map(|_| PROFILE_TOL);
-    fit_model_tol(model, d, opt, start, w_ref, fixed_lambda, patience, hints, tol)
+    fit_model_tol(
+        model,
+        d,
+        opt,
+        start,
+        w_ref,
+        fixed_lambda,
+        patience,
+        hints,
+        tol,
+    )
 }
 
 /// [`fit_model_for`] with MINPACK's relative tolerances `tol` (ftol and xtol; None: the

@@ -271,7 +271,11 @@ pub(super) fn put_intervals(out: &mut CurveFit, iv: &interval::Intervals) {
                 "; a second basin at lambda = {} (Delta chi^2 = {:.2}{}, E* = {} Pa, w = {} J/m^2)",
                 sig(b.lambda),
                 b.delta_chi2,
-                if b.delta_chi2 <= interval::LEVELS[1] { ", inside the 95% set" } else { ", within 99%" },
+                if b.delta_chi2 <= interval::LEVELS[1] {
+                    ", inside the 95% set"
+                } else {
+                    ", within 99%"
+                },
                 sig(b.e_star_pa),
                 sig(b.work_of_adhesion_j_m2)
             );
