@@ -16,7 +16,8 @@ cargo test --release -p tabor-capi
 cargo test --release -p tabor-capi-header
 # The library's documentation builds without a warning (broken links included).
 stage "the documentation"
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --lib --quiet
+# In release mode: it reads the release build's dependencies instead of checking them all again.
+RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps --lib --quiet
 # The Python tests compare with the command line: target/release/tabor, built by `cargo test`
 # above (a separate `cargo build` would compile tabor again without the tests' features).
 stage "the Python package"
