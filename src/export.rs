@@ -223,6 +223,17 @@ pub fn write_fit_npy(
     )?;
     outs.push(out);
     names.push(name);
+    let name = format!("{prefix}_status.npy");
+    let mut out = Output::create(&name)?;
+    npy_write(
+        &mut out,
+        &shape,
+        // The index of `PIXEL_STATUSES` (0 ok, ..., 4 no curve).
+        grid.iter()
+            .map(|i| crate::fit::pixel_status(i.map(|i| &results[i])) as i8),
+    )?;
+    outs.push(out);
+    names.push(name);
     for o in outs {
         o.commit()?;
     }

@@ -369,8 +369,35 @@ fn write_maps(
         crate::render::plots::model_map(root, &models, nx, ny)
     })
     .context("drawing the adequate-model map")?;
+    // Per pixel how its fit ended, as a map and an NPY (the index of PIXEL_STATUSES).
+    let statuses: Vec<usize> = grid
+        .iter()
+        .map(|i| fit::pixel_status(i.map(|i| &results[i])))
+        .collect();
+    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
+        "{prefix}_status.png"
+    )))
+    .map_err(anyhow::Error::msg)?;
+    crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
+        crate::render::plots::status_map(root, &statuses, nx, ny)
+    })
+    .context("drawing the status map")?;
+    // The map at a glance: statuses, models and each quantity's distribution.
+    let summary = fit::summarize_map(results, nx, ny, &grid);
+    let json = format!("{prefix}_summary.json");
+    let mut out = crate::io::Output::create(&json)?;
+    serde_json::to_writer_pretty(&mut out, &summary)?;
+    out.commit()?;
+    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
+        "{prefix}_histograms.png"
+    )))
+    .map_err(anyhow::Error::msg)?;
+    crate::render::plots::save(crate::render::Kind::MapHistograms, print, &out, &|root| {
+        crate::render::plots::map_histograms(root, &summary)
+    })
+    .context("drawing the map's histograms")?;
     eprintln!(
-        "wrote the {nx} x {ny} force maps: {} and their PNGs",
+        "wrote the {nx} x {ny} force maps: {}, {json} and their PNGs (with {prefix}_histograms.png)",
         names.join(", ")
     );
     Ok(())

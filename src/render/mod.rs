@@ -218,6 +218,8 @@ pub enum Kind {
     Fit,
     /// One quantity over a force map's pixels.
     ForceMap,
+    /// A force map's quantities as histograms, with its models and statuses (six panels).
+    MapHistograms,
 }
 
 impl Kind {
@@ -268,6 +270,13 @@ impl Kind {
                 }
             }
             Kind::ForceMap => 0.85,
+            Kind::MapHistograms => {
+                if n {
+                    1.35
+                } else {
+                    0.62
+                }
+            }
         }
     }
 }

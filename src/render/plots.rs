@@ -1493,6 +1493,216 @@ where
     Ok(())
 }
 
+/// The colour of each pixel status ([`crate::fit::PIXEL_STATUSES`]): fitted blue, each
+/// failure its own hue, an empty pixel white.
+const STATUS_COLOURS: [RGBColor; 5] = [
+    BLUE_,
+    PURPLE_,
+    RGBColor(190, 190, 190),
+    ORANGE_,
+    RGBColor(255, 255, 255),
+];
+
+/// How each curve of a force map ended (the index of [`crate::fit::PIXEL_STATUSES`] per
+/// pixel), with the count of each status in the legend.
+pub fn status_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    statuses: &[usize],
+    nx: usize,
+    ny: usize,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let mut chart = pixel_grid(root, "How each curve's fit ended", nx, ny, |k| {
+        STATUS_COLOURS[statuses[k]]
+    })?;
+    for (i, name) in crate::fit::PIXEL_STATUSES.iter().enumerate() {
+        let n = statuses.iter().filter(|&&s| s == i).count();
+        if n == 0 {
+            continue;
+        }
+        let c = STATUS_COLOURS[i];
+        chart
+            .draw_series(std::iter::empty::<Circle<(f64, f64), i32>>())?
+            .label(format!("{} ({n})", name.replace('_', " ")))
+            .legend(move |(x, y)| {
+                EmptyElement::at((x, y))
+                    + Rectangle::new([(4, -12), (34, 12)], c.filled())
+                    + Rectangle::new([(4, -12), (34, 12)], BLACK.mix(0.5))
+            });
+    }
+    super::legend(&mut chart, SeriesLabelPosition::UpperRight, NOTE)?;
+    Ok(())
+}
+
+/// A force map's summary in six panels: each quantity's histogram over the fitted pixels (log
+/// bins drawn on a log10 axis), then the pixels of each adequate model and each status.
+pub fn map_histograms<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    summary: &crate::fit::MapSummary,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    // The statuses of every pixel head the figure.
+    let statuses = crate::fit::PIXEL_STATUSES
+        .iter()
+        .filter(|s| summary.status[*s] > 0)
+        .map(|s| format!("{} {}", summary.status[s], s.replace('_', " ")))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let root = root.titled(
+        &format!("{} x {} pixels: {statuses}", summary.nx, summary.ny),
+        ("sans-serif", TITLE),
+    )?;
+    let (w, h) = root.dim_in_pixel();
+    let (rows, cols) = if w as f64 / h as f64 > 1.2 { (2, 3) } else { (3, 2) };
+    let panels = root.split_evenly((rows, cols));
+    for (q, area) in summary.quantities.iter().zip(&panels) {
+        let m = crate::fit::MAP_QUANTITIES
+            .iter()
+            .find(|m| m.name == q.name)
+            .expect("a map quantity");
+        // The maps' labels without their notes on grey pixels.
+        let label = m.label.split(" (").next().unwrap_or(m.label);
+        let title = if m.needs_lambda {
+            format!("{label} ({} of {} determined)", q.count, q.count + q.missing)
+        } else {
+            label.to_string()
+        };
+        histogram_panel(area, &title, m.unit, m.prefixed, q)?;
+    }
+    let models: Vec<(String, usize, RGBColor)> = crate::fit::Model::ALL
+        .iter()
+        .map(|m| {
+            let region = crate::map::Region::ALL
+                .into_iter()
+                .find(|r| r.model() == Some((*m).into()));
+            // Short names: five bars share a narrow panel.
+            let short = match m {
+                crate::fit::Model::Hertz => "Hertz",
+                crate::fit::Model::Dmt => "DMT",
+                crate::fit::Model::Jkr => "JKR",
+                _ => "MD",
+            };
+            (
+                short.to_string(),
+                summary.adequate_model[m.name()],
+                super::map::region_color(region.unwrap_or(crate::map::Region::Failed)),
+            )
+        })
+        .chain([("none".to_string(), summary.adequate_model["none"], GRAY_)])
+        .collect();
+    count_panel(&panels[5], "adequate model (fitted pixels)", &models)?;
+    Ok(())
+}
+
+/// One quantity's histogram: bars over its bins, the x axis in log10 where the bins are (else
+/// in the unit with an SI prefix suited to the values, where it takes one), the median a line.
+fn histogram_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    unit: &str,
+    prefixed: bool,
+    q: &crate::fit::QuantitySummary,
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let largest = q.edges.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let (scale, si) = if prefixed && !q.log_bins {
+        crate::render::si_prefix(largest)
+    } else {
+        (1.0, "")
+    };
+    let log = q.log_bins;
+    let t = move |v: f64| if log { v.log10() } else { v / scale };
+    let (lo, hi) = match (q.edges.first(), q.edges.last()) {
+        (Some(&a), Some(&b)) => (t(a), t(b)),
+        _ => (0.0, 1.0),
+    };
+    let top = q.counts.iter().copied().max().unwrap_or(0).max(1) as f64 * 1.1;
+    let desc = if unit.is_empty() {
+        String::new()
+    } else {
+        format!("{si}{unit}")
+    };
+    let mut chart = builder(area, title).build_cartesian_2d(lo..hi, 0.0..top)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc(desc)
+        .y_desc("pixels")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_labels(3)
+        .y_labels(4)
+        .x_label_formatter(&|v| if log { super::power_label(*v) } else { compact(*v) })
+        .y_label_formatter(&|v| format!("{v:.0}"))
+        .draw()?;
+    if q.counts.is_empty() {
+        chart.draw_series(std::iter::once(Text::new(
+            "no fitted pixel",
+            (lo + 0.3 * (hi - lo), 0.5 * top),
+            ("sans-serif", NOTE).into_font(),
+        )))?;
+        return Ok(());
+    }
+    chart.draw_series(q.counts.iter().enumerate().map(|(i, &n)| {
+        let (a, b) = (t(q.edges[i]), t(q.edges[i + 1]));
+        Rectangle::new([(a, 0.0), (b, n as f64)], BLUE_.mix(0.75).filled())
+    }))?;
+    if let Some(m) = q.quantiles {
+        let x = t(m.median);
+        chart.draw_series(std::iter::once(PathElement::new(
+            vec![(x, 0.0), (x, top)],
+            BLACK.stroke_width(2),
+        )))?;
+    }
+    Ok(())
+}
+
+/// Counts of named classes as coloured bars, one a row (the names read across).
+fn count_panel<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    bars: &[(String, usize, RGBColor)],
+) -> Result<(), Err>
+where
+    DB::ErrorType: 'static,
+{
+    let top = bars.iter().map(|b| b.1).max().unwrap_or(0).max(1) as f64 * 1.15;
+    let n = bars.len();
+    let mut chart =
+        builder(area, title).build_cartesian_2d(0.0..top, (0..n - 1).into_segmented())?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("pixels")
+        .axis_desc_style(("sans-serif", AXIS))
+        .label_style(("sans-serif", TICK))
+        .x_labels(4)
+        .y_labels(n)
+        .x_label_formatter(&|v| format!("{v:.0}"))
+        // The first bar at the top.
+        .y_label_formatter(&|v| match v {
+            SegmentValue::CenterOf(i) if *i < n => bars[n - 1 - *i].0.clone(),
+            _ => String::new(),
+        })
+        .draw()?;
+    chart.draw_series(bars.iter().enumerate().map(|(i, b)| {
+        let row = n - 1 - i;
+        Rectangle::new(
+            [(0.0, SegmentValue::Exact(row)), (b.1 as f64, SegmentValue::Exact(row + 1))],
+            b.2.filled(),
+        )
+    }))?;
+    Ok(())
+}
+
 /// Every fitted curve on the adhesion map: at its lambda, a bar over the normalised loads its
 /// fitted segment spans in contact, coloured by its adequate model.
 pub fn fits_on_map<DB: DrawingBackend>(

@@ -448,12 +448,56 @@ fn a_force_map_gives_npy_maps_that_match_the_table_and_figures() {
         .unwrap();
     assert_eq!(models[4], -1); // x 1, y 1: no contact
     assert!(models.iter().filter(|&&m| m >= 0).count() == 5);
+    // Per pixel how its fit ended: the index of PIXEL_STATUSES (0 ok, 2 no contact).
+    let bytes = std::fs::read(format!("{}_status.npy", prefix.display())).unwrap();
+    let status = npyz::NpyFile::new(&bytes[..])
+        .unwrap()
+        .into_vec::<i8>()
+        .unwrap();
+    assert_eq!(status, vec![0, 0, 0, 0, 2, 0]);
+    // The summary agrees with the curves' own results.
+    let text = std::fs::read_to_string(format!("{}_summary.json", prefix.display())).unwrap();
+    let s: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!((s["nx"].as_u64(), s["ny"].as_u64()), (Some(3), Some(2)));
+    assert_eq!(s["status"]["ok"], 5);
+    assert_eq!(s["status"]["no_contact"], 1);
+    assert_eq!(s["status"]["no_curve"], 0);
+    let ok: Vec<&serde_json::Value> = curves.iter().filter(|c| c["status"] == "ok").collect();
+    for m in ["hertz", "dmt", "jkr", "md"] {
+        let n = ok.iter().filter(|c| c["adequate_model"] == m).count();
+        assert_eq!(s["adequate_model"][m].as_u64(), Some(n as u64), "{m}");
+    }
+    let quantity = |name: &str| {
+        s["quantities"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|q| q["name"] == name)
+            .unwrap()
+            .clone()
+    };
+    let e = quantity("e_star");
+    let mut es: Vec<f64> = ok.iter().map(|c| c["e_star_pa"].as_f64().unwrap()).collect();
+    es.sort_by(f64::total_cmp);
+    assert_eq!(e["count"], 5);
+    assert_eq!(e["quantiles"]["median"].as_f64(), Some(es[2]));
+    assert_eq!(e["quantiles"]["min"].as_f64(), Some(es[0]));
+    assert_eq!(e["quantiles"]["max"].as_f64(), Some(es[4]));
+    let counts: u64 = e["counts"].as_array().unwrap().iter().map(|c| c.as_u64().unwrap()).sum();
+    assert_eq!(counts, 5);
+    assert_eq!(e["edges"].as_array().unwrap().len(), e["counts"].as_array().unwrap().len() + 1);
+    let l = quantity("lambda");
+    let determined = ok.iter().filter(|c| c["lambda_determined"] == true).count() as u64;
+    assert_eq!(l["count"].as_u64(), Some(determined));
+    assert_eq!(l["missing"].as_u64(), Some(5 - determined));
     for q in [
         "e_star",
         "lambda",
         "pulloff",
         "rms_residual",
         "adequate_model",
+        "status",
+        "histograms",
     ] {
         let png = std::fs::read(format!("{}_{q}.png", prefix.display())).unwrap();
         assert_eq!(&png[1..4], b"PNG", "{q}");
