@@ -180,9 +180,20 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
     let d = binned.as_ref().unwrap_or(raw);
     let pulloff = |model: Model, lambda: f64| model.law(lambda).pulloff();
     // A closed form with adhesion, its w started from the measured pull-off with its own.
+    // It holds Hertz (w = 0), so it never fits worse: where it did, it stopped in the flat
+    // misfit of a contact point beyond every point (no point in contact), and is fitted again
+    // from Hertz's answer with a little adhesion.
     let closed = |model| {
         let s = start(w_of(pulloff(model, 1.0)), 1.0);
-        fit_model(model, raw, opt, s, w_ref, None)
+        let f = fit_model(model, raw, opt, s, w_ref, None);
+        if hertz.status != FitStatus::Ok || key(&f) <= hertz.rms_residual_n {
+            return f;
+        }
+        let s = Params {
+            w: 1e-2 * w_of(pulloff(model, 1.0)),
+            ..hertz.params()
+        };
+        better(f, fit_model(model, raw, opt, s, w_ref, None))
     };
     let (dmt, jkr) = (closed(Model::Dmt), closed(Model::Jkr));
     // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
