@@ -93,6 +93,12 @@ def _numbers(a, name):
     return np.asarray(x, dtype=np.float64)
 
 
+def _c(x, dtype=None):
+    """A C-contiguous, aligned array (the extension reads nothing else): np.ascontiguousarray
+    passes a misaligned array through, as unpickled (Dask, multiprocessing) buffers can be."""
+    return np.require(x, dtype=dtype, requirements="CA")
+
+
 def _flat(*arrays, names=None):
     """Broadcasts float64 inputs; returns the flat contiguous copies and the common shape."""
     names = names or [f"argument {i + 1}" for i in range(len(arrays))]
@@ -102,7 +108,7 @@ def _flat(*arrays, names=None):
     except ValueError as e:
         raise ValueError(f"the inputs do not broadcast to a common shape: {e}") from None
     shape = b[0].shape
-    return [np.ascontiguousarray(x.ravel()) for x in b], shape
+    return [_c(x.ravel()) for x in b], shape
 
 
 def _real(x, name):
@@ -159,7 +165,7 @@ def _method_code(lam):
     solver, 2 the DMT limit, 3 the JKR limit (beyond the exact solver's range), 0 none (the
     library's ``physics::domain::method``)."""
     lam = np.asarray(lam, dtype=float)
-    return _tabor.method_codes(np.ascontiguousarray(lam.ravel())).reshape(lam.shape)
+    return _tabor.method_codes(_c(lam.ravel())).reshape(lam.shape)
 
 
 #: The names of the codes of ``_method_code``.
@@ -1156,8 +1162,8 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     >>> print(f"{f['e_star_pa']:.4g} {f['work_of_adhesion_j_m2']:.4g} {f['lambda']:.4g}")
     2e+09 0.04 0.3
     """
-    h = np.ascontiguousarray(_numbers(height_m, "height_m")).ravel()
-    f = np.ascontiguousarray(_numbers(force_n, "force_n")).ravel()
+    h = _c(_numbers(height_m, "height_m").ravel())
+    f = _c(_numbers(force_n, "force_n").ravel())
     seg = np.asarray(segment).ravel()
     if seg.dtype.kind in "cmMO":  # complex, dates and objects refused as the others are
         seg = _numbers(seg, "segment")
@@ -1172,7 +1178,7 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     if bad.any():
         raise ValueError(f"segment value {seg[np.argmax(bad)]!r} at index {int(np.argmax(bad))}: "
                          "use 0 (or \"approach\"), 1 (or \"retract\") and -1 (or \"dwell\")")
-    seg = np.ascontiguousarray(seg, dtype=np.int64)
+    seg = _c(seg, np.int64)
     if curve is None:
         ids = np.zeros(len(h), dtype=np.int64)
         labels = None
@@ -1225,7 +1231,7 @@ def _curve_ids(curve):
     c = np.asarray(curve).ravel()
     if c.dtype.kind != "O":
         labels, ids = np.unique(c, return_inverse=True)
-        return labels, np.ascontiguousarray(ids, dtype=np.int64)
+        return labels, _c(ids, np.int64)
     index, labels = {}, []
     try:
         ids = np.fromiter((index.setdefault(v, len(index)) for v in c), dtype=np.int64,
