@@ -942,7 +942,7 @@ struct AdhesionMap {
 #[pymethods]
 impl AdhesionMap {
     #[new]
-    #[pyo3(signature = (spec_json, backend, precision, adapter, check))]
+    #[pyo3(signature = (spec_json, backend, precision, adapter, check, tip=None))]
     fn new(
         py: Python<'_>,
         spec_json: String,
@@ -950,8 +950,22 @@ impl AdhesionMap {
         precision: &str,
         adapter: Option<String>,
         check: usize,
+        tip: Option<&str>,
     ) -> PyResult<Self> {
-        let (backend, precision) = (backend_of(backend)?, precision_of(precision)?);
+        let (mut backend, precision) = (backend_of(backend)?, precision_of(precision)?);
+        // A tip's map is solved by the f64 CPU solver only (`tabor map --tip`).
+        let shape: Option<tabor::physics::tip::Shape> = match tip {
+            Some(t) => {
+                if backend == Backend::Gpu {
+                    return Err(PyValueError::new_err(
+                        "backend = \"gpu\": a tip's map is solved on the CPU; give backend=\"cpu\" or \"auto\"",
+                    ));
+                }
+                backend = Backend::Cpu;
+                Some(t.parse().map_err(|e| PyValueError::new_err(format!("{e}")))?)
+            }
+            None => None,
+        };
         run(py, move || {
             let spec = tabor::map::MapSpec::from_json(&spec_json)?;
             spec.validate()?;
@@ -961,7 +975,10 @@ impl AdhesionMap {
                 keep_exact: true,
                 check,
             };
-            let data = tabor::map::compute_with(&spec, &engine, opts)?;
+            let data = match shape {
+                Some(shape) => tabor::map::tip::compute_tip(&spec, shape, opts.keep_exact)?,
+                None => tabor::map::compute_with(&spec, &engine, opts)?,
+            };
             let check = data.check.clone();
             Ok(AdhesionMap {
                 data,

@@ -686,7 +686,7 @@ class AdhesionMap:
 
 def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="log",
                  load_min=None, load_max=None, tolerance=_tabor.DEFAULT_TOLERANCE, strength_ratio=(0.001, 0.01),
-                 *, backend="auto", precision="f32", check=1000, adapter=None):
+                 *, backend="auto", precision="f32", check=1000, adapter=None, tip=None):
     """Computes an adhesion map with the options of ``tabor map``.
 
     Each point is classified into the first of Hertz, Bradley (rigid), DMT, JKR whose contact
@@ -715,6 +715,11 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
         GPU points re-solved on the CPU for the cross-check.
     adapter : str, optional
         The GPU adapter whose name contains this text.
+    tip : str, optional
+        The map of a tip that is not a sphere (``tabor map --tip``; docs/PHYSICS.md section 12):
+        ``"cone"``, ``"power:N"`` (f = B r^N; every B has the same map) or
+        ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, in the tip's normalised units; solved by the
+        f64 CPU solver (``backend`` ``"cpu"`` or ``"auto"``), lambda within the tip law's range.
 
     Returns
     -------
@@ -746,7 +751,9 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
         "tolerance": _finite(tolerance, "tolerance"),
         "strength_ratios": [_finite(s, "strength_ratio") for s in strength_ratio],
     }
-    inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check))
+    if tip is not None and not isinstance(tip, str):
+        raise ValueError(f"tip = {tip!r}: give a shape string such as 'cone' or 'power:4'")
+    inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check), tip)
     return AdhesionMap(inner)
 
 

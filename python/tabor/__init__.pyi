@@ -92,6 +92,7 @@ def adhesion_map(
     precision: Precision = "f32",
     check: int = 1000,
     adapter: Optional[str] = None,
+    tip: Optional[str] = None,
 ) -> AdhesionMap: ...
 def presets() -> List[str]: ...
 

@@ -146,3 +146,25 @@ def test_a_tips_profile_closes_at_the_range():
                               "--load", "0.5"], capture_output=True, text=True, check=True)
         cli = json.loads(out.stdout)
         assert cli["gap"] == p["gap"].tolist() and cli["a"] == p["a"]
+
+
+def test_a_tips_adhesion_map_is_the_command_lines(tmp_path):
+    """adhesion_map(tip=...) gives `tabor map --tip`'s regions and contact radii, bit for bit;
+    a GPU backend and a bad shape are refused in one line."""
+    m = tabor.adhesion_map(nx=24, ny=20, tip="power:4", backend="cpu")
+    prefix = tmp_path / "tip"
+    subprocess.run([str(ROOT / "target" / "release" / "tabor"), "map", "--tip", "power:4",
+                    "--nx", "24", "--ny", "20", "--backend", "cpu", "--out",
+                    str(tmp_path / "tip.png"), "--npy", str(prefix)],
+                   check=True, capture_output=True)
+    region = np.load(f"{prefix}_region.npy")
+    assert np.array_equal(m.region, region.reshape(m.region.shape))
+    a = np.load(f"{prefix}_A.npy").reshape(m.A.shape)
+    assert np.array_equal(np.isnan(a), np.isnan(m.A))
+    assert np.array_equal(a[~np.isnan(a)], m.A[~np.isnan(m.A)])
+    # A blunt tip's map is not the sphere's.
+    assert m.region_counts != tabor.adhesion_map(nx=24, ny=20, backend="cpu").region_counts
+    with pytest.raises(ValueError, match="solved on the CPU"):
+        tabor.adhesion_map(nx=8, ny=8, tip="cone", backend="gpu")
+    with pytest.raises(ValueError, match="tip conee"):
+        tabor.adhesion_map(nx=8, ny=8, tip="conee")
