@@ -413,7 +413,7 @@ fn solve_tip<'py>(
     value: PyReadonlyArray1<'py, f64>,
     given: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tabor::law::tip::{self, Given};
+    use tabor::law::{tip, Given};
     let shape: tabor::physics::tip::Shape = tip.parse().map_err(PyValueError::new_err)?;
     let given = match given {
         "load" => Given::Load,
@@ -911,13 +911,19 @@ fn pulloff_two_zone<'py>(
     stress_ratio: f64,
     range_ratio: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    use tabor::physics::two_zone::Zones;
-    use tabor::solver::two_zone::TwoZoneContext;
+    use tabor::law::two_zone::ContextError;
+    let law = tabor::law::TwoZones {
+        lambda: lam,
+        stress_ratio,
+        range_ratio,
+    };
     let ctx = run(py, move || {
-        let z = Zones::from_ratios(lam, stress_ratio, range_ratio)
-            .map_err(|e| anyhow::anyhow!("{}", e.0))?;
-        TwoZoneContext::new(z)
-            .map_err(|s| anyhow::anyhow!("the two-zone pull-offs were not found: {}", s.name()))
+        law.context().map_err(|e| match e {
+            ContextError::Zones(e) => anyhow::anyhow!("{}", e.0),
+            ContextError::Curve(s) => {
+                anyhow::anyhow!("the two-zone pull-offs were not found: {}", s.name())
+            }
+        })
     })?;
     let d = PyDict::new(py);
     for (name, p) in [

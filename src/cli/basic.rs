@@ -4,6 +4,7 @@ use super::{BackendArg, Format, PrecisionArg};
 use crate::engine::{Backend, Engine};
 use crate::io::{fmt17, json_num, write_output, Output};
 use crate::physics::md::LAMBDA_D;
+use crate::law::two_zone::ContextError;
 use crate::solver::{Control, LambdaContext, State, Status};
 use anyhow::{bail, Context};
 use clap::Args;
@@ -160,6 +161,16 @@ pub enum Given {
     Radius,
 }
 
+impl From<Given> for crate::law::Given {
+    fn from(g: Given) -> Self {
+        match g {
+            Given::Load => crate::law::Given::Load,
+            Given::Displacement => crate::law::Given::Approach,
+            Given::Radius => crate::law::Given::Radius,
+        }
+    }
+}
+
 impl Given {
     /// The input table's column of the value given.
     pub(super) fn column(self) -> &'static str {
@@ -307,25 +318,17 @@ fn solve_two_zone(
     given: Given,
     value: f64,
 ) -> anyhow::Result<()> {
-    use crate::physics::two_zone::Zones;
-    use crate::solver::two_zone::TwoZoneContext;
     if super::backend_choice(a.backend, BackendArg::Cpu)? != BackendArg::Cpu {
         eprintln!("note: two zones are solved by the f64 CPU solver only");
     }
-    let z = Zones::from_ratios(lambda, rho, eta).map_err(super::zones_error)?;
-    let ctx = TwoZoneContext::new(z).map_err(|st| {
-        anyhow::anyhow!(
-            "--lambda {lambda}: the two-zone curve could not be computed ({})",
-            st.name()
-        )
-    })?;
+    let ctx = two_zone_context(lambda, rho, eta)?;
     if !value.is_finite() || (given == Given::Radius && value <= 0.0) {
         bail!(
             "{} {value}: give a finite number (a contact radius > 0)",
             given.flag()
         );
     }
-    let s = two_zone_state(&ctx, given, value);
+    let s = crate::law::two_zone::state(&ctx, given.into(), value);
     let vals = two_zone_values(lambda, (rho, eta), given, value, &s);
     let text = match a.format.unwrap_or(Format::Text) {
         Format::Json => serde_json::to_string_pretty(&two_zone_json(&vals, &s, given))? + "\n",
@@ -343,6 +346,27 @@ fn solve_two_zone(
     write_output(&a.output, text.as_bytes())
 }
 
+/// The two-zone law of the solid's lambda and the second zone's ratios.
+fn two_zones(lambda: f64, rho: f64, eta: f64) -> crate::law::TwoZones {
+    crate::law::TwoZones {
+        lambda,
+        stress_ratio: rho,
+        range_ratio: eta,
+    }
+}
+
+/// The law's curve, its errors in the command's flags.
+fn two_zone_context(
+    lambda: f64,
+    rho: f64,
+    eta: f64,
+) -> anyhow::Result<crate::solver::two_zone::TwoZoneContext> {
+    two_zones(lambda, rho, eta).context().map_err(|e| match e {
+        ContextError::Zones(e) => super::zones_error(e),
+        e => anyhow::anyhow!("--lambda {lambda}: {e}"),
+    })
+}
+
 /// The columns of a two-zone state (CSV, and the keys of its JSON object).
 const TWO_ZONE_HEADER: [&str; 9] = [
     "lambda",
@@ -355,19 +379,6 @@ const TWO_ZONE_HEADER: [&str; 9] = [
     "c2",
     "status",
 ];
-
-/// The two-zone state at the given load, approach or contact radius.
-fn two_zone_state(
-    ctx: &crate::solver::two_zone::TwoZoneContext,
-    given: Given,
-    value: f64,
-) -> crate::solver::two_zone::TwoZoneState {
-    match given {
-        Given::Load => ctx.state_at_load(value),
-        Given::Displacement => ctx.state_at_approach(value),
-        Given::Radius => ctx.state_at_radius(value),
-    }
-}
 
 /// The numbers of a two-zone state, in [`TWO_ZONE_HEADER`]'s order: where no state was found,
 /// the value given stays in its column and the rest are NaN (empty in CSV, null in JSON).
@@ -417,7 +428,6 @@ fn two_zone_json(
 /// range ratios for all) on the CPU in f64, streamed in chunks: each distinct lambda's curve is
 /// computed once per chunk, and a row that cannot be solved gets its status.
 fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> anyhow::Result<()> {
-    use crate::physics::two_zone::Zones;
     use crate::solver::two_zone::{TwoZoneContext, TwoZoneState};
     use rayon::prelude::*;
     let given = a.control.unwrap_or(Given::Load);
@@ -448,8 +458,10 @@ fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> an
         let contexts: Vec<Result<TwoZoneContext, Status>> = lambdas
             .par_iter()
             .map(|&l| {
-                let z = Zones::from_ratios(l, rho, eta).map_err(|_| Status::InvalidInput)?;
-                TwoZoneContext::new(z)
+                two_zones(l, rho, eta).context().map_err(|e| match e {
+                    ContextError::Zones(_) => Status::InvalidInput,
+                    ContextError::Curve(st) => st,
+                })
             })
             .collect();
         let rows: Vec<([f64; 8], TwoZoneState)> = chunk
@@ -462,7 +474,7 @@ fn solve_two_zone_file(a: &SolveArgs, input: &str, (rho, eta): (f64, f64)) -> an
                     _ if !v.is_finite() || (given == Given::Radius && v <= 0.0) => {
                         failed(Status::InvalidInput)
                     }
-                    Ok(ctx) => two_zone_state(ctx, given, v),
+                    Ok(ctx) => crate::law::two_zone::state(ctx, given.into(), v),
                     Err(st) => failed(*st),
                 };
                 (two_zone_values(l, (rho, eta), given, v, &s), s)
@@ -967,18 +979,10 @@ pub struct PulloffArgs {
 /// Pull-offs of the two-zone law: the solid's lambda with a second zone given by its stress and
 /// range ratios.
 fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
-    use crate::physics::two_zone::Zones;
     use crate::solver::two_zone::TwoZoneContext;
     let mut rows = Vec::new();
     for &l in &a.lambda {
-        let z = Zones::from_ratios(l, rho, eta).map_err(super::zones_error)?;
-        let ctx = TwoZoneContext::new(z).map_err(|st| {
-            anyhow::anyhow!(
-                "--lambda {l}: the two-zone curve could not be computed ({})",
-                st.name()
-            )
-        })?;
-        rows.push((l, ctx));
+        rows.push((l, two_zone_context(l, rho, eta)?));
     }
     let cols = [
         "lambda",

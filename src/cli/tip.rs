@@ -23,12 +23,7 @@ const HEADER: [&str; 7] = ["lambda", "given", "load", "approach", "A", "C", "sta
 
 /// The state of `shape` at `lambda` given by `value` of `given` ([`crate::law::tip::solve`]).
 fn state(shape: Shape, lambda: f64, given: Given, value: f64) -> Row {
-    let given = match given {
-        Given::Load => tip::Given::Load,
-        Given::Displacement => tip::Given::Approach,
-        Given::Radius => tip::Given::Radius,
-    };
-    let (status, point) = tip::solve(shape, lambda, given, value);
+    let (status, point) = tip::solve(shape, lambda, given.into(), value);
     Row {
         lambda,
         value,

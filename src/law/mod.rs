@@ -26,6 +26,17 @@ pub use path::{Branch, Drive, PathPoint};
 pub use tip::Tip;
 pub use two_zone::TwoZones;
 
+/// What fixes a law's state: each front end's own names (a flag, a keyword, a column) map to it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Given {
+    /// The load: the state stable under a dead load.
+    Load,
+    /// The approach: the state stable under rigid grips.
+    Approach,
+    /// The contact radius: the contact branch's point there, stable or not.
+    Radius,
+}
+
 /// A piece of a law's equilibrium path, each with its own parameter t.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]

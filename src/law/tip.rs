@@ -6,7 +6,7 @@
 use super::path::{
     check_drive, contact_radii, free_before, non_contact_path, Branch, Drive, PathPoint,
 };
-use super::{Law, LawError, LawKey, Piece, Pt, A_START};
+use super::{Given, Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::model::ContactModel;
 use crate::physics::tip::Shape;
@@ -255,17 +255,6 @@ impl Tip {
     pub fn stable_under(&self, drive: Drive, a: f64) -> bool {
         self.control_slope(drive, self.t_of_radius(a)).0 > 0.0
     }
-}
-
-/// What a tip's state is given by.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Given {
-    /// The load: the state stable under a dead load.
-    Load,
-    /// The approach: the state stable under rigid grips.
-    Approach,
-    /// The contact radius: the contact branch's point there, stable or not.
-    Radius,
 }
 
 /// The state of `shape` at `lambda` given by `value` of `given`, with its status: `NoContact`

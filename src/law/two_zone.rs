@@ -8,7 +8,7 @@
 
 use super::path::{check_drive, contact_radii, free_before};
 use super::path::{Branch, Drive, PathPoint};
-use super::{cache, md, Law, LawError, LawKey, Md, Piece, Pt, A_START};
+use super::{cache, md, Given, Law, LawError, LawKey, Md, Piece, Pt, A_START};
 use crate::physics::model::ContactModel;
 use crate::physics::two_zone::{
     non_contact_both, non_contact_ends, non_contact_single, point, point_with_slopes,
@@ -68,6 +68,14 @@ impl TwoZones {
         Zones::from_ratios(self.lambda, self.stress_ratio, self.range_ratio)
     }
 
+    /// The law's curve, folds and pull-offs, computed once for its states: the one way the
+    /// front ends build it (refused ratios, or a curve that could not be computed: the error
+    /// says which).
+    pub fn context(&self) -> Result<TwoZoneContext, ContextError> {
+        let z = self.zones().map_err(ContextError::Zones)?;
+        TwoZoneContext::new(z).map_err(ContextError::Curve)
+    }
+
     fn zoned(&self) -> Zoned {
         let Ok(z) = self.zones() else {
             return Zoned::Unsolvable;
@@ -85,6 +93,26 @@ impl TwoZones {
                 }
             }
         }
+    }
+}
+
+/// Why a two-zone law's curve was not computed ([`TwoZones::context`]).
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ContextError {
+    /// The ratios were refused.
+    #[error(transparent)]
+    Zones(ZonesError),
+    /// The curve could not be computed: the solver's status.
+    #[error("the two-zone curve could not be computed ({})", .0.name())]
+    Curve(Status),
+}
+
+/// The two-zone state of `ctx` at the load, approach or contact radius `value`.
+pub fn state(ctx: &TwoZoneContext, given: Given, value: f64) -> TwoZoneState {
+    match given {
+        Given::Load => ctx.state_at_load(value),
+        Given::Approach => ctx.state_at_approach(value),
+        Given::Radius => ctx.state_at_radius(value),
     }
 }
 

@@ -27,6 +27,17 @@ pub enum Given {
     Radius(f64),
 }
 
+impl Given {
+    /// What it fixes and its value.
+    pub fn split(self) -> (crate::law::Given, f64) {
+        match self {
+            Given::Load(p) => (crate::law::Given::Load, p),
+            Given::Approach(d) => (crate::law::Given::Approach, d),
+            Given::Radius(a) => (crate::law::Given::Radius, a),
+        }
+    }
+}
+
 /// Whether a model of a profile has a state at its load.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -6,6 +6,7 @@
 
 use super::{radii, Given, ProfileStatus, MAX_PROFILE_POINTS};
 use crate::law::tip::{self, Tip};
+use crate::law::Given as State;
 use crate::physics::fields::{hertz_gap, hertz_pressure, MdGeometry};
 use crate::solver::Status;
 use serde::Serialize;
@@ -65,9 +66,9 @@ pub fn tip_profile(law: Tip, given: Given, points: usize) -> Result<TipProfile, 
     }
     let law = Tip::new(law.shape, law.lambda)?;
     let (g, value, name) = match given {
-        Given::Load(p) => (tip::Given::Load, p, "load"),
-        Given::Approach(d) => (tip::Given::Approach, d, "approach"),
-        Given::Radius(a) => (tip::Given::Radius, a, "radius"),
+        Given::Load(p) => (State::Load, p, "load"),
+        Given::Approach(d) => (State::Approach, d, "approach"),
+        Given::Radius(a) => (State::Radius, a, "radius"),
     };
     let lambda = law.lambda;
     let mut out = TipProfile {

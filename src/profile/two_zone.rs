@@ -3,11 +3,11 @@
 //! same load. Units built on the total w, as in [`crate::solver::two_zone`].
 
 use crate::physics::model::ContactModel;
-use crate::physics::two_zone::Zones;
+use crate::law::two_zone::{self, ContextError, TwoZones};
 use crate::profile::{
     closed_form_models, radii, Given, ModelProfile, ProfileStatus, MAX_PROFILE_POINTS,
 };
-use crate::solver::two_zone::{TwoZoneContext, TwoZoneState};
+use crate::solver::two_zone::TwoZoneState;
 use crate::solver::Status;
 use serde::Serialize;
 use std::f64::consts::PI;
@@ -74,14 +74,18 @@ pub fn two_zone_profile(
     if !(16..=MAX_PROFILE_POINTS).contains(&points) {
         return Err(TwoZoneProfileError::Points(points));
     }
-    let zones =
-        Zones::from_ratios(lambda, rho, eta).map_err(|e| TwoZoneProfileError::Zones(e.0))?;
-    let ctx = TwoZoneContext::new(zones).map_err(TwoZoneProfileError::Curve)?;
-    let mut s = match given {
-        Given::Load(p) => ctx.state_at_load(p),
-        Given::Approach(d) => ctx.state_at_approach(d),
-        Given::Radius(a) => ctx.state_at_radius(a),
+    let law = TwoZones {
+        lambda,
+        stress_ratio: rho,
+        range_ratio: eta,
     };
+    let ctx = law.context().map_err(|e| match e {
+        ContextError::Zones(e) => TwoZoneProfileError::Zones(e.0),
+        ContextError::Curve(st) => TwoZoneProfileError::Curve(st),
+    })?;
+    let (given, value) = given.split();
+    let mut s = two_zone::state(&ctx, given, value);
+    let zones = ctx.zones;
     if s.status != Status::Ok {
         return Err(TwoZoneProfileError::NoState(s.status));
     }
