@@ -24,7 +24,8 @@ stage "the Python package"
 venv=${TABOR_VENV:-target/py-venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install -q --upgrade pip
-"$venv/bin/python" -m pip install -q pytest nanite afmformats
+"$venv/bin/python" -m pip install -q pytest nanite afmformats "dask[distributed]>=2024.1" \
+    "xarray>=2023.1" "zarr>=2.16" "h5netcdf>=1.1"
 "$venv/bin/python" -m pip install -q ./python
 stage "the Python tests"
 "$venv/bin/python" -m pytest -q python/tests

@@ -46,8 +46,8 @@ STATUS_NAMES = tuple(_tabor.status_names())
 __all__ = [
     "solve", "pulloff", "curve", "hertz", "dmt", "jkr", "bradley", "adhesion_map",
     "AdhesionMap", "Scene", "humidity", "infer_pulloff", "fit_pairs", "fit_curves", "fit_curve",
-    "fit_afmformats", "cycle", "profile", "presets", "rough", "rough_asperities", "rough_ensemble",
-    "rough_map", "rough_pulloff", "rough_scene", "rough_topography", "dem_law",
+    "fit_afmformats", "fit_fleet", "cycle", "profile", "presets", "rough", "rough_asperities",
+    "rough_ensemble", "rough_map", "rough_pulloff", "rough_scene", "rough_topography", "dem_law",
 ]
 
 
@@ -1960,3 +1960,6 @@ def dem_law(lam=None, scene=None, overlap_max=None):
         else:
             raise TypeError(f"scene = {scene!r}: give a dict or the path of a JSON file")
     return _tabor.dem_law(_optional(lam, "lam"), text, _optional(overlap_max, "overlap_max"))
+
+
+from .fleet import fit_fleet  # noqa: E402 (a fleet of force maps, serially or on Dask)

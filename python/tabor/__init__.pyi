@@ -165,6 +165,15 @@ def fit_afmformats(
     molar_volume_m3_mol: Optional[float] = None,
     temperature_k: Optional[float] = None,
 ) -> List[Dict[str, Any]]: ...
+def fit_fleet(
+    maps: Union[str, PathLike[str], Sequence[Union[str, PathLike[str], Dict[str, Any]]],
+                Dict[str, Union[str, PathLike[str], Dict[str, Any]]]],
+    radius_m: float,
+    spring_n_m: Optional[float] = None,
+    *,
+    client: Any = None,
+    **options: Any,
+) -> Any: ...  # an xarray.Dataset (xarray is an optional dependency)
 def cycle(
     lam: float,
     drive: Literal["grips", "dead_load", "spring"] = "grips",
