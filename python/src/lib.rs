@@ -104,6 +104,8 @@ fn outcome<T>(r: std::thread::Result<anyhow::Result<T>>) -> PyResult<T> {
 /// The command line's flags in tabor's messages, and the Python arguments that stand for them
 /// (longest first, so that "--backend cpu" goes before "--backend").
 const FLAGS: &[(&str, &str)] = &[
+    // The fit options' own name for the segment (first: the entries below write fit_segment=).
+    ("segment=\"", "fit_segment=\""),
     ("--backend auto", "backend=\"auto\""),
     ("--backend cpu", "backend=\"cpu\""),
     ("--backend gpu", "backend=\"gpu\""),

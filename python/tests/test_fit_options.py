@@ -24,6 +24,7 @@ def rows():
     ("tolerance", float("nan"), "tolerance: adequate-model tolerance NaN must be"),
     ("z0_m", 1.0, "z0_m: Lennard-Jones range z0 1 m must be between 1e-12 and 1e-6 m"),
     ("z0_m", 1e-30, "z0_m: Lennard-Jones range z0 1e-30 m must be between"),
+    ("fit_segment", "bogus", 'fit_segment="bogus": use "retract", "approach" or "both"'),
 ])
 def test_options_out_of_range_are_refused_as_the_command_line_refuses_them(option, value, says):
     h, f, s = rows()
