@@ -73,11 +73,17 @@ def fleet():
 def client():
     _need("dask")
     distributed = _need("distributed")
+    # distributed sets variables in this process's environment (MALLOC_TRIM_THRESHOLD_,
+    # OMP_NUM_THREADS, ...) that the later tests' subprocesses would inherit: put them back.
+    environ = dict(os.environ)
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                        dashboard_address=None)
     c = distributed.Client(cluster)
     yield c
     c.close()
+    cluster.close()
+    os.environ.clear()
+    os.environ.update(environ)
     cluster.close()
 
 
