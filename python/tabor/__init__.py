@@ -1097,7 +1097,8 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         Per point: 0 approach, 1 retract, -1 a dwell between them, left out of the fit (or the
         strings "approach", "retract", "dwell").
     curve : array_like, optional
-        An id per point (numbers or strings) where the arrays hold many curves.
+        An id per point (numbers or strings) where the arrays hold many curves; each result's
+        ``curve`` is its id (None without ``curve``).
     radius_m : float
         Tip radius in m (plausible: 1e-10..1e-3).
     spring_n_m : float
@@ -1225,10 +1226,9 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         for k, v in r.items():
             if k.endswith(("_interval_68", "_interval_95")) and v is not None:
                 r[k] = tuple(None if e is None or np.isnan(e) else float(e) for e in v)
-    if labels is not None:
-        for r in out:
-            label = labels[int(r["curve"])]
-            r["curve"] = label.item() if isinstance(label, np.generic) else label
+    for r in out:  # each curve's own id as given (None where no curve= was given)
+        label = None if labels is None else labels[int(r["curve"])]
+        r["curve"] = label.item() if isinstance(label, np.generic) else label
     return out
 
 

@@ -67,6 +67,8 @@ def test_misaligned_arrays_fit_as_aligned_ones():
     assert got["status"] == want["status"] == "ok"
     assert got["e_star_pa"] == want["e_star_pa"]
     assert got["lambda"] == want["lambda"]
+    # Without curve= a result has no id (not the library's internal "0").
+    assert want["curve"] is None
 
 
 def test_many_curves_and_bad_ones_in_one_call():
