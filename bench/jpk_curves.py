@@ -12,46 +12,14 @@ import os
 os.environ["RAYON_NUM_THREADS"] = "1"
 
 import json
-import logging
 import pathlib
-import subprocess
 import sys
-import tarfile
-import tempfile
 import time
 
-import afmformats
 import tabor
+from jpk_samples import curves, data_dir
 
 RADIUS_M = 2.5e-6
-
-
-def data_dir(arg):
-    if arg:
-        return pathlib.Path(arg)
-    tmp = pathlib.Path(tempfile.mkdtemp())
-    subprocess.run([sys.executable, "-m", "pip", "download", "--no-binary", ":all:", "--no-deps",
-                    "afmformats==0.18.7", "-d", str(tmp), "-q"], check=True)
-    with tarfile.open(next(tmp.glob("afmformats-*.tar.gz"))) as t:
-        t.extractall(tmp, members=[m for m in t.getmembers()
-                                   if "/tests/data/" in m.name and m.isfile()])
-    return next(tmp.rglob("tests/data"))
-
-
-def curves(folder):
-    """Every force curve afmformats reads from the JPK files (files without a spring constant
-    or sensitivity are left out: afmformats cannot give their forces)."""
-    logging.disable(logging.CRITICAL)
-    out = []
-    for p in sorted(folder.glob("fmt-jpk-*")):
-        try:
-            ds = afmformats.load_data(p)
-        except (Exception, afmformats.errors.MissingMetaDataError):
-            continue
-        out += [(p.name, d) for d in ds if d.metadata.get("imaging mode") in
-                ("force-distance", "creep-compliance", "stress-relaxation")]
-    logging.disable(logging.NOTSET)
-    return out
 
 
 def main():

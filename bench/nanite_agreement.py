@@ -38,54 +38,18 @@ height (`nanite_base_axis`) checks that the axis is the whole difference (it giv
 
 Exit status 1 if a comparable curve's E differs by more than TOLERANCE.
 """
-import logging
-import pathlib
-import subprocess
 import sys
-import tarfile
-import tempfile
 import time
 import warnings
 
 import numpy as np
 
+from jpk_samples import curves, data_dir
+
 RADIUS_M = 2.5e-6
 POISSON = 0.5
 TOLERANCE = 0.02   # |E_tabor / E_nanite - 1| on a comparable curve
 STIFF = 0.3        # S_max/k below which the two residual axes weigh the points alike
-MODES = ("force-distance", "creep-compliance", "stress-relaxation")
-
-
-def data_dir(arg):
-    """The tests/data folder of afmformats 0.18.7's source distribution (fetched without arg)."""
-    if arg:
-        return pathlib.Path(arg)
-    tmp = pathlib.Path(tempfile.mkdtemp())
-    subprocess.run([sys.executable, "-m", "pip", "download", "--no-binary", ":all:", "--no-deps",
-                    "afmformats==0.18.7", "-d", str(tmp), "-q"], check=True)
-    with tarfile.open(next(tmp.glob("afmformats-*.tar.gz"))) as t:
-        t.extractall(tmp, members=[m for m in t.getmembers()
-                                   if "/tests/data/" in m.name and m.isfile()])
-    return next(tmp.rglob("tests/data"))
-
-
-def curves(folder):
-    """(file name, curve) of every JPK curve afmformats reads with an indentation mode (the
-    files without a spring constant or sensitivity raise MissingMetaDataError: left out).
-    Creep-compliance and stress-relaxation curves are kept: both tools fit their approach."""
-    import afmformats
-    logging.disable(logging.CRITICAL)
-    out = []
-    try:
-        for p in sorted(pathlib.Path(folder).glob("fmt-jpk-*")):
-            try:
-                ds = afmformats.load_data(p)
-            except (Exception, afmformats.errors.MissingMetaDataError):
-                continue
-            out += [(p.name, d) for d in ds if d.metadata.get("imaging mode") in MODES]
-    finally:
-        logging.disable(logging.NOTSET)
-    return out
 
 
 def approach_points(fd):

@@ -970,7 +970,7 @@ impl AdhesionMap {
                     ));
                 }
                 backend = Backend::Cpu;
-                Some(t.parse().map_err(|e| PyValueError::new_err(format!("{e}")))?)
+                Some(t.parse().map_err(PyValueError::new_err)?)
             }
             None => None,
         };

@@ -4,8 +4,6 @@ import json
 import os
 import pathlib
 import subprocess
-import sys
-import tarfile
 
 import numpy as np
 import pytest
@@ -86,29 +84,10 @@ def test_many_curves_and_bad_ones_in_one_call():
         tabor.fit_curve(h, f, np.array(["up"] * len(h)), radius_m=20e-9, spring_n_m=2.0)
 
 
-def _afmformats_data(tmp_path):
-    """afmformats and the folder of sample files from its source distribution on PyPI."""
-    if os.environ.get("CI"):
-        import afmformats  # installed by tests/run_all.sh: a failure, not a skip
-    else:
-        afmformats = pytest.importorskip("afmformats")
-    dl = subprocess.run([sys.executable, "-m", "pip", "download", "--no-binary", ":all:",
-                         "--no-deps", "afmformats==0.18.7", "-d", str(tmp_path), "-q"],
-                        capture_output=True, text=True)
-    if dl.returncode != 0:
-        if os.environ.get("CI"):
-            pytest.fail(f"cannot fetch the afmformats sdist: {dl.stderr}")
-        pytest.skip(f"cannot fetch the afmformats sdist (offline?): {dl.stderr.strip()[:200]}")
-    sdist = next(tmp_path.glob("afmformats-*.tar.gz"))
-    with tarfile.open(sdist) as t:
-        members = [m for m in t.getmembers() if "/tests/data/" in m.name and m.isfile()]
-        t.extractall(tmp_path, members=members)
-    return afmformats, next(tmp_path.rglob("tests/data"))
-
-
-def _afmformats_samples(tmp_path):
-    """The JPK sample curves from afmformats' source distribution on PyPI."""
-    afmformats, data = _afmformats_data(tmp_path)
+def _afmformats_samples(data):
+    """The JPK sample curves from afmformats' source distribution on PyPI (`data`: the
+    afmformats_data fixture)."""
+    import afmformats
     names = ["fmt-jpk-fd_spot3-0192.jpk-force",
              "fmt-jpk-fd_flipsign_2015.05.22-15.31.49.352.jpk-force"]
     return afmformats, [data / n for n in names]
@@ -127,11 +106,12 @@ def _load(afmformats, path):
         logging.disable(logging.NOTSET)
 
 
-def test_every_afmformats_sample_fits_or_gets_its_own_status(tmp_path):
+def test_every_afmformats_sample_fits_or_gets_its_own_status(afmformats_data):
     """Every sample force curve afmformats 0.18.7 ships: a dwell (stress relaxation, creep) is
     left out, a one-segment file is split at its turn, a missing spring constant is one error
     naming spring_n_m, and no file stops the call; each fit is sane."""
-    afmformats, data = _afmformats_data(tmp_path)
+    import afmformats
+    data = afmformats_data
     fitted, statuses, last = 0, {}, {}
     for p in sorted(data.iterdir()):
         ds = _load(afmformats, p)
@@ -250,8 +230,8 @@ def test_a_dwell_marked_in_arrays_is_reported_and_a_relaxed_one_fits_the_approac
     assert "dwell" not in tabor.fit_curve(h, f, s, **opts)
 
 
-def test_real_jpk_curves_with_adhesion_are_fitted(tmp_path):
-    afmformats, paths = _afmformats_samples(tmp_path)
+def test_real_jpk_curves_with_adhesion_are_fitted(afmformats_data):
+    afmformats, paths = _afmformats_samples(afmformats_data)
     for p in paths:
         data = afmformats.load_data(p)
         (r,) = tabor.fit_afmformats(data[:1], radius_m=2.5e-6)

@@ -9,7 +9,6 @@ import os
 import shutil
 import subprocess
 import sys
-import tarfile
 import textwrap
 
 import numpy as np
@@ -202,27 +201,13 @@ def test_a_missing_file_is_its_maps_status_and_bad_arguments_raise(fleet, client
 
 
 @pytest.fixture(scope="module")
-def samples(tmp_path_factory):
-    """Two force maps of afmformats 0.18.7's source distribution (the download of test_fit.py's
-    `_afmformats_data`), in a folder with a file afmformats does not read."""
-    _need("afmformats")
-    tmp = tmp_path_factory.mktemp("afmformats")
-    dl = subprocess.run([sys.executable, "-m", "pip", "download", "--no-binary", ":all:",
-                         "--no-deps", "afmformats==0.18.7", "-d", str(tmp), "-q"],
-                        capture_output=True, text=True)
-    if dl.returncode != 0:
-        if os.environ.get("CI"):
-            pytest.fail(f"cannot fetch the afmformats sdist: {dl.stderr}")
-        pytest.skip(f"cannot fetch the afmformats sdist (offline?): {dl.stderr.strip()[:200]}")
-    names = ["fmt-jpk-fd_map2x2_extracted.jpk-force-map",
-             "fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data"]
-    with tarfile.open(next(tmp.glob("afmformats-*.tar.gz"))) as t:
-        t.extractall(tmp, members=[m for m in t.getmembers()
-                                   if m.isfile() and m.name.rsplit("/", 1)[-1] in names])
-    folder = tmp / "maps"
-    folder.mkdir()
-    for n in names:
-        shutil.copy(next(tmp.rglob(n)), folder / n)
+def samples(afmformats_data, tmp_path_factory):
+    """Two force maps of afmformats 0.18.7's source distribution (conftest.py), in a folder with a
+    file afmformats does not read."""
+    folder = tmp_path_factory.mktemp("maps")
+    for n in ["fmt-jpk-fd_map2x2_extracted.jpk-force-map",
+              "fmt-jpk-fd_2020.02.07-16.29.05.036.jpk-qi-data"]:
+        shutil.copy(afmformats_data / n, folder / n)
     (folder / "notes.txt").write_text("not a force map\n")
     return folder
 

@@ -9,20 +9,19 @@ must agree within 2%. On the other curves the difference is asserted to be that 
 nanite's own model refitted with its residuals at the base height gives tabor's E.
 
 Runs where nanite and afmformats are installed (a failure under CI, which installs both: see
-tests/run_all.sh; a skip elsewhere); fetches afmformats' source distribution with pip. About
-20 s on two cores.
+tests/run_all.sh; a skip elsewhere); afmformats' source distribution is fetched once per session
+(conftest.py). About 15 s on two cores.
 """
 import importlib
 import importlib.util
 import os
 import pathlib
-import subprocess
 import sys
-import tarfile
 
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench"))  # the bench's own import of jpk_samples
 _spec = importlib.util.spec_from_file_location("nanite_agreement",
                                                ROOT / "bench" / "nanite_agreement.py")
 B = importlib.util.module_from_spec(_spec)
@@ -36,23 +35,10 @@ def _need(name):
 
 
 @pytest.fixture(scope="module")
-def folder(tmp_path_factory):
-    """The tests/data folder of afmformats 0.18.7's source distribution (as test_fit.py's
-    `_afmformats_data`, once for the module)."""
-    _need("afmformats")
+def folder(afmformats_data):
+    """The tests/data folder of afmformats 0.18.7's source distribution (conftest.py)."""
     _need("nanite")
-    tmp = tmp_path_factory.mktemp("afmformats")
-    dl = subprocess.run([sys.executable, "-m", "pip", "download", "--no-binary", ":all:",
-                         "--no-deps", "afmformats==0.18.7", "-d", str(tmp), "-q"],
-                        capture_output=True, text=True)
-    if dl.returncode != 0:
-        if os.environ.get("CI"):
-            pytest.fail(f"cannot fetch the afmformats sdist: {dl.stderr}")
-        pytest.skip(f"cannot fetch the afmformats sdist (offline?): {dl.stderr.strip()[:200]}")
-    with tarfile.open(next(tmp.glob("afmformats-*.tar.gz"))) as t:
-        t.extractall(tmp, members=[m for m in t.getmembers()
-                                   if "/tests/data/" in m.name and m.isfile()])
-    return next(tmp.rglob("tests/data"))
+    return afmformats_data
 
 
 @pytest.fixture(scope="module")

@@ -3,8 +3,8 @@
 use super::{BackendArg, Format, PrecisionArg};
 use crate::engine::{Backend, Engine};
 use crate::io::{fmt17, json_num, write_output, Output};
-use crate::physics::md::LAMBDA_D;
 use crate::law::two_zone::ContextError;
+use crate::physics::md::LAMBDA_D;
 use crate::solver::{Control, LambdaContext, State, Status};
 use anyhow::{bail, Context};
 use clap::Args;

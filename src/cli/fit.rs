@@ -321,16 +321,19 @@ fn write_maps(
         .map_err(anyhow::Error::msg)
         .context("--maps")?;
     let names = crate::export::write_fit_npy(prefix, results, nx, ny, &grid)?;
-    let ok_at = |i: &Option<usize>| i.map(|i| &results[i]).filter(|r| r.status == FitStatus::Ok);
+    // PREFIX_<name>.png, drawn by `draw`.
+    let png = |name: &str, kind: crate::render::Kind, draw: crate::render::DrawSvg| {
+        let path = format!("{prefix}_{name}.png");
+        let out = crate::render::Outputs::from_path(std::path::Path::new(&path))
+            .map_err(anyhow::Error::msg)?;
+        crate::render::plots::save(kind, print, &out, draw)
+            .with_context(|| format!("drawing {path}"))
+    };
+    let fit_at = |i: &Option<usize>| i.map(|i| &results[i]);
     for q in &fit::MAP_QUANTITIES {
         let values: Vec<f64> = grid
             .iter()
-            .map(|i| {
-                ok_at(i)
-                    .filter(|r| !q.needs_lambda || r.lambda_determined())
-                    .and_then(q.value)
-                    .unwrap_or(f64::NAN)
-            })
+            .map(|i| fit_at(i).and_then(|r| q.shown(r)).unwrap_or(f64::NAN))
             .collect();
         let largest = values
             .iter()
@@ -347,55 +350,35 @@ fn write_maps(
         } else {
             format!("{} ({si}{})", q.label, q.unit)
         };
-        let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-            "{prefix}_{}.png",
-            q.name
-        )))
-        .map_err(anyhow::Error::msg)?;
-        crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
+        png(q.name, crate::render::Kind::ForceMap, &|root| {
             crate::render::plots::force_map(root, &values, nx, ny, &title, q.log)
-        })
-        .with_context(|| format!("drawing {prefix}_{}.png", q.name))?;
+        })?;
     }
     let models: Vec<Option<fit::Model>> = grid
         .iter()
-        .map(|i| ok_at(i).and_then(|r| r.adequate_model))
+        .map(|i| {
+            fit_at(i)
+                .filter(|r| r.status == FitStatus::Ok)
+                .and_then(|r| r.adequate_model)
+        })
         .collect();
-    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-        "{prefix}_adequate_model.png"
-    )))
-    .map_err(anyhow::Error::msg)?;
-    crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
+    png("adequate_model", crate::render::Kind::ForceMap, &|root| {
         crate::render::plots::model_map(root, &models, nx, ny)
-    })
-    .context("drawing the adequate-model map")?;
-    // Per pixel how its fit ended, as a map and an NPY (the index of PIXEL_STATUSES).
-    let statuses: Vec<usize> = grid
-        .iter()
-        .map(|i| fit::pixel_status(i.map(|i| &results[i])))
-        .collect();
-    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-        "{prefix}_status.png"
-    )))
-    .map_err(anyhow::Error::msg)?;
-    crate::render::plots::save(crate::render::Kind::ForceMap, print, &out, &|root| {
+    })?;
+    // Per pixel how its fit ended (the index of PIXEL_STATUSES, as its NPY).
+    let statuses: Vec<usize> = grid.iter().map(|i| fit::pixel_status(fit_at(i))).collect();
+    png("status", crate::render::Kind::ForceMap, &|root| {
         crate::render::plots::status_map(root, &statuses, nx, ny)
-    })
-    .context("drawing the status map")?;
+    })?;
     // The map at a glance: statuses, models and each quantity's distribution.
     let summary = fit::summarize_map(results, nx, ny, &grid);
     let json = format!("{prefix}_summary.json");
     let mut out = crate::io::Output::create(&json)?;
     serde_json::to_writer_pretty(&mut out, &summary)?;
     out.commit()?;
-    let out = crate::render::Outputs::from_path(std::path::Path::new(&format!(
-        "{prefix}_histograms.png"
-    )))
-    .map_err(anyhow::Error::msg)?;
-    crate::render::plots::save(crate::render::Kind::MapHistograms, print, &out, &|root| {
+    png("histograms", crate::render::Kind::MapHistograms, &|root| {
         crate::render::plots::map_histograms(root, &summary)
-    })
-    .context("drawing the map's histograms")?;
+    })?;
     eprintln!(
         "wrote the {nx} x {ny} force maps: {}, {json} and their PNGs (with {prefix}_histograms.png)",
         names.join(", ")

@@ -7,7 +7,13 @@ use serde::Serialize;
 use std::collections::BTreeMap;
 
 /// Every status a pixel can have: a fit's, or `no_curve` where the map holds no curve.
-pub const PIXEL_STATUSES: [&str; 5] = ["ok", "invalid_input", "no_contact", "not_converged", "no_curve"];
+pub const PIXEL_STATUSES: [&str; 5] = [
+    "ok",
+    "invalid_input",
+    "no_contact",
+    "not_converged",
+    "no_curve",
+];
 
 /// A pixel's status, as in [`PIXEL_STATUSES`] (its index is the status map's value).
 pub fn pixel_status(fit: Option<&CurveFit>) -> usize {
@@ -98,11 +104,19 @@ impl Quantiles {
 
 /// The map's summary from its grid (`map_grid`): statuses over every pixel, models and
 /// quantities over the fitted ones, each quantity as its map shows it.
-pub fn summarize_map(results: &[CurveFit], nx: usize, ny: usize, grid: &[Option<usize>]) -> MapSummary {
+pub fn summarize_map(
+    results: &[CurveFit],
+    nx: usize,
+    ny: usize,
+    grid: &[Option<usize>],
+) -> MapSummary {
     let fits: Vec<Option<&CurveFit>> = grid.iter().map(|i| i.map(|i| &results[i])).collect();
-    let mut status: BTreeMap<&'static str, usize> = PIXEL_STATUSES.iter().map(|s| (*s, 0)).collect();
+    let mut status: BTreeMap<&'static str, usize> =
+        PIXEL_STATUSES.iter().map(|s| (*s, 0)).collect();
     for f in &fits {
-        *status.get_mut(PIXEL_STATUSES[pixel_status(*f)]).expect("listed") += 1;
+        *status
+            .get_mut(PIXEL_STATUSES[pixel_status(*f)])
+            .expect("listed") += 1;
     }
     let ok: Vec<&CurveFit> = fits
         .iter()
@@ -125,8 +139,7 @@ pub fn summarize_map(results: &[CurveFit], nx: usize, ny: usize, grid: &[Option<
         .map(|q| {
             let mut v: Vec<f64> = ok
                 .iter()
-                .filter(|r| !q.needs_lambda || r.lambda_determined())
-                .filter_map(|r| (q.value)(r))
+                .filter_map(|r| q.shown(r))
                 .filter(|v| v.is_finite() && (!q.log || *v > 0.0))
                 .collect();
             v.sort_by(f64::total_cmp);
@@ -144,7 +157,13 @@ pub fn summarize_map(results: &[CurveFit], nx: usize, ny: usize, grid: &[Option<
             }
         })
         .collect();
-    MapSummary { nx, ny, status, adequate_model, quantities }
+    MapSummary {
+        nx,
+        ny,
+        status,
+        adequate_model,
+        quantities,
+    }
 }
 
 /// Bins even in the value (or its log10) from the smallest to the largest, about the square
@@ -183,7 +202,10 @@ mod tests {
     fn quantiles_and_bins_of_known_values() {
         let v: Vec<f64> = (0..=100).map(f64::from).collect();
         let q = Quantiles::of(&v);
-        assert_eq!((q.min, q.q05, q.q25, q.median, q.q75, q.q95, q.max), (0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 100.0));
+        assert_eq!(
+            (q.min, q.q05, q.q25, q.median, q.q75, q.q95, q.max),
+            (0.0, 5.0, 25.0, 50.0, 75.0, 95.0, 100.0)
+        );
         let (edges, counts) = histogram(&v, false);
         assert_eq!(counts.len(), 11);
         assert_eq!(edges.len(), 12);

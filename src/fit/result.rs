@@ -243,6 +243,15 @@ pub struct MapQuantity {
     pub needs_lambda: bool,
 }
 
+impl MapQuantity {
+    /// The value a fitted curve shows on the map and in its summary: None where the fit is not
+    /// `ok`, or the quantity needs lambda and lambda is not determined.
+    pub fn shown(&self, r: &CurveFit) -> Option<f64> {
+        let shown = r.status == FitStatus::Ok && (!self.needs_lambda || r.lambda_determined());
+        shown.then(|| (self.value)(r)).flatten()
+    }
+}
+
 /// The force-map quantities, each a PNG with a colorbar and an NPY array.
 pub const MAP_QUANTITIES: [MapQuantity; 5] = [
     MapQuantity {

@@ -2,8 +2,8 @@
 //! water meniscus; docs/PHYSICS.md section 10), beside Hertz, DMT and JKR of the total w at the
 //! same load. Units built on the total w, as in [`crate::solver::two_zone`].
 
-use crate::physics::model::ContactModel;
 use crate::law::two_zone::{self, ContextError, TwoZones};
+use crate::physics::model::ContactModel;
 use crate::profile::{
     closed_form_models, radii, Given, ModelProfile, ProfileStatus, MAX_PROFILE_POINTS,
 };

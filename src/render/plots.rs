@@ -1559,7 +1559,11 @@ where
         ("sans-serif", TITLE),
     )?;
     let (w, h) = root.dim_in_pixel();
-    let (rows, cols) = if w as f64 / h as f64 > 1.2 { (2, 3) } else { (3, 2) };
+    let (rows, cols) = if w as f64 / h as f64 > 1.2 {
+        (2, 3)
+    } else {
+        (3, 2)
+    };
     let panels = root.split_evenly((rows, cols));
     for (q, area) in summary.quantities.iter().zip(&panels) {
         let m = crate::fit::MAP_QUANTITIES
@@ -1569,7 +1573,11 @@ where
         // The maps' labels without their notes on grey pixels.
         let label = m.label.split(" (").next().unwrap_or(m.label);
         let title = if m.needs_lambda {
-            format!("{label} ({} of {} determined)", q.count, q.count + q.missing)
+            format!(
+                "{label} ({} of {} determined)",
+                q.count,
+                q.count + q.missing
+            )
         } else {
             label.to_string()
         };
@@ -1640,7 +1648,13 @@ where
         .label_style(("sans-serif", TICK))
         .x_labels(3)
         .y_labels(4)
-        .x_label_formatter(&|v| if log { super::power_label(*v) } else { compact(*v) })
+        .x_label_formatter(&|v| {
+            if log {
+                super::power_label(*v)
+            } else {
+                compact(*v)
+            }
+        })
         .y_label_formatter(&|v| format!("{v:.0}"))
         .draw()?;
     if q.counts.is_empty() {
@@ -1696,7 +1710,10 @@ where
     chart.draw_series(bars.iter().enumerate().map(|(i, b)| {
         let row = n - 1 - i;
         Rectangle::new(
-            [(0.0, SegmentValue::Exact(row)), (b.1 as f64, SegmentValue::Exact(row + 1))],
+            [
+                (0.0, SegmentValue::Exact(row)),
+                (b.1 as f64, SegmentValue::Exact(row + 1)),
+            ],
             b.2.filled(),
         )
     }))?;
