@@ -477,15 +477,26 @@ fn a_force_map_gives_npy_maps_that_match_the_table_and_figures() {
             .clone()
     };
     let e = quantity("e_star");
-    let mut es: Vec<f64> = ok.iter().map(|c| c["e_star_pa"].as_f64().unwrap()).collect();
+    let mut es: Vec<f64> = ok
+        .iter()
+        .map(|c| c["e_star_pa"].as_f64().unwrap())
+        .collect();
     es.sort_by(f64::total_cmp);
     assert_eq!(e["count"], 5);
     assert_eq!(e["quantiles"]["median"].as_f64(), Some(es[2]));
     assert_eq!(e["quantiles"]["min"].as_f64(), Some(es[0]));
     assert_eq!(e["quantiles"]["max"].as_f64(), Some(es[4]));
-    let counts: u64 = e["counts"].as_array().unwrap().iter().map(|c| c.as_u64().unwrap()).sum();
+    let counts: u64 = e["counts"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c.as_u64().unwrap())
+        .sum();
     assert_eq!(counts, 5);
-    assert_eq!(e["edges"].as_array().unwrap().len(), e["counts"].as_array().unwrap().len() + 1);
+    assert_eq!(
+        e["edges"].as_array().unwrap().len(),
+        e["counts"].as_array().unwrap().len() + 1
+    );
     let l = quantity("lambda");
     let determined = ok.iter().filter(|c| c["lambda_determined"] == true).count() as u64;
     assert_eq!(l["count"].as_u64(), Some(determined));
