@@ -18,12 +18,14 @@ pub mod follow;
 pub mod md;
 pub mod path;
 pub mod tip;
+pub mod tip_closed;
 pub mod two_zone;
 
 pub use closed::{Dmt, Hertz, Jkr};
 pub use md::Md;
 pub use path::{Branch, Drive, PathPoint};
 pub use tip::Tip;
+pub use tip_closed::TipClosed;
 pub use two_zone::TwoZones;
 
 /// What fixes a law's state: each front end's own names (a flag, a keyword, a column) map to it.
@@ -215,6 +217,9 @@ pub enum ContactLaw {
     /// Maugis-Dugdale on an axisymmetric tip (a power law or a capped cone; docs/PHYSICS.md
     /// section 12), in the shape's units.
     Tip(Tip),
+    /// A tip's closed forms: Sneddon's adhesion-free punch or the JKR-type law (docs/PHYSICS.md
+    /// section 12.4), in the shape's units.
+    TipClosed(TipClosed),
 }
 
 impl ContactLaw {
@@ -264,6 +269,7 @@ impl ContactLaw {
             ContactLaw::Md(l) => l,
             ContactLaw::SolidAndMeniscus(l) => l,
             ContactLaw::Tip(l) => l,
+            ContactLaw::TipClosed(l) => l,
         }
     }
 

@@ -257,6 +257,16 @@ impl Tip {
     }
 }
 
+/// A shape's identity in a law's cache key: its kind and its numbers' bits.
+pub(super) fn shape_bits(shape: &Shape) -> [u64; 3] {
+    match *shape {
+        Shape::Power { exponent } => [1, exponent.to_bits(), 0],
+        Shape::CappedCone { rho, half_angle } => [2, rho.to_bits(), half_angle.to_bits()],
+        // A measured table is one leaked allocation: its address is its identity.
+        Shape::Measured(p) => [3, p as *const _ as u64, 0],
+    }
+}
+
 /// The state of `shape` at `lambda` given by `value` of `given`, with its status: `NoContact`
 /// below the pull-off of the control, `InvalidInput` for a lambda outside [`LAMBDA_RANGE`], a
 /// value that is not finite or a radius not above zero (the point then None).
@@ -349,12 +359,7 @@ impl Law for Tip {
         self.pulloff_state(Drive::DeadLoad).load.abs()
     }
     fn key(&self) -> LawKey {
-        let shape = match self.shape {
-            Shape::Power { exponent } => [1, exponent.to_bits(), 0],
-            Shape::CappedCone { rho, half_angle } => [2, rho.to_bits(), half_angle.to_bits()],
-            // A measured table is one leaked allocation: its address is its identity.
-            Shape::Measured(p) => [3, p as *const _ as u64, 0],
-        };
+        let shape = shape_bits(&self.shape);
         (
             ContactModel::Md,
             [self.lambda.to_bits(), shape[0], shape[1], shape[2]],

@@ -7,7 +7,7 @@
 
 use std::sync::OnceLock;
 use tabor::cycle::{self, Drive, Phase};
-use tabor::law::{ContactLaw, Law, Piece, Tip, A_START};
+use tabor::law::{ContactLaw, Law, Piece, Tip, TipClosed, A_START};
 use tabor::physics::tip::Shape;
 use tabor::physics::two_zone::Zones;
 use tabor::ContactModel;
@@ -30,6 +30,13 @@ fn laws() -> Vec<ContactLaw> {
         half_angle: 20f64.to_radians(),
     };
     v.extend([0.2, 3.0].map(|l| ContactLaw::Tip(Tip::new(capped, l).unwrap())));
+    for shape in [
+        Shape::Power { exponent: 1.0 },
+        Shape::Power { exponent: 3.0 },
+        capped,
+    ] {
+        v.extend([false, true].map(|adhesive| ContactLaw::TipClosed(TipClosed { shape, adhesive })));
+    }
     v
 }
 
@@ -363,7 +370,8 @@ fn contact_laws_serialise_with_their_model() {
 /// Maugis-Dugdale's J-integral through the Dugdale zone (`physics::fields`, the gap at C over
 /// h0), the two-zone profile's J over the total w at the law's radii (the sum of each zone's
 /// stress times its gap at its edge), JKR's stress intensity `(A^3 - Pbar) / (2 A sqrt(pi A))`
-/// with `G/w = (2 pi / 3) K^2`; Hertz and DMT have no crack (K = 0).
+/// with `G/w = (2 pi / 3) K^2` (a tip's JKR-type law with its `Qbar(A)` for `A^3`: the flat
+/// punch's load `(3/2) A (Fbar(A) - Dbar)`); Hertz, Sneddon's punch and DMT have no crack (K = 0).
 #[test]
 fn the_energy_release_rate_at_the_edge_is_w() {
     use tabor::physics::fields::MdGeometry;
@@ -440,7 +448,12 @@ fn the_energy_release_rate_at_the_edge_is_w() {
                     } else {
                         0.0
                     };
-                    let k_i = (s.a.powi(3) - s.load - adhesion)
+                    // A tip's closed forms: its adhesion-free load Qbar(A) for the sphere's A^3.
+                    let q = match law {
+                        ContactLaw::TipClosed(c) => c.shape.load(s.a).0,
+                        _ => s.a.powi(3),
+                    };
+                    let k_i = (q - s.load - adhesion)
                         / (2.0 * s.a * (std::f64::consts::PI * s.a).sqrt());
                     let g = 2.0 * std::f64::consts::PI / 3.0 * k_i * k_i;
                     if law.model() != ContactModel::Jkr {

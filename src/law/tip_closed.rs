@@ -1,0 +1,102 @@
+//! The closed forms of an axisymmetric tip (docs/PHYSICS.md section 12.4), in the shape's
+//! units: Sneddon's adhesion-free punch (the tip's Hertz, `Pbar = Qbar(A)`, `Dbar = Fbar(A)`)
+//! and the JKR-type law (`Pbar = Qbar(A) - sqrt(6 A^3)`, `Dbar = Fbar(A) - sqrt(8 A/3)`), the
+//! limits of [`super::Tip`] without adhesion and at lambda -> infinity. Their path is the free
+//! piece, then the contact piece t = A, as the sphere's closed forms (for the paraboloid,
+//! `Fbar = T^2`, they are Hertz and JKR). A DMT-type law is not among them: beyond the
+//! paraboloid the rigid tip's Dugdale force depends on the range (`pi w h0 tan^2 alpha` for a
+//! cone), so it has Maugis-Dugdale's parameters and is no simpler model.
+
+use super::{Law, LawKey, Piece, Pt, A_START};
+use crate::numeric::root::bisect_sign;
+use crate::physics::model::ContactModel;
+use crate::physics::tip::Shape;
+use serde::Serialize;
+
+/// A closed form on a tip of shape `shape`: `adhesive` false is Sneddon's punch (Hertz-type),
+/// true the JKR-type law.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TipClosed {
+    /// The tip in its normalised units.
+    #[serde(flatten)]
+    pub shape: Shape,
+    /// JKR-type (true) or adhesion-free (false).
+    pub adhesive: bool,
+}
+
+impl TipClosed {
+    /// The JKR-type law's contact radius at its load-controlled pull-off: where
+    /// `dPbar/dA = (3/2)(A Fbar'(A) - sqrt(6 A))` turns positive.
+    fn critical_radius(&self) -> f64 {
+        let slope = |a: f64| self.shape.abel(a).1 * a - (6.0 * a).sqrt();
+        let mut hi = 1.0;
+        while slope(hi) < 0.0 && hi < 1e150 {
+            hi *= 2.0;
+        }
+        bisect_sign(slope, 0.0, hi)
+    }
+}
+
+impl Law for TipClosed {
+    fn model(&self) -> ContactModel {
+        if self.adhesive {
+            ContactModel::Jkr
+        } else {
+            ContactModel::Hertz
+        }
+    }
+    fn lambda(&self) -> Option<f64> {
+        None
+    }
+    fn state(&self, piece: Piece, t: f64) -> Pt {
+        match piece {
+            Piece::Contact => {
+                let (q, dq) = self.shape.load(t);
+                let (f, df) = self.shape.abel(t);
+                let (jl, ja, djl, dja) = if self.adhesive {
+                    let s6 = (6.0 * t).sqrt();
+                    (t * s6, (8.0 * t / 3.0).sqrt(), 1.5 * s6, (2.0 / (3.0 * t)).sqrt())
+                } else {
+                    (0.0, 0.0, 0.0, 0.0)
+                };
+                Pt {
+                    load: q - jl,
+                    approach: f - ja,
+                    a: t,
+                    dload: dq - djl,
+                    dapproach: df - dja,
+                    da: 1.0,
+                }
+            }
+            Piece::Free => Pt::free(t),
+            Piece::NonContact => Pt::nan(),
+        }
+    }
+    fn state_dlambda(&self, _: Piece, _: f64) -> (f64, f64) {
+        (0.0, 0.0)
+    }
+    fn free_end(&self) -> f64 {
+        0.0
+    }
+    fn t_of_radius(&self, a: f64) -> f64 {
+        a
+    }
+    fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
+        vec![(Piece::Contact, A_START, a_max)]
+    }
+    fn pulloff(&self) -> f64 {
+        if !self.adhesive {
+            return 0.0;
+        }
+        let a = self.critical_radius();
+        -self.state(Piece::Contact, a).load
+    }
+    /// The JKR-type contact piece needs A > 0.
+    fn on_piece(&self, piece: Piece, t: f64) -> bool {
+        t.is_finite() && !(self.adhesive && piece == Piece::Contact && t <= 0.0)
+    }
+    fn key(&self) -> LawKey {
+        let [kind, a, b] = super::tip::shape_bits(&self.shape);
+        (self.model(), [10 + kind, a, b, 0])
+    }
+}
