@@ -1079,10 +1079,10 @@ def fit_pairs(loads_n, radii_m, radius_m, z0_m=0.3e-9):
     return _tabor.fit_pairs(p, a, _finite(radius_m, "radius_m"), _finite(z0_m, "z0_m"))
 
 
-def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, poisson=None,
+def fit_curves(height_m, force_n, segment, curve=None, *, radius_m=None, spring_n_m, poisson=None,
                fit_segment="retract", z0_m=None, tilt=False, tolerance=_tabor.DEFAULT_TOLERANCE,
                relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
-               molar_volume_m3_mol=None, temperature_k=None):
+               molar_volume_m3_mol=None, temperature_k=None, tip=None):
     """Fits exact Maugis-Dugdale, and Hertz, DMT and JKR beside it, to AFM force curves
     (``tabor fit``).
 
@@ -1100,11 +1100,18 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
         An id per point (numbers or strings) where the arrays hold many curves; each result's
         ``curve`` is its id (None without ``curve``).
     radius_m : float
-        Tip radius in m (plausible: 1e-10..1e-3).
+        Tip radius in m (plausible: 1e-10..1e-3), for a sphere; or give ``tip``.
     spring_n_m : float
         Cantilever spring constant in N/m (plausible: 1e-4..1e4).
     poisson : float, optional
         The sample's Poisson ratio in (-1, 0.5]: adds ``youngs_modulus_pa``.
+    tip : dict or str, optional
+        A tip that is not a sphere, as a scene's ``"tip"`` (``{"shape": "cone",
+        "half_angle_deg": 20}``, ``"pyramid"`` with ``faces`` and ``face_angle_deg``,
+        ``"power"`` with ``exponent`` and ``coefficient``, ``"capped_cone"`` with ``radius_m``
+        and ``half_angle_deg``) or as ``tabor fit --tip`` writes it (``"cone:20"``). The closed
+        forms are then the tip's (Sneddon's punch as ``hertz``, the JKR-type law as ``jkr``; no
+        DMT) and lambda is the tip's own; no ``tabor_parameter`` or ``verdict``.
     fit_segment : {"retract", "approach", "both"}
         The segment fitted.
     z0_m : float, optional
@@ -1198,8 +1205,16 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m, spring_n_m, 
     def num(x, name):
         v = _real(x, name)
         return v if np.isfinite(v) else repr(v)
-    options = {"radius": num(radius_m, "radius_m"), "spring": num(spring_n_m, "spring_n_m"),
+    if tip is not None and radius_m is not None:
+        raise ValueError("radius_m and tip: give one (a sphere's radius, or the tip)")
+    options = {"spring": num(spring_n_m, "spring_n_m"),
                "segment": fit_segment, "tilt": bool(tilt), "tolerance": num(tolerance, "tolerance")}
+    if tip is None:
+        options["radius"] = num(radius_m if radius_m is not None else float("nan"), "radius_m")
+    elif isinstance(tip, (str, dict)):
+        options["tip"] = tip
+    else:
+        raise TypeError(f"tip: give a dict like a scene's tip or a string like 'cone:20', not {type(tip).__name__}")
     if poisson is not None:
         options["poisson"] = num(poisson, "poisson")
     if z0_m is not None:
@@ -1286,10 +1301,10 @@ def fit_curve(height_m, force_n, segment, **options):
     return fit_curves(height_m, force_n, segment, **options)[0]
 
 
-def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment="retract",
+def fit_afmformats(data, radius_m=None, spring_n_m=None, *, poisson=None, fit_segment="retract",
                    z0_m=None, tilt=False, tolerance=_tabor.DEFAULT_TOLERANCE,
                    relative_humidity=None, contact_angle_deg=0.0, surface_tension_n_m=None,
-                   molar_volume_m3_mol=None, temperature_k=None):
+                   molar_volume_m3_mol=None, temperature_k=None, tip=None):
     """Fits curves read by afmformats (``afmformats.load_data(path)``: JPK, Asylum/Igor,
     NT-MDT, AFM Workshop, ...), each with the spring constant of its file.
 
@@ -1308,13 +1323,14 @@ def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment
         What ``afmformats.load_data`` returns (a file without a sensitivity is loaded with
         ``afmformats.load_data(path, meta_override={"sensitivity": ...})``).
     radius_m : float
-        Tip radius in m.
+        Tip radius in m, for a sphere; or give ``tip``.
     spring_n_m : float, optional
         Spring constant in N/m for every curve, instead of each file's own (needed where a file
         has none).
     poisson, fit_segment, z0_m, tilt, tolerance, relative_humidity, contact_angle_deg,
-    surface_tension_n_m, molar_volume_m3_mol, temperature_k
-        As :func:`fit_curves` (``fit_segment="approach"`` fits the approach).
+    surface_tension_n_m, molar_volume_m3_mol, temperature_k, tip
+        As :func:`fit_curves` (``fit_segment="approach"`` fits the approach; ``tip`` a cone, a
+        pyramid, a power law or a capped cone).
 
     Returns
     -------
@@ -1345,7 +1361,7 @@ def fit_afmformats(data, radius_m, spring_n_m=None, *, poisson=None, fit_segment
                    tilt=tilt, tolerance=tolerance, relative_humidity=relative_humidity,
                    contact_angle_deg=contact_angle_deg,
                    surface_tension_n_m=surface_tension_n_m,
-                   molar_volume_m3_mol=molar_volume_m3_mol, temperature_k=temperature_k)
+                   molar_volume_m3_mol=molar_volume_m3_mol, temperature_k=temperature_k, tip=tip)
     # The options checked once, on no data (with a valid stand-in for a spring read per file):
     # options wrong for every curve raise, a file's own bad spring constant is its curve's status.
     fit_curves([], [], [], spring_n_m=1.0 if spring_n_m is None else spring_n_m, **options)

@@ -370,8 +370,8 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
         a point: ``height_m``, ``force_n``, ``segment`` and the pixel ``x``, ``y`` (integers >=
         0), optionally ``spring_n_m``, fitted by :func:`fit_curves` with a curve per pixel.
         A single path (a folder) may be passed alone.
-    radius_m : float
-        Tip radius in m, for every map.
+    radius_m : float or None
+        Tip radius in m, for every map (None where ``tip=`` is among the options).
     spring_n_m : float, optional
         Spring constant in N/m for every map, instead of each file's (or array map's) own.
     client : distributed.Client, optional
@@ -382,7 +382,7 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
         Passed on to :func:`fit_afmformats` / :func:`fit_curves`: ``poisson``,
         ``fit_segment``, ``z0_m``, ``tilt``, ``tolerance``, ``relative_humidity``,
         ``contact_angle_deg``, ``surface_tension_n_m``, ``molar_volume_m3_mol``,
-        ``temperature_k``.
+        ``temperature_k``, ``tip``.
 
     Returns
     -------

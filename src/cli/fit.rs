@@ -21,9 +21,15 @@ pub struct FitArgs {
     /// force map), or a NumPy .npz with the same array names; `-` is stdin.
     #[arg(long, short)]
     pub input: String,
-    /// Tip radius R (m).
+    /// Tip radius R (m): a sphere's (or give --tip).
+    #[arg(long, required_unless_present = "tip", conflicts_with = "tip")]
+    pub radius: Option<f64>,
+    /// A tip that is not a sphere (docs/PHYSICS.md section 12), in SI units: cone:HALF_ANGLE_DEG,
+    /// pyramid:FACES:FACE_ANGLE_DEG (as its equivalent cone), power:N:B (f = B r^N, B in
+    /// m^(1-N)), capped-cone:R_M:HALF_ANGLE_DEG, or a scene's tip object as JSON. The closed
+    /// forms are then the tip's: Sneddon's punch (hertz) and the JKR-type law (no DMT).
     #[arg(long)]
-    pub radius: f64,
+    pub tip: Option<crate::physics::tip::TipInput>,
     /// Cantilever spring constant (N/m).
     #[arg(long)]
     pub spring_n_m: f64,
@@ -93,6 +99,9 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         bail!("--format text is not available for fit: use json or csv (a summary goes to stderr)");
     }
     let opt = options(&a)?;
+    if let (Some(_), Some(_)) = (&a.tip, &a.on_map) {
+        bail!("--on-map draws the sphere's adhesion map: a tip's lambda is its own (tabor map --tip draws a shape's map); leave out --on-map");
+    }
     let figure = a.figure.outputs(a.plot.as_deref(), "--plot")?;
     check_outputs(&a, &figure)?;
     let print = a.figure.print("fit")?;
@@ -133,7 +142,10 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         Format::Json => {
             #[derive(serde::Serialize)]
             struct Out<'a> {
-                radius_m: f64,
+                #[serde(skip_serializing_if = "Option::is_none")]
+                radius_m: Option<f64>,
+                #[serde(skip_serializing_if = "Option::is_none")]
+                tip: Option<&'a crate::physics::tip::TipInput>,
                 spring_n_m: f64,
                 segment: Segments,
                 tolerance: f64,
@@ -141,6 +153,7 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
             }
             serde_json::to_string_pretty(&Out {
                 radius_m: a.radius,
+                tip: a.tip.as_ref(),
                 spring_n_m: a.spring_n_m,
                 segment: opt.segments,
                 tolerance: a.tolerance,
@@ -187,7 +200,8 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
 /// The library's options from the flags, checked by the library.
 fn options(a: &FitArgs) -> anyhow::Result<FitOptions> {
     let opt = FitOptions {
-        radius: a.radius,
+        radius: a.radius.unwrap_or(f64::NAN),
+        tip: a.tip.clone(),
         spring: a.spring_n_m,
         poisson: a.poisson,
         segments: match a.segment {

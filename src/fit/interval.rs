@@ -84,7 +84,7 @@ fn moments(
     s2: f64,
     f_scale: f64,
     z_scale: f64,
-    radius: f64,
+    tip: super::Geometry,
 ) -> Option<(f64, f64)> {
     let inv = f.jtj_inv.as_ref()?;
     // Where lambda is not determined the free fit's linearisation in ln lambda reaches far
@@ -117,12 +117,9 @@ fn moments(
         1 => (f.work_of_adhesion_j_m2.ln(), inv[(1, 1)] * v),
         2 => (f.contact_point_m, inv[(zc, zc)] * v * z_scale * z_scale),
         _ => {
-            // ln z0 = (2/3)(ln w - ln E*) - ln lambda + const.
-            let g: &[f64] = if free {
-                &[-2.0 / 3.0, 2.0 / 3.0, -1.0]
-            } else {
-                &[-2.0 / 3.0, 2.0 / 3.0]
-            };
+            // ln z0 = c (ln w - ln E*) - ln lambda + const (the sphere's c = 2/3).
+            let c = tip.z0_slope();
+            let g: &[f64] = if free { &[-c, c, -1.0] } else { &[-c, c] };
             let mut var = 0.0;
             for i in 0..g.len() {
                 for j in 0..g.len() {
@@ -130,7 +127,8 @@ fn moments(
                 }
             }
             (
-                super::z0_from_lambda(f.e_star_pa, f.work_of_adhesion_j_m2, radius, lam).ln(),
+                tip.z0_from_lambda(f.e_star_pa, f.work_of_adhesion_j_m2, lam)
+                    .ln(),
                 var * v,
             )
         }
@@ -319,7 +317,15 @@ pub fn profile_intervals(
         .map(|l| matches!(l, Some([Some(_), Some(_)])))
         .collect();
     let quantity = |q: usize, k: usize| {
-        quantity_interval(&pts, &determined, q, k, s2, (f_scale, z_scale), opt.radius)
+        quantity_interval(
+            &pts,
+            &determined,
+            q,
+            k,
+            s2,
+            (f_scale, z_scale),
+            opt.geometry(),
+        )
     };
     let mut out = Intervals {
         extra_fits: extra,
@@ -352,10 +358,9 @@ pub fn profile_intervals(
     for b in &basins {
         for (k, level) in LEVELS.iter().enumerate() {
             if b.0.delta_chi2 <= *level || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
-                let z0 = super::z0_from_lambda(
+                let z0 = opt.geometry().z0_from_lambda(
                     b.1.e_star_pa,
                     b.1.work_of_adhesion_j_m2,
-                    opt.radius,
                     b.0.lambda,
                 );
                 for (q, v) in [
@@ -496,13 +501,13 @@ fn basins(
     (found, set)
 }
 
-/// Each interval widened to hold the fit `md`'s value (tip radius `radius`, m): a fit
+/// Each interval widened to hold the fit `md`'s value (on the tip `tip`): a fit
 /// finished on a curve's points after its profile was taken on the curve's bins lies within
 /// about a Delta chi^2 of 1 of the bins' minimum, which the intervals are centred on.
-pub fn hold(iv: &mut Intervals, md: &ModelFit, radius: f64) {
+pub fn hold(iv: &mut Intervals, md: &ModelFit, tip: super::Geometry) {
     let z0 = md
         .lambda
-        .map(|l| super::z0_from_lambda(md.e_star_pa, md.work_of_adhesion_j_m2, radius, l));
+        .map(|l| tip.z0_from_lambda(md.e_star_pa, md.work_of_adhesion_j_m2, l));
     for (q, v) in [
         (&mut iv.e_star_pa, Some(md.e_star_pa)),
         (
@@ -535,14 +540,14 @@ fn quantity_interval(
     k: usize,
     s2: f64,
     (f_scale, z_scale): (f64, f64),
-    radius: f64,
+    tip: super::Geometry,
 ) -> Option<Interval> {
     let level = LEVELS[k];
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
     for p in pts.iter().filter(|p| p.chi <= level) {
         let free = p.free.then_some(determined[k]);
-        let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, radius) else {
+        let Some((v, var)) = moments(q, &p.fit, free, s2, f_scale, z_scale, tip) else {
             continue;
         };
         let half = ((level - p.chi) * var).sqrt();

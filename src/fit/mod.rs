@@ -24,6 +24,7 @@ mod search;
 pub mod segments;
 mod summary;
 pub mod synthetic;
+mod tip;
 
 pub use crate::law::follow::{Direction, SpringPath};
 pub use data::{read_curves, Curve, CurveSet, DataError};
@@ -35,6 +36,7 @@ pub use problem::*;
 pub use result::*;
 use search::*;
 use summary::*;
+pub use tip::Geometry;
 
 use crate::law::follow::{PathState, Side};
 use crate::law::{Law, Piece};
@@ -155,13 +157,17 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
 
 /// The models fitted to a prepared curve, the adequate one chosen.
 fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
-    let est = estimates(raw, opt.radius, opt.spring);
+    let tip = opt.geometry();
+    let est = estimates(raw, tip, opt.spring);
 
-    let pull = est
-        .pulloff
-        .max(10.0 * raw.noise)
-        .max(1e-6 * est.e_star * opt.radius * opt.radius);
-    let w_of = |pc_bar: f64| pull / (pc_bar * PI * opt.radius);
+    // A floor for a curve without adhesion: a force far below the contact's (1e-6 E* R^2 on a
+    // sphere; a power law has no radius, and its largest force stands for it).
+    let floor = match tip.radius() {
+        Some(r) => 1e-6 * est.e_star * r * r,
+        None => 1e-6 * raw.scales.0,
+    };
+    let pull = est.pulloff.max(10.0 * raw.noise).max(floor);
+    let w_of = |pc_bar: f64| tip.w_for_pulloff(pull, pc_bar, est.e_star);
     let start = |w: f64, lambda: f64| Params {
         e_star: est.e_star,
         w,
@@ -178,7 +184,10 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
     // is read from its points.
     let binned = raw.binned();
     let d = binned.as_ref().unwrap_or(raw);
-    let pulloff = |model: Model, lambda: f64| model.law(lambda).pulloff();
+    // The normalised pull-offs the starts' w are read with (a capped cone's at the start's E*
+    // and the sphere-like w of its cap).
+    let u_start = tip.units(est.e_star, w_ref, opt.spring);
+    let pulloff = |model: Model, lambda: f64| tip.law(model, lambda, &u_start).pulloff();
     // A closed form with adhesion, its w started from the measured pull-off with its own.
     // It holds Hertz (w = 0), so it never fits worse: where it did, it stopped in the flat
     // misfit of a contact point beyond every point (no point in contact), and is fitted again
@@ -196,7 +205,11 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
         };
         better(f, fit_model(model, raw, opt, s, w_ref, None))
     };
-    let (dmt, jkr) = (closed(Model::Dmt), closed(Model::Jkr));
+    // A tip's ladder has no DMT ([`Geometry::ladder`]): its Maugis-Dugdale profile starts
+    // from Hertz's (Sneddon's) answer on the DMT side.
+    let dmt = tip.is_sphere().then(|| closed(Model::Dmt));
+    let jkr = closed(Model::Jkr);
+    let low = dmt.as_ref().unwrap_or(&hertz);
     // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
     // of the pull-offs, and from the middle where that failed.
     let from = |m: &ModelFit, lambda: f64, pc_md: f64| Params {
@@ -230,7 +243,7 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
     // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let (md, iv) = match opt.z0 {
-        Some(z0) => match fixed_z0_fit(curve, d, opt, z0, (&dmt, &jkr), &from, w_ref) {
+        Some(z0) => match fixed_z0_fit(curve, d, opt, z0, (low, &jkr), &from, w_ref) {
             Ok(r) => r,
             Err(out) => return *out,
         },
@@ -239,7 +252,7 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
                 .map(|l| {
                     let pc = pulloff(Model::Md, l);
                     let s = if l < 1.0 {
-                        from(&dmt, l, pc)
+                        from(low, l, pc)
                     } else {
                         from(&jkr, l, pc)
                     };
@@ -275,16 +288,21 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
             let finish = |f: ModelFit| finish_on_points(f, raw, opt, w_ref);
             let mut iv = iv;
             let md = keep_spread(finish(md.clone()), &md);
-            interval::hold(&mut iv, &md, opt.radius);
-            (md, vec![hertz, dmt, jkr], iv)
+            interval::hold(&mut iv, &md, tip);
+            (md, ladder(hertz, dmt, jkr), iv)
         }
-        None => (md, vec![hertz, dmt, jkr], iv),
+        None => (md, ladder(hertz, dmt, jkr), iv),
     };
     let mut out = summarize(curve, opt, raw, md, models, &iv);
     if stuck && out.status == FitStatus::Ok {
         out = unmoved(out, curve, raw, opt);
     }
     out
+}
+
+/// The closed forms' fits from the simplest (a tip's without DMT).
+fn ladder(hertz: ModelFit, dmt: Option<ModelFit>, jkr: ModelFit) -> Vec<ModelFit> {
+    std::iter::once(hertz).chain(dmt).chain([jkr]).collect()
 }
 
 /// A fit made on a curve's bins, finished on its points from there: the points' own minimum, which the bins' curvature moves by about a Delta chi^2 of
@@ -386,20 +404,27 @@ fn fixed_z0_fit(
     from: &dyn Fn(&ModelFit, f64, f64) -> Params,
     w_ref: f64,
 ) -> Result<(ModelFit, interval::Intervals), Box<CurveFit>> {
+    let tip = opt.geometry();
     let best = better(dmt.clone(), jkr.clone());
-    let pc = best.model.law(1.0).pulloff();
+    let u = tip.units(
+        best.e_star_pa,
+        best.work_of_adhesion_j_m2.max(w_ref),
+        opt.spring,
+    );
+    let pc = tip.law(best.model, 1.0, &u).pulloff();
     let mut s = from(&best, 1.0, pc);
-    s.lambda = lambda_from_z0(s.e_star, s.w, opt.radius, z0);
-    if crate::solver::domain::check_lambda(s.lambda).is_err() {
+    s.lambda = tip.lambda_from_z0(s.e_star, s.w, z0);
+    if !tip.admits_lambda(s.lambda) {
         let mut out = fail(
             curve,
             FitStatus::InvalidInput,
             format!(
-                "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain 1e-26..1e26: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
+                "the Lennard-Jones range z0 = {} m gives lambda = {} with this curve's E* and w (about {} Pa and {} J/m^2), outside the models' domain {}: check z0 (about 0.3e-9 m for van der Waals), or leave it out to fit lambda",
                 crate::physics::domain::short(z0),
                 crate::physics::domain::short(s.lambda),
                 crate::physics::domain::short(s.e_star),
-                crate::physics::domain::short(s.w)
+                crate::physics::domain::short(s.w),
+                tip.lambda_domain(),
             ),
         );
         out.warnings = d.notes.clone();
@@ -440,7 +465,7 @@ fn hints(d: &Prepared, opt: &FitOptions) -> Vec<String> {
             short(hmax - hmin)
         ));
     }
-    if !(1e-10..=1e-3).contains(&opt.radius) {
+    if opt.tip.is_none() && !(1e-10..=1e-3).contains(&opt.radius) {
         h.push(format!(
             "the tip radius {} m is not an AFM tip's (1e-10..1e-3 m): give it in metres",
             short(opt.radius)

@@ -30,8 +30,11 @@ impl Segments {
 /// [`FitOptions::validate`] checks them.
 #[derive(Clone, Debug)]
 pub struct FitOptions {
-    /// Tip radius R (m).
+    /// Tip radius R (m): a sphere's (ignored where `tip` is given).
     pub radius: f64,
+    /// A tip that is not a sphere (docs/PHYSICS.md section 12: a cone, a pyramid as its
+    /// equivalent cone, a power law, a capped cone), as a scene gives it.
+    pub tip: Option<crate::physics::tip::TipInput>,
     /// Cantilever spring constant k (N/m).
     pub spring: f64,
     /// The sample's Poisson ratio, to report its Young's modulus (a rigid tip).
@@ -56,6 +59,7 @@ impl Default for FitOptions {
     fn default() -> Self {
         FitOptions {
             radius: 1e-8,
+            tip: None,
             spring: 1.0,
             poisson: None,
             segments: Segments::Retract,
@@ -98,8 +102,15 @@ impl FitOptions {
                 ))
             }
         };
+        // A tip as a scene's object or as the command line's text (`cone:20`).
+        let tip = match o.get("tip") {
+            None | Some(serde_json::Value::Null) => None,
+            Some(serde_json::Value::String(t)) => Some(t.parse()?),
+            Some(v) => Some(serde_json::from_value(v.clone()).map_err(|e| format!("tip: {e}"))?),
+        };
         Ok(FitOptions {
             radius: num("radius").unwrap_or(f64::NAN),
+            tip,
             spring: num("spring").unwrap_or(f64::NAN),
             poisson: num("poisson"),
             segments,
@@ -125,6 +136,15 @@ impl FitOptions {
 pub const Z0_RANGE: (f64, f64) = (1e-12, 1e-6);
 
 impl FitOptions {
+    /// The tip the curves are fitted with: `tip`, or the sphere of `radius` (after
+    /// [`FitOptions::validate`]; an unchecked tip that is wrong stands as that sphere).
+    pub fn geometry(&self) -> super::Geometry {
+        self.tip
+            .as_ref()
+            .and_then(|t| super::Geometry::of(t).ok())
+            .unwrap_or(super::Geometry::Sphere(self.radius))
+    }
+
     /// Checks the options (those of every curve, the tip radius and the spring constant among
     /// them): one message naming the quantity, its value and its limits. The command line and
     /// the Python package both call it before any fit.
@@ -144,7 +164,15 @@ impl FitOptions {
                 ),
             ));
         }
-        if !(self.radius > 0.0 && self.radius.is_finite()) {
+        if let Some(tip) = &self.tip {
+            super::Geometry::of(tip).map_err(|e| ("tip", format!("tip: {e}")))?;
+            if self.humidity.is_some() {
+                return Err((
+                    "relative_humidity",
+                    "the water meniscus is fitted on a sphere: leave out the humidity, or fit the tip's apex as a sphere".into(),
+                ));
+            }
+        } else if !(self.radius > 0.0 && self.radius.is_finite()) {
             return Err((
                 "radius",
                 format!(

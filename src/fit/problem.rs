@@ -20,31 +20,24 @@ pub struct Params {
     pub f0: f64,
 }
 
-/// The unit conversions of one parameter set: force and approach units and kbar.
+/// The unit conversions of one parameter set: force and approach units and kbar (a sphere's
+/// Johnson-Greenwood units, a tip's of docs/PHYSICS.md section 12).
 #[derive(Clone, Copy, Debug)]
 pub struct Units {
-    /// The force unit `pi w R` (N).
+    /// The force unit `pi w l^2 / d` (N): the sphere's `pi w R`.
     pub force: f64,
-    /// The approach unit `(pi^2 w^2 R / K^2)^(1/3)` (m), `K = 4 E*/3`.
+    /// The approach unit d (m): the sphere's `(pi^2 w^2 R / K^2)^(1/3)`, `K = 4 E*/3`.
     pub approach: f64,
-    /// The radius unit `(pi w R^2 / K)^(1/3)` (m).
+    /// The radius unit l (m): the sphere's `(pi w R^2 / K)^(1/3)`.
     pub radius: f64,
     /// The spring constant in these units: `k` times the approach unit over the force unit.
     pub kbar: f64,
 }
 
 /// The Johnson-Greenwood units of `p` with the tip radius `radius` (m) and the spring constant
-/// `spring` (N/m).
+/// `spring` (N/m) ([`Geometry::units`] of the sphere).
 pub fn units(p: &Params, radius: f64, spring: f64) -> Units {
-    let k = 4.0 / 3.0 * p.e_star;
-    let force = PI * p.w * radius;
-    let approach = (PI * PI * p.w * p.w * radius / (k * k)).cbrt();
-    Units {
-        force,
-        approach,
-        radius: (PI * p.w * radius * radius / k).cbrt(),
-        kbar: spring * approach / force,
-    }
+    Geometry::Sphere(radius).units(p.e_star, p.w, spring)
 }
 
 /// lambda from the Lennard-Jones range z0 (Dugdale stress matched to it).
@@ -62,17 +55,18 @@ pub fn z0_from_lambda(e_star: f64, w: f64, radius: f64, lambda: f64) -> f64 {
 /// Model forces (N), contact radii (m), the states and the path they lie on.
 pub type Evaluated = (Vec<f64>, Vec<f64>, Vec<PathState>, SpringPath);
 
-/// The model force (N, without offset) and contact radius (m) at each height, and the state.
+/// The model force (N, without offset) and contact radius (m) at each height, and the state,
+/// on the tip `tip` (a radius is a sphere's).
 pub fn model_forces(
     model: Model,
     p: &Params,
-    radius: f64,
+    tip: impl Into<Geometry>,
     spring: f64,
     height: &[f64],
     dir: &[Direction],
     side: Option<&[Side]>,
 ) -> Option<Evaluated> {
-    model_forces_from(model, p, radius, spring, height, dir, side, None)
+    model_forces_from(model, p, tip.into(), spring, height, dir, side, None)
 }
 
 /// [`model_forces`], each point's search started from its state in `hints` (nearby parameters).
@@ -80,18 +74,26 @@ pub fn model_forces(
 pub fn model_forces_from(
     model: Model,
     p: &Params,
-    radius: f64,
+    tip: Geometry,
     spring: f64,
     height: &[f64],
     dir: &[Direction],
     side: Option<&[Side]>,
     hints: Option<&[PathState]>,
 ) -> Option<Evaluated> {
-    let u = units(p, radius, spring);
-    if model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
+    let u = tip.units(p.e_star, p.w, spring);
+    if model.has_lambda() && !tip.admits_lambda(p.lambda) {
         return None;
     }
-    forces_on(model.law(p.lambda), &u, p.zc, height, dir, side, hints)
+    forces_on(
+        tip.law(model, p.lambda, &u),
+        &u,
+        p.zc,
+        height,
+        dir,
+        side,
+        hints,
+    )
 }
 
 /// [`model_forces_from`] of any law in its units `u`, with the contact point `zc` (m).
@@ -128,26 +130,30 @@ pub(super) fn forces_on(
     Some((f, a, states, path))
 }
 
-/// The law of `model` at the parameters `p` and its units, with the tip radius and the spring
-/// constant: the model at its lambda in the units of its w, or (the two-zone law with a
-/// `meniscus`, its stress in Pa and range in m) the solid's zone with the meniscus in the units
-/// of their total w.
+/// The law of `model` at the parameters `p` and its units, on the tip `tip` (a radius is a
+/// sphere's) with the spring constant: the model at its lambda in the units of its w, or (the
+/// two-zone law with a `meniscus`, its stress in Pa and range in m, on a sphere) the solid's
+/// zone with the meniscus in the units of their total w.
 pub fn law_units(
     model: Model,
     p: &Params,
-    radius: f64,
+    tip: impl Into<Geometry>,
     spring: f64,
     meniscus: Option<(f64, f64)>,
 ) -> (ContactLaw, Units) {
-    match meniscus {
-        Some(m) if model == Model::SolidAndMeniscus => {
+    let tip = tip.into();
+    match (meniscus, tip) {
+        (Some(m), Geometry::Sphere(radius)) if model == Model::SolidAndMeniscus => {
             let (law, w) = TwoZones::of_meniscus(p.e_star, p.w, p.lambda, radius, m);
             (
                 ContactLaw::SolidAndMeniscus(law),
-                units(&Params { w, ..*p }, radius, spring),
+                tip.units(p.e_star, w, spring),
             )
         }
-        _ => (model.law(p.lambda), units(p, radius, spring)),
+        _ => {
+            let u = tip.units(p.e_star, p.w, spring);
+            (tip.law(model, p.lambda, &u), u)
+        }
     }
 }
 
@@ -162,9 +168,15 @@ pub fn fitted_forces(
 ) -> Option<Evaluated> {
     let p = m.params();
     if m.model != Model::SolidAndMeniscus {
-        return model_forces(m.model, &p, opt.radius, opt.spring, height, dir, side);
+        return model_forces(m.model, &p, opt.geometry(), opt.spring, height, dir, side);
     }
-    let (law, u) = law_units(m.model, &p, opt.radius, opt.spring, meniscus(m.model, opt));
+    let (law, u) = law_units(
+        m.model,
+        &p,
+        opt.geometry(),
+        opt.spring,
+        meniscus(m.model, opt),
+    );
     forces_on(law, &u, p.zc, height, dir, side, None)
 }
 
@@ -182,7 +194,7 @@ pub(super) struct Problem<'a> {
     /// The two-zone law's meniscus: its stress (Pa) and range (m).
     pub(super) meniscus: Option<(f64, f64)>,
     pub(super) data: &'a Prepared,
-    pub(super) radius: f64,
+    pub(super) tip: Geometry,
     pub(super) spring: f64,
     pub(super) z0: Option<f64>,
     /// Maugis-Dugdale at a fixed lambda (the profile that picks the start).
@@ -240,7 +252,7 @@ impl Problem<'_> {
     }
     /// The law and its units at p ([`law_units`]).
     pub(super) fn law_units(&self, p: &Params) -> (ContactLaw, Units) {
-        law_units(self.model, p, self.radius, self.spring, self.meniscus)
+        law_units(self.model, p, self.tip, self.spring, self.meniscus)
     }
 
     pub(super) fn n(&self) -> usize {
@@ -264,7 +276,7 @@ impl Problem<'_> {
         } else if let Some(l) = self.fixed_lambda {
             l
         } else if let (true, Some(z0)) = (self.model.has_lambda(), self.z0) {
-            lambda_from_z0(e_star, w, self.radius, z0)
+            self.tip.lambda_from_z0(e_star, w, z0)
         } else {
             1.0
         };
@@ -333,7 +345,7 @@ impl Problem<'_> {
         if !(u.kbar > 0.0 && u.kbar.is_finite() && u.approach > 0.0 && u.force > 0.0) {
             return None;
         }
-        if self.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
+        if self.model.has_lambda() && !self.tip.admits_lambda(p.lambda) {
             return None;
         }
         Some((p, law, u))
@@ -454,13 +466,24 @@ impl Problem<'_> {
             };
             let to_res = u.force / self.f_scale;
             let mut k = 0;
-            // kbar ~ w^(-1/3) E*^(-2/3), Delta ~ w^(-2/3) E*^(2/3), L ~ 1/w.
-            j[(i, k)] = de(0.0, 0.0, -2.0 / 3.0 * kb, 2.0 / 3.0 * delta) * to_res;
-            k += 1;
-            if self.has_w() {
-                // The factor pi w R of the residual moves with w too.
-                j[(i, k)] = (de(0.0, -load, -kb / 3.0, -2.0 / 3.0 * delta) + r) * to_res;
+            if self.tip.is_sphere() {
+                // kbar ~ w^(-1/3) E*^(-2/3), Delta ~ w^(-2/3) E*^(2/3), L ~ 1/w.
+                j[(i, k)] = de(0.0, 0.0, -2.0 / 3.0 * kb, 2.0 / 3.0 * delta) * to_res;
                 k += 1;
+                if self.has_w() {
+                    // The factor pi w R of the residual moves with w too.
+                    j[(i, k)] = (de(0.0, -load, -kb / 3.0, -2.0 / 3.0 * delta) + r) * to_res;
+                    k += 1;
+                }
+            } else {
+                // A tip's units move as its log slopes say: L = (F - f0) / force, Delta =
+                // (zc - h) / d, and the residual's factor `force` with them.
+                let slopes = self.tip.log_slopes();
+                let cols = if self.has_w() { 2 } else { 1 };
+                for &(fs, ds, ks) in &slopes[..cols] {
+                    j[(i, k)] = (de(0.0, -fs * load, ks * kb, -ds * delta) + fs * r) * to_res;
+                    k += 1;
+                }
             }
             if self.has_lambda() {
                 let (pl, dl) = law.state_dlambda(s.piece, t);
@@ -545,7 +568,10 @@ impl Problem<'_> {
             Some(s) => s,
             None => self.eval(&self.x, None)?.1,
         };
-        if (self.model.has_lambda() && self.z0.is_some()) || !self.model.scales() {
+        if (self.model.has_lambda() && self.z0.is_some())
+            || !self.model.scales()
+            || !self.tip.scales()
+        {
             // lambda (or the law's path) moves with E* and w: every column by differences.
             return self.numeric_jacobian(&base, &(0..self.n()).collect::<Vec<_>>());
         }
@@ -609,10 +635,11 @@ impl Problem<'_> {
                     / self.f_scale;
             };
             let mut k = 0;
-            col(k, 0.0, -2.0 / 3.0, -2.0 / 3.0);
+            let [(fe, de, ke), (fw, dw, kw)] = self.tip.log_slopes();
+            col(k, fe, de, ke);
             k += 1;
             if self.has_w() {
-                col(k, 1.0, 2.0 / 3.0, -1.0 / 3.0);
+                col(k, fw, dw, kw);
                 k += 1;
             }
             if self.has_lambda() {
@@ -718,9 +745,10 @@ pub struct Estimates {
     pub zc: f64,
 }
 
-/// The starting point of a fit of the prepared curve `d`, with the tip radius (m) and the
-/// spring constant (N/m).
-pub fn estimates(d: &Prepared, radius: f64, spring: f64) -> Estimates {
+/// The starting point of a fit of the prepared curve `d`, with the tip (a radius is a
+/// sphere's) and the spring constant (N/m).
+pub fn estimates(d: &Prepared, geometry: impl Into<Geometry>, spring: f64) -> Estimates {
+    let geometry = geometry.into();
     let n = d.force.len();
     let (imin, fmin) = d
         .force
@@ -747,7 +775,7 @@ pub fn estimates(d: &Prepared, radius: f64, spring: f64) -> Estimates {
         .filter(|&i| d.force[i] - base > 0.5 * (fmax - base))
         .filter_map(|i| {
             let delta = zc - tip(i);
-            (delta > 0.0).then(|| (d.force[i] - base) / (radius.sqrt() * delta.powf(1.5)))
+            (delta > 0.0).then(|| geometry.punch_stiffness(d.force[i] - base, delta))
         })
         .collect();
     k.sort_by(f64::total_cmp);
@@ -848,7 +876,7 @@ impl<'a> Problem<'a> {
             model,
             meniscus: meniscus(model, opt),
             data: d,
-            radius: opt.radius,
+            tip: opt.geometry(),
             spring: opt.spring,
             z0: opt.z0,
             fixed_lambda,
@@ -1016,9 +1044,10 @@ pub(super) fn standard_errors(
     } else if model.has_lambda() && fixed_lambda.is_some() {
         Some(0.0)
     } else if model.has_lambda() {
-        // Fixed z0: lambda follows E* and w, ln lambda = (2/3)(ln w - ln E*) + const.
+        // Fixed z0: lambda follows E* and w, ln lambda = c (ln w - ln E*) + const.
+        let c2 = prob.tip.z0_slope().powi(2);
         cov.as_ref().map(|c| {
-            let v = (4.0 / 9.0) * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);
+            let v = c2 * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);
             p.lambda * v.max(0.0).sqrt()
         })
     } else {

@@ -43,7 +43,7 @@ pub(super) fn summarize(
     let Some((_, a_md, states, _)) = model_forces(
         Model::Md,
         &p,
-        opt.radius,
+        opt.geometry(),
         opt.spring,
         &d.height,
         &d.dir,
@@ -89,7 +89,8 @@ pub(super) fn summarize(
     out.adequate_model = Some(adequate.0);
     out.why = adequate.1;
     let pull = out.pulloff_force_measured_n.unwrap_or(0.0);
-    if pull > 0.0 {
+    // The verdict reads the sphere's adhesion map.
+    if pull > 0.0 && opt.tip.is_none() {
         out.verdict = crate::scene::infer(pull, opt.radius, p.e_star, out.z0_m.unwrap_or(z0))
             .ok()
             .map(|i| i.verdict);
@@ -186,18 +187,23 @@ pub(super) fn put_parameters(
     out.work_of_adhesion_j_m2_stderr = Some(md.work_of_adhesion_j_m2_stderr);
     out.lambda = Some(p.lambda);
     out.lambda_stderr = md.lambda_stderr;
-    // muT = lambda / 1.1570 exactly for the LJ-matched Dugdale stress.
-    let z0 = z0_from_lambda(p.e_star, p.w, opt.radius, p.lambda);
-    let mu_t = (opt.radius * p.w * p.w / (p.e_star * p.e_star * z0.powi(3))).cbrt();
-    out.tabor_parameter = Some(mu_t);
-    out.tabor_parameter_stderr = md.lambda_stderr.map(|e| e * mu_t / p.lambda);
+    let tip = opt.geometry();
+    let z0 = tip.z0_from_lambda(p.e_star, p.w, p.lambda);
+    // muT = lambda / 1.1570 exactly for the LJ-matched Dugdale stress: Tabor's parameter is
+    // the sphere's (a tip's lambda is its own, section 12).
+    if tip.is_sphere() {
+        let mu_t = (opt.radius * p.w * p.w / (p.e_star * p.e_star * z0.powi(3))).cbrt();
+        out.tabor_parameter = Some(mu_t);
+        out.tabor_parameter_stderr = md.lambda_stderr.map(|e| e * mu_t / p.lambda);
+    }
     out.z0_m = Some(opt.z0.unwrap_or(z0));
     let lambda_spread = z0 * md.lambda_stderr.unwrap_or(f64::NAN) / p.lambda;
     out.z0_m_stderr = Some(match (&md.cov, opt.z0) {
         // The covariance of (ln E*, ln w, ln lambda, ...) of a free fit.
         (Some(c), None) if c.nrows() == 5 => {
-            // ln z0 = (2/3)(ln w - ln E*) - ln lambda + const.
-            let g = [-2.0 / 3.0, 2.0 / 3.0, -1.0];
+            // ln z0 = c (ln w - ln E*) - ln lambda + const (the sphere's c = 2/3).
+            let slope = tip.z0_slope();
+            let g = [-slope, slope, -1.0];
             let mut v = 0.0;
             for i in 0..3 {
                 for j in 0..3 {
@@ -324,7 +330,7 @@ pub(super) fn warnings(
             md.rms_residual_n,
         ));
     }
-    if amax / opt.radius > 0.1 {
+    if opt.tip.is_none() && amax / opt.radius > 0.1 {
         warn.push(format!(
             "a/R reaches {:.2} (> 0.1): the small-strain (paraboloid) theory is stretched",
             amax / opt.radius
@@ -523,8 +529,17 @@ pub(super) fn adequate_by_tolerance(
     let mut adequate = (
         Model::Md,
         format!(
-            "no closed form fits within {:.0}%: Hertz, DMT and JKR leave rms residuals of {}",
+            "no closed form fits within {:.0}%: {} leave rms residuals of {}",
             100.0 * opt.tolerance,
+            {
+                let names: Vec<&str> = models.iter().map(|m| m.model.label()).collect();
+                match names.split_last() {
+                    Some((last, rest)) if !rest.is_empty() => {
+                        format!("{} and {last}", rest.join(", "))
+                    }
+                    _ => names.concat(),
+                }
+            },
             models
                 .iter()
                 .map(|m| format!("{:.3e} N", m.rms_residual_n))
@@ -568,7 +583,13 @@ pub(super) fn adequate_by_tolerance(
             f0: m.force_offset_n,
         };
         if let Some((_, a_m, _, _)) = model_forces(
-            m.model, &mp, opt.radius, opt.spring, &d.height, &d.dir, None,
+            m.model,
+            &mp,
+            opt.geometry(),
+            opt.spring,
+            &d.height,
+            &d.dir,
+            None,
         ) {
             let worst = a_md
                 .iter()

@@ -4,7 +4,7 @@
 use super::data::Curve;
 use super::problem::{forces_on, law_units};
 use super::Model;
-use super::Params;
+use super::{Geometry, Params};
 use crate::law::follow::{Direction, SpringPath};
 use crate::law::ContactLaw;
 use rand::SeedableRng;
@@ -65,7 +65,13 @@ pub fn synthetic(s: &Synthetic) -> Curve {
 
 /// [`synthetic`], or why the parameters give no curve.
 pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
-    made(s, None)
+    made(s, None, Geometry::Sphere(s.radius))
+}
+
+/// [`try_synthetic`] on the tip `tip` (its `radius` ignored): the curve of the tip's law of
+/// `s.model` (Sneddon's punch for Hertz, the JKR-type law, its Maugis-Dugdale).
+pub fn try_synthetic_on(s: &Synthetic, tip: Geometry) -> Result<Curve, String> {
+    made(s, None, tip)
 }
 
 /// A curve of the two-zone law (`s.model` [`Model::SolidAndMeniscus`], `s.params` the solid's
@@ -78,16 +84,17 @@ pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, S
             s.model.name()
         ));
     }
-    made(s, Some(meniscus))
+    made(s, Some(meniscus), Geometry::Sphere(s.radius))
 }
 
 /// The curve of `s` (with the two-zone law's `meniscus`), or why its numbers give none.
-fn made(s: &Synthetic, meniscus: Option<(f64, f64)>) -> Result<Curve, String> {
+fn made(s: &Synthetic, meniscus: Option<(f64, f64)>, tip: Geometry) -> Result<Curve, String> {
     let p = s.params;
+    let radius = tip.radius().unwrap_or(1.0);
     let finite = [
-        p.e_star, p.w, p.lambda, p.zc, p.f0, s.radius, s.spring, s.depth,
+        p.e_star, p.w, p.lambda, p.zc, p.f0, radius, s.spring, s.depth,
     ];
-    let positive = [p.e_star, p.w, s.radius, s.spring, s.depth];
+    let positive = [p.e_star, p.w, radius, s.spring, s.depth];
     if !(finite.iter().all(|v| v.is_finite()) && positive.iter().all(|&v| v > 0.0)) {
         return Err(format!(
             "E* ({} Pa), w ({} J/m^2), the radius ({} m), the spring constant ({} N/m) and the depth ({}) must be positive and finite, lambda, the contact point and the offset finite",
@@ -100,10 +107,10 @@ fn made(s: &Synthetic, meniscus: Option<(f64, f64)>) -> Result<Curve, String> {
             s.noise
         ));
     }
-    if s.model.has_lambda() && crate::solver::domain::check_lambda(p.lambda).is_err() {
+    if s.model.has_lambda() && !tip.admits_lambda(p.lambda) {
         return Err(out_of_domain(p.lambda));
     }
-    let (law, u) = law_units(s.model, &p, s.radius, s.spring, meniscus);
+    let (law, u) = law_units(s.model, &p, tip, s.spring, meniscus);
     noisy(s, law, &u)
 }
 

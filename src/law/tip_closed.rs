@@ -55,7 +55,12 @@ impl Law for TipClosed {
                 let (f, df) = self.shape.abel(t);
                 let (jl, ja, djl, dja) = if self.adhesive {
                     let s6 = (6.0 * t).sqrt();
-                    (t * s6, (8.0 * t / 3.0).sqrt(), 1.5 * s6, (2.0 / (3.0 * t)).sqrt())
+                    (
+                        t * s6,
+                        (8.0 * t / 3.0).sqrt(),
+                        1.5 * s6,
+                        (2.0 / (3.0 * t)).sqrt(),
+                    )
                 } else {
                     (0.0, 0.0, 0.0, 0.0)
                 };

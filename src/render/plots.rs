@@ -1163,7 +1163,7 @@ fn fit_force_range(
 ) -> (f64, f64) {
     let pad = 0.06 * (v.fmax - v.fmin);
     let p = md.params();
-    let md_f = crate::fit::model_forces(md.model, &p, opt.radius, opt.spring, hs, dirs, None);
+    let md_f = crate::fit::model_forces(md.model, &p, opt.geometry(), opt.spring, hs, dirs, None);
     let (lo, hi) = md_f.map_or((v.fmin, v.fmax), |(f, _, _, _)| {
         f.iter()
             .filter(|x| x.is_finite())

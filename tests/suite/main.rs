@@ -15,6 +15,7 @@ mod figures;
 mod fit;
 mod fit_fold;
 mod fit_humidity;
+mod fit_tip;
 mod fit_two_zone;
 mod gpu;
 mod humidity;

@@ -1,0 +1,347 @@
+//! The tip a curve is fitted with: a sphere (its paraboloid) of radius R, or an axisymmetric tip
+//! of docs/PHYSICS.md section 12 (a power law: a cone, a pyramid as its equivalent cone, a
+//! blunt tip; a capped cone). It gives each fitted model's law in the tip's normalised units,
+//! those units from E* and w, and how they move with E* and w (section 12.4).
+
+use super::{Model, Units};
+use crate::law::{ContactLaw, Tip, TipClosed};
+use crate::physics::params::LJ_STRESS;
+use crate::physics::tip::{k_n, Shape, TipInput};
+use std::f64::consts::PI;
+
+/// The tip of a fit, its numbers checked.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Geometry {
+    /// A sphere of radius R (m): Maugis's units.
+    Sphere(f64),
+    /// `f = B r^n`: Sneddon's `F = kb t^n` with `kb = k_n B` (m^(1-n)).
+    Power {
+        /// The exponent n >= 1.
+        n: f64,
+        /// `k_n B`.
+        kb: f64,
+    },
+    /// A spherical cap of radius R (m) joined tangentially to a cone of half-angle theta.
+    CappedCone {
+        /// The cap's radius (m).
+        radius: f64,
+        /// The cone's half-angle (radians, axis to flank).
+        half_angle: f64,
+    },
+}
+
+/// A radius is a sphere's.
+impl From<f64> for Geometry {
+    fn from(radius: f64) -> Geometry {
+        Geometry::Sphere(radius)
+    }
+}
+
+impl Geometry {
+    /// The tip a scene's `"tip"` describes, its numbers checked as a scene checks them; a
+    /// measured profile is refused (its units are a search per E* and w, which a fit's every
+    /// step would repeat).
+    pub fn of(tip: &TipInput) -> Result<Geometry, String> {
+        if let TipInput::Profile { .. } = tip {
+            return Err(
+                "a measured profile is not fitted: fit with the power law or the capped cone nearest it (tabor scene reports a profile's own answers)"
+                    .into(),
+            );
+        }
+        // The scene's checks of every number (named by its key).
+        tip.units(1.0, 1.0, 1.0).map_err(|e| e.to_string())?;
+        Ok(match *tip {
+            TipInput::Sphere { radius_m } => Geometry::Sphere(radius_m),
+            TipInput::CappedCone {
+                radius_m,
+                half_angle_deg,
+            } => Geometry::CappedCone {
+                radius: radius_m,
+                half_angle: half_angle_deg.to_radians(),
+            },
+            _ => {
+                let (n, b) = tip
+                    .power()
+                    .map_err(|e| e.to_string())?
+                    .ok_or("the tip is not a power law")?;
+                if n == 2.0 {
+                    // The paraboloid f = B r^2 is the sphere of radius 1/(2B), exactly.
+                    Geometry::Sphere(0.5 / b)
+                } else {
+                    Geometry::Power { n, kb: k_n(n) * b }
+                }
+            }
+        })
+    }
+
+    /// Whether the tip is the sphere (the models DMT and the sphere's closed forms apply).
+    pub fn is_sphere(&self) -> bool {
+        matches!(self, Geometry::Sphere(_))
+    }
+
+    /// The sphere's or the cap's radius (m): the scale the small-strain warnings and Tabor's
+    /// parameter read; None for a power law.
+    pub fn radius(&self) -> Option<f64> {
+        match *self {
+            Geometry::Sphere(r) | Geometry::CappedCone { radius: r, .. } => Some(r),
+            Geometry::Power { .. } => None,
+        }
+    }
+
+    /// The units of the reduced modulus `e_star` (Pa) and the work of adhesion `w` (J/m^2),
+    /// with the spring constant `spring` (N/m) in them: the force unit `pi w l^2 / d`, the
+    /// approach unit d, the radius unit l, `E* d^2 / l = 3 pi w / 4` (section 12).
+    pub fn units(&self, e_star: f64, w: f64, spring: f64) -> Units {
+        match *self {
+            // Maugis's units (a capped cone's are its cap's).
+            Geometry::Sphere(radius) | Geometry::CappedCone { radius, .. } => {
+                let k = 4.0 / 3.0 * e_star;
+                let force = PI * w * radius;
+                let approach = (PI * PI * w * w * radius / (k * k)).cbrt();
+                Units {
+                    force,
+                    approach,
+                    radius: (PI * w * radius * radius / k).cbrt(),
+                    kbar: spring * approach / force,
+                }
+            }
+            Geometry::Power { n, kb } => {
+                let l = (3.0 * PI * w / (4.0 * e_star * kb * kb)).powf(1.0 / (2.0 * n - 1.0));
+                let d = kb * l.powf(n);
+                let force = PI * w * l * l / d;
+                Units {
+                    force,
+                    approach: d,
+                    radius: l,
+                    kbar: spring * d / force,
+                }
+            }
+        }
+    }
+
+    /// The shape in the units `u` (None for the sphere, whose laws are Maugis's).
+    fn shape(&self, u: &Units) -> Option<Shape> {
+        match *self {
+            Geometry::Sphere(_) => None,
+            Geometry::Power { n, .. } => Some(Shape::Power { exponent: n }),
+            Geometry::CappedCone { radius, half_angle } => Some(Shape::CappedCone {
+                rho: radius / u.radius,
+                half_angle,
+            }),
+        }
+    }
+
+    /// The law of `model` at `lambda` on this tip, in the units `u`: the sphere's models, or the
+    /// tip's Maugis-Dugdale law and its closed forms (Sneddon's punch for Hertz, the JKR-type
+    /// law; a tip's ladder has no DMT, [`Geometry::ladder`]).
+    pub fn law(&self, model: Model, lambda: f64, u: &Units) -> ContactLaw {
+        match self.shape(u) {
+            None => model.law(lambda),
+            Some(shape) => match model {
+                Model::Hertz | Model::Jkr => ContactLaw::TipClosed(TipClosed {
+                    shape,
+                    adhesive: model == Model::Jkr,
+                }),
+                _ => ContactLaw::Tip(Tip { shape, lambda }),
+            },
+        }
+    }
+
+    /// The closed forms fitted before Maugis-Dugdale, from the simplest. Beyond the paraboloid
+    /// the DMT-type force depends on the range (a cone's `pi w h0 tan^2 alpha`): it has
+    /// Maugis-Dugdale's parameters, so it is no simpler model and is not fitted.
+    pub fn ladder(&self) -> &'static [Model] {
+        if self.is_sphere() {
+            &[Model::Hertz, Model::Dmt, Model::Jkr]
+        } else {
+            &[Model::Hertz, Model::Jkr]
+        }
+    }
+
+    /// Whether the tip's Maugis-Dugdale law is solved at `lambda`.
+    pub fn admits_lambda(&self, lambda: f64) -> bool {
+        if self.is_sphere() {
+            crate::solver::domain::check_lambda(lambda).is_ok()
+        } else {
+            let (lo, hi) = crate::law::tip::LAMBDA_RANGE;
+            lambda >= lo && lambda <= hi
+        }
+    }
+
+    /// The lambda range of [`Geometry::admits_lambda`], in words.
+    pub fn lambda_domain(&self) -> &'static str {
+        if self.is_sphere() {
+            "1e-26..1e26"
+        } else {
+            "1e-3..1e3"
+        }
+    }
+
+    /// Whether the normalised laws depend on lambda alone, so that E* and w only scale them
+    /// (the analytic Jacobian's premise): not a capped cone's, whose cap is `R / l` in units
+    /// that move with E* and w.
+    pub fn scales(&self) -> bool {
+        !matches!(self, Geometry::CappedCone { .. })
+    }
+
+    /// How ln E* and ln w move the force unit, the approach unit and kbar (each a
+    /// `(dln force, dln d, dln kbar)`): with `s = ln w - ln E*`, `ln l = s/(2n - 1)`,
+    /// `ln d = n ln l`, `ln force = ln w + (2 - n) ln l`, `ln kbar = (2n - 2) ln l - ln w` (the
+    /// sphere's n = 2).
+    pub fn log_slopes(&self) -> [(f64, f64, f64); 2] {
+        match *self {
+            Geometry::Power { n, .. } => {
+                let a = 1.0 / (2.0 * n - 1.0);
+                [
+                    (-(2.0 - n) * a, -n * a, -(2.0 * n - 2.0) * a),
+                    (1.0 + (2.0 - n) * a, n * a, -1.0 + (2.0 * n - 2.0) * a),
+                ]
+            }
+            _ => [(0.0, -2.0 / 3.0, -2.0 / 3.0), (1.0, 2.0 / 3.0, -1.0 / 3.0)],
+        }
+    }
+
+    /// lambda from the Lennard-Jones range z0 (the Dugdale stress `LJ_STRESS w / z0`):
+    /// `(3/2) s0 l / (E* d)`.
+    pub fn lambda_from_z0(&self, e_star: f64, w: f64, z0: f64) -> f64 {
+        match *self {
+            Geometry::Sphere(r) => super::lambda_from_z0(e_star, w, r, z0),
+            _ => {
+                let u = self.units(e_star, w, 1.0);
+                1.5 * (LJ_STRESS * w / z0) * u.radius / (e_star * u.approach)
+            }
+        }
+    }
+
+    /// The Lennard-Jones range z0 whose matched Dugdale stress gives lambda.
+    pub fn z0_from_lambda(&self, e_star: f64, w: f64, lambda: f64) -> f64 {
+        match *self {
+            Geometry::Sphere(r) => super::z0_from_lambda(e_star, w, r, lambda),
+            _ => {
+                let u = self.units(e_star, w, 1.0);
+                1.5 * LJ_STRESS * w * u.radius / (e_star * u.approach * lambda)
+            }
+        }
+    }
+
+    /// c in `ln z0 = c (ln w - ln E*) - ln lambda + const`: `1 - (n - 1)/(2n - 1)`, the sphere's
+    /// and the capped cone's 2/3.
+    pub fn z0_slope(&self) -> f64 {
+        match *self {
+            Geometry::Power { n, .. } => n / (2.0 * n - 1.0),
+            _ => 2.0 / 3.0,
+        }
+    }
+
+    /// The w whose force unit at `e_star` times the normalised pull-off `pc_bar` is `pull` (N):
+    /// a fit's start from the measured pull-off.
+    pub fn w_for_pulloff(&self, pull: f64, pc_bar: f64, e_star: f64) -> f64 {
+        match *self {
+            Geometry::Sphere(r) | Geometry::CappedCone { radius: r, .. } => {
+                pull / (pc_bar * PI * r)
+            }
+            // force = pi w^(1+g) c^g / kb, c = 3 pi / (4 E* kb^2), g = (2 - n)/(2n - 1).
+            Geometry::Power { n, kb } => {
+                let g = (2.0 - n) / (2.0 * n - 1.0);
+                let c = 3.0 * PI / (4.0 * e_star * kb * kb);
+                (pull * kb / (pc_bar * PI * c.powf(g))).powf(1.0 / (1.0 + g))
+            }
+        }
+    }
+
+    /// E* of the adhesion-free punch pressed by `force` (N) to the approach `delta` (m), as
+    /// 4/3 of it (the sphere's `F / (sqrt(R) delta^(3/2))`; a power law's
+    /// `P = 2 E* (n/(n+1)) kb^(-1/n) delta^((n+1)/n)`; a capped cone's cap): a fit's start.
+    pub fn punch_stiffness(&self, force: f64, delta: f64) -> f64 {
+        match *self {
+            Geometry::Sphere(r) | Geometry::CappedCone { radius: r, .. } => {
+                force / (r.sqrt() * delta.powf(1.5))
+            }
+            Geometry::Power { n, kb } => {
+                4.0 / 3.0 * force * (n + 1.0) * kb.powf(1.0 / n)
+                    / (2.0 * n * delta.powf((n + 1.0) / n))
+            }
+        }
+    }
+
+    /// The tip in words (a fit's text output).
+    pub fn describe(&self) -> String {
+        match *self {
+            Geometry::Sphere(r) => format!("a sphere of radius {r:e} m"),
+            Geometry::Power { n: 1.0, kb } => format!(
+                "a cone of half-angle {:.4} degrees",
+                (k_n(1.0) / kb).atan().to_degrees()
+            ),
+            Geometry::Power { n, kb } => {
+                format!("the power law f = B r^{n} (B = {:e} m^(1-n))", kb / k_n(n))
+            }
+            Geometry::CappedCone { radius, half_angle } => format!(
+                "a spherical cap of radius {radius:e} m joined to a cone of half-angle {} degrees",
+                half_angle.to_degrees()
+            ),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The power law's units at n = 2 are the sphere's, its lambda from z0 too; the log slopes
+    /// are the units' derivatives (by differences).
+    #[test]
+    fn power_units_and_their_slopes() {
+        let r = 2e-8;
+        let sphere = Geometry::Sphere(r);
+        let square = Geometry::Power {
+            n: 2.0,
+            kb: k_n(2.0) * 0.5 / r,
+        };
+        let (e, w) = (2e9, 0.05);
+        let (us, up) = (sphere.units(e, w, 1.0), square.units(e, w, 1.0));
+        for (a, b) in [
+            (us.force, up.force),
+            (us.approach, up.approach),
+            (us.radius, up.radius),
+            (us.kbar, up.kbar),
+        ] {
+            assert!((a / b - 1.0).abs() < 1e-13, "{a} {b}");
+        }
+        let (ls, lp) = (
+            sphere.lambda_from_z0(e, w, 3e-10),
+            square.lambda_from_z0(e, w, 3e-10),
+        );
+        assert!((ls / lp - 1.0).abs() < 1e-13);
+        assert!((square.z0_from_lambda(e, w, lp) / 3e-10 - 1.0).abs() < 1e-13);
+        for g in [
+            Geometry::Power { n: 1.0, kb: 3.0 },
+            Geometry::Power { n: 3.5, kb: 1e12 },
+            sphere,
+        ] {
+            let h = 1e-6;
+            let ln = |e: f64, w: f64| {
+                let u = g.units(e, w, 1.0);
+                [u.force.ln(), u.approach.ln(), u.kbar.ln()]
+            };
+            let slopes = g.log_slopes();
+            for (k, (de, dw)) in [(h, 0.0), (0.0, h)].into_iter().enumerate() {
+                let (p, m) = (
+                    ln(e * f64::exp(de), w * f64::exp(dw)),
+                    ln(e * f64::exp(-de), w * f64::exp(-dw)),
+                );
+                let want = [slopes[k].0, slopes[k].1, slopes[k].2];
+                for i in 0..3 {
+                    let d = (p[i] - m[i]) / (2.0 * h);
+                    assert!((d - want[i]).abs() < 1e-7, "{g:?} {k} {i}: {d} {}", want[i]);
+                }
+            }
+            // z0's slope: ln z0 against ln w - ln E* at fixed lambda.
+            let z = |e: f64, w: f64| g.z0_from_lambda(e, w, 0.7).ln();
+            let d = (z(e, w * f64::exp(h)) - z(e, w * f64::exp(-h))) / (2.0 * h);
+            assert!((d - g.z0_slope()).abs() < 1e-7, "{g:?}: {d}");
+            // The start's w gives back the pull-off.
+            let wp = g.w_for_pulloff(3e-9, 1.2, e);
+            assert!((1.2 * g.units(e, wp, 1.0).force / 3e-9 - 1.0).abs() < 1e-12);
+        }
+    }
+}
