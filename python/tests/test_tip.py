@@ -168,3 +168,34 @@ def test_a_tips_adhesion_map_is_the_command_lines(tmp_path):
         tabor.adhesion_map(nx=8, ny=8, tip="cone", backend="gpu")
     with pytest.raises(ValueError, match="tip conee"):
         tabor.adhesion_map(nx=8, ny=8, tip="conee")
+
+
+def test_a_cones_curve_fits_as_the_command_line_fits_it():
+    """fit_curves(tip=...) is `tabor fit --tip`'s fit of the same curve, bit for bit (the tip as
+    text or as a scene's dict); a cone's closed forms are Sneddon's punch and the JKR-type law;
+    a tip with a radius, a measured profile and a humidity are refused naming the argument."""
+    path = ROOT / "tests" / "data" / "cone_curve.csv"
+    binary = ROOT / "target" / "release" / "tabor"
+    cli = json.loads(subprocess.run([str(binary), "fit", "-i", str(path), "--tip", "cone:65",
+                                     "--spring-n-m", "0.5"], check=True, capture_output=True,
+                                    text=True).stdout)
+    assert cli["tip"] == {"shape": "cone", "half_angle_deg": 65.0} and "radius_m" not in cli
+    d = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding=None)
+    for tip in ("cone:65", {"shape": "cone", "half_angle_deg": 65}):
+        r = tabor.fit_curve(d["height_m"], d["force_n"], d["segment"], tip=tip, spring_n_m=0.5)
+        c = cli["curves"][0]
+        for k in ("status", "e_star_pa", "work_of_adhesion_j_m2", "lambda", "z0_m",
+                  "contact_point_m", "rms_residual_n", "adequate_model", "lambda_bound"):
+            assert r[k] == c[k], k
+        assert [m["model"] for m in r["models"]] == ["hertz", "jkr"]
+        assert r["tabor_parameter"] is None and r["verdict"] is None
+    # The curve was made with E* = 1 MPa, w = 0.02 J/m^2 and 1% noise: its 95% intervals hold them.
+    lo, hi = r["e_star_pa_interval_95"]
+    assert lo < 1e6 < hi
+    with pytest.raises(ValueError, match="radius_m and tip"):
+        tabor.fit_curves([], [], [], tip="cone:65", radius_m=1e-8, spring_n_m=0.5)
+    with pytest.raises(ValueError, match="measured profile is not fitted"):
+        tabor.fit_curves([], [], [], tip={"shape": "profile", "r_m": [0, 1e-8],
+                                          "z_m": [0, 1e-9]}, spring_n_m=0.5)
+    with pytest.raises(ValueError, match="relative_humidity"):
+        tabor.fit_curves([], [], [], tip="cone:65", spring_n_m=0.5, relative_humidity=0.5)
