@@ -2,7 +2,7 @@
 JPK force curve of afmformats 0.18.7's sample data (docs/benchmarks.md, "tabor and nanite on
 the approach"; python/tests/test_nanite_agreement.py asserts the same comparison).
 
-    python bench/nanite_agreement.py [DATA_DIR] [--synthetic]
+    python bench/nanite_agreement.py [DATA_DIR] [--synthetic] [--cone=HALF_ANGLE_DEG]
 
 DATA_DIR is the tests/data folder of the afmformats 0.18.7 source distribution; without it the
 distribution is fetched with pip. Needs tabor, afmformats and nanite (with lmfit).
@@ -36,6 +36,11 @@ unless S_max/k is small. A curve with S_max/k < STIFF is listed as comparable an
 within TOLERANCE; on every curve, nanite's model refitted with its residuals at the base
 height (`nanite_base_axis`) checks that the axis is the whole difference (it gives tabor's E).
 
+`--cone=DEG` makes the same comparison with a cone of that half-angle (axis to flank) in both
+tools: tabor's `tip="cone:DEG"` (Sneddon's punch, its `hertz` entry) against nanite's
+`hertz_cone`, F = (2/pi) E/(1-nu^2) tan(alpha) delta^2 (the curves were measured with a sphere:
+this compares the tools, not the tip).
+
 Exit status 1 if a comparable curve's E differs by more than TOLERANCE.
 """
 import sys
@@ -48,6 +53,47 @@ from jpk_samples import curves, data_dir
 
 RADIUS_M = 2.5e-6
 POISSON = 0.5
+
+
+class Paraboloid:
+    """The paraboloid of R = 2.5 um: tabor's sphere, nanite's `hertz_para`."""
+    label = "paraboloid, R = 2.5 um"
+    nanite_key = "hertz_para"
+    tabor = {"radius_m": RADIUS_M}
+
+    def set_nanite(self, p):
+        p["R"].set(value=RADIUS_M)
+
+    def force(self, e_star, delta):
+        """F = 4/3 E* sqrt(R) delta^1.5."""
+        return 4 / 3 * e_star * np.sqrt(RADIUS_M) * delta ** 1.5
+
+    def stiffness(self, e_star, delta):
+        """dF/ddelta = 2 E* sqrt(R delta)."""
+        return 2 * e_star * np.sqrt(RADIUS_M * delta)
+
+
+class Cone:
+    """A cone of half-angle `deg` (axis to flank): tabor's `tip="cone:DEG"` (Sneddon's punch
+    as its `hertz`), nanite's `hertz_cone`, both F = (2/pi) E* tan(alpha) delta^2."""
+    nanite_key = "hertz_cone"
+
+    def __init__(self, deg):
+        self.deg = deg
+        self.label = f"cone, half-angle {deg} degrees"
+        self.tabor = {"tip": f"cone:{deg}"}
+
+    def set_nanite(self, p):
+        p["alpha"].set(value=self.deg)
+
+    def force(self, e_star, delta):
+        return 2 / np.pi * e_star * np.tan(np.radians(self.deg)) * delta ** 2
+
+    def stiffness(self, e_star, delta):
+        return 4 / np.pi * e_star * np.tan(np.radians(self.deg)) * delta
+
+
+PARABOLOID = Paraboloid()
 TOLERANCE = 0.02   # |E_tabor / E_nanite - 1| on a comparable curve
 STIFF = 0.3        # S_max/k below which the two residual axes weigh the points alike
 
@@ -68,11 +114,11 @@ def baseline_noise(fd, approach):
     return float(np.std(f[np.argsort(-h)[: int(np.ceil(0.3 * len(h)))]]))
 
 
-def tabor_hertz(fd):
+def tabor_hertz(fd, shape=PARABOLOID):
     """tabor's Hertz fit of the approach: E (Pa), the contact point (a base height, m), the
     points fitted, the rms residual (N)."""
     import tabor
-    r = tabor.fit_afmformats(fd, radius_m=RADIUS_M, poisson=POISSON, fit_segment="approach")[0]
+    r = tabor.fit_afmformats(fd, poisson=POISSON, fit_segment="approach", **shape.tabor)[0]
     hz = [m for m in r.get("models") or [] if m.get("model") == "hertz"]
     if not hz or hz[0].get("status") != "ok":
         return {"status": r["status"], "message": r.get("message")}
@@ -80,7 +126,8 @@ def tabor_hertz(fd):
             "cp": hz[0]["contact_point_m"], "points": r["points_fitted"],
             "rms": hz[0]["rms_residual_n"], "curve_status": r["status"],
             "rms_models": {m["model"]: m["rms_residual_n"] for m in r["models"]
-                           if m["status"] == "ok"}}
+                           if m["status"] == "ok"},
+            "stops": {m["model"]: m["stop"] for m in r["models"]}}
 
 
 def _indentation(fd, columns=None):
@@ -94,8 +141,8 @@ def _indentation(fd, columns=None):
     return nanite.Indentation(data=data, metadata=meta, diskcache=False)
 
 
-def nanite_hertz(fd, approach=None, columns=None):
-    """nanite's hertz_para fit of the approach.
+def nanite_hertz(fd, approach=None, columns=None, shape=PARABOLOID):
+    """nanite's fit of the approach with the shape's model (hertz_para, hertz_cone).
 
     approach None: nanite's usual workflow (its own split of approach and retract, its default
     contact-point weighting); a mask: those points, unweighted (what tabor fits). Returns E,
@@ -116,14 +163,14 @@ def nanite_hertz(fd, approach=None, columns=None):
         # height: the tip touches where height = tip - (force there) / k.
         tip_shift = (h[0] + f_raw[0] / k) - idnt["tip position"][0]
         force_shift = f_raw[0] - idnt["force"][0]
-        fp = {"model_key": "hertz_para", "segment": 0, "range_type": "absolute",
+        fp = {"model_key": shape.nanite_key, "segment": 0, "range_type": "absolute",
               "range_x": [0, 0], "x_axis": "tip position", "y_axis": "force"}
         if approach is not None:
             idnt["segment"] = np.where(approach, 0, 1).astype(np.uint8)
             fp["weight_cp"] = 0
-        idnt.fit_properties["model_key"] = "hertz_para"
+        idnt.fit_properties["model_key"] = shape.nanite_key
         p = idnt.get_initial_fit_parameters()
-        p["R"].set(value=RADIUS_M)
+        shape.set_nanite(p)
         p["nu"].set(value=POISSON)
         idnt.fit_model(params_initial=p, **fp)
     res = idnt.fit_properties
@@ -134,14 +181,14 @@ def nanite_hertz(fd, approach=None, columns=None):
     offset = force_shift + pf["baseline"].value
     return {"E": pf["E"].value, "cp": pf["contact_point"].value + tip_shift - offset / k,
             "points": int(fit.sum()), "x": np.asarray(idnt["tip position"])[fit],
-            "y": np.asarray(idnt["force"])[fit], "params": pf, "k": k}
+            "y": np.asarray(idnt["force"])[fit], "params": pf, "k": k, "shape": shape}
 
 
 def stiffness_ratio(n):
-    """S_max/k of a nanite fit: the contact stiffness 2 E/(1-nu^2) sqrt(R delta) at its
-    deepest point over the spring constant."""
+    """S_max/k of a nanite fit: the contact stiffness (the paraboloid's 2 E/(1-nu^2)
+    sqrt(R delta)) at its deepest point over the spring constant."""
     depth = max(n["params"]["contact_point"].value - n["x"].min(), 0.0)
-    return 2 * n["E"] / (1 - POISSON**2) * np.sqrt(RADIUS_M * depth) / n["k"]
+    return n["shape"].stiffness(n["E"] / (1 - POISSON**2), depth) / n["k"]
 
 
 def nanite_base_axis(n):
@@ -151,7 +198,7 @@ def nanite_base_axis(n):
     as the tip rises). E (Pa)."""
     import lmfit
     import nanite.model
-    g = nanite.model.models_available["hertz_para"].model
+    g = nanite.model.models_available[n["shape"].nanite_key].model
     x, y, k = n["x"], n["y"], n["k"]
     base = x - y / k  # the measured base height, shifted as nanite shifted the tip
 
@@ -169,38 +216,38 @@ def nanite_base_axis(n):
     return fit.params["E"].value
 
 
-def hertz_under_spring(height, e_star, zc, k):
-    """The Hertz force at each base height under a spring k: F = 4/3 E* sqrt(R)
-    (zc - height - F/k)^1.5 (bisection)."""
-    c = 4 / 3 * e_star * np.sqrt(RADIUS_M)
+def hertz_under_spring(height, e_star, zc, k, shape=PARABOLOID):
+    """The Hertz force at each base height under a spring k: F = F_shape(zc - height - F/k)
+    (bisection)."""
     push = np.asarray(zc - height, dtype=float)
     lo, hi = np.zeros_like(push), np.maximum(push, 0.0) * k
     for _ in range(80):
         mid = 0.5 * (lo + hi)
-        up = c * np.maximum(push - mid / k, 0.0) ** 1.5 > mid
+        up = shape.force(e_star, np.maximum(push - mid / k, 0.0)) > mid
         lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
     return 0.5 * (lo + hi)
 
 
-def synthetic_ratio(fd, t, approach, noise, seed=0):
+def synthetic_ratio(fd, t, approach, noise, seed=0, shape=PARABOLOID):
     """E_tabor / E_nanite on the curve's own fitted Hertz curve (tabor's fit, on its approach
     heights) plus white noise of its baseline's rms: both tools on a curve the model describes,
     with this curve's points, spring and stiffness."""
     import tabor
     h = np.asarray(fd["height (measured)"], dtype=float)[approach]
     k = float(fd.metadata["spring constant"])
-    force = (hertz_under_spring(h, t["E"] / (1 - POISSON**2), t["cp"], k)
+    force = (hertz_under_spring(h, t["E"] / (1 - POISSON**2), t["cp"], k, shape)
              + np.random.default_rng(seed).normal(0.0, noise, len(h)))
     seg = np.zeros(len(h), dtype=np.uint8)
-    r = tabor.fit_curve(h, force, seg.astype(int), radius_m=RADIUS_M, spring_n_m=k,
-                        poisson=POISSON, fit_segment="approach")
+    r = tabor.fit_curve(h, force, seg.astype(int), spring_n_m=k, poisson=POISSON,
+                        fit_segment="approach", **shape.tabor)
     hz = [m for m in r["models"] if m["model"] == "hertz"][0]
     n = nanite_hertz(fd, approach=seg == 0,
-                     columns={"height (measured)": h, "force": force, "segment": seg})
+                     columns={"height (measured)": h, "force": force, "segment": seg},
+                     shape=shape)
     return hz["e_star_pa"] * (1 - POISSON**2) / n["E"]
 
 
-def compare(name, fd, synthetic=False, default=True):
+def compare(name, fd, synthetic=False, default=True, shape=PARABOLOID):
     """One curve's row: both fits, their ratio, and what makes a difference.
 
     Keys: file, enum, tabor (its fit), points (tabor's, nanite's), e_tabor, e_nanite, ratio,
@@ -210,14 +257,14 @@ def compare(name, fd, synthetic=False, default=True):
     row = {"file": name, "enum": int(fd.metadata.get("enum", 0))}
     approach = approach_points(fd)
     t0 = time.perf_counter()
-    t = tabor_hertz(fd)
+    t = tabor_hertz(fd, shape)
     row["tabor_s"] = time.perf_counter() - t0
     row["tabor"] = t
     if t["status"] != "ok":
         row["verdict"] = f"tabor's Hertz fit: {t['status']}"
         return row
     t0 = time.perf_counter()
-    n = nanite_hertz(fd, approach)
+    n = nanite_hertz(fd, approach, shape=shape)
     row["nanite_s"] = time.perf_counter() - t0
     if n is None:
         row["verdict"] = "nanite's fit failed"
@@ -231,10 +278,10 @@ def compare(name, fd, synthetic=False, default=True):
     row["e_base_axis"] = nanite_base_axis(n)
     row["base_axis_s"] = time.perf_counter() - t0
     if default:
-        d = nanite_hertz(fd)
+        d = nanite_hertz(fd, shape=shape)
         row["ratio_default"] = t["E"] / d["E"] if d else float("nan")
     if synthetic:
-        row["synthetic_ratio"] = synthetic_ratio(fd, t, approach, noise)
+        row["synthetic_ratio"] = synthetic_ratio(fd, t, approach, noise, shape=shape)
     if row["comparable"]:
         row["verdict"] = "agree" if abs(row["ratio"] - 1) <= TOLERANCE else "DIFFER"
     else:
@@ -266,12 +313,14 @@ def table(rows):
 def main():
     args = [a for a in sys.argv[1:] if not a.startswith("--")]
     synthetic = "--synthetic" in sys.argv
+    cone = [a.split("=", 1)[1] for a in sys.argv[1:] if a.startswith("--cone=")]
+    shape = Cone(float(cone[0])) if cone else PARABOLOID
     todo = curves(data_dir(args[0] if args else None))
     t0 = time.perf_counter()
-    rows = [compare(name, fd, synthetic) for name, fd in todo]
+    rows = [compare(name, fd, synthetic, shape=shape) for name, fd in todo]
     wall = time.perf_counter() - t0
     print(table(rows))
-    print("E in Pa (E = E* (1 - nu^2), nu = 0.5, R = 2.5 um); points: tabor's/nanite's; "
+    print(f"E in Pa (E = E* (1 - nu^2), nu = 0.5, {shape.label}); points: tabor's/nanite's; "
           "ratio: E_tabor/E_nanite on the same points; cp: contact points as base heights (um), "
           "dcp their difference (nm); misfit: tabor's Hertz rms residual over the baseline's "
           "noise; S/k: nanite's deepest contact stiffness over the spring constant; base: "

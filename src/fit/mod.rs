@@ -203,7 +203,17 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
             w: 1e-2 * w_of(pulloff(model, 1.0)),
             ..hertz.params()
         };
-        better(f, fit_model(model, raw, opt, s, w_ref, None))
+        let mut f = better(f, fit_model(model, raw, opt, s, w_ref, None));
+        if key(&f) > hertz.rms_residual_n * (1.0 + 1e-9) {
+            // Still worse: a local minimum, said so. (A cone's JKR-type law reaches its punch
+            // only as w -> 0, where its contact radius in its units grows like 1/w, beyond the
+            // path's range: docs/PHYSICS.md section 12.4.)
+            f.stop += &format!(
+                "; a local minimum: worse than Hertz ({:.3e} N), which the law holds as w -> 0",
+                hertz.rms_residual_n
+            );
+        }
+        f
     };
     // A tip's ladder has no DMT ([`Geometry::ladder`]): its Maugis-Dugdale profile starts
     // from Hertz's (Sneddon's) answer on the DMT side.

@@ -2,8 +2,9 @@
 //! units: Sneddon's adhesion-free punch (the tip's Hertz, `Pbar = Qbar(A)`, `Dbar = Fbar(A)`)
 //! and the JKR-type law (`Pbar = Qbar(A) - sqrt(6 A^3)`, `Dbar = Fbar(A) - sqrt(8 A/3)`), the
 //! limits of [`super::Tip`] without adhesion and at lambda -> infinity. Their path is the free
-//! piece, then the contact piece t = A, as the sphere's closed forms (for the paraboloid,
-//! `Fbar = T^2`, they are Hertz and JKR). A DMT-type law is not among them: beyond the
+//! piece, then the contact piece t = ln A, as the tip's Maugis-Dugdale law (a cone's units
+//! shrink like w, so a fit towards w -> 0 meets radii of 1e9 units, where nodes even in A would
+//! not resolve the start of contact; for the paraboloid, `Fbar = T^2`, they are Hertz and JKR). A DMT-type law is not among them: beyond the
 //! paraboloid the rigid tip's Dugdale force depends on the range (`pi w h0 tan^2 alpha` for a
 //! cone), so it has Maugis-Dugdale's parameters and is no simpler model.
 
@@ -51,26 +52,28 @@ impl Law for TipClosed {
     fn state(&self, piece: Piece, t: f64) -> Pt {
         match piece {
             Piece::Contact => {
-                let (q, dq) = self.shape.load(t);
-                let (f, df) = self.shape.abel(t);
+                let a = t.exp();
+                let (q, dq) = self.shape.load(a);
+                let (f, df) = self.shape.abel(a);
                 let (jl, ja, djl, dja) = if self.adhesive {
-                    let s6 = (6.0 * t).sqrt();
+                    let s6 = (6.0 * a).sqrt();
                     (
-                        t * s6,
-                        (8.0 * t / 3.0).sqrt(),
+                        a * s6,
+                        (8.0 * a / 3.0).sqrt(),
                         1.5 * s6,
-                        (2.0 / (3.0 * t)).sqrt(),
+                        (2.0 / (3.0 * a)).sqrt(),
                     )
                 } else {
                     (0.0, 0.0, 0.0, 0.0)
                 };
+                // Slopes in t = ln A: A times those in A.
                 Pt {
                     load: q - jl,
                     approach: f - ja,
-                    a: t,
-                    dload: dq - djl,
-                    dapproach: df - dja,
-                    da: 1.0,
+                    a,
+                    dload: a * (dq - djl),
+                    dapproach: a * (df - dja),
+                    da: a,
                 }
             }
             Piece::Free => Pt::free(t),
@@ -83,22 +86,19 @@ impl Law for TipClosed {
     fn free_end(&self) -> f64 {
         0.0
     }
+    /// The contact piece's parameter is ln A.
     fn t_of_radius(&self, a: f64) -> f64 {
-        a
+        a.ln()
     }
     fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
-        vec![(Piece::Contact, A_START, a_max)]
+        vec![(Piece::Contact, A_START.ln(), a_max.ln())]
     }
     fn pulloff(&self) -> f64 {
         if !self.adhesive {
             return 0.0;
         }
         let a = self.critical_radius();
-        -self.state(Piece::Contact, a).load
-    }
-    /// The JKR-type contact piece needs A > 0.
-    fn on_piece(&self, piece: Piece, t: f64) -> bool {
-        t.is_finite() && !(self.adhesive && piece == Piece::Contact && t <= 0.0)
+        -self.state(Piece::Contact, a.ln()).load
     }
     fn key(&self) -> LawKey {
         let [kind, a, b] = super::tip::shape_bits(&self.shape);
