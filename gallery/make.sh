@@ -49,6 +49,9 @@ done
 # A synthetic AFM curve (exact Maugis-Dugdale under a 40 N/m cantilever, 20 pN noise) and its fit.
 cargo run --release --quiet --example synthetic_curves -- $G/fit_curve.csv 1 500 40 2e-11
 $T fit -i $G/fit_curve.csv --radius 20e-9 --spring-n-m 40 --plot $G/fit.png -o $G/fit.json
+# A curve made on a 65-degree cone (1% noise) fitted with the cone: its closed forms are Sneddon's
+# punch and the JKR-type law (docs/guide/fitting.md, "Tips that are not spheres").
+$T fit -i tests/data/cone_curve.csv --tip cone:65 --spring-n-m 0.5 --plot $G/fit_cone.png -o $G/fit_cone.json
 # A measured curve (JPK sample file from afmformats' sdist on PyPI; needs the test venv).
 if [ -x target/py-venv/bin/python ]; then
     target/py-venv/bin/python gallery/fit_jpk.py

@@ -1096,7 +1096,7 @@ where
         .label("measured")
         .legend(move |(x, y)| Circle::new((x + 20, y), 6, dot));
     let mut residuals: Vec<(Vec<(f64, f64)>, RGBColor)> = Vec::new();
-    for (m, col, label) in fitted_models(md, r).iter().rev() {
+    for (m, col, label) in fitted_models(md, r, opt.tip.is_some()).iter().rev() {
         let p = m.params();
         let model = |h: &[f64], dir: &[crate::fit::Direction], side| {
             crate::fit::fitted_forces(m, opt, h, dir, side).map(|(f, _, _, _)| f)
@@ -1256,6 +1256,7 @@ fn model_heights(d: &crate::fit::Prepared, n: usize) -> Vec<(f64, crate::fit::Di
 fn fitted_models<'a>(
     md: &'a crate::fit::ModelFit,
     r: &'a crate::fit::CurveFit,
+    tip: bool,
 ) -> Vec<(&'a crate::fit::ModelFit, RGBColor, &'static str)> {
     let ok = r
         .models
@@ -1268,9 +1269,15 @@ fn fitted_models<'a>(
         .and_then(|h| h.shape_fit.as_ref())
         .map(|s| &s.fit)
         .filter(|m| m.status == crate::fit::FitStatus::Ok);
+    // A tip's closed forms are its own: Sneddon's punch and the JKR-type law.
+    let label = |m: crate::fit::Model| match (tip, m) {
+        (true, crate::fit::Model::Hertz) => "Sneddon's punch",
+        (true, crate::fit::Model::Jkr) => "JKR-type",
+        _ => m.label(),
+    };
     let closed = ok
         .chain(wet)
-        .map(|m| (m, model_colour(m.model.into()), m.model.label()));
+        .map(|m| (m, model_colour(m.model.into()), label(m.model)));
     std::iter::once((md, RGBColor(0, 0, 0), "Maugis-Dugdale"))
         .chain(closed)
         .collect()
