@@ -35,6 +35,7 @@ EXPECTED = {
         "lambda = 0.2999, determined: True",
         "pixel 0: lambda 0.3000",
         "pixel 2: lambda 3.0000",
+        "cone: E* = 9.974e+05 Pa (95%: 9.789e+05..1.015e+06), adequate model jkr",
     ],
     "rough.py": [
         "pull-off -1.2081 per summit (a smooth summit: -1.5346)",
