@@ -217,6 +217,14 @@ pub fn tip_scene_text(r: &TipSceneResult) -> String {
         si(r.pulloff_contact_radius_load_control_m, "m"),
         si(r.pulloff_force_displacement_control_N, "N")
     );
+    if r.control != "load" {
+        let _ = writeln!(
+            t,
+            "  pull-off (jump-out) force under this scene's control ({}): {}",
+            r.control,
+            si(r.pulloff_force_under_control_N, "N")
+        );
+    }
     let _ = writeln!(t, "  recommended model: {}", r.recommended_model);
     let _ = writeln!(
         t,

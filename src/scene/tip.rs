@@ -69,6 +69,11 @@ pub struct TipSceneResult {
     pub pulloff_contact_radius_load_control_m: f64,
     /// The simplest model adequate over the scene's loads.
     pub recommended_model: &'static str,
+    /// The pull-off (jump-out) force under the scene's control (N); with a cantilever, where
+    /// its stiffness equals the contact's force gradient on the retract (`tabor cycle --tip`).
+    pub pulloff_force_under_control_N: f64,
+    /// The control of the experiment, in words.
+    pub control: String,
     /// The state at each load.
     pub loads: Vec<TipLoadResult>,
     /// For a measured profile: the error its interpolation may bring to the results (relative;
@@ -92,10 +97,6 @@ fn materials(s: &SceneInput) -> Result<(f64, f64, f64), ParamError> {
         (s.humidity.is_some(), "humidity"),
         (s.shear_strength_pa.is_some(), "shear_strength_pa"),
         (s.atomic_spacing_m.is_some(), "atomic_spacing_m"),
-        (
-            matches!(s.control, Some(super::SceneControl::CantileverNM(_))),
-            "control.cantilever_n_m",
-        ),
     ] {
         if given {
             return Err(ParamError::Conflict(format!(
@@ -138,6 +139,7 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         .map(|l| order.iter().position(|m| *m == l.model).unwrap_or(3))
         .max()
         .map_or("none", |i| order[i]);
+    let (under, control) = under_control(s, &law, &u, grips.load)?;
     let mut warnings = tip_warnings(tip);
     let mut profile_error = None;
     if let crate::physics::tip::Shape::Measured(p) = u.shape {
@@ -183,10 +185,56 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         pulloff_force_displacement_control_N: grips.load * u.force_n,
         pulloff_contact_radius_load_control_m: dead.a * u.length_m,
         recommended_model,
+        pulloff_force_under_control_N: under,
+        control,
         loads,
         profile_error,
         warnings,
         source: s.source.clone(),
+    })
+}
+
+/// The pull-off force (N) under the scene's control and the control in words: the law's
+/// pull-offs under a dead load or rigid grips (`grips`: the latter's, normalised), or under a
+/// cantilever the retract's jump of the tip's cycle under that spring (in the tip's units,
+/// `kbar = k d / (pi w l^2 / d)`).
+fn under_control(
+    s: &SceneInput,
+    law: &Tip,
+    u: &TipUnits,
+    grips: f64,
+) -> Result<(f64, String), ParamError> {
+    use super::SceneControl;
+    Ok(match &s.control {
+        None | Some(SceneControl::Load) => (
+            law.pulloff_state(Drive::DeadLoad).load * u.force_n,
+            "load".to_string(),
+        ),
+        Some(SceneControl::Displacement) => (grips * u.force_n, "displacement".to_string()),
+        Some(SceneControl::CantileverNM(k)) => {
+            let refused = |value: f64| ParamError::OutOfRange {
+                field: "control.cantilever_n_m",
+                value,
+                allowed: "> 0 (N/m), its normalised value positive and finite",
+            };
+            let kbar = k * u.approach_m / u.force_n;
+            if !(*k > 0.0 && kbar.is_finite()) {
+                return Err(refused(*k));
+            }
+            let cyc = crate::cycle::run(law, Drive::Spring(kbar), 1.0).map_err(|_| refused(*k))?;
+            let out = cyc
+                .jumps
+                .iter()
+                .find(|j| j.phase == crate::cycle::Phase::Retract)
+                .map_or(grips, |j| j.from.load);
+            (
+                out * u.force_n,
+                format!(
+                    "cantilever k = {} N/m, kbar = {kbar:.4e} in the tip's units",
+                    crate::physics::domain::short(*k)
+                ),
+            )
+        }
     })
 }
 

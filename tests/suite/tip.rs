@@ -256,6 +256,93 @@ fn a_spherical_tip_is_the_sphere_and_bad_tips_are_refused() {
     assert!(wet.contains("humidity") && !wet.contains('\n'), "{wet}");
 }
 
+/// A tip scene under each control: load and displacement give the two pull-offs; a cantilever
+/// gives the retract's jump of `tabor cycle --tip` (the command line, in the scene's own units
+/// and kbar = k d / force unit) and, soft, the load-controlled pull-off; a bad one is refused.
+#[test]
+fn a_tip_scenes_control_is_its_cycles() {
+    let with = |control: &str| {
+        let json = format!(
+            r#"{{"e_star_pa": 3.3e9, "work_of_adhesion_j_m2": 0.06, "h0_m": 0.5e-9,
+                "tip": {{"shape": "capped_cone", "radius_m": 20e-9, "half_angle_deg": 20}},
+                "loads_n": [0, 5e-9], "control": {control}}}"#
+        );
+        match scene(&json) {
+            Ok(tabor::scene::Solved::Tip(r)) => Ok(r),
+            Ok(_) => panic!("a tip scene"),
+            Err(e) => Err(e),
+        }
+    };
+    let load = with(r#""load""#).unwrap();
+    assert_eq!(load.control, "load");
+    assert_eq!(
+        load.pulloff_force_under_control_N,
+        load.pulloff_force_load_control_N
+    );
+    let grips = with(r#""displacement""#).unwrap();
+    assert_eq!(
+        grips.pulloff_force_under_control_N,
+        grips.pulloff_force_displacement_control_N
+    );
+    let soft = with(r#"{"cantilever_n_m": 1e-4}"#).unwrap();
+    assert!(
+        (soft.pulloff_force_under_control_N / soft.pulloff_force_load_control_N - 1.0).abs() < 1e-4,
+        "{} {}",
+        soft.pulloff_force_under_control_N,
+        soft.pulloff_force_load_control_N
+    );
+    let k = 0.5;
+    let r = with(&format!(r#"{{"cantilever_n_m": {k}}}"#)).unwrap();
+    let tabor::physics::tip::Shape::CappedCone { rho, half_angle } = r.units.shape else {
+        panic!("a capped cone")
+    };
+    let kbar = k * r.units.approach_m / r.units.force_n;
+    assert!(
+        r.control.contains("cantilever k = 0.5 N/m"),
+        "{}",
+        r.control
+    );
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args([
+            "cycle",
+            "--tip",
+            &format!("capped-cone:{rho}:{}", half_angle.to_degrees()),
+            "--lambda",
+            &r.lambda.to_string(),
+            "--control",
+            "spring",
+            "--stiffness",
+            &kbar.to_string(),
+            "--format",
+            "json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let c: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let jump = c["jumps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|j| j["phase"] == "retract")
+        .expect("a retract jump");
+    let want = jump["from"]["load"].as_f64().unwrap() * r.units.force_n;
+    assert!(
+        (r.pulloff_force_under_control_N / want - 1.0).abs() < 1e-9,
+        "{} {want}",
+        r.pulloff_force_under_control_N
+    );
+    let e = with(r#"{"cantilever_n_m": -1}"#).unwrap_err();
+    assert!(
+        e.contains("control.cantilever_n_m") && !e.contains('\n'),
+        "{e}"
+    );
+}
+
 /// `tabor cycle --tip cone --lambda 1`: a cycle of the cone's law through the command line,
 /// whose retract leaves contact at the law's rigid-grip fold; a tip with a scene is refused.
 #[test]
