@@ -135,7 +135,7 @@ def fit_curves(
     segment: ArrayLike,
     curve: Optional[ArrayLike] = None,
     *,
-    radius_m: float,
+    radius_m: Optional[float] = None,
     spring_n_m: float,
     poisson: Optional[float] = None,
     fit_segment: Literal["retract", "approach", "both"] = "retract",
@@ -147,11 +147,12 @@ def fit_curves(
     surface_tension_n_m: Optional[float] = None,
     molar_volume_m3_mol: Optional[float] = None,
     temperature_k: Optional[float] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> List[Dict[str, Any]]: ...
 def fit_curve(height_m: ArrayLike, force_n: ArrayLike, segment: ArrayLike, **options: Any) -> Dict[str, Any]: ...
 def fit_afmformats(
     data: Any,
-    radius_m: float,
+    radius_m: Optional[float] = None,
     spring_n_m: Optional[float] = None,
     *,
     poisson: Optional[float] = None,
@@ -164,11 +165,12 @@ def fit_afmformats(
     surface_tension_n_m: Optional[float] = None,
     molar_volume_m3_mol: Optional[float] = None,
     temperature_k: Optional[float] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> List[Dict[str, Any]]: ...
 def fit_fleet(
     maps: Union[str, PathLike[str], Sequence[Union[str, PathLike[str], Dict[str, Any]]],
                 Dict[str, Union[str, PathLike[str], Dict[str, Any]]]],
-    radius_m: float,
+    radius_m: Optional[float],
     spring_n_m: Optional[float] = None,
     *,
     client: Any = None,
