@@ -35,7 +35,9 @@ fn laws() -> Vec<ContactLaw> {
         Shape::Power { exponent: 3.0 },
         capped,
     ] {
-        v.extend([false, true].map(|adhesive| ContactLaw::TipClosed(TipClosed { shape, adhesive })));
+        v.extend(
+            [false, true].map(|adhesive| ContactLaw::TipClosed(TipClosed { shape, adhesive })),
+        );
     }
     v
 }
@@ -453,8 +455,8 @@ fn the_energy_release_rate_at_the_edge_is_w() {
                         ContactLaw::TipClosed(c) => c.shape.load(s.a).0,
                         _ => s.a.powi(3),
                     };
-                    let k_i = (q - s.load - adhesion)
-                        / (2.0 * s.a * (std::f64::consts::PI * s.a).sqrt());
+                    let k_i =
+                        (q - s.load - adhesion) / (2.0 * s.a * (std::f64::consts::PI * s.a).sqrt());
                     let g = 2.0 * std::f64::consts::PI / 3.0 * k_i * k_i;
                     if law.model() != ContactModel::Jkr {
                         assert!(g <= 1e-20, "{at}: {g}");
