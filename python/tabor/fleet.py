@@ -20,7 +20,8 @@ __all__ = ["fit_fleet"]
 
 #: The options passed on to fit_afmformats / fit_curves (``spring_n_m`` is an argument).
 OPTIONS = ("poisson", "fit_segment", "z0_m", "tilt", "tolerance", "relative_humidity",
-           "contact_angle_deg", "surface_tension_n_m", "molar_volume_m3_mol", "temperature_k")
+           "contact_angle_deg", "surface_tension_n_m", "molar_volume_m3_mol", "temperature_k",
+           "tip")
 
 #: The fitting modes tabor fits (afmformats' ``imaging mode``): the files of a folder kept.
 MODALITIES = ("force-distance", "creep-compliance", "stress-relaxation")
@@ -543,6 +544,7 @@ def _dataset(fleet, grid, radius_m, spring_n_m, options):
     return xr.Dataset(data, coords=coords, attrs={
         "title": "tabor fit_fleet: Maugis-Dugdale fits of AFM force maps",
         "tabor_version": tabor.__version__,
-        "radius_m": float(radius_m),
+        # NaN for a tip that is not a sphere (its description is in the options).
+        "radius_m": float("nan") if radius_m is None else float(radius_m),
         "options": _json(dict(options, spring_n_m=spring_n_m)),
     })

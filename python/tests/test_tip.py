@@ -199,3 +199,22 @@ def test_a_cones_curve_fits_as_the_command_line_fits_it():
                                           "z_m": [0, 1e-9]}, spring_n_m=0.5)
     with pytest.raises(ValueError, match="relative_humidity"):
         tabor.fit_curves([], [], [], tip="cone:65", spring_n_m=0.5, relative_humidity=0.5)
+
+
+def test_a_fleet_of_cone_maps_is_fitted_with_the_cone():
+    """fit_fleet(..., tip=...) passes the tip to every map: the serial fleet's values are
+    fit_curve's, Tabor's parameter (the sphere's) is NaN, and the attrs keep the tip."""
+    pytest.importorskip("xarray")
+    path = ROOT / "tests" / "data" / "cone_curve.csv"
+    d = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding=None)
+    seg = np.where(d["segment"] == "approach", 0, 1)
+    one = tabor.fit_curve(d["height_m"], d["force_n"], seg, tip="cone:65", spring_n_m=0.5)
+    n = len(d)
+    m = {"height_m": np.tile(d["height_m"], 2), "force_n": np.tile(d["force_n"], 2),
+         "segment": np.tile(seg, 2), "x": np.repeat([0, 1], n), "y": np.zeros(2 * n, int),
+         "spring_n_m": 0.5}
+    ds = tabor.fit_fleet([m], None, tip="cone:65")
+    assert list(ds["status"].values.ravel()) == ["ok", "ok"]
+    assert np.all(ds["e_star_pa"].values == one["e_star_pa"])
+    assert np.all(np.isnan(ds["tabor_parameter"].values))
+    assert json.loads(ds.attrs["options"])["tip"] == "cone:65"
