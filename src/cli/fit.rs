@@ -222,7 +222,8 @@ fn options(a: &FitArgs) -> anyhow::Result<FitOptions> {
                 temperature_k: a.temperature_k,
             }),
         ..FitOptions::default()
-    };
+    }
+    .sphere_as_radius();
     // One check of the options, the library's, as Python's fit_curves makes it.
     if let Err(e) = opt.validate() {
         let flag = match e.option {

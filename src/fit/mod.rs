@@ -253,7 +253,17 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
     // profile over lambda (each point a fit at fixed lambda, started from the closed form of
     // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let (md, iv) = match opt.z0 {
-        Some(z0) => match fixed_z0_fit(curve, d, opt, z0, (low, &jkr), &from, w_ref) {
+        // From the better adhesive closed form (a tip's only one is JKR-type: Hertz's w and
+        // pull-off are 0 and would start nothing).
+        Some(z0) => match fixed_z0_fit(
+            curve,
+            d,
+            opt,
+            z0,
+            (dmt.as_ref().unwrap_or(&jkr), &jkr),
+            &from,
+            w_ref,
+        ) {
             Ok(r) => r,
             Err(out) => return *out,
         },
@@ -450,7 +460,10 @@ fn fixed_z0_fit(
 fn unit_hints(d: &Prepared, opt: &FitOptions) -> String {
     let h = hints(d, opt);
     if h.is_empty() {
-        "; check the spring constant (a wrong one moves E* by orders of magnitude), the tip radius, and that height_m is in metres and force_n in newtons".into()
+        format!(
+            "; check the spring constant (a wrong one moves E* by orders of magnitude), {}, and that height_m is in metres and force_n in newtons",
+            if opt.tip.is_some() { "the tip's shape" } else { "the tip radius" }
+        )
     } else {
         format!("; likely cause: {}", h.join("; "))
     }

@@ -127,7 +127,22 @@ impl FitOptions {
                     temperature_k: num("temperature_k"),
                 }),
             ..FitOptions::default()
-        })
+        }
+        .sphere_as_radius())
+    }
+
+    /// The options with a spherical `tip` (a sphere, or a power law of exponent 2) given as
+    /// its `radius`: a sphere is fitted as a sphere (its DMT, Tabor parameter, verdict,
+    /// humidity and warnings), however it was given.
+    pub fn sphere_as_radius(self) -> FitOptions {
+        match self.tip.as_ref().map(super::Geometry::of) {
+            Some(Ok(super::Geometry::Sphere(radius))) => FitOptions {
+                radius,
+                tip: None,
+                ..self
+            },
+            _ => self,
+        }
     }
 }
 
@@ -165,7 +180,7 @@ impl FitOptions {
             ));
         }
         if let Some(tip) = &self.tip {
-            super::Geometry::of(tip).map_err(|e| ("tip", format!("tip: {e}")))?;
+            super::Geometry::of(tip).map_err(|e| ("tip", e))?;
             if self.humidity.is_some() {
                 return Err((
                     "relative_humidity",

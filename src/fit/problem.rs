@@ -432,10 +432,10 @@ impl Problem<'_> {
 
     /// The rows of the points before a jump, whose residual is the signed distance `r = e.n`
     /// from the measured point to the curve's nearest state (see [`path::fold_distance`]), times
-    /// `pi w R / f_scale`. The nearest state is stationary (`e.T = 0`, so `e` lies along the
+    /// the force unit over `f_scale` (the sphere's `pi w R`). The nearest state is stationary (`e.T = 0`, so `e` lies along the
     /// unit normal `n`): as a parameter moves, `dr = n . de` at that state's fixed t, the moves
     /// of t and of `n` dropping out. In the plane (load, 10 kbar Delta) `e` is
-    /// `(P - L, 10 (kbar (D - Delta) + P))` with the measured load `L = (F - f0) / (pi w R)`.
+    /// `(P - L, 10 (kbar (D - Delta) + P))` with the measured load `L = (F - f0) / force unit`.
     pub(super) fn fold_rows(&self, j: &mut DMatrix<f64>, base: &[PathState]) {
         let p = self.params(&self.x);
         let (law, u) = self.law_units(&p);
@@ -597,8 +597,9 @@ impl Problem<'_> {
         Some(j)
     }
     /// The Jacobian from the state's slopes. With u = (ln E*, ln w), the force is
-    /// `F = Fs(w) P(Delta, kbar)` with `Delta = (z_c - h) / Ds`, `Ds ~ w^(2/3) E*^(-2/3)` and
-    /// `kbar = k Ds / Fs ~ w^(-1/3) E*^(-2/3)`; along the branch `dP/dDelta = P'/g` and
+    /// `F = Fs P(Delta, kbar)` with `Delta = (z_c - h) / Ds` and `kbar = k Ds / Fs`, the units
+    /// moving with E* and w as [`Geometry::log_slopes`] says (the sphere's `Fs ~ w`,
+    /// `Ds ~ w^(2/3) E*^(-2/3)`, `kbar ~ w^(-1/3) E*^(-2/3)`); along the branch `dP/dDelta = P'/g` and
     /// `dP/dkbar = P' P / (kbar^2 g)`, with `g = dDelta/dt = D' + P'/kbar`. Points on the free
     /// piece, or held at the end of their stretch (where the data put them past the model's
     /// jump), move with the offset only: for held points an approximation, which the iteration

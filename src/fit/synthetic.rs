@@ -107,6 +107,12 @@ fn made(s: &Synthetic, meniscus: Option<(f64, f64)>, tip: Geometry) -> Result<Cu
             s.noise
         ));
     }
+    if !tip.fits(s.model) {
+        return Err(format!(
+            "a tip has no {} law: give hertz, jkr or md (a tip's DMT-type force needs the range)",
+            s.model.name()
+        ));
+    }
     if s.model.has_lambda() && !tip.admits_lambda(p.lambda) {
         return Err(out_of_domain(p.lambda));
     }

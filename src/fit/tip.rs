@@ -133,7 +133,8 @@ impl Geometry {
 
     /// The law of `model` at `lambda` on this tip, in the units `u`: the sphere's models, or the
     /// tip's Maugis-Dugdale law and its closed forms (Sneddon's punch for Hertz, the JKR-type
-    /// law; a tip's ladder has no DMT, [`Geometry::ladder`]).
+    /// law). A tip has no DMT-type and no two-zone law ([`Geometry::fits`]: the options and
+    /// the synthetic curves refuse them first); asked for one, this is its Maugis-Dugdale law.
     pub fn law(&self, model: Model, lambda: f64, u: &Units) -> ContactLaw {
         match self.shape(u) {
             None => model.law(lambda),
@@ -142,9 +143,17 @@ impl Geometry {
                     shape,
                     adhesive: model == Model::Jkr,
                 }),
-                _ => ContactLaw::Tip(Tip { shape, lambda }),
+                Model::Md | Model::Dmt | Model::SolidAndMeniscus => {
+                    debug_assert!(self.fits(model), "{model:?} on a tip");
+                    ContactLaw::Tip(Tip { shape, lambda })
+                }
             },
         }
+    }
+
+    /// Whether the tip has `model`: the sphere every one, a tip its ladder and Maugis-Dugdale.
+    pub fn fits(&self, model: Model) -> bool {
+        self.is_sphere() || model == Model::Md || self.ladder().contains(&model)
     }
 
     /// The closed forms fitted before Maugis-Dugdale, from the simplest. Beyond the paraboloid
@@ -187,7 +196,8 @@ impl Geometry {
     /// How ln E* and ln w move the force unit, the approach unit and kbar (each a
     /// `(dln force, dln d, dln kbar)`): with `s = ln w - ln E*`, `ln l = s/(2n - 1)`,
     /// `ln d = n ln l`, `ln force = ln w + (2 - n) ln l`, `ln kbar = (2n - 2) ln l - ln w` (the
-    /// sphere's n = 2).
+    /// sphere's n = 2). A capped cone's are its cap's units' only: its law moves with E* and w
+    /// too (`rho = R / l`), so its Jacobian is taken by differences ([`Geometry::scales`]).
     pub fn log_slopes(&self) -> [(f64, f64, f64); 2] {
         match *self {
             Geometry::Power { n, .. } => {

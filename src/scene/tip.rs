@@ -221,7 +221,12 @@ fn under_control(
             if !(*k > 0.0 && kbar.is_finite()) {
                 return Err(refused(*k));
             }
-            let cyc = crate::cycle::run(law, Drive::Spring(kbar), 1.0).map_err(|_| refused(*k))?;
+            let cyc = crate::cycle::run(law, Drive::Spring(kbar), 1.0).map_err(|e| {
+                ParamError::Conflict(format!(
+                    "control.cantilever_n_m = {}: the tip's cycle under kbar = {kbar:.4e} was not solved ({e})",
+                    crate::physics::domain::short(*k)
+                ))
+            })?;
             let out = cyc
                 .jumps
                 .iter()

@@ -159,3 +159,71 @@ fn a_cones_curve_fits_with_the_cone_and_a_sphere_is_flagged() {
         rs.warnings
     );
 }
+
+/// With the Lennard-Jones range fixed (`z0`), a cone's noise-free Maugis-Dugdale curve gives back
+/// E*, w and lambda to 1e-6 (the fit starts from the JKR-type law: Sneddon's punch has no
+/// pull-off to start w from); a curve without adhesion is refused in one line. A spherical tip
+/// is the sphere's fit, key for key.
+#[test]
+fn a_tip_with_a_fixed_range_and_a_spherical_tip() {
+    let tip = cone();
+    let g = Geometry::of(&tip).unwrap();
+    let z0 = g.z0_from_lambda(1e6, 0.02, 1.0);
+    let (s, opt) = case(&tip, Model::Md, 1e6, 1.0, 0.5, 0.0, 200);
+    let opt = FitOptions {
+        z0: Some(z0),
+        ..opt
+    };
+    let r = fit_curve(&try_synthetic_on(&s, g).unwrap(), &opt);
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    assert!(
+        rel(r.e_star_pa.unwrap(), 1e6) < 1e-6
+            && rel(r.work_of_adhesion_j_m2.unwrap(), 0.02) < 1e-6
+            && rel(r.lambda.unwrap(), 1.0) < 1e-6,
+        "{:?} {:?} {:?}",
+        r.e_star_pa,
+        r.work_of_adhesion_j_m2,
+        r.lambda
+    );
+    // Without adhesion the range puts lambda below the tip's domain (1e-3): refused in one
+    // line with the numbers it read, not a NaN.
+    let (s, _) = case(&tip, Model::Hertz, 1e6, 1.0, 0.5, 0.0, 200);
+    let r = fit_curve(&try_synthetic_on(&s, g).unwrap(), &opt);
+    assert_eq!(r.status, FitStatus::InvalidInput, "{}", r.message);
+    assert!(
+        r.message.contains("outside the models' domain 1e-3..1e3")
+            && !r.message.contains("NaN")
+            && !r.message.contains("inf "),
+        "{}",
+        r.message
+    );
+    // A tip's DMT-type curve is refused (its force needs the range).
+    let (s, _) = case(&tip, Model::Dmt, 1e6, 1.0, 0.5, 0.0, 200);
+    assert!(try_synthetic_on(&s, g).unwrap_err().contains("no dmt law"));
+    // A sphere given as a tip (or a power law of exponent 2) is fitted as the sphere.
+    let (s, _) = case(&tip, Model::Md, 1e6, 1.0, 0.5, 0.0, 200);
+    let c = try_synthetic_on(&s, g).unwrap();
+    let by_radius = FitOptions {
+        radius: 2e-8,
+        spring: 0.5,
+        ..FitOptions::default()
+    };
+    for as_tip in [
+        TipInput::Sphere { radius_m: 2e-8 },
+        TipInput::Power {
+            exponent: 2.0,
+            coefficient: 0.5 / 2e-8,
+        },
+    ] {
+        let o = FitOptions {
+            radius: f64::NAN,
+            tip: Some(as_tip),
+            ..by_radius.clone()
+        }
+        .sphere_as_radius();
+        assert_eq!(
+            serde_json::to_string(&fit_curve(&c, &o)).unwrap(),
+            serde_json::to_string(&fit_curve(&c, &by_radius)).unwrap()
+        );
+    }
+}
