@@ -316,16 +316,9 @@ pub fn profile_intervals(
         .iter()
         .map(|l| matches!(l, Some([Some(_), Some(_)])))
         .collect();
+    let tip = opt.geometry();
     let quantity = |q: usize, k: usize| {
-        quantity_interval(
-            &pts,
-            &determined,
-            q,
-            k,
-            s2,
-            (f_scale, z_scale),
-            opt.geometry(),
-        )
+        quantity_interval(&pts, &determined, q, k, s2, (f_scale, z_scale), tip)
     };
     let mut out = Intervals {
         extra_fits: extra,
@@ -358,11 +351,7 @@ pub fn profile_intervals(
     for b in &basins {
         for (k, level) in LEVELS.iter().enumerate() {
             if b.0.delta_chi2 <= *level || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
-                let z0 = opt.geometry().z0_from_lambda(
-                    b.1.e_star_pa,
-                    b.1.work_of_adhesion_j_m2,
-                    b.0.lambda,
-                );
+                let z0 = tip.z0_from_lambda(b.1.e_star_pa, b.1.work_of_adhesion_j_m2, b.0.lambda);
                 for (q, v) in [
                     (&mut out.e_star_pa[k], b.1.e_star_pa),
                     (&mut out.work_of_adhesion_j_m2[k], b.1.work_of_adhesion_j_m2),

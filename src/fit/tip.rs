@@ -273,24 +273,6 @@ impl Geometry {
             }
         }
     }
-
-    /// The tip in words (a fit's text output).
-    pub fn describe(&self) -> String {
-        match *self {
-            Geometry::Sphere(r) => format!("a sphere of radius {r:e} m"),
-            Geometry::Power { n: 1.0, kb } => format!(
-                "a cone of half-angle {:.4} degrees",
-                (k_n(1.0) / kb).atan().to_degrees()
-            ),
-            Geometry::Power { n, kb } => {
-                format!("the power law f = B r^{n} (B = {:e} m^(1-n))", kb / k_n(n))
-            }
-            Geometry::CappedCone { radius, half_angle } => format!(
-                "a spherical cap of radius {radius:e} m joined to a cone of half-angle {} degrees",
-                half_angle.to_degrees()
-            ),
-        }
-    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,6 @@
 //! cone), so it has Maugis-Dugdale's parameters and is no simpler model.
 
 use super::{Law, LawKey, Piece, Pt, A_START};
-use crate::numeric::root::bisect_sign;
 use crate::physics::model::ContactModel;
 use crate::physics::tip::Shape;
 use serde::Serialize;
@@ -23,19 +22,6 @@ pub struct TipClosed {
     pub shape: Shape,
     /// JKR-type (true) or adhesion-free (false).
     pub adhesive: bool,
-}
-
-impl TipClosed {
-    /// The JKR-type law's contact radius at its load-controlled pull-off: where
-    /// `dPbar/dA = (3/2)(A Fbar'(A) - sqrt(6 A))` turns positive.
-    fn critical_radius(&self) -> f64 {
-        let slope = |a: f64| self.shape.abel(a).1 * a - (6.0 * a).sqrt();
-        let mut hi = 1.0;
-        while slope(hi) < 0.0 && hi < 1e150 {
-            hi *= 2.0;
-        }
-        bisect_sign(slope, 0.0, hi)
-    }
 }
 
 impl Law for TipClosed {
@@ -97,7 +83,7 @@ impl Law for TipClosed {
         if !self.adhesive {
             return 0.0;
         }
-        let a = self.critical_radius();
+        let a = self.shape.jkr_pulloff_radius();
         -self.state(Piece::Contact, a.ln()).load
     }
     fn key(&self) -> LawKey {

@@ -424,6 +424,17 @@ impl Shape {
         PI * lambda / 2.0 * c0 * c0
     }
 
+    /// The JKR-type law's contact radius at its load-controlled pull-off: where its slope
+    /// `(3/2)(A Fbar'(A) - sqrt(6 A))` turns positive (bisection).
+    pub fn jkr_pulloff_radius(&self) -> f64 {
+        let slope = |a: f64| self.abel(a).1 * a - (6.0 * a).sqrt();
+        let mut hi = 1.0;
+        while slope(hi) < 0.0 && hi < 1e150 {
+            hi *= 2.0;
+        }
+        crate::numeric::root::bisect_sign(slope, 0.0, hi)
+    }
+
     /// The closed forms' radii at load `p` for the shape: Sneddon's punch, the DMT-type (the
     /// punch under `p` plus the rigid tip's force `f0`) and the JKR-type on its stable side
     /// (NaN where the form has no contact).
@@ -440,15 +451,9 @@ impl Shape {
         } else {
             f64::NAN
         };
-        // JKR-type: Qbar(A) - sqrt(6 A^3), stable where its slope (3/2) A Fbar'(A) - (3/2) sqrt(6 A)
-        // is positive; its minimum by bisection on that slope.
+        // JKR-type: Qbar(A) - sqrt(6 A^3), stable from its load-controlled pull-off up.
         let jkr_load = |a: f64| q(a) - (6.0 * a * a * a).sqrt();
-        let slope = |a: f64| shape.abel(a).1 * a - (6.0 * a).sqrt();
-        let mut hi = 1.0;
-        while slope(hi) < 0.0 && hi < 1e150 {
-            hi *= 2.0;
-        }
-        let a_c = crate::numeric::root::bisect_sign(slope, 0.0, hi);
+        let a_c = shape.jkr_pulloff_radius();
         let jkr = if p >= jkr_load(a_c) {
             rising_root(jkr_load, p, a_c)
         } else {

@@ -3,6 +3,7 @@
 //! spring, fitted back with the tip; a sphere fitted to a cone's curve is shown not to describe
 //! it.
 
+use crate::common::rel;
 use rayon::prelude::*;
 use tabor::fit::synthetic::{try_synthetic_on, Synthetic};
 use tabor::fit::{fit_curve, FitOptions, FitStatus, Geometry, Model, Params};
@@ -41,10 +42,6 @@ fn case(
         ..FitOptions::default()
     };
     (s, opt)
-}
-
-fn rel(x: f64, t: f64) -> f64 {
-    (x / t - 1.0).abs()
 }
 
 fn cone() -> TipInput {
