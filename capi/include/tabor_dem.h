@@ -20,17 +20,19 @@
 #include <stdlib.h>
 
 /**
- * History byte: apart, out of the force's reach (also the value for a new contact).
+ * History byte of a new contact, and branch code: apart, out of the force's reach. A history
+ * byte names the stretch of the law's path a contact is on (the law's own numbering, 0 free);
+ * `tabor_dem_law_branch` gives its kind.
  */
 #define TABOR_DEM_FREE 0
 
 /**
- * History byte: joined across a gap by the cohesive zone alone.
+ * Branch code: joined across a gap by a cohesive zone (the solid's, or the meniscus) alone.
  */
 #define TABOR_DEM_NON_CONTACT 1
 
 /**
- * History byte: in contact.
+ * Branch code: in contact.
  */
 #define TABOR_DEM_CONTACT 2
 
@@ -101,6 +103,16 @@ typedef struct TaborDemPair {
    * The largest overlap the table covers (m); beyond it an evaluation says so.
    */
   double overlap_max_m;
+  /**
+   * The relative humidity (0..1) of the air around the pair: above 0, a water meniscus (the
+   * Kelvin equation, water at 25 C) joins the solid's adhesion; 0 for a dry pair.
+   */
+  double relative_humidity;
+  /**
+   * Water's contact angle on the bodies (degrees, below 90 for a meniscus); used where
+   * `relative_humidity` is above 0.
+   */
+  double contact_angle_deg;
 } TaborDemPair;
 
 /**
@@ -120,7 +132,8 @@ typedef struct TaborDemInfo {
    */
   double reduced_modulus_pa;
   /**
-   * The overlap where the attraction starts on the approach (m, negative: a gap of h0).
+   * The overlap where the attraction starts on the approach (m, negative: a gap of h0, or the
+   * meniscus's height).
    */
   double attraction_from_m;
   /**
@@ -136,8 +149,8 @@ typedef struct TaborDemInfo {
    */
   double jump_out_force_n;
   /**
-   * The end of the non-contact branch on the retract (m); NaN where there is none (lambda
-   * above about 0.938: the pair comes free at the jump-out).
+   * Where the retract, after leaving contact across the gap, comes free (m); NaN where it
+   * comes free at the jump-out (dry, lambda above about 0.938).
    */
   double non_contact_end_m;
   /**
@@ -156,6 +169,19 @@ typedef struct TaborDemInfo {
    * The largest overlap of the table (m).
    */
   double overlap_max_m;
+  /**
+   * The meniscus's work of adhesion, 2 gamma cos(theta) (J/m^2); 0 for a dry pair (forces
+   * and energies above include it).
+   */
+  double meniscus_work_j_m2;
+  /**
+   * The meniscus's height, the largest gap it bridges (m); 0 for a dry pair.
+   */
+  double meniscus_range_m;
+  /**
+   * The number of history values: every history byte of this law is below it.
+   */
+  uint32_t histories;
 } TaborDemInfo;
 
 #ifdef __cplusplus
@@ -180,8 +206,8 @@ struct TaborDemLaw *tabor_dem_law_new(const struct TaborDemPair *pair,
  * positive interpenetrating) for a contact whose history byte is `*history` (updated: start a
  * new contact with `TABOR_DEM_FREE`). Returns `TABOR_DEM_OK`, `TABOR_DEM_BEYOND_TABLE`
  * (written, extrapolated) or `TABOR_DEM_INVALID` (nothing written). The stiffness is infinite
- * at the jump-out fold itself, where the contact branch is vertical. No allocation; safe from
- * any number of threads on one law.
+ * at the jump-out fold itself, where the contact branch is vertical (and large next to any
+ * fold). No allocation; safe from any number of threads on one law.
  *
  * # Safety
  * `law` is NULL or a law from `tabor_dem_law_new` not yet freed; the other pointers are NULL or
@@ -192,6 +218,15 @@ int32_t tabor_dem_law_eval(const struct TaborDemLaw *law,
                            uint8_t *history,
                            double *force_n,
                            double *stiffness_n_m);
+
+/**
+ * The branch a history byte is on: `TABOR_DEM_FREE`, `TABOR_DEM_NON_CONTACT` or
+ * `TABOR_DEM_CONTACT`; `TABOR_DEM_INVALID` for a NULL law or a byte that is no history of it.
+ *
+ * # Safety
+ * `law` is NULL or a live law.
+ */
+int32_t tabor_dem_law_branch(const struct TaborDemLaw *law, uint8_t history);
 
 /**
  * Copies the law's description into `*info`. Returns `TABOR_DEM_OK` or `TABOR_DEM_INVALID`.

@@ -1,6 +1,6 @@
 //! The C ABI of tabor's Maugis-Dugdale force-overlap law for particle (DEM) codes
-//! ([`tabor::dem`]): build a law for a pair of materials, evaluate it per contact with that
-//! contact's history byte, free it. The header is `capi/include/tabor_dem.h`, generated from this
+//! ([`tabor::dem`]), dry or with a water meniscus: build a law for a pair of materials, evaluate
+//! it per contact with that contact's history byte, free it. The header is `capi/include/tabor_dem.h`, generated from this
 //! file by cbindgen (`cargo run -p tabor-capi-header`, which `cargo test -p tabor-capi-header`
 //! checks).
 //!
@@ -11,12 +11,15 @@ use std::ffi::c_char;
 
 use tabor::dem::{Branch, Pair};
 use tabor::physics::params::{effective_radius, reduced_modulus, Body, Contact, ForceRange};
+use tabor::scene::humidity::HumidityInput;
 
-/// History byte: apart, out of the force's reach (also the value for a new contact).
+/// History byte of a new contact, and branch code: apart, out of the force's reach. A history
+/// byte names the stretch of the law's path a contact is on (the law's own numbering, 0 free);
+/// `tabor_dem_law_branch` gives its kind.
 pub const TABOR_DEM_FREE: u8 = 0;
-/// History byte: joined across a gap by the cohesive zone alone.
+/// Branch code: joined across a gap by a cohesive zone (the solid's, or the meniscus) alone.
 pub const TABOR_DEM_NON_CONTACT: u8 = 1;
-/// History byte: in contact.
+/// Branch code: in contact.
 pub const TABOR_DEM_CONTACT: u8 = 2;
 
 /// Return code: the force and stiffness were written.
@@ -53,6 +56,12 @@ pub struct TaborDemPair {
     pub lj_range_m: f64,
     /// The largest overlap the table covers (m); beyond it an evaluation says so.
     pub overlap_max_m: f64,
+    /// The relative humidity (0..1) of the air around the pair: above 0, a water meniscus (the
+    /// Kelvin equation, water at 25 C) joins the solid's adhesion; 0 for a dry pair.
+    pub relative_humidity: f64,
+    /// Water's contact angle on the bodies (degrees, below 90 for a meniscus); used where
+    /// `relative_humidity` is above 0.
+    pub contact_angle_deg: f64,
 }
 
 /// What a law is: its Maugis parameter, its jumps and folds, its scales and its table.
@@ -65,7 +74,8 @@ pub struct TaborDemInfo {
     pub radius_m: f64,
     /// The reduced modulus E* (Pa).
     pub reduced_modulus_pa: f64,
-    /// The overlap where the attraction starts on the approach (m, negative: a gap of h0).
+    /// The overlap where the attraction starts on the approach (m, negative: a gap of h0, or the
+    /// meniscus's height).
     pub attraction_from_m: f64,
     /// The overlap where the approach enters contact (m).
     pub jump_in_m: f64,
@@ -73,8 +83,8 @@ pub struct TaborDemInfo {
     pub jump_out_m: f64,
     /// The force there (N).
     pub jump_out_force_n: f64,
-    /// The end of the non-contact branch on the retract (m); NaN where there is none (lambda
-    /// above about 0.938: the pair comes free at the jump-out).
+    /// Where the retract, after leaving contact across the gap, comes free (m); NaN where it
+    /// comes free at the jump-out (dry, lambda above about 0.938).
     pub non_contact_end_m: f64,
     /// The pull-off force under load control (N, negative).
     pub pulloff_force_n: f64,
@@ -84,6 +94,13 @@ pub struct TaborDemInfo {
     pub table_error: f64,
     /// The largest overlap of the table (m).
     pub overlap_max_m: f64,
+    /// The meniscus's work of adhesion, 2 gamma cos(theta) (J/m^2); 0 for a dry pair (forces
+    /// and energies above include it).
+    pub meniscus_work_j_m2: f64,
+    /// The meniscus's height, the largest gap it bridges (m); 0 for a dry pair.
+    pub meniscus_range_m: f64,
+    /// The number of history values: every history byte of this law is below it.
+    pub histories: u32,
 }
 
 /// A law for one pair of materials (opaque).
@@ -114,14 +131,23 @@ fn contact_of(p: &TaborDemPair) -> Result<Contact, String> {
 }
 
 fn build(p: &TaborDemPair) -> Result<TaborDemLaw, String> {
-    let pair = Pair::new(contact_of(p)?, p.overlap_max_m).map_err(|e| e.to_string())?;
+    let contact = contact_of(p)?;
+    let meniscus = if p.relative_humidity == 0.0 {
+        None
+    } else {
+        HumidityInput::water(p.relative_humidity, p.contact_angle_deg)
+            .meniscus(&contact)
+            .map_err(|e| e.to_string())?
+    };
+    let pair =
+        Pair::with_meniscus(contact, meniscus, Some(p.overlap_max_m)).map_err(|e| e.to_string())?;
     let (f, l) = (pair.force_scale, pair.length_scale);
     let law = &pair.law;
     let info = TaborDemInfo {
         lambda: law.lambda,
         radius_m: pair.contact.radius,
         reduced_modulus_pa: pair.contact.e_star,
-        attraction_from_m: -law.h0 * l,
+        attraction_from_m: law.attraction_from * l,
         jump_in_m: law.delta_in * l,
         jump_out_m: law.delta_out * l,
         jump_out_force_n: law.disp_pulloff * f,
@@ -130,6 +156,9 @@ fn build(p: &TaborDemPair) -> Result<TaborDemLaw, String> {
         loop_energy_j: pair.loop_energy_j(p.overlap_max_m).unwrap_or(f64::NAN),
         table_error: law.error,
         overlap_max_m: law.overlap_max * l,
+        meniscus_work_j_m2: meniscus.map_or(0.0, |m| m.work_of_adhesion_j_m2),
+        meniscus_range_m: meniscus.map_or(0.0, |m| m.range_m),
+        histories: law.stretch_count() as u32,
     };
     Ok(TaborDemLaw { pair, info })
 }
@@ -183,8 +212,8 @@ pub unsafe extern "C" fn tabor_dem_law_new(
 /// positive interpenetrating) for a contact whose history byte is `*history` (updated: start a
 /// new contact with `TABOR_DEM_FREE`). Returns `TABOR_DEM_OK`, `TABOR_DEM_BEYOND_TABLE`
 /// (written, extrapolated) or `TABOR_DEM_INVALID` (nothing written). The stiffness is infinite
-/// at the jump-out fold itself, where the contact branch is vertical. No allocation; safe from
-/// any number of threads on one law.
+/// at the jump-out fold itself, where the contact branch is vertical (and large next to any
+/// fold). No allocation; safe from any number of threads on one law.
 ///
 /// # Safety
 /// `law` is NULL or a law from `tabor_dem_law_new` not yet freed; the other pointers are NULL or
@@ -202,14 +231,14 @@ pub unsafe extern "C" fn tabor_dem_law_eval(
     }
     // SAFETY: non-null and valid by the caller's promise.
     let (law, h) = unsafe { (&*law, &mut *history) };
-    let Some(mut branch) = Branch::from_code(*h) else {
+    let Some(mut hist) = law.pair.law.history(*h) else {
         return TABOR_DEM_INVALID;
     };
     if overlap_m.is_nan() {
         return TABOR_DEM_INVALID;
     }
-    let e = law.pair.eval(overlap_m, &mut branch);
-    *h = branch as u8;
+    let e = law.pair.eval(overlap_m, &mut hist);
+    *h = hist.code();
     // SAFETY: as above.
     unsafe {
         *force_n = e.force_n;
@@ -219,6 +248,31 @@ pub unsafe extern "C" fn tabor_dem_law_eval(
         TABOR_DEM_BEYOND_TABLE
     } else {
         TABOR_DEM_OK
+    }
+}
+
+/// The branch a history byte is on: `TABOR_DEM_FREE`, `TABOR_DEM_NON_CONTACT` or
+/// `TABOR_DEM_CONTACT`; `TABOR_DEM_INVALID` for a NULL law or a byte that is no history of it.
+///
+/// # Safety
+/// `law` is NULL or a live law.
+#[no_mangle]
+pub unsafe extern "C" fn tabor_dem_law_branch(law: *const TaborDemLaw, history: u8) -> i32 {
+    if law.is_null() {
+        return TABOR_DEM_INVALID;
+    }
+    // SAFETY: non-null and valid by the caller's promise.
+    let law = unsafe { &*law };
+    match law
+        .pair
+        .law
+        .history(history)
+        .map(|h| law.pair.law.branch(h))
+    {
+        Some(Branch::Free) => TABOR_DEM_FREE as i32,
+        Some(Branch::NonContact) => TABOR_DEM_NON_CONTACT as i32,
+        Some(Branch::Contact) => TABOR_DEM_CONTACT as i32,
+        None => TABOR_DEM_INVALID,
     }
 }
 

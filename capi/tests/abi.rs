@@ -2,7 +2,7 @@
 //! (examples/c/collision.c) compiled and run against the shared library.
 
 use std::ptr::{null, null_mut};
-use tabor::dem::{Branch, Pair};
+use tabor::dem::{History, Pair};
 use tabor_dem::*;
 
 fn pair() -> TaborDemPair {
@@ -17,6 +17,8 @@ fn pair() -> TaborDemPair {
         dugdale_stress_pa: 0.0,
         lj_range_m: 0.3e-9,
         overlap_max_m: 2e-6,
+        relative_humidity: 0.0,
+        contact_angle_deg: 0.0,
     }
 }
 
@@ -38,7 +40,7 @@ fn the_abi_evaluates_the_library_law_and_refuses_bad_input() {
         .unwrap();
         let lib = Pair::new(c, 2e-6).unwrap();
         assert_eq!(info.lambda, lib.law.lambda);
-        let (mut h, mut hb) = (TABOR_DEM_FREE, Branch::Free);
+        let (mut h, mut hb) = (TABOR_DEM_FREE, History::NEW);
         let (mut f, mut k) = (0.0, 0.0);
         for i in 0..=400 {
             // Approach to 40 nm, then back out to -10 nm.
@@ -53,15 +55,18 @@ fn the_abi_evaluates_the_library_law_and_refuses_bad_input() {
                 TABOR_DEM_OK
             );
             let e = lib.eval(d, &mut hb);
-            assert_eq!(
-                (f, k, h),
-                (e.force_n, e.stiffness_n_m, e.branch as u8),
-                "at {d}"
-            );
+            assert_eq!((f, k, h), (e.force_n, e.stiffness_n_m, hb.code()), "at {d}");
+            assert_eq!(tabor_dem_law_branch(law, h), e.branch as i32, "at {d}");
         }
         assert_eq!(h, TABOR_DEM_FREE);
+        assert_eq!(
+            tabor_dem_law_branch(law, info.histories as u8),
+            TABOR_DEM_INVALID
+        );
+        assert_eq!(tabor_dem_law_branch(null(), 0), TABOR_DEM_INVALID);
         // Beyond the table: written and flagged.
-        h = TABOR_DEM_CONTACT;
+        h = info.histories as u8 - 1;
+        assert_eq!(tabor_dem_law_branch(law, h), TABOR_DEM_CONTACT as i32);
         assert_eq!(
             tabor_dem_law_eval(law, 3e-6, &mut h, &mut f, &mut k),
             TABOR_DEM_BEYOND_TABLE
@@ -111,6 +116,70 @@ fn the_abi_evaluates_the_library_law_and_refuses_bad_input() {
     }
 }
 
+/// With a relative humidity the ABI's law is the library's pair with the Kelvin meniscus of
+/// water, and the meniscus widens the loop.
+#[test]
+fn a_humid_pair_is_the_library_pair_with_its_meniscus() {
+    unsafe {
+        let mut p = pair();
+        p.relative_humidity = 0.5;
+        p.contact_angle_deg = 20.0;
+        let mut err = [0 as std::ffi::c_char; 300];
+        let law = tabor_dem_law_new(&p, err.as_mut_ptr(), err.len());
+        assert!(
+            !law.is_null(),
+            "{}",
+            std::ffi::CStr::from_ptr(err.as_ptr()).to_string_lossy()
+        );
+        let mut info = TaborDemInfo::default();
+        assert_eq!(tabor_dem_law_info(law, &mut info), TABOR_DEM_OK);
+        let c = tabor::physics::params::Contact::new(
+            5e-6,
+            info.reduced_modulus_pa,
+            0.1,
+            tabor::physics::params::ForceRange::LennardJones(0.3e-9),
+        )
+        .unwrap();
+        let m = tabor::scene::humidity::HumidityInput::water(0.5, 20.0)
+            .meniscus(&c)
+            .unwrap()
+            .unwrap();
+        assert_eq!(info.meniscus_work_j_m2, m.work_of_adhesion_j_m2);
+        assert_eq!(info.meniscus_range_m, m.range_m);
+        let lib = Pair::with_meniscus(c, Some(m), Some(2e-6)).unwrap();
+        let (mut h, mut hb) = (TABOR_DEM_FREE, History::NEW);
+        let (mut f, mut k) = (0.0, 0.0);
+        for i in 0..=400 {
+            let t = i as f64 / 200.0;
+            let d = if t <= 1.0 {
+                -10e-9 + 50e-9 * t
+            } else {
+                40e-9 - 50e-9 * (t - 1.0)
+            };
+            assert_eq!(
+                tabor_dem_law_eval(law, d, &mut h, &mut f, &mut k),
+                TABOR_DEM_OK
+            );
+            let e = lib.eval(d, &mut hb);
+            assert_eq!((f, k, h), (e.force_n, e.stiffness_n_m, hb.code()), "at {d}");
+        }
+        // The meniscus reaches across a wider gap and pulls harder: a larger loop than dry.
+        let dry = tabor_dem_law_new(&pair(), null_mut(), 0);
+        let mut dry_info = TaborDemInfo::default();
+        assert_eq!(tabor_dem_law_info(dry, &mut dry_info), TABOR_DEM_OK);
+        assert!(info.attraction_from_m < dry_info.attraction_from_m);
+        assert!(info.loop_energy_j > dry_info.loop_energy_j);
+        assert_eq!(dry_info.meniscus_work_j_m2, 0.0);
+        // A humidity out of range is refused with its value.
+        p.relative_humidity = 1.5;
+        assert!(tabor_dem_law_new(&p, err.as_mut_ptr(), err.len()).is_null());
+        let msg = std::ffi::CStr::from_ptr(err.as_ptr()).to_string_lossy();
+        assert!(msg.contains("1.5"), "{msg}");
+        tabor_dem_law_free(law);
+        tabor_dem_law_free(dry);
+    }
+}
+
 /// examples/c/collision.c, compiled against the shared library (built by
 /// `cargo build --release -p tabor-capi`, as tests/run_all.sh does first) and run: every
 /// collision that separates loses the loop energy, slower ones stick.
@@ -148,37 +217,49 @@ fn the_c_example_loses_the_loop_energy_per_collision() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let run = std::process::Command::new(&exe)
-        .env("LD_LIBRARY_PATH", &lib_dir)
-        .env("DYLD_LIBRARY_PATH", &lib_dir)
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&run.stdout).into_owned();
-    assert!(
-        run.status.success(),
-        "{text}{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
-    println!("{text}");
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .skip_while(|l| !l.starts_with("v0_m_s"))
-        .skip(1)
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
-    assert_eq!(rows.len(), 10);
-    let mut last_e = 0.0;
-    for r in &rows {
-        let (e, lost, loop_e) = (r[1], r[2], r[3]);
-        if e > 0.0 {
-            assert!((lost - loop_e).abs() <= 1e-3 * loop_e, "{r:?}");
-            assert!(e > last_e, "{r:?}");
-            last_e = e;
-        } else {
-            assert_eq!(last_e, 0.0, "stuck after a bounce: {r:?}");
+    // Dry, and in air of 50% relative humidity.
+    for args in [&[][..], &["0.5"][..]] {
+        let run = std::process::Command::new(&exe)
+            .args(args)
+            .env("LD_LIBRARY_PATH", &lib_dir)
+            .env("DYLD_LIBRARY_PATH", &lib_dir)
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&run.stdout).into_owned();
+        assert!(
+            run.status.success(),
+            "{text}{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        println!("{text}");
+        assert_eq!(
+            text.contains("meniscus at RH 0.5"),
+            !args.is_empty(),
+            "{text}"
+        );
+        let rows: Vec<Vec<f64>> = text
+            .lines()
+            .skip_while(|l| !l.starts_with("v0_m_s"))
+            .skip(1)
+            .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 10);
+        let mut last_e = 0.0;
+        for r in &rows {
+            let (e, lost, loop_e) = (r[1], r[2], r[3]);
+            if e > 0.0 {
+                assert!((lost - loop_e).abs() <= 1e-3 * loop_e, "{args:?}: {r:?}");
+                assert!(e > last_e, "{args:?}: {r:?}");
+                last_e = e;
+            } else {
+                assert_eq!(last_e, 0.0, "stuck after a bounce: {args:?}: {r:?}");
+            }
         }
+        // The first three impacts are below the loop's sticking velocity (0.5, 0.9, 0.99 of
+        // it), the rest above.
+        assert!(
+            rows[..3].iter().all(|r| r[1] == 0.0) && rows[3..].iter().all(|r| r[1] > 0.0),
+            "{args:?}"
+        );
     }
-    // The first three impacts are below the loop's sticking velocity (0.5, 0.9, 0.99 of it),
-    // the rest above.
-    assert!(rows[..3].iter().all(|r| r[1] == 0.0) && rows[3..].iter().all(|r| r[1] > 0.0));
 }

@@ -6,14 +6,17 @@
  *
  * Build and run (after `cargo build --release -p tabor-capi`):
  *   cc examples/c/collision.c -Icapi/include -Ltarget/release -ltabor_dem -lm -o collision
- *   LD_LIBRARY_PATH=target/release ./collision
+ *   LD_LIBRARY_PATH=target/release ./collision        (dry)
+ *   LD_LIBRARY_PATH=target/release ./collision 0.5    (in air of 50% relative humidity)
  *
- * Polystyrene spheres, R = 10 um each (R* = 5 um), E = 3 GPa, nu = 0.35, 1050 kg/m^3, in dry
- * contact: w = 0.1 J/m^2, z0 = 0.3 nm (lambda about 10, near the JKR limit).
+ * Polystyrene spheres, R = 10 um each (R* = 5 um), E = 3 GPa, nu = 0.35, 1050 kg/m^3:
+ * w = 0.1 J/m^2, z0 = 0.3 nm (lambda about 10, near the JKR limit); in humid air a water
+ * meniscus (contact angle 20 degrees) joins the solid's adhesion.
  */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "tabor_dem.h"
 
@@ -44,13 +47,14 @@ static double collide(const TaborDemLaw *law, double m_eff, double v0, double ga
     return 0.0;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     const double radius = 10e-6, density = 1050.0;
+    const double humidity = argc > 1 ? atof(argv[1]) : 0.0;
     TaborDemPair pair = {
         .youngs_modulus1_pa = 3e9, .poisson_ratio1 = 0.35, .radius1_m = radius,
         .youngs_modulus2_pa = 3e9, .poisson_ratio2 = 0.35, .radius2_m = radius,
         .work_of_adhesion_j_m2 = 0.1, .dugdale_stress_pa = 0.0, .lj_range_m = 0.3e-9,
-        .overlap_max_m = 2e-6,
+        .overlap_max_m = 2e-6, .relative_humidity = humidity, .contact_angle_deg = 20.0,
     };
     char error[256];
     TaborDemLaw *law = tabor_dem_law_new(&pair, error, sizeof error);
@@ -71,12 +75,15 @@ int main(void) {
            info.lambda, info.radius_m, info.reduced_modulus_pa, info.pulloff_force_n,
            info.jump_in_m, info.jump_out_m);
     printf("loop energy %.9e J, table error %.3g\n", info.loop_energy_j, info.table_error);
+    if (info.meniscus_work_j_m2 > 0.0)
+        printf("meniscus at RH %.3g: w %.6g J/m^2 over a height of %.6g m\n", humidity,
+               info.meniscus_work_j_m2, info.meniscus_range_m);
 
     /* The sticking velocity: the pair sticks where the kinetic energy is at most the loop. */
     const double v_loop = sqrt(2.0 * info.loop_energy_j / m_eff);
     /* JKR's estimate (contact forming at zero overlap, released at the rigid-grip fold): the
      * loop 1.27494 pi w R* (pi^2 w^2 R* / K^2)^(1/3), i.e. 1.0348 (F_c^5 / (m*^3 R* E*^2))^(1/6)
-     * with F_c = 1.5 pi w R*. */
+     * with F_c = 1.5 pi w R*, for the solid's w alone (a meniscus adds its own loop). */
     const double fc = 1.5 * M_PI * pair.work_of_adhesion_j_m2 * info.radius_m;
     const double v_jkr = 1.0348 * pow(pow(fc, 5) / (pow(m_eff, 3) * info.radius_m *
                                                     pow(info.reduced_modulus_pa, 2)),

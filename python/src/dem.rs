@@ -5,12 +5,14 @@ use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use tabor::dem::{Branch, DemLaw, Pair, DEFAULT_OVERLAP_MAX};
+use tabor::dem::{DemLaw, Pair, DEFAULT_OVERLAP_MAX};
+use tabor::law::ContactLaw;
 
 /// A law, normalised (`lam`) or of a pair in SI units (a scene).
 #[pyclass(name = "DemLaw", module = "tabor._tabor", frozen)]
 pub struct PyDemLaw {
     law: DemLaw,
+    meniscus: Option<tabor::scene::humidity::Meniscus>,
     /// N per unit load and m per approach unit (1 and 1 where normalised).
     force: f64,
     length: f64,
@@ -22,18 +24,27 @@ fn value_error(e: impl std::fmt::Display) -> PyErr {
 }
 
 #[pyfunction]
-#[pyo3(signature = (lam=None, scene_json=None, overlap_max=None))]
+#[pyo3(signature = (lam=None, scene_json=None, overlap_max=None, stress_ratio=None, range_ratio=None))]
 pub fn dem_law(
     lam: Option<f64>,
     scene_json: Option<String>,
     overlap_max: Option<f64>,
+    stress_ratio: Option<f64>,
+    range_ratio: Option<f64>,
 ) -> PyResult<PyDemLaw> {
+    if scene_json.is_some() && (stress_ratio.is_some() || range_ratio.is_some()) {
+        return Err(value_error(
+            "stress_ratio and range_ratio are for a normalised law (lam): a scene gives its meniscus by its humidity",
+        ));
+    }
     match (lam, scene_json) {
         (Some(l), None) => {
-            let law = DemLaw::new(l, overlap_max.unwrap_or(DEFAULT_OVERLAP_MAX))
+            let law = ContactLaw::new(l, stress_ratio, range_ratio).map_err(value_error)?;
+            let law = DemLaw::of_law(law, overlap_max.unwrap_or(DEFAULT_OVERLAP_MAX))
                 .map_err(|e| value_error(format!("lam = {l}: {e}")))?;
             Ok(PyDemLaw {
                 law,
+                meniscus: None,
                 force: 1.0,
                 length: 1.0,
                 si: false,
@@ -46,6 +57,7 @@ pub fn dem_law(
             Ok(PyDemLaw {
                 force: p.force_scale,
                 length: p.length_scale,
+                meniscus: p.meniscus,
                 law: p.law,
                 si: true,
             })
@@ -71,8 +83,23 @@ impl PyDemLaw {
                 "normalised: pi w R, (pi^2 w^2 R / K^2)^(1/3)"
             },
         )?;
+        d.set_item("model", law.law.model().name())?;
         d.set_item("lambda", law.lambda)?;
-        d.set_item("attraction_from", -law.h0 * l)?;
+        if let ContactLaw::SolidAndMeniscus(z) = law.law {
+            d.set_item("stress_ratio", z.stress_ratio)?;
+            d.set_item("range_ratio", z.range_ratio)?;
+        }
+        if let Some(m) = &self.meniscus {
+            let md = PyDict::new(py);
+            md.set_item("kelvin_radius_m", m.kelvin_radius_m)?;
+            md.set_item("laplace_pressure_pa", m.laplace_pressure_pa)?;
+            md.set_item("range_m", m.range_m)?;
+            md.set_item("work_of_adhesion_j_m2", m.work_of_adhesion_j_m2)?;
+            md.set_item("lambda", m.lambda)?;
+            d.set_item("meniscus", md)?;
+        }
+        d.set_item("histories", law.stretch_count())?;
+        d.set_item("attraction_from", law.attraction_from * l)?;
         d.set_item("jump_in", law.delta_in * l)?;
         d.set_item("jump_out", law.delta_out * l)?;
         d.set_item("jump_out_force", law.disp_pulloff * f)?;
@@ -107,21 +134,47 @@ impl PyDemLaw {
                 h.len()
             )));
         }
-        if let Some(i) = h.iter().position(|&c| Branch::from_code(c).is_none()) {
+        let n = self.law.stretch_count();
+        if let Some(i) = h.iter().position(|&c| self.law.history(c).is_none()) {
             return Err(value_error(format!(
-                "history[{i}] = {} is not a history code: 0 (free), 1 (non-contact) or 2 (contact)",
+                "history[{i}] = {} is not a history code of this law: give 0 (apart) for a new contact, or a code the law returned (below {n})",
                 h[i]
             )));
         }
         let (mut f, mut k) = (Vec::with_capacity(x.len()), Vec::with_capacity(x.len()));
         for (d, code) in x.iter().zip(h.iter_mut()) {
-            let mut b = Branch::from_code(*code).unwrap_or_default();
+            let mut b = self.law.history(*code).unwrap_or_default();
             let e = self.law.eval(d / self.length, &mut b);
-            *code = b as u8;
+            *code = b.code();
             f.push(e.load * self.force);
             k.push(e.stiffness * self.force / self.length);
         }
         Ok((f.into_pyarray(py), k.into_pyarray(py)))
+    }
+
+    /// The branch of each history code: 0 free, 1 non-contact, 2 contact.
+    fn branches<'py>(
+        &self,
+        py: Python<'py>,
+        history: PyReadonlyArray1<'py, u8>,
+    ) -> PyResult<Bound<'py, PyArray1<u8>>> {
+        let h = history.as_slice()?;
+        let out = h
+            .iter()
+            .enumerate()
+            .map(|(i, &c)| {
+                self.law
+                    .history(c)
+                    .map(|h| self.law.branch(h) as u8)
+                    .ok_or_else(|| {
+                        value_error(format!(
+                            "history[{i}] = {c} is not a history code of this law (below {})",
+                            self.law.stretch_count()
+                        ))
+                    })
+            })
+            .collect::<PyResult<Vec<u8>>>()?;
+        Ok(out.into_pyarray(py))
     }
 
     /// The pair driven from `overlap_min` to `overlap_max` and back at `points` overlaps each

@@ -1910,43 +1910,54 @@ def rough_map(lambda_min=1e-2, lambda_max=1e3, nx=256, sigma_min=1e-2, sigma_max
     return d
 
 
-def dem_law(lam=None, scene=None, overlap_max=None):
-    """The Maugis-Dugdale force-overlap law for particle (DEM) codes, as ``tabor dem-law`` and
-    the C library ``libtabor_dem`` evaluate it: the approach (attraction across the gap, the
-    jump into contact) and the retract (the contact branch down to its fold under rigid grips,
-    the jump out), each contact carrying its branch as a history code.
+def dem_law(lam=None, scene=None, overlap_max=None, stress_ratio=None, range_ratio=None):
+    """The Maugis-Dugdale force-overlap law for particle (DEM) codes, dry or with a water
+    meniscus, as ``tabor dem-law`` and the C library ``libtabor_dem`` evaluate it: the approach
+    (attraction across the gap, the jump into contact) and the retract (the contact branch down
+    to its fold under rigid grips, the jump out, the meniscus's bridge across the gap), each
+    contact carrying the stretch of the law's path it is on as a history code.
 
     Parameters
     ----------
     lam : float, optional
-        The Maugis parameter of a normalised law: forces in ``pi w R``, overlaps in
+        The (solid's) Maugis parameter of a normalised law: forces in ``pi w R``, overlaps in
         ``(pi^2 w^2 R / K^2)^(1/3)`` (positive interpenetrating). Or:
     scene : dict or str or os.PathLike, optional
         A pair in SI units, a dict or the path of a JSON file with ``tabor scene``'s keys
         (``body1`` and ``body2``, or ``e_star_pa`` and ``radius_m``; ``work_of_adhesion_j_m2``;
-        ``s0_pa``, ``h0_m`` or ``z0_m``): overlaps in m, forces in N.
+        ``s0_pa``, ``h0_m`` or ``z0_m``; ``humidity`` for a water meniscus): overlaps in m,
+        forces in N.
     overlap_max : float, optional
         The largest overlap the table covers (approach units, or m for a scene) [default: 10
         approach units]; beyond it an evaluation extrapolates the last cubic.
+    stress_ratio, range_ratio : float, optional
+        With ``lam``, both or neither: a meniscus beside the solid's zone, its stress and range
+        over the solid's (the two-zone law of :func:`cycle`; loads and overlaps in the units of
+        the total w).
 
     Returns
     -------
     DemLaw
-        ``law.info`` (a dict: ``lambda``, ``attraction_from``, ``jump_in``, ``jump_out``,
-        ``jump_out_force``, ``non_contact_end`` (None above lambda 0.938), ``pulloff_force``,
-        ``loop_energy`` (the energy lost per slow cycle), ``table_error`` (the table's largest
-        measured error relative to max(|pull-off|, |force|)), ``table_nodes``, ``overlap_max``,
-        ``force_scale``, ``length_scale``, ``units``); ``law.eval(overlap, history)`` (float64
-        and uint8 arrays of one length: the forces and stiffnesses dF/d(overlap), the history
-        codes 0 free, 1 non-contact, 2 contact updated in place); ``law.drive(overlap_min,
-        overlap_max, points)`` (the pair driven out and back under displacement control:
-        ``{"approach": {"overlap", "force"}, "retract": {...}}``); ``law.loop_energy(overlap_max)``.
+        ``law.info`` (a dict: ``model``, ``lambda``, ``stress_ratio`` and ``range_ratio`` or
+        ``meniscus`` where there is one, ``histories`` (every history code is below it),
+        ``attraction_from``, ``jump_in``, ``jump_out``, ``jump_out_force``, ``non_contact_end``
+        (where the retract comes free after crossing the gap; None where it comes free at the
+        jump out), ``pulloff_force``, ``loop_energy`` (the energy lost per slow cycle),
+        ``table_error`` (the table's largest measured error relative to max(|pull-off|,
+        |force|)), ``table_nodes``, ``overlap_max``, ``force_scale``, ``length_scale``,
+        ``units``); ``law.eval(overlap, history)`` (float64 and uint8 arrays of one length: the
+        forces and stiffnesses dF/d(overlap), the history codes updated in place: 0 for a new
+        contact, apart); ``law.branches(history)`` (each code's branch: 0 free, 1 non-contact,
+        2 contact); ``law.drive(overlap_min, overlap_max, points)`` (the pair driven out and
+        back under displacement control: ``{"approach": {"overlap", "force"}, "retract":
+        {...}}``); ``law.loop_energy(overlap_max)``.
 
     Raises
     ------
     ValueError
-        neither or both of ``lam`` and ``scene``; a lambda or overlap outside the domain; a
-        scene key the dry law does not use (``humidity``, ``loads_n``, ``control``, ...).
+        neither or both of ``lam`` and ``scene``; a lambda, ratio or overlap outside the
+        domain; one ratio without the other, or ratios with a scene; a scene key the law under
+        displacement control does not use (``loads_n``, ``control``, ...).
     TypeError
         a scene that is not a dict or a path.
 
@@ -1958,11 +1969,14 @@ def dem_law(lam=None, scene=None, overlap_max=None):
     (-0.8337, 1.1918)
     >>> history = np.zeros(3, dtype=np.uint8)          # three new contacts, apart
     >>> f, k = law.eval(np.array([-1.0, 0.0, 1.0]), history)
-    >>> history.tolist(), f.round(4).tolist()
+    >>> law.branches(history).tolist(), f.round(4).tolist()
     ([0, 2, 2], [0.0, -1.3345, -0.1621])
     >>> f, k = law.eval(np.array([-0.5, -0.5, -0.5]), history)   # pulled back: the contacts hold
-    >>> history.tolist(), f.round(4).tolist()
+    >>> law.branches(history).tolist(), f.round(4).tolist()
     ([0, 2, 2], [0.0, -1.4971, -1.4971])
+    >>> wet = tabor.dem_law(1.0, stress_ratio=0.5, range_ratio=3.0)   # with a meniscus
+    >>> round(wet.info["non_contact_end"], 4), round(wet.info["loop_energy"], 4)
+    (-1.0857, 0.1297)
     """
     if (lam is None) == (scene is None):
         raise ValueError("give lam (a normalised law) or scene (a pair in SI units), one of them")
@@ -1975,7 +1989,13 @@ def dem_law(lam=None, scene=None, overlap_max=None):
             text = _scene_text(scene)
         else:
             raise TypeError(f"scene = {scene!r}: give a dict or the path of a JSON file")
-    return _tabor.dem_law(_optional(lam, "lam"), text, _optional(overlap_max, "overlap_max"))
+    return _tabor.dem_law(
+        _optional(lam, "lam"),
+        text,
+        _optional(overlap_max, "overlap_max"),
+        _optional(stress_ratio, "stress_ratio"),
+        _optional(range_ratio, "range_ratio"),
+    )
 
 
 from .fleet import fit_fleet  # noqa: E402 (a fleet of force maps, serially or on Dask)

@@ -259,6 +259,7 @@ class DemLaw:
     def eval(
         self, overlap: npt.NDArray[np.float64], history: npt.NDArray[np.uint8]
     ) -> Tuple[Array, Array]: ...
+    def branches(self, history: npt.NDArray[np.uint8]) -> npt.NDArray[np.uint8]: ...
     def drive(
         self, overlap_min: float, overlap_max: float, points: int
     ) -> Dict[str, Dict[str, Array]]: ...
@@ -268,4 +269,6 @@ def dem_law(
     lam: Optional[float] = None,
     scene: Union[Dict[str, Any], str, PathLike[str], None] = None,
     overlap_max: Optional[float] = None,
+    stress_ratio: Optional[float] = None,
+    range_ratio: Optional[float] = None,
 ) -> DemLaw: ...

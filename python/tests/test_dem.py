@@ -46,9 +46,9 @@ def test_eval_carries_each_contacts_history():
     history = np.zeros(2, dtype=np.uint8)
     d = 0.5 * (info["jump_in"] + info["jump_out"])
     law.eval(np.array([1e-8, d]), history)
-    assert history.tolist() == [2, 0]
+    assert law.branches(history).tolist() == [2, 0]
     f, k = law.eval(np.array([d, d]), history)
-    assert history.tolist() == [2, 0] and f[0] < 0 and f[1] == 0.0
+    assert law.branches(history).tolist() == [2, 0] and f[0] < 0 and f[1] == 0.0
     # Below the jump-out both are free.
     f, _ = law.eval(np.array([2 * info["jump_out"]] * 2), history)
     assert history.tolist() == [0, 0] and f.tolist() == [0.0, 0.0]
@@ -65,8 +65,14 @@ def test_bad_input_is_refused():
         tabor.dem_law()
     with pytest.raises(ValueError, match="one of them"):
         tabor.dem_law(1.0, scene=PAIR)
+    with pytest.raises(ValueError, match="loads_n"):
+        tabor.dem_law(scene={**PAIR, "loads_n": [1e-6]})
+    with pytest.raises(ValueError, match="range_ratio"):
+        tabor.dem_law(1.0, stress_ratio=0.5)
     with pytest.raises(ValueError, match="humidity"):
-        tabor.dem_law(scene={**PAIR, "humidity": {"relative_humidity": 0.5, "contact_angle_deg": 20}})
+        tabor.dem_law(scene=PAIR, stress_ratio=0.5, range_ratio=3.0)
+    with pytest.raises(ValueError, match="relative_humidity"):
+        tabor.dem_law(scene={**PAIR, "humidity": {"relative_humidity": 1.5, "contact_angle_deg": 20}})
     with pytest.raises(ValueError, match="overlap_max"):
         tabor.dem_law(1.0, overlap_max=1e9)
     law = tabor.dem_law(1.0)
@@ -74,5 +80,50 @@ def test_bad_input_is_refused():
         law.eval(np.zeros(2), np.zeros(3, dtype=np.uint8))
     with pytest.raises(ValueError, match=r"history\[1\] = 7"):
         law.eval(np.zeros(2), np.array([0, 7], dtype=np.uint8))
+    with pytest.raises(ValueError, match=r"history\[0\] = 9"):
+        law.branches(np.array([9], dtype=np.uint8))
     with pytest.raises(ValueError, match="points"):
         law.drive(-1.0, 1.0, 1)
+
+
+HUMID = {**PAIR, "humidity": {"relative_humidity": 0.5, "contact_angle_deg": 20}}
+
+
+@pytest.mark.parametrize("how", ["scene", "ratios"])
+def test_a_wet_law_is_the_command_lines_to_the_last_bit(tmp_path, how):
+    if not TABOR.exists():
+        pytest.skip("the tabor binary is not built (cargo build --release)")
+    if how == "scene":
+        path = tmp_path / "pair.json"
+        path.write_text(json.dumps(HUMID))
+        args = ["--scene", str(path), "--overlap-min", "-4e-9", "--overlap-max", "2e-8"]
+        law = tabor.dem_law(scene=path, overlap_max=2e-8)
+        lo, hi, ox, fx = -4e-9, 2e-8, "overlap_m", "force_n"
+    else:
+        args = ["--lambda", "1", "--stress-ratio", "0.5", "--range-ratio", "3",
+                "--overlap-min", "-1.5", "--overlap-max", "3"]
+        law = tabor.dem_law(1.0, overlap_max=3.0, stress_ratio=0.5, range_ratio=3.0)
+        lo, hi, ox, fx = -1.5, 3.0, "overlap", "load"
+    out = subprocess.run([str(TABOR), "dem-law", *args, "--drive", "--points", "300",
+                          "--format", "csv"], capture_output=True, text=True, check=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    cycle = law.drive(lo, hi, 300)
+    for phase in ("approach", "retract"):
+        cli = [r for r in rows if r["phase"] == phase]
+        assert [float(r[ox]) for r in cli] == cycle[phase]["overlap"].tolist()
+        assert [float(r[fx]) for r in cli] == cycle[phase]["force"].tolist()
+    info = law.info
+    assert info["model"] == "solid_and_meniscus" and info["histories"] >= 3
+    if how == "ratios":
+        # The meniscus holds the pair across the gap after the jump out of contact.
+        assert info["non_contact_end"] < info["jump_out"] < info["jump_in"]
+    else:
+        # Stiff spheres: the meniscus pulls them into contact from its reach, and the retract
+        # comes free at the jump out.
+        assert info["jump_in"] == info["attraction_from"] and info["non_contact_end"] is None
+        m = info["meniscus"]
+        dry = tabor.dem_law(scene=PAIR, overlap_max=2e-8).info
+        assert m["range_m"] > 0 and info["attraction_from"] == pytest.approx(-m["range_m"], rel=1e-14)
+        assert info["loop_energy"] > dry["loop_energy"]
+        assert info["force_scale"] == pytest.approx(
+            np.pi * (0.1 + m["work_of_adhesion_j_m2"]) * 5e-6, rel=1e-14)

@@ -2,8 +2,9 @@
 //! over lambda and overlap, a pair's SI law, or a pair driven under displacement control.
 
 use super::Format;
-use crate::dem::{Branch, DemLaw, Eval, Pair, DEFAULT_OVERLAP_MAX};
+use crate::dem::{DemLaw, Eval, History, Pair, DEFAULT_OVERLAP_MAX};
 use crate::io::{fmt17, json_num, write_output};
+use crate::law::ContactLaw;
 use crate::physics::domain::short;
 use clap::Args;
 use serde_json::json;
@@ -19,9 +20,16 @@ pub struct DemLawArgs {
     /// approach units (pi^2 w^2 R / K^2)^(1/3)).
     #[arg(long, value_delimiter = ',', num_args = 1.., required_unless_present = "scene", conflicts_with = "scene")]
     pub lambda: Vec<f64>,
+    /// With --range-ratio: a water meniscus beside the solid's zone, its Dugdale stress over the
+    /// solid's (the two-zone law of `tabor cycle`; loads and overlaps in the units of the total w).
+    #[arg(long, conflicts_with = "scene")]
+    pub stress_ratio: Option<f64>,
+    /// With --stress-ratio: the meniscus's range over the solid's.
+    #[arg(long, conflicts_with = "scene")]
+    pub range_ratio: Option<f64>,
     /// A pair of bodies in SI units: a scene file as `tabor scene` takes it (body1 and body2, or
-    /// e_star_pa and radius_m; work_of_adhesion_j_m2; s0_pa, h0_m or z0_m). Overlaps in m,
-    /// forces in N.
+    /// e_star_pa and radius_m; work_of_adhesion_j_m2; s0_pa, h0_m or z0_m; a humidity for a
+    /// water meniscus). Overlaps in m, forces in N.
     #[arg(long)]
     pub scene: Option<String>,
     /// Drive the pair under displacement control from --overlap-min to --overlap-max and back
@@ -54,6 +62,7 @@ struct Shown {
     /// The pair's force and length scales (N, m); None: normalised.
     pair: Option<(f64, f64)>,
     contact: Option<crate::physics::params::Contact>,
+    meniscus: Option<crate::scene::humidity::Meniscus>,
     lambda_given: f64,
 }
 
@@ -78,6 +87,7 @@ fn pair_of(path: &str, overlap_max_m: Option<f64>) -> anyhow::Result<Shown> {
         lambda_given: pair.law.lambda,
         pair: Some((pair.force_scale, pair.length_scale)),
         contact: Some(pair.contact),
+        meniscus: pair.meniscus,
         law: pair.law,
     })
 }
@@ -92,7 +102,8 @@ fn overlaps(lo: f64, hi: f64, points: usize) -> Vec<f64> {
 /// The law's default smallest overlap: a tenth of the attraction's reach below it.
 fn default_min(law: &DemLaw) -> f64 {
     let lo = law.lowest_overlap();
-    lo - 0.1 * (law.h0 + (lo + law.h0).abs()).max(0.1)
+    let reach = -law.attraction_from;
+    lo - 0.1 * (reach + (lo - law.attraction_from).abs()).max(0.1)
 }
 
 pub fn run(a: DemLawArgs) -> anyhow::Result<()> {
@@ -112,6 +123,7 @@ pub fn run(a: DemLawArgs) -> anyhow::Result<()> {
             }
         }
     }
+    let ratios = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
     let laws: Vec<Shown> = match &a.scene {
         Some(path) => vec![pair_of(path, a.overlap_max)?],
         None => a
@@ -119,17 +131,25 @@ pub fn run(a: DemLawArgs) -> anyhow::Result<()> {
             .iter()
             .map(|&l| {
                 let max = a.overlap_max.unwrap_or(DEFAULT_OVERLAP_MAX);
-                DemLaw::new(l, max)
+                DemLaw::of_law(ContactLaw::with_ratios(l, ratios), max)
                     .map(|law| Shown {
                         law,
                         pair: None,
                         contact: None,
+                        meniscus: None,
                         lambda_given: l,
                     })
                     .map_err(|e| {
                         anyhow::anyhow!(
                             "--lambda {l}: {}",
-                            super::with_flags(&e.to_string(), &[("overlap_max", "--overlap-max")])
+                            super::with_flags(
+                                &e.to_string(),
+                                &[
+                                    ("overlap_max", "--overlap-max"),
+                                    ("stress_ratio", "--stress-ratio"),
+                                    ("range_ratio", "--range-ratio")
+                                ]
+                            )
                         )
                     })
             })
@@ -148,15 +168,15 @@ pub fn run(a: DemLawArgs) -> anyhow::Result<()> {
                 short(hi * unit)
             );
         }
-        if a.drive && lo >= -s.law.h0 {
+        if a.drive && lo >= s.law.attraction_from {
             eprintln!(
                 "warning: --overlap-min {} lies inside the attraction's reach (from {}): the drive starts with the pair already attracted, not from apart",
                 short(lo * unit),
-                short(-s.law.h0 * unit)
+                short(s.law.attraction_from * unit)
             );
         }
         let xs = overlaps(lo, hi, a.points);
-        let mut h = Branch::Free;
+        let mut h = History::NEW;
         let app: Vec<Eval> = xs.iter().map(|&d| s.law.eval(d, &mut h)).collect();
         let ret: Vec<Eval> = xs.iter().rev().map(|&d| s.law.eval(d, &mut h)).collect();
         cycles.push((xs, app, ret));
@@ -229,13 +249,26 @@ fn drive_text(
     }
 }
 
+/// The law's name in the text: Maugis-Dugdale, or with the meniscus's ratios.
+fn title(law: &DemLaw) -> String {
+    match law.law {
+        ContactLaw::SolidAndMeniscus(z) => format!(
+            "Maugis-Dugdale with a meniscus (stress ratio {}, range ratio {})",
+            short(z.stress_ratio),
+            short(z.range_ratio)
+        ),
+        _ => "Maugis-Dugdale".into(),
+    }
+}
+
 /// The law's marks: where it jumps and folds, in the shown units.
 fn marks(s: &Shown) -> serde_json::Value {
     let (l, f) = (s.length(), s.force());
     let law = &s.law;
     let mut m = json!({
         "lambda": json_num(law.lambda),
-        "attraction_from": json_num(-law.h0 * l),
+        "model": law.law.model().label(),
+        "attraction_from": json_num(law.attraction_from * l),
         "jump_in": json_num(law.delta_in * l),
         "jump_out": json_num(law.delta_out * l),
         "jump_out_force": json_num(law.disp_pulloff * f),
@@ -250,6 +283,13 @@ fn marks(s: &Shown) -> serde_json::Value {
             "overlap_max": json_num(law.overlap_max * l),
         },
     });
+    if let ContactLaw::SolidAndMeniscus(z) = law.law {
+        m["stress_ratio"] = json_num(z.stress_ratio);
+        m["range_ratio"] = json_num(z.range_ratio);
+    }
+    if let Some(men) = &s.meniscus {
+        m["meniscus"] = serde_json::to_value(men).unwrap_or_default();
+    }
     if let Some((fs, ls)) = s.pair {
         m["force_scale_n"] = json_num(fs);
         m["length_scale_m"] = json_num(ls);
@@ -277,26 +317,43 @@ fn table_text(
                 let (lu, fu) = if si { (" m", " N") } else { ("", "") };
                 let _ = writeln!(
                     t,
-                    "Maugis-Dugdale force-overlap law, lambda = {}{}",
+                    "{} force-overlap law, lambda = {}{}",
+                    title(law),
                     short(law.lambda),
                     if let Some(c) = &s.contact {
                         format!(
-                            " (R = {} m, E* = {} Pa, w = {} J/m^2, s0 = {} Pa; force unit pi w R = {} N, overlap unit {} m)",
+                            " (R = {} m, E* = {} Pa, w = {} J/m^2, s0 = {} Pa; force unit pi w R = {} N, overlap unit {} m{})",
                             short(c.radius),
                             short(c.e_star),
                             short(c.work),
                             short(c.s0),
                             short(f),
-                            short(l)
+                            short(l),
+                            if s.meniscus.is_some() { ", w the total" } else { "" }
                         )
+                    } else if law.law.model()
+                        == crate::physics::model::ContactModel::SolidAndMeniscus
+                    {
+                        " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3), w the total)"
+                            .into()
                     } else {
                         " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3))".into()
                     }
                 );
+                if let Some(m) = &s.meniscus {
+                    let _ = writeln!(
+                        t,
+                        "  meniscus: Kelvin radius {} m, Laplace pressure {} Pa over a height of {} m, w {} J/m^2",
+                        short(m.kelvin_radius_m),
+                        short(m.laplace_pressure_pa),
+                        short(m.range_m),
+                        short(m.work_of_adhesion_j_m2)
+                    );
+                }
                 let _ = writeln!(
                     t,
                     "  approach: attraction from overlap {}{lu}, into contact at {}{lu}",
-                    short(-law.h0 * l),
+                    short(law.attraction_from * l),
                     short(law.delta_in * l)
                 );
                 let _ = writeln!(

@@ -1,29 +1,34 @@
-//! Force-overlap laws for particle (discrete-element) codes: the exact Maugis-Dugdale sphere
-//! under displacement control, with its hysteresis, as a table that a DEM code evaluates per
-//! contact and time step (docs/PHYSICS.md section 11).
+//! Force-overlap laws for particle (discrete-element) codes: any contact law of `crate::law`
+//! with a rigid-grip path (Maugis-Dugdale, the solid with a water meniscus, a tip) under
+//! displacement control, with its hysteresis, as a table that a DEM code evaluates per contact
+//! and time step (docs/PHYSICS.md section 11).
 //!
-//! A contact's history is one [`Branch`]: far apart ([`Branch::Free`]), joined by the Dugdale
-//! zone alone across a gap ([`Branch::NonContact`]), or in contact ([`Branch::Contact`]). The
-//! overlap decides the next branch from the last one ([`DemLaw::next_branch`]): on the approach
-//! a pair feels the attraction from `-h0`, lands on the non-contact branch where it is stable
-//! (lambda below lambda_D) and enters contact at `delta_in`; on the retract it stays in contact
-//! down to the fold under rigid grips, `delta_out`, then drops to the non-contact branch (down
-//! to its own end, `delta_nc`) or comes free. The loop between the two paths is the energy a
-//! slow collision loses ([`DemLaw::loop_area`]), the area of `tabor cycle`'s rigid-grip loop.
+//! The law's equilibrium path is cut into its **stretches**, the runs on which the approach
+//! rises along the path: the states stable under displacement control. The first is the free
+//! branch, the last the contact branch from its rigid-grip fold up; between them lie the
+//! non-contact stretches (the cohesive zone, or the meniscus and the solid's zone, across a gap).
+//! A contact's whole history is the stretch it is on ([`History`], one byte). On the approach a
+//! contact follows its stretch to the top and jumps, at that overlap, to the next stretch of the
+//! path that holds it; on the retract it follows it to the bottom and jumps to the previous one
+//! holding it, or comes free. The loop between the two paths is the energy a slow collision
+//! loses ([`DemLaw::loop_area`]), the area of `tabor cycle`'s rigid-grip loop.
 //!
-//! The contact branch is a not-a-knot cubic spline in the graded variable `v` of
-//! `u = sqrt(delta - delta_out)` (which takes the fold's square root out), with a step halved
-//! until the error measured against exact solves at every interval's midpoint is within
-//! [`TARGET`] of max(|Pbar_c|, |load|); the non-contact branch is its closed form. An
-//! evaluation is two square roots and a cubic: no allocation, no solve, and a law is shared
-//! read-only between threads (each contact keeps its own [`Branch`]).
+//! Each stretch is tabulated as not-a-knot cubic splines in a variable that takes a fold's
+//! square root out: `u = sqrt(|delta - end|)` from an end where the stretch folds, `|delta -
+//! end|` from one where it does not (a bounded stretch is two such halves, one from each end;
+//! the open contact stretch one, graded as `u = v + v^2 / (2 U_S)` in `v`). The step is halved
+//! until the error measured against exact states at every interval's midpoint is within
+//! [`TARGET`] of max(|Pbar_c|, |load|). The exact state at an overlap is the law's own: a
+//! bracketed Newton search in the stretch's path parameter. An evaluation is a comparison or
+//! two, one or two square roots and a cubic: no allocation, no solve, and a law is shared
+//! read-only between threads (each contact keeps its own [`History`]).
 
+use crate::law::{ContactLaw, Drive, Law, Piece};
+use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::domain::{short, DomainError};
 use crate::physics::params::Contact;
 use crate::rough::map::{spline, u_of_v, v_of_u, TABLE_H};
-use crate::rough::Summit;
 use serde::Serialize;
-use std::f64::consts::PI;
 
 /// The table's target: its measured error at the midpoints, relative to max(|Pbar_c|, |load|).
 pub const TARGET: f64 = 1e-6;
@@ -36,8 +41,12 @@ pub const DEFAULT_OVERLAP_MAX: f64 = 10.0;
 const MAX_HALVINGS: u32 = 8;
 /// The graded variable's scale (the rough map's: `u = v + v^2 / (2 U_S)`).
 const U_S: f64 = 4.0;
+/// Nodes per piece of the path that locate its folds (each fold then refined to the last bit).
+const PROBES: usize = 8192;
+/// The most stretches a law may have (the history is one byte).
+const MAX_STRETCHES: usize = 64;
 
-/// The branch a contact is on: its whole history as far as the law is concerned.
+/// The kind of stretch a contact is on: what tables and the C ABI report.
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -45,23 +54,13 @@ pub enum Branch {
     /// Apart, beyond the force's reach (or released from it).
     #[default]
     Free = 0,
-    /// Joined across a gap by the Dugdale zone alone (no contact, A = 0).
+    /// Joined across a gap by a cohesive zone alone (no contact, A = 0).
     NonContact = 1,
     /// In contact.
     Contact = 2,
 }
 
 impl Branch {
-    /// The branch of a stored code (0, 1, 2), None for any other.
-    pub fn from_code(code: u8) -> Option<Branch> {
-        match code {
-            0 => Some(Branch::Free),
-            1 => Some(Branch::NonContact),
-            2 => Some(Branch::Contact),
-            _ => None,
-        }
-    }
-
     /// The name used in tables: `free`, `non_contact`, `contact`.
     pub fn name(self) -> &'static str {
         match self {
@@ -72,51 +71,165 @@ impl Branch {
     }
 }
 
-/// One evaluation: the load and its slope along the branch the contact is on.
+/// A contact's history: the stretch of its law's path it is on (one byte; 0, free, for a new
+/// contact). Made valid for its law by [`DemLaw::history`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct History(u8);
+
+impl History {
+    /// A new contact: apart (the free stretch, code 0).
+    pub const NEW: History = History(0);
+
+    /// The byte a particle code stores.
+    pub fn code(self) -> u8 {
+        self.0
+    }
+}
+
+/// One evaluation: the load and its slope along the stretch the contact is on.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Eval {
     /// The load (normalised `Pbar`, positive repulsive).
     pub load: f64,
-    /// d load / d overlap on the branch (infinite at the contact branch's fold, where the
-    /// branch is vertical; zero on the free branch).
+    /// d load / d overlap on the stretch (infinite at a fold, where the stretch is vertical;
+    /// zero on the free branch).
     pub stiffness: f64,
-    /// The branch after this overlap.
+    /// The kind of stretch after this overlap.
     pub branch: Branch,
     /// The overlap lies beyond the table (the last cubic is extrapolated).
     pub beyond_table: bool,
 }
 
 /// Why a law could not be built.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum DemError {
     /// An input outside its domain.
     #[error(transparent)]
     Domain(#[from] DomainError),
+    /// The contact law refused (its numbers, or a law without a rigid-grip cycle).
+    #[error(transparent)]
+    Law(#[from] crate::law::LawError),
     /// The pair's scene refused.
     #[error("{0}")]
     Scene(String),
-    /// An exact solve of the contact branch failed (no table is built from a guess).
-    #[error("the exact solver failed on the contact branch at overlap {} (lambda = {}): no table is built", short(*.0), short(*.1))]
-    Failed(f64, f64),
+    /// An exact state of a stretch failed (no table is built from a guess).
+    #[error("the exact {} state at overlap {} failed (lambda = {}): no table is built", .0.name(), short(*.1), short(*.2))]
+    Failed(Branch, f64, f64),
     /// The table missed its target even at its finest step.
     #[error("the table of lambda = {} misses its 1e-6 target (error {}) at its finest step: no table is built", short(*.0), short(*.1))]
     Target(f64, f64),
 }
 
-/// The Maugis-Dugdale force-overlap law of one lambda, normalised (load `Pbar = P/(pi w R)`,
-/// overlap `Dbar` in approach units `(pi^2 w^2 R / K^2)^(1/3)`).
+/// How a table's spline variable is had from the overlap.
+#[derive(Clone, Copy, Debug)]
+enum Var {
+    /// The open contact stretch: `u = sqrt(delta - origin)` (the fold's square root taken out)
+    /// and `v` graded, `u = v + v^2 / (2 U_S)`.
+    Root { origin: f64 },
+    /// A bounded stretch: the angle `theta` of `delta = lo + width (1 - cos theta) / 2`, which
+    /// takes out a fold's square root at either end and is smooth where an end has none.
+    Arc { lo: f64, width: f64 },
+}
+
+/// A cubic spline of the load at uniform steps of its variable.
+#[derive(Debug)]
+struct Segment {
+    var: Var,
+    inv_h: f64,
+    coef: Vec<[f64; 4]>,
+}
+
+impl Segment {
+    /// The overlap at spline variable `v`.
+    fn delta(&self, v: f64) -> f64 {
+        match self.var {
+            Var::Root { origin } => {
+                let u = u_of_v(v);
+                origin + u * u
+            }
+            Var::Arc { lo, width } => lo + width * 0.5 * (1.0 - v.cos()),
+        }
+    }
+
+    /// The load and d load / d overlap at `delta`.
+    #[inline(always)]
+    fn at(&self, delta: f64) -> (f64, f64) {
+        let (v, dv) = match self.var {
+            Var::Root { origin } => {
+                let u = (delta - origin).max(0.0).sqrt();
+                let v = 2.0 * u / (1.0 + (1.0 + u * (2.0 / U_S)).sqrt());
+                // dv/ddelta = (dv/du) (du/ddelta); infinite at the fold itself.
+                (v, 1.0 / ((1.0 + v / U_S) * 2.0 * u))
+            }
+            Var::Arc { lo, width } => {
+                let y = ((delta - lo) / width).clamp(0.0, 1.0);
+                // dtheta/ddelta = 1 / (width sqrt(y (1 - y))): finite even at an end.
+                let q = (y * (1.0 - y)).max(1e-300).sqrt();
+                ((1.0 - 2.0 * y).acos(), 1.0 / (width * q))
+            }
+        };
+        let s = v * self.inv_h;
+        let last = self.coef.len() - 1;
+        // s >= 0 here; the last interval's cubic beyond the table.
+        let k = (s as usize).min(last);
+        let s = s - k as f64;
+        let c = &self.coef[k];
+        let load = ((c[3] * s + c[2]) * s + c[1]) * s + c[0];
+        let dload_dv = ((3.0 * c[3] * s + 2.0 * c[2]) * s + c[1]) * self.inv_h;
+        (load, dload_dv * dv)
+    }
+}
+
+/// A stretch of the path on which the approach rises: stable under rigid grips for overlaps in
+/// `[lo, hi]`.
+#[derive(Debug)]
+struct Stretch {
+    branch: Branch,
+    piece: Piece,
+    /// The path parameter at the low and the high end (the approach rises from the first).
+    t: (f64, f64),
+    lo: f64,
+    /// The top overlap (+inf for the open contact stretch).
+    hi: f64,
+    /// The approach at `t.1` (`hi` where the stretch is bounded; the path's end for the open
+    /// contact stretch).
+    top: f64,
+    /// The stretch the approach jumps to from `hi`, and the retract from `lo`.
+    up: u8,
+    down: u8,
+    /// The load's table (None on the free branch).
+    table: Option<Segment>,
+}
+
+impl Stretch {
+    #[inline(always)]
+    fn at(&self, delta: f64) -> (f64, f64) {
+        match &self.table {
+            None => (0.0, 0.0),
+            Some(t) => t.at(delta),
+        }
+    }
+}
+
+/// The force-overlap law of one contact law, normalised (the law's load and approach units:
+/// `Pbar = P/(pi w R)`, overlap `Dbar` in `(pi^2 w^2 R / K^2)^(1/3)`, with the total w where a
+/// meniscus adds its own).
 #[derive(Debug)]
 pub struct DemLaw {
-    /// The Maugis parameter.
+    /// The contact law.
+    pub law: ContactLaw,
+    /// The (solid's) Maugis parameter.
     pub lambda: f64,
-    /// The Dugdale range, 2 / (pi lambda): the attraction starts at overlap `-h0`.
-    pub h0: f64,
+    /// The overlap where the attraction starts on the approach (`-h0` for Maugis-Dugdale; the
+    /// meniscus's reach with one).
+    pub attraction_from: f64,
     /// The overlap where the approach enters contact.
     pub delta_in: f64,
     /// The contact branch's fold under rigid grips: the retract leaves contact below it.
     pub delta_out: f64,
-    /// The non-contact branch's end on the retract (None above lambda_D: no stable branch).
+    /// Where the retract, after leaving contact, finally comes free (None: it comes free at the
+    /// jump out of contact).
     pub delta_nc: Option<f64>,
     /// The pull-off under load control, Pbar_c (the most tensile contact state).
     pub load_pulloff: f64,
@@ -126,221 +239,486 @@ pub struct DemLaw {
     pub overlap_max: f64,
     /// The table's largest measured error, relative to max(|Pbar_c|, |load|).
     pub error: f64,
-    /// The table's step in the graded variable.
+    /// The contact table's step in its graded variable.
     pub step: f64,
-    /// The table's nodes.
+    /// The tables' nodes.
     pub nodes: usize,
-    c_star: f64,
-    c_end: f64,
-    table: Table,
-    summit: Summit,
+    stretches: Vec<Stretch>,
 }
 
-/// The contact branch's spline in the graded variable `v` of `u = sqrt(delta - delta_out)`.
-#[derive(Debug)]
-struct Table {
-    delta_out: f64,
-    inv_h: f64,
-    coef: Vec<[f64; 4]>,
+/// A run of the path where the approach rises, before it is tabulated.
+struct Run {
+    piece: Piece,
+    t: (f64, f64),
+    fold: (bool, bool),
+    /// It starts where the previous piece's last run ends (the path is continuous there).
+    joined: bool,
+    open: bool,
 }
 
-impl Table {
-    /// The load and d load / d overlap at `delta`.
-    #[inline(always)]
-    fn at(&self, delta: f64) -> (f64, f64) {
-        let u = (delta - self.delta_out).max(0.0).sqrt();
-        let v = 2.0 * u / (1.0 + (1.0 + u * (2.0 / U_S)).sqrt());
-        let x = v * self.inv_h;
-        let last = self.coef.len() - 1;
-        // x >= 0 here; the last interval's cubic beyond the table.
-        let k = (x as usize).min(last);
-        let s = x - k as f64;
-        let c = &self.coef[k];
-        let load = ((c[3] * s + c[2]) * s + c[1]) * s + c[0];
-        let dload_dv = ((3.0 * c[3] * s + 2.0 * c[2]) * s + c[1]) * self.inv_h;
-        // u = v + v^2 / (2 U_S), delta = delta_out + u^2.
-        let stiffness = dload_dv / ((1.0 + v / U_S) * 2.0 * u);
-        (load, stiffness)
+/// The runs of rising approach of every piece after the free one, in the order of the path, and
+/// the contact piece's least load (the load-controlled pull-off) with the path's end.
+fn runs(law: &ContactLaw, overlap_max: f64) -> Result<(Vec<Run>, f64), DemError> {
+    let lambda = law.lambda().unwrap_or(f64::NAN);
+    let failed = |b: Branch, d: f64| DemError::Failed(b, d, lambda);
+    // The contact piece must reach beyond the table's last node (two graded steps past the
+    // largest overlap).
+    let reach = overlap_max.max(0.0) * 1.05 + 1.0;
+    let mut a_max = reach.sqrt() + 2.0;
+    for _ in 0..80 {
+        let p = law.state(Piece::Contact, law.t_of_radius(a_max));
+        if p.approach >= reach {
+            break;
+        }
+        a_max *= 1.5;
     }
+    let mut out: Vec<Run> = Vec::new();
+    let mut least = f64::INFINITY;
+    for (piece, t0, t1) in law.pieces(a_max) {
+        let branch = if piece == Piece::Contact {
+            Branch::Contact
+        } else {
+            Branch::NonContact
+        };
+        if !(t0.is_finite() && t1.is_finite() && t0 != t1) {
+            return Err(failed(branch, f64::NAN));
+        }
+        // The path runs from t0 to t1: `sign` makes the parameter rise along it.
+        let sign = (t1 - t0).signum();
+        let ts: Vec<f64> = (0..PROBES)
+            .map(|i| t0 + (t1 - t0) * i as f64 / (PROBES - 1) as f64)
+            .collect();
+        let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
+        if st
+            .iter()
+            .any(|p| !(p.approach.is_finite() && p.load.is_finite()))
+        {
+            return Err(failed(branch, f64::NAN));
+        }
+        let rising = |i: usize| sign * st[i].dapproach > 0.0;
+        // The fold between probes i and i + 1, where the approach's slope along the path
+        // changes sign: bisection on that slope, signed to be negative at the smaller t.
+        let fold_at = |i: usize| {
+            let (a, b) = (ts[i], ts[i + 1]);
+            let flip = if (a < b) == rising(i) { -sign } else { sign };
+            bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
+        };
+        // The rising runs as probe ranges; a fall between two of them (or before the first)
+        // within rounding of the approach is noise where the path is flat (near A -> 0), not a
+        // pair of folds: the runs are merged across it.
+        let flat = |i: usize, j: usize| {
+            let low = (i..=j)
+                .map(|k| st[k].approach)
+                .fold(f64::INFINITY, f64::min);
+            st[i].approach - low <= 1e-10 * (1.0 + st[i].approach.abs())
+        };
+        let mut spans: Vec<(usize, usize)> = Vec::new();
+        let mut i = 0;
+        while i < PROBES {
+            if !rising(i) {
+                i += 1;
+                continue;
+            }
+            let mut j = i;
+            while j + 1 < PROBES && rising(j + 1) {
+                j += 1;
+            }
+            match spans.last_mut() {
+                Some(last) if flat(last.1, i) => last.1 = j,
+                None if i > 0 && flat(0, i) => spans.push((0, j)),
+                _ => spans.push((i, j)),
+            }
+            i = j + 1;
+        }
+        // A fall to the piece's end within rounding: the run reaches the end.
+        if let Some(last) = spans.last_mut() {
+            if last.1 + 1 < PROBES && flat(last.1, PROBES - 1) {
+                last.1 = PROBES - 1;
+            }
+        }
+        for (i, j) in spans {
+            let start_fold = i > 0;
+            let end_fold = j + 1 < PROBES;
+            let ta = if start_fold { fold_at(i - 1) } else { ts[0] };
+            let tb = if end_fold { fold_at(j) } else { ts[PROBES - 1] };
+            let joined = i == 0
+                && out
+                    .last()
+                    .is_some_and(|r| !r.fold.1 && r.piece != piece && !r.open);
+            out.push(Run {
+                piece,
+                t: (ta, tb),
+                fold: (start_fold, end_fold),
+                joined,
+                open: piece == Piece::Contact && !end_fold,
+            });
+        }
+        if piece == Piece::Contact {
+            // The least load, refined where the load's slope in t changes sign.
+            let k = (0..PROBES)
+                .min_by(|&i, &j| st[i].load.total_cmp(&st[j].load))
+                .unwrap_or(0);
+            least = if k > 0 && k + 1 < PROBES {
+                let (a, b) = (ts[k - 1].min(ts[k + 1]), ts[k - 1].max(ts[k + 1]));
+                let t = bisect_sign(|t| law.state(piece, t).dload, a, b);
+                law.state(piece, t).load.min(st[k].load)
+            } else {
+                st[k].load
+            };
+        }
+    }
+    // The last run must be the open contact branch.
+    if !out.last().is_some_and(|r| r.open) {
+        return Err(failed(Branch::Contact, overlap_max));
+    }
+    Ok((out, least))
 }
 
 impl DemLaw {
-    /// The law of `lambda`, its contact branch tabulated up to `overlap_max` (approach units).
+    /// The Maugis-Dugdale law of `lambda`, tabulated up to `overlap_max` (approach units).
     pub fn new(lambda: f64, overlap_max: f64) -> Result<DemLaw, DemError> {
-        let summit = Summit::new(lambda).map_err(|e| DemError::Scene(e.to_string()))?;
-        if !(overlap_max.is_finite()
-            && overlap_max > summit.delta_out
-            && overlap_max <= OVERLAP_MAX)
-        {
-            return Err(DomainError {
-                name: "overlap_max",
-                value: overlap_max,
-                range: "(delta_out, 1e4] approach units",
-                hint: "give a largest overlap above the contact branch's fold and at most 1e4 approach units",
-            }
-            .into());
+        DemLaw::of_law(ContactLaw::md(lambda), overlap_max)
+    }
+
+    /// The force-overlap law of `law` (a law with a rigid-grip cycle: Maugis-Dugdale, the
+    /// two-zone law, a tip), tabulated up to `overlap_max` (its approach units).
+    pub fn of_law(law: ContactLaw, overlap_max: f64) -> Result<DemLaw, DemError> {
+        // The law's own checks (its numbers; a closed form has no cycle).
+        law.cycle_path(Drive::RigidGrips, 1.0)?;
+        if !(overlap_max.is_finite() && overlap_max <= OVERLAP_MAX) {
+            return Err(range_error(overlap_max));
         }
-        let pc = summit.smooth_pulloff();
-        let v_max = v_of_u((overlap_max - summit.delta_out).sqrt());
-        let at = |v: f64| {
-            let u = u_of_v(v);
-            summit.delta_out + u * u
+        let lambda = law.lambda().unwrap_or(f64::NAN);
+        let (runs, pc) = runs(&law, overlap_max)?;
+        let free_end = law.free_end();
+        let mut stretches = vec![Stretch {
+            branch: Branch::Free,
+            piece: Piece::Free,
+            t: (f64::NEG_INFINITY, free_end),
+            lo: f64::NEG_INFINITY,
+            hi: free_end,
+            top: free_end,
+            up: 0,
+            down: 0,
+            table: None,
+        }];
+        let mut joined = vec![false];
+        let mut dropped = false;
+        for r in &runs {
+            let lo = law.state(r.piece, r.t.0).approach;
+            let top = law.state(r.piece, r.t.1).approach;
+            // A stretch narrower than rounding holds no state a contact could keep.
+            let was_dropped = std::mem::replace(&mut dropped, false);
+            if !r.open && !(top - lo > 1e-13 * (1.0 + lo.abs())) {
+                dropped = true;
+                continue;
+            }
+            stretches.push(Stretch {
+                branch: if r.piece == Piece::Contact {
+                    Branch::Contact
+                } else {
+                    Branch::NonContact
+                },
+                piece: r.piece,
+                t: r.t,
+                lo,
+                hi: if r.open { f64::INFINITY } else { top },
+                top,
+                up: 0,
+                down: 0,
+                table: None,
+            });
+            joined.push(r.joined && !was_dropped);
+        }
+        if stretches.len() > MAX_STRETCHES {
+            return Err(DemError::Scene(format!(
+                "the law's path has {} stretches, more than the {MAX_STRETCHES} a history byte holds",
+                stretches.len()
+            )));
+        }
+        let delta_out = stretches.last().map_or(f64::NAN, |s| s.lo);
+        if !(overlap_max > delta_out) {
+            return Err(range_error(overlap_max));
+        }
+        link(&mut stretches, &joined);
+        let mut dem = DemLaw {
+            law,
+            lambda,
+            attraction_from: free_end,
+            delta_in: f64::NAN,
+            delta_out,
+            delta_nc: None,
+            load_pulloff: pc,
+            disp_pulloff: f64::NAN,
+            overlap_max,
+            error: 0.0,
+            step: f64::NAN,
+            nodes: 0,
+            stretches,
         };
-        let exact = |d: f64| -> Result<f64, DemError> {
-            summit
-                .contact(d)
-                .map(|c| c.0)
-                .filter(|p| p.is_finite())
-                .ok_or(DemError::Failed(d, lambda))
+        dem.tabulate()?;
+        dem.delta_in = dem.entry();
+        dem.delta_nc = dem.release();
+        let last = dem.stretches.len() - 1;
+        dem.disp_pulloff = dem.exact_on(last, delta_out).ok_or(DemError::Failed(
+            Branch::Contact,
+            delta_out,
+            lambda,
+        ))?;
+        Ok(dem)
+    }
+
+    /// The tables of every stretch but the free one, each halving its step until it meets
+    /// [`TARGET`].
+    fn tabulate(&mut self) -> Result<(), DemError> {
+        for k in 1..self.stretches.len() {
+            let (table, err, h) = self.segment(k)?;
+            self.error = self.error.max(err);
+            self.nodes += table.coef.len() + 1;
+            if k == self.stretches.len() - 1 {
+                self.step = h;
+            }
+            self.stretches[k].table = Some(table);
+        }
+        Ok(())
+    }
+
+    /// Stretch `k` tabulated: its table, the table's measured error and its step.
+    fn segment(&self, k: usize) -> Result<(Segment, f64, f64), DemError> {
+        use rayon::prelude::*;
+        let s = &self.stretches[k];
+        let scale = self.load_pulloff.abs();
+        let exact = |d: f64| {
+            self.exact_on(k, d)
+                .ok_or(DemError::Failed(s.branch, d, self.lambda))
+        };
+        let var = if s.hi.is_infinite() {
+            // The fold's square root taken out even where the stretch starts without one (a
+            // smooth load in delta is smooth in its square root too).
+            Var::Root { origin: s.lo }
+        } else {
+            Var::Arc {
+                lo: s.lo,
+                width: s.top - s.lo,
+            }
         };
         let mut h = TABLE_H;
         for halving in 0..=MAX_HALVINGS {
-            // At least five nodes (the spline's minimum), one interval past the end.
-            let n = ((v_max / h).ceil() as usize + 2).max(5);
-            let vals = (0..n)
-                .map(|k| exact(at(k as f64 * h)))
-                .collect::<Result<Vec<_>, _>>()?;
-            let table = Table {
-                delta_out: summit.delta_out,
-                inv_h: 1.0 / h,
-                coef: spline(&vals),
+            // The open contact stretch: steps of h in v, one interval past the end. A bounded
+            // one: at least four intervals spanning its angle 0..pi exactly.
+            let (n, step) = match var {
+                Var::Root { origin } => {
+                    let v_max = v_of_u((self.overlap_max - origin).max(0.0).sqrt());
+                    (((v_max / h).ceil() as usize + 2).max(5), h)
+                }
+                Var::Arc { .. } => {
+                    let n = ((std::f64::consts::PI / h).ceil() as usize).max(4);
+                    (n + 1, std::f64::consts::PI / n as f64)
+                }
             };
+            let mut seg = Segment {
+                var,
+                inv_h: 1.0 / step,
+                coef: Vec::new(),
+            };
+            let vals = (0..n)
+                .into_par_iter()
+                .map(|i| exact(seg.delta(i as f64 * step)))
+                .collect::<Result<Vec<_>, _>>()?;
+            seg.coef = spline(&vals);
             // The error at every interval's midpoint.
-            let mut err = 0.0f64;
-            for k in 0..n - 1 {
-                let d = at((k as f64 + 0.5) * h);
-                let want = exact(d)?;
-                let e = (table.at(d).0 - want).abs() / pc.abs().max(want.abs());
-                // NaN compares false: a failed interpolation is a miss.
-                err = if e.is_nan() {
-                    f64::INFINITY
-                } else {
-                    err.max(e)
-                };
-            }
+            let errs = (0..n - 1)
+                .into_par_iter()
+                .map(|i| {
+                    let d = seg.delta((i as f64 + 0.5) * step);
+                    let want = exact(d)?;
+                    let e = (seg.at(d).0 - want).abs() / scale.max(want.abs());
+                    // NaN compares false: a failed interpolation is a miss.
+                    Ok(if e.is_nan() { f64::INFINITY } else { e })
+                })
+                .collect::<Result<Vec<f64>, DemError>>()?;
+            let err = errs.into_iter().fold(0.0f64, f64::max);
             if err <= TARGET {
-                return Ok(DemLaw {
-                    lambda,
-                    h0: summit.h0,
-                    delta_in: summit.delta_in,
-                    delta_out: summit.delta_out,
-                    delta_nc: summit.delta_nc,
-                    load_pulloff: pc,
-                    disp_pulloff: vals[0],
-                    overlap_max,
-                    error: err,
-                    step: h,
-                    nodes: n,
-                    c_star: summit.c_star,
-                    c_end: summit.c_end,
-                    table,
-                    summit,
-                });
+                return Ok((seg, err, step));
             }
             if halving == MAX_HALVINGS {
-                return Err(DemError::Target(lambda, err));
+                return Err(DemError::Target(self.lambda, err));
             }
             h *= 0.5;
         }
         unreachable!("the loop returns at its last halving")
     }
 
+    /// The overlap where a contact coming from apart enters contact.
+    fn entry(&self) -> f64 {
+        let last = self.stretches.len() - 1;
+        let mut k = 0;
+        loop {
+            let j = self.stretches[k].up as usize;
+            if j == last {
+                return self.stretches[k].hi;
+            }
+            k = j;
+        }
+    }
+
+    /// Where the retract from contact comes free, if not at the jump out of contact.
+    fn release(&self) -> Option<f64> {
+        let last = self.stretches.len() - 1;
+        let mut k = last;
+        loop {
+            let j = self.stretches[k].down as usize;
+            if j == 0 {
+                return (k != last).then_some(self.stretches[k].lo);
+            }
+            k = j;
+        }
+    }
+
+    /// The history of a stored code, None where the code names no stretch of this law.
+    pub fn history(&self, code: u8) -> Option<History> {
+        ((code as usize) < self.stretches.len()).then_some(History(code))
+    }
+
+    /// The kind of stretch a history is on.
+    pub fn branch(&self, history: History) -> Branch {
+        self.stretches[history.0 as usize].branch
+    }
+
+    /// The overlaps the stretch of `history` holds: its low and high end (-inf and +inf at the
+    /// path's ends).
+    pub fn stretch_range(&self, history: History) -> (f64, f64) {
+        let s = &self.stretches[history.0 as usize];
+        (s.lo, s.hi)
+    }
+
+    /// The number of stretches: every history code is below it.
+    pub fn stretch_count(&self) -> usize {
+        self.stretches.len()
+    }
+
     /// The contact branch at `delta` (from the table): the load and d load / d overlap.
     #[inline(always)]
     pub fn contact_branch(&self, delta: f64) -> (f64, f64) {
-        self.table.at(delta)
+        self.stretches[self.stretches.len() - 1].at(delta)
     }
 
-    /// The non-contact branch at `delta` (closed form, section 9): -(pi lambda / 2) C^2 with
-    /// C = C* + sqrt(C*^2 + 2 (delta + h0)), capped at the contact branch's A -> 0 end.
-    #[inline(always)]
-    pub fn non_contact_branch(&self, delta: f64) -> (f64, f64) {
-        let root = (self.c_star * self.c_star + 2.0 * (delta + self.h0)).max(0.0);
-        let r = root.sqrt();
-        let c = self.c_star + r;
-        if c >= self.c_end {
-            let c = self.c_end;
-            return (-(PI * self.lambda / 2.0) * c * c, 0.0);
-        }
-        (-(PI * self.lambda / 2.0) * c * c, -PI * self.lambda * c / r)
+    /// The history after overlap `delta`, coming from `history` (without evaluating the load).
+    pub fn next_history(&self, history: History, delta: f64) -> History {
+        History(self.next(history.0 as usize, delta) as u8)
     }
 
-    /// The branch after overlap `delta`, coming from `prev` (the history's one rule).
+    /// The stretch after overlap `delta`, coming from `k` (the history's one rule).
     #[inline(always)]
-    pub fn next_branch(&self, prev: Branch, delta: f64) -> Branch {
-        let nc_from = self.delta_nc.unwrap_or(f64::INFINITY);
-        match prev {
-            Branch::Free if delta >= self.delta_in => Branch::Contact,
-            Branch::Free if delta >= -self.h0 => Branch::NonContact,
-            Branch::Free => Branch::Free,
-            Branch::NonContact if delta >= self.delta_in => Branch::Contact,
-            Branch::NonContact if delta >= nc_from => Branch::NonContact,
-            Branch::NonContact => Branch::Free,
-            Branch::Contact if delta >= self.delta_out => Branch::Contact,
-            Branch::Contact if delta >= nc_from => Branch::NonContact,
-            Branch::Contact => Branch::Free,
+    fn next(&self, mut k: usize, delta: f64) -> usize {
+        let s = &self.stretches;
+        if delta > s[k].hi {
+            while delta > s[k].hi {
+                k = s[k].up as usize;
+            }
+        } else {
+            while delta < s[k].lo {
+                k = s[k].down as usize;
+            }
         }
+        k
     }
 
     /// The load and stiffness at overlap `delta` for a contact whose history is `history`,
     /// which is updated. A NaN overlap gives a NaN load and leaves the history.
-    // Inlined into the caller's loop: measured 41 ns per evaluation as a call, about 21 inlined.
+    // Inlined into the caller's loop: a call costs about twice the evaluation.
     #[inline(always)]
-    pub fn eval(&self, delta: f64, history: &mut Branch) -> Eval {
+    pub fn eval(&self, delta: f64, history: &mut History) -> Eval {
         if delta.is_nan() {
             return Eval {
                 load: f64::NAN,
                 stiffness: f64::NAN,
-                branch: *history,
+                branch: self.branch(*history),
                 beyond_table: false,
             };
         }
-        let b = self.next_branch(*history, delta);
-        *history = b;
-        let (load, stiffness) = match b {
-            Branch::Free => (0.0, 0.0),
-            Branch::NonContact => self.non_contact_branch(delta),
-            Branch::Contact => self.contact_branch(delta),
-        };
+        let k = self.next(history.0 as usize, delta);
+        *history = History(k as u8);
+        let s = &self.stretches[k];
+        let (load, stiffness) = s.at(delta);
         Eval {
             load,
             stiffness,
-            branch: b,
-            beyond_table: b == Branch::Contact && delta > self.overlap_max,
+            branch: s.branch,
+            beyond_table: s.hi.is_infinite() && delta > self.overlap_max,
         }
     }
 
-    /// The exact load on `branch` at `delta` (the contact branch solved, not interpolated).
-    pub fn exact(&self, branch: Branch, delta: f64) -> Option<f64> {
-        match branch {
-            Branch::Free => Some(0.0),
-            Branch::NonContact => Some(self.non_contact_branch(delta).0),
-            Branch::Contact => self.summit.contact(delta).map(|c| c.0),
+    /// The exact load at `delta` on stretch `k` (clamped into it): the law's state where the
+    /// approach equals `delta`, by a bracketed Newton search in the path parameter.
+    fn exact_on(&self, k: usize, delta: f64) -> Option<f64> {
+        let s = &self.stretches[k];
+        if s.branch == Branch::Free {
+            return Some(0.0);
         }
+        let d = delta.clamp(s.lo, s.top);
+        let (t0, t1) = s.t;
+        let sign = (t1 - t0).signum();
+        // Increasing in the search variable x = sign t.
+        let f = |x: f64| {
+            let p = self.law.state(s.piece, sign * x);
+            (p.approach - d, sign * p.dapproach)
+        };
+        let (a, b) = (sign * t0, sign * t1);
+        let guess = a + (b - a) * ((d - s.lo) / (s.top - s.lo)).clamp(0.0, 1.0);
+        let t = if d <= s.lo {
+            t0
+        } else if d >= s.top {
+            t1
+        } else {
+            sign * newton_bracketed(f, a, b, guess)
+        };
+        let p = self.law.state(s.piece, t);
+        p.load.is_finite().then_some(p.load)
     }
 
-    /// The smallest overlap where any force acts on the retract: the non-contact branch's end,
-    /// or the fold where the pair comes free.
+    /// The exact load on the stretch a contact with history `history` is on at `delta` (no
+    /// table): what the table is measured against.
+    pub fn exact(&self, history: History, delta: f64) -> Option<f64> {
+        self.exact_on(history.0 as usize, delta)
+    }
+
+    /// The exact load on the contact branch at `delta`.
+    pub fn exact_contact(&self, delta: f64) -> Option<f64> {
+        self.exact_on(self.stretches.len() - 1, delta)
+    }
+
+    /// The smallest overlap where any force acts on the retract: where it comes free, or the
+    /// attraction's start.
     pub fn lowest_overlap(&self) -> f64 {
-        self.delta_nc.unwrap_or(self.delta_out).min(-self.h0)
+        self.delta_nc
+            .unwrap_or(self.delta_out)
+            .min(self.attraction_from)
+    }
+
+    /// The approaches where the load jumps, folds or changes stretch.
+    fn marks(&self) -> Vec<f64> {
+        let mut m: Vec<f64> = self
+            .stretches
+            .iter()
+            .flat_map(|s| [s.lo, s.hi])
+            .filter(|x| x.is_finite())
+            .collect();
+        m.sort_by(f64::total_cmp);
+        m.dedup();
+        m
     }
 
     /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by
     /// `pi w R` times the approach unit): the area between the approach and the retract, from
-    /// the exact branches by double-exponential quadrature between the jumps. Zero where the
+    /// the exact stretches by double-exponential quadrature between the marks. Zero where the
     /// cycle does not reach the attraction.
     pub fn loop_area(&self, overlap_max: f64) -> Option<f64> {
-        // The approach's and the retract's branch at each overlap of this cycle.
-        let app = |d: f64| self.next_branch(Branch::Free, d);
+        let app = |d: f64| self.next(0, d);
         let reached = app(overlap_max);
-        let ret = |d: f64| self.next_branch(reached, d);
-        let mut cuts = vec![
-            self.lowest_overlap(),
-            -self.h0,
-            self.delta_in,
-            self.delta_out,
-        ];
-        cuts.extend(self.delta_nc);
+        let ret = |d: f64| self.next(reached, d);
+        let mut cuts = self.marks();
+        cuts.push(self.lowest_overlap());
         cuts.retain(|&c| c < overlap_max);
         cuts.push(overlap_max);
         cuts.sort_by(f64::total_cmp);
@@ -349,11 +727,11 @@ impl DemLaw {
         let mut area = 0.0;
         for w in cuts.windows(2) {
             let mid = 0.5 * (w[0] + w[1]);
-            let (ba, br) = (app(mid), ret(mid));
-            if ba == br {
+            let (ka, kr) = (app(mid), ret(mid));
+            if ka == kr {
                 continue;
             }
-            let f = |d: f64| match (self.exact(ba, d), self.exact(br, d)) {
+            let f = |d: f64| match (self.exact_on(ka, d), self.exact_on(kr, d)) {
                 (Some(a), Some(r)) => a - r,
                 _ => {
                     failed.set(true);
@@ -365,15 +743,16 @@ impl DemLaw {
         (!failed.get()).then_some(area)
     }
 
-    /// The whole cycle from `overlap_min` (apart: below `-h0`) to `overlap_max` and back, at
-    /// `points` overlaps each way: `(approach, retract)`, each a list of (overlap, eval).
+    /// The whole cycle from `overlap_min` (apart: below the attraction) to `overlap_max` and
+    /// back, at `points` overlaps each way: `(approach, retract)`, each a list of (overlap,
+    /// eval).
     pub fn drive(
         &self,
         overlap_min: f64,
         overlap_max: f64,
         points: usize,
     ) -> (Vec<(f64, Eval)>, Vec<(f64, Eval)>) {
-        let mut history = Branch::Free;
+        let mut history = History::NEW;
         let at =
             |k: usize| overlap_min + (overlap_max - overlap_min) * k as f64 / (points - 1) as f64;
         let approach: Vec<_> = (0..points)
@@ -387,14 +766,58 @@ impl DemLaw {
     }
 }
 
+fn range_error(overlap_max: f64) -> DemError {
+    DomainError {
+        name: "overlap_max",
+        value: overlap_max,
+        range: "(delta_out, 1e4] approach units",
+        hint:
+            "give a largest overlap above the contact branch's fold and at most 1e4 approach units",
+    }
+    .into()
+}
+
+/// Whether stretch `s` holds the overlap `level` (within rounding: where two stretches meet at
+/// a piece's end their ends agree to a few ulps).
+fn holds(s: &Stretch, level: f64) -> bool {
+    let tol = 1e-12 * (1.0 + level.abs());
+    s.lo - tol <= level && level <= s.hi + tol
+}
+
+/// The jumps: from a stretch's top on the approach to the first later stretch holding it (the
+/// next one where the path runs on across a piece's end; the contact branch where none holds
+/// it), from its bottom on the retract to the last earlier one holding it (the free branch
+/// where none does).
+fn link(s: &mut [Stretch], joined: &[bool]) {
+    let n = s.len();
+    for k in 0..n {
+        let up = if k + 1 < n && joined[k + 1] {
+            k + 1
+        } else {
+            (k + 1..n).find(|&j| holds(&s[j], s[k].hi)).unwrap_or(n - 1)
+        };
+        let down = if k == 0 {
+            0
+        } else if joined[k] {
+            k - 1
+        } else {
+            (0..k).rev().find(|&j| holds(&s[j], s[k].lo)).unwrap_or(0)
+        };
+        s[k].up = up as u8;
+        s[k].down = down as u8;
+    }
+}
+
 /// A pair of bodies in SI units: the normalised law and its scales.
 #[derive(Debug)]
 pub struct Pair {
     /// The contact (effective radius, reduced modulus, w, Dugdale stress).
     pub contact: Contact,
+    /// The water meniscus between them, where the scene's humidity forms one.
+    pub meniscus: Option<crate::scene::humidity::Meniscus>,
     /// The normalised law.
     pub law: DemLaw,
-    /// Newtons per unit of `Pbar`: pi w R.
+    /// Newtons per unit of `Pbar`: pi w R (w the total with a meniscus).
     pub force_scale: f64,
     /// Metres per approach unit: (pi^2 w^2 R / K^2)^(1/3).
     pub length_scale: f64,
@@ -407,17 +830,43 @@ pub struct EvalSi {
     pub force_n: f64,
     /// d force / d overlap (N/m).
     pub stiffness_n_m: f64,
-    /// The branch after this overlap.
+    /// The kind of stretch after this overlap.
     pub branch: Branch,
     /// The overlap lies beyond the table.
     pub beyond_table: bool,
 }
 
 impl Pair {
-    /// The pair of `contact`, tabulated up to `overlap_max_m` (m).
+    /// The dry pair of `contact`, tabulated up to `overlap_max_m` (m).
     pub fn new(contact: Contact, overlap_max_m: f64) -> Result<Pair, DemError> {
-        let length_scale = contact.approach_scale();
-        let force_scale = contact.force_scale();
+        Pair::with_meniscus(contact, None, Some(overlap_max_m))
+    }
+
+    /// The pair of `contact` with the water meniscus `meniscus` (the two-zone law in the units
+    /// of the total w) or dry, tabulated up to `overlap_max_m` (m; None: [`DEFAULT_OVERLAP_MAX`]
+    /// approach units).
+    pub fn with_meniscus(
+        contact: Contact,
+        meniscus: Option<crate::scene::humidity::Meniscus>,
+        overlap_max_m: Option<f64>,
+    ) -> Result<Pair, DemError> {
+        let (law, force_scale, length_scale) = match &meniscus {
+            None => (
+                ContactLaw::md(contact.lambda()),
+                contact.force_scale(),
+                contact.approach_scale(),
+            ),
+            Some(m) => {
+                let (rho, eta, units) = crate::scene::humidity::wet_ratios(&contact, m)
+                    .map_err(|e| DemError::Scene(e.to_string()))?;
+                (
+                    ContactLaw::solid_and_meniscus(contact.lambda(), rho, eta),
+                    units.load,
+                    units.approach,
+                )
+            }
+        };
+        let overlap_max_m = overlap_max_m.unwrap_or(DEFAULT_OVERLAP_MAX * length_scale);
         if !(overlap_max_m.is_finite() && overlap_max_m > 0.0) {
             return Err(DomainError {
                 name: "overlap_max_m",
@@ -427,7 +876,7 @@ impl Pair {
             }
             .into());
         }
-        let law = DemLaw::new(contact.lambda(), overlap_max_m / length_scale).map_err(|e| match e {
+        let law = DemLaw::of_law(law, overlap_max_m / length_scale).map_err(|e| match e {
             DemError::Domain(d) if d.name == "overlap_max" => DemError::Scene(format!(
                 "overlap_max_m = {} m is {} approach units ({} m each), beyond the 1e4 a table covers: give a smaller overlap_max_m",
                 short(overlap_max_m),
@@ -438,21 +887,22 @@ impl Pair {
         })?;
         Ok(Pair {
             contact,
+            meniscus,
             law,
             force_scale,
             length_scale,
         })
     }
 
-    /// The pair of a scene file (`tabor scene`'s keys: the bodies or E* and R, w, and the range),
-    /// tabulated up to `overlap_max_m` (default [`DEFAULT_OVERLAP_MAX`] approach units). Keys
-    /// the dry law under displacement control does not use are refused, not ignored.
+    /// The pair of a scene file (`tabor scene`'s keys: the bodies or E* and R, w, the range, and
+    /// a humidity for a meniscus), tabulated up to `overlap_max_m` (default
+    /// [`DEFAULT_OVERLAP_MAX`] approach units). Keys the law under displacement control does not
+    /// use are refused, not ignored.
     pub fn from_scene(
         s: &crate::scene::SceneInput,
         overlap_max_m: Option<f64>,
     ) -> Result<Pair, DemError> {
         let unused = [
-            ("humidity", s.humidity.is_some()),
             ("loads_n", s.loads_n.is_some()),
             ("load_range_n", s.load_range_n.is_some()),
             ("control", s.control.is_some()),
@@ -461,18 +911,23 @@ impl Pair {
         ];
         if let Some((key, _)) = unused.iter().find(|k| k.1) {
             return Err(DemError::Scene(format!(
-                "`{key}` is not used by the DEM law (a dry pair under displacement control): remove it"
+                "`{key}` is not used by the DEM law (a pair under displacement control): remove it"
             )));
         }
         let contact = crate::scene::contact_of(s).map_err(|e| DemError::Scene(e.to_string()))?;
-        let max = overlap_max_m.unwrap_or(DEFAULT_OVERLAP_MAX * contact.approach_scale());
-        Pair::new(contact, max)
+        let meniscus = match &s.humidity {
+            None => None,
+            Some(h) => h
+                .meniscus(&contact)
+                .map_err(|e| DemError::Scene(e.to_string()))?,
+        };
+        Pair::with_meniscus(contact, meniscus, overlap_max_m)
     }
 
     /// The force and stiffness at `overlap_m` (m, positive interpenetrating) for a contact whose
     /// history is `history` (updated).
     #[inline(always)]
-    pub fn eval(&self, overlap_m: f64, history: &mut Branch) -> EvalSi {
+    pub fn eval(&self, overlap_m: f64, history: &mut History) -> EvalSi {
         let e = self.law.eval(overlap_m / self.length_scale, history);
         EvalSi {
             force_n: e.load * self.force_scale,

@@ -9,10 +9,11 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use tabor::dem::{Branch, DemLaw, Pair};
+use tabor::dem::{DemLaw, History, Pair};
 use tabor_dem::{tabor_dem_law_eval, tabor_dem_law_free, tabor_dem_law_new, TaborDemLaw};
 use tabor_dem_bench::{
-    c_pair, contact_stream, law, mixed_stream, pair, pair_contact, Stream, CONTACTS, OVERLAP_MAX,
+    c_pair, contact_stream, law, mixed_stream, pair, pair_contact, wet_law, Stream, CONTACTS,
+    OVERLAP_MAX,
 };
 
 /// The C ABI's evaluation, as a C caller sees it: a call through a pointer, never inlined.
@@ -21,7 +22,7 @@ type EvalFn = unsafe extern "C" fn(*const TaborDemLaw, f64, *mut u8, *mut f64, *
 /// One pass of the stream through the normalised law: each contact's load and stiffness into
 /// `out`, its history updated.
 #[inline(never)]
-fn pass_law(law: &DemLaw, overlap: &[f64], history: &mut [Branch], out: &mut [[f64; 2]]) {
+fn pass_law(law: &DemLaw, overlap: &[f64], history: &mut [History], out: &mut [[f64; 2]]) {
     for ((&d, h), o) in overlap.iter().zip(history.iter_mut()).zip(out.iter_mut()) {
         let e = law.eval(d, h);
         *o = [e.load, e.stiffness];
@@ -30,7 +31,7 @@ fn pass_law(law: &DemLaw, overlap: &[f64], history: &mut [Branch], out: &mut [[f
 
 /// The same through the SI pair (metres in, newtons out).
 #[inline(never)]
-fn pass_pair(pair: &Pair, overlap_m: &[f64], history: &mut [Branch], out: &mut [[f64; 2]]) {
+fn pass_pair(pair: &Pair, overlap_m: &[f64], history: &mut [History], out: &mut [[f64; 2]]) {
     for ((&d, h), o) in overlap_m.iter().zip(history.iter_mut()).zip(out.iter_mut()) {
         let e = pair.eval(d, h);
         *o = [e.force_n, e.stiffness_n_m];
@@ -59,22 +60,35 @@ fn pass_c(
 /// nodes, 206 kB), and DMT-like.
 const LAMBDAS: [f64; 3] = [0.5, 0.94, 10.0];
 
-fn bench_law(c: &mut Criterion, group: &str, lambdas: &[f64], stream: fn(&DemLaw, u64) -> Stream) {
+/// The laws of `lambdas` by name, and with `wet` the wet law.
+fn laws(lambdas: &[f64], wet: bool) -> Vec<(String, DemLaw)> {
+    let mut v: Vec<(String, DemLaw)> = lambdas.iter().map(|&l| (l.to_string(), law(l))).collect();
+    if wet {
+        v.push(("wet".into(), wet_law()));
+    }
+    v
+}
+
+fn bench_law(
+    c: &mut Criterion,
+    group: &str,
+    laws: Vec<(String, DemLaw)>,
+    stream: fn(&DemLaw, u64) -> Stream,
+) {
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Elements(CONTACTS as u64));
-    for &lambda in lambdas {
-        let law = law(lambda);
+    for (name, law) in laws {
         let s = stream(&law, 1);
         eprintln!(
-            "{group}/{lambda}: {} contacts free, non-contact, contact: {:?}; table {} nodes",
+            "{group}/{name}: {} contacts free, non-contact, contact: {:?}; table {} nodes",
             CONTACTS,
-            s.counts(),
+            s.counts(&law),
             law.nodes
         );
         let mut history = s.history.clone();
         let mut out = vec![[0.0; 2]; CONTACTS];
         g.bench_with_input(
-            BenchmarkId::from_parameter(lambda),
+            BenchmarkId::from_parameter(name),
             &s.overlap,
             |b, overlap| {
                 b.iter(|| {
@@ -93,11 +107,11 @@ fn bench_law(c: &mut Criterion, group: &str, lambdas: &[f64], stream: fn(&DemLaw
 }
 
 fn eval_contact(c: &mut Criterion) {
-    bench_law(c, "eval/contact", &LAMBDAS, contact_stream);
+    bench_law(c, "eval/contact", laws(&LAMBDAS, true), contact_stream);
 }
 
 fn eval_mixed(c: &mut Criterion) {
-    bench_law(c, "eval/mixed", &[0.5, 10.0], mixed_stream);
+    bench_law(c, "eval/mixed", laws(&[0.5, 10.0], true), mixed_stream);
 }
 
 fn eval_pair(c: &mut Criterion) {

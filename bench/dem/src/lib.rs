@@ -3,12 +3,12 @@
 //!
 //! A stream is what a particle code hands the law in one time step: an array of contacts, each
 //! with its overlap and its own history, in no particular order. Every contact's history is one
-//! that its overlap keeps (`DemLaw::next_branch(b, overlap) == b`), so a stream is the same in
+//! that its overlap keeps (`DemLaw::next_history(h, overlap) == h`), so a stream is the same in
 //! every pass of a benchmark and its branches are as mixed in the last pass as in the first.
 
-use tabor::dem::{Branch, DemLaw, Pair};
+use tabor::dem::{DemLaw, History, Pair};
 use tabor::physics::params::{effective_radius, reduced_modulus, Body, Contact, ForceRange};
-use tabor_dem::{TaborDemPair, TABOR_DEM_CONTACT, TABOR_DEM_FREE, TABOR_DEM_NON_CONTACT};
+use tabor_dem::TaborDemPair;
 
 /// The largest overlap of every table here (approach units): `tabor dem-law`'s default.
 pub const OVERLAP_MAX: f64 = 10.0;
@@ -23,7 +23,7 @@ pub struct Stream {
     /// Overlaps (approach units).
     pub overlap: Vec<f64>,
     /// Each contact's history.
-    pub history: Vec<Branch>,
+    pub history: Vec<History>,
 }
 
 impl Stream {
@@ -34,21 +34,14 @@ impl Stream {
 
     /// The histories as the C ABI's bytes.
     pub fn history_bytes(&self) -> Vec<u8> {
-        self.history
-            .iter()
-            .map(|b| match b {
-                Branch::Free => TABOR_DEM_FREE,
-                Branch::NonContact => TABOR_DEM_NON_CONTACT,
-                Branch::Contact => TABOR_DEM_CONTACT,
-            })
-            .collect()
+        self.history.iter().map(|h| h.code()).collect()
     }
 
-    /// How many contacts are on each branch (free, non-contact, contact).
-    pub fn counts(&self) -> [usize; 3] {
+    /// How many contacts are on each kind of branch (free, non-contact, contact).
+    pub fn counts(&self, law: &DemLaw) -> [usize; 3] {
         let mut n = [0; 3];
-        for b in &self.history {
-            n[*b as usize] += 1;
+        for h in &self.history {
+            n[law.branch(*h) as usize] += 1;
         }
         n
     }
@@ -77,6 +70,17 @@ pub fn law(lambda: f64) -> DemLaw {
     DemLaw::new(lambda, OVERLAP_MAX).expect("the law builds")
 }
 
+/// The wet law of a solid of lambda 1 and a meniscus of half its stress over three times its
+/// range (`tabor dem-law --lambda 1 --stress-ratio 0.5 --range-ratio 3`: two non-contact
+/// stretches, the retract caught by the meniscus), tabulated up to [`OVERLAP_MAX`].
+pub fn wet_law() -> DemLaw {
+    DemLaw::of_law(
+        tabor::law::ContactLaw::solid_and_meniscus(1.0, 0.5, 3.0),
+        OVERLAP_MAX,
+    )
+    .expect("the wet law builds")
+}
+
 /// Contacts on the contact branch: overlaps uniform from the jump-out (the contact branch's
 /// fold) to [`STREAM_MAX`], every history `Contact`.
 pub fn contact_stream(law: &DemLaw, seed: u64) -> Stream {
@@ -84,22 +88,24 @@ pub fn contact_stream(law: &DemLaw, seed: u64) -> Stream {
     let overlap: Vec<f64> = (0..CONTACTS)
         .map(|_| rng.uniform(law.delta_out, STREAM_MAX))
         .collect();
-    let history = vec![Branch::Contact; CONTACTS];
+    let contact = law
+        .history(law.stretch_count() as u8 - 1)
+        .expect("the contact stretch");
+    let history = vec![contact; CONTACTS];
     check(law, &overlap, &history);
     Stream { overlap, history }
 }
 
-/// Contacts on every branch the law has: each contact's branch drawn with equal chances among
+/// Contacts on every stretch the law has: each contact's stretch drawn with equal chances among
 /// free (a gap beyond the attraction's reach, down to one approach unit below any force),
 /// non-contact (where lambda has that branch) and contact, then its overlap uniform over that
-/// branch's range up to [`STREAM_MAX`]; the order is random, as in a neighbour list.
+/// stretch's range up to [`STREAM_MAX`]; the order is random, as in a neighbour list.
 pub fn mixed_stream(law: &DemLaw, seed: u64) -> Stream {
     let mut rng = Rng(seed);
     let lo = law.lowest_overlap() - 1.0;
-    let mut branches = vec![Branch::Free, Branch::Contact];
-    if law.delta_nc.is_some_and(|nc| nc < law.delta_in) {
-        branches.insert(1, Branch::NonContact);
-    }
+    let branches: Vec<History> = (0..law.stretch_count() as u8)
+        .filter_map(|c| law.history(c))
+        .collect();
     let mut overlap = Vec::with_capacity(CONTACTS);
     let mut history = Vec::with_capacity(CONTACTS);
     while overlap.len() < CONTACTS {
@@ -107,7 +113,7 @@ pub fn mixed_stream(law: &DemLaw, seed: u64) -> Stream {
         // Rejection: an overlap that this history keeps.
         loop {
             let d = rng.uniform(lo, STREAM_MAX);
-            if law.next_branch(b, d) == b {
+            if law.next_history(b, d) == b {
                 overlap.push(d);
                 history.push(b);
                 break;
@@ -119,7 +125,7 @@ pub fn mixed_stream(law: &DemLaw, seed: u64) -> Stream {
 }
 
 /// Every contact keeps its history: the stream is stationary.
-fn check(law: &DemLaw, overlap: &[f64], history: &[Branch]) {
+fn check(law: &DemLaw, overlap: &[f64], history: &[History]) {
     for (&d, &b) in overlap.iter().zip(history) {
         let mut h = b;
         let e = law.eval(d, &mut h);
@@ -153,6 +159,8 @@ pub fn c_pair(lambda: f64) -> TaborDemPair {
         dugdale_stress_pa: contact.s0,
         lj_range_m: 0.0,
         overlap_max_m: OVERLAP_MAX * contact.approach_scale(),
+        relative_humidity: 0.0,
+        contact_angle_deg: 0.0,
     }
 }
 
