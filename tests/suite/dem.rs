@@ -326,6 +326,31 @@ fn the_wet_loop_is_the_two_zone_cycle_of_tabor_cycle() {
         let area = dem.loop_area(dmax).unwrap();
         let want = c.hysteresis.unwrap();
         println!("lambda_s {l}, rho {rho}, eta {eta}: loop {area}, cycle {want}");
+        // The cycle's jump out of contact is the exact fold, and lands where the law's retract
+        // goes on: a meniscus stretch or free. Without a jump (contact lost at A -> 0 onto the
+        // meniscus) the law's retract goes on across the gap too.
+        let mut h = dem.history(dem.stretch_count() as u8 - 1).unwrap();
+        let after = dem.eval(dem.delta_out - 1e-9, &mut h).branch;
+        let out = c.jumps.iter().find(|j| {
+            j.phase == tabor::cycle::Phase::Retract && j.from.branch == tabor::law::Branch::Contact
+        });
+        match out {
+            Some(out) => {
+                assert!(
+                    (out.from.approach - dem.delta_out).abs() <= 1e-9,
+                    "{l}, {rho}, {eta}"
+                );
+                // (The cycle's landing is interpolated on its sampled path: a landing at the
+                // free branch's end carries a load of 0, whatever its label.)
+                let landed = out.to.map(|p| p.load);
+                assert_eq!(
+                    after == Branch::NonContact,
+                    landed.is_some_and(|p| p < 0.0),
+                    "{l}, {rho}, {eta}: {after:?} against {landed:?}"
+                );
+            }
+            None => assert_eq!(after, Branch::NonContact, "{l}, {rho}, {eta}"),
+        }
         // The cycle's trapezoids over its sampled path against the quadrature here.
         assert!(
             (area - want).abs() <= 5e-3 * want.abs(),
