@@ -23,7 +23,7 @@
 //! two, one or two square roots and a cubic: no allocation, no solve, and a law is shared
 //! read-only between threads (each contact keeps its own [`History`]).
 
-use crate::law::{ContactLaw, Drive, Law, Piece};
+use crate::law::{ContactLaw, Law, Piece};
 use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::domain::{short, DomainError};
 use crate::physics::params::Contact;
@@ -42,7 +42,7 @@ const MAX_HALVINGS: u32 = 8;
 /// The graded variable's scale (the rough map's: `u = v + v^2 / (2 U_S)`).
 const U_S: f64 = 4.0;
 /// Nodes per piece of the path that locate its folds (each fold then refined to the last bit).
-const PROBES: usize = 8192;
+const PROBES: usize = 2048;
 /// The most stretches a law may have (the history is one byte).
 const MAX_STRETCHES: usize = 64;
 
@@ -383,8 +383,8 @@ impl DemLaw {
     /// The force-overlap law of `law` (a law with a rigid-grip cycle: Maugis-Dugdale, the
     /// two-zone law, a tip), tabulated up to `overlap_max` (its approach units).
     pub fn of_law(law: ContactLaw, overlap_max: f64) -> Result<DemLaw, DemError> {
-        // The law's own checks (its numbers; a closed form has no cycle).
-        law.cycle_path(Drive::RigidGrips, 1.0)?;
+        // The law's own checks (its numbers; a closed form has no path to follow).
+        law.check()?;
         if !(overlap_max.is_finite() && overlap_max <= OVERLAP_MAX) {
             return Err(range_error(overlap_max));
         }

@@ -111,6 +111,11 @@ impl Law for Md {
         check_drive(drive, max_load)?;
         Ok(equilibrium_path(self.lambda, max_load, CYCLE_POINTS))
     }
+    fn check(&self) -> Result<(), LawError> {
+        crate::solver::domain::check_lambda(self.lambda)
+            .map_err(crate::solver::SolveError::from)?;
+        Ok(())
+    }
     /// The retract's fold of the contact branch, to the solver's precision: the pull-offs of
     /// the solver's context, or under a spring a bisection in A around the sampled fold.
     fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {

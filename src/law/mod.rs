@@ -169,6 +169,11 @@ pub trait Law {
             what: "approach-retract cycle",
         })
     }
+    /// The law's own checks (its numbers in their domain) for an operation that follows its
+    /// path; a law without one (a closed form) says so. By default its cycle's.
+    fn check(&self) -> Result<(), LawError> {
+        self.cycle_path(Drive::RigidGrips, 1.0).map(|_| ())
+    }
     /// The exact fold of the contact branch under `drive` near the sampled one `near` (rigid
     /// grips: the displacement-controlled pull-off; dead load: the load-controlled one; a
     /// spring: where dPbar/dDbar = -kbar), where the law has it.
@@ -320,6 +325,9 @@ impl Law for ContactLaw {
     }
     fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
         self.law().cycle_path(drive, max_load)
+    }
+    fn check(&self) -> Result<(), LawError> {
+        self.law().check()
     }
     fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
         self.law().fold(drive, near)

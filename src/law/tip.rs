@@ -365,6 +365,10 @@ impl Law for Tip {
             [self.lambda.to_bits(), shape[0], shape[1], shape[2]],
         )
     }
+    fn check(&self) -> Result<(), LawError> {
+        Tip::new(self.shape, self.lambda)?;
+        Ok(())
+    }
     fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
         Tip::new(self.shape, self.lambda)?;
         check_drive(drive, max_load)?;

@@ -411,3 +411,90 @@ fn a_humid_pair_is_the_wet_scene() {
     let d = tabor::dem::Pair::from_scene(&dry, None).unwrap();
     assert!(d.meniscus.is_none() && d.law.law == ContactLaw::md(c.lambda()));
 }
+
+/// Any law of the law layer with a rigid-grip path exports: a paraboloid tip (n = 2) in its
+/// units is the sphere's law, and a cone's loop is its `tabor cycle` loop.
+#[test]
+fn a_tip_exports_its_law_too() {
+    use tabor::law::Tip;
+    use tabor::physics::tip::Shape;
+    for &l in &[0.3, 3.0] {
+        let tip = DemLaw::of_law(
+            ContactLaw::Tip(Tip::new(Shape::Power { exponent: 2.0 }, l).unwrap()),
+            10.0,
+        )
+        .unwrap();
+        let sphere = DemLaw::new(l, 10.0).unwrap();
+        let pc = sphere.load_pulloff.abs();
+        assert!(
+            (tip.load_pulloff - sphere.load_pulloff).abs() <= 1e-9 * pc,
+            "lambda {l}"
+        );
+        assert!(
+            (tip.delta_out - sphere.delta_out).abs() <= 1e-9,
+            "lambda {l}"
+        );
+        let (a, b) = (tip.drive(-4.0, 8.0, 601), sphere.drive(-4.0, 8.0, 601));
+        for ((d, x), (_, y)) in a.0.iter().chain(&a.1).zip(b.0.iter().chain(&b.1)) {
+            assert_eq!(x.branch, y.branch, "lambda {l} at {d}");
+            assert!(
+                (x.load - y.load).abs() <= 2e-6 * pc.max(y.load.abs()),
+                "lambda {l} at {d}"
+            );
+        }
+    }
+    let cone = Tip::new(Shape::Power { exponent: 1.0 }, 1.0).unwrap();
+    let dem = DemLaw::of_law(ContactLaw::Tip(cone), 10.0).unwrap();
+    assert!(dem.error <= 1e-6);
+    let c = tabor::cycle::run(&cone, tabor::Drive::RigidGrips, 2.0).unwrap();
+    let top = c
+        .steps
+        .iter()
+        .filter(|s| s.phase == tabor::cycle::Phase::Approach)
+        .map(|s| s.point.approach)
+        .fold(f64::NEG_INFINITY, f64::max);
+    let (area, want) = (dem.loop_area(top).unwrap(), c.hysteresis.unwrap());
+    assert!(
+        (area - want).abs() <= 5e-3 * want,
+        "cone: loop {area} against {want}"
+    );
+}
+
+/// The stretches found from the law's states (probes, folds refined by bisection) put the jumps
+/// where the solver's summit of rough surfaces does (`rough::Summit`: the solver's pull-offs and
+/// the closed-form non-contact branch), across lambda and densely near lambda_D, where the
+/// contact branch folds twice within a small range of overlaps.
+#[test]
+fn the_marks_are_the_solvers_across_lambda() {
+    let near_d = (0..=90).map(|k| 0.9 + 0.0005 * k as f64);
+    let across = (0..=48).map(|k| 10f64.powf(-2.0 + 6.0 * k as f64 / 48.0));
+    for lambda in near_d.chain(across) {
+        let law = DemLaw::new(lambda, 10.0).unwrap();
+        let s = tabor::Summit::new(lambda).unwrap();
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + b.abs());
+        assert!(
+            close(law.delta_out, s.delta_out),
+            "lambda {lambda}: out {} against {}",
+            law.delta_out,
+            s.delta_out
+        );
+        assert!(
+            close(law.delta_in, s.delta_in),
+            "lambda {lambda}: in {} against {}",
+            law.delta_in,
+            s.delta_in
+        );
+        match (law.delta_nc, s.delta_nc) {
+            (Some(a), Some(b)) => assert!(close(a, b), "lambda {lambda}: nc {a} against {b}"),
+            (a, b) => assert_eq!(
+                a.is_some(),
+                b.is_some(),
+                "lambda {lambda}: nc {a:?} against {b:?}"
+            ),
+        }
+        assert!(
+            close(law.load_pulloff, s.smooth_pulloff()),
+            "lambda {lambda}"
+        );
+    }
+}
