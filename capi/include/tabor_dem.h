@@ -37,6 +37,12 @@
 #define TABOR_DEM_CONTACT 2
 
 /**
+ * The version of this interface: 2 since a pair may have a meniscus and a history byte is the
+ * law's stretch (1: a dry pair, history bytes 0, 1, 2 the branches).
+ */
+#define TABOR_DEM_ABI_VERSION 2
+
+/**
  * Return code: the force and stiffness were written.
  */
 #define TABOR_DEM_OK 0
@@ -48,7 +54,8 @@
 #define TABOR_DEM_BEYOND_TABLE 1
 
 /**
- * Return code: nothing written: a null pointer, a NaN overlap or an unknown history byte.
+ * Return code: nothing written: a null pointer, an overlap that is not a finite number, or a
+ * history byte that is not one of the law's.
  */
 #define TABOR_DEM_INVALID -1
 
@@ -189,9 +196,9 @@ extern "C" {
 #endif // __cplusplus
 
 /**
- * Builds the law of a pair (tabulating its contact branch: about a millisecond). Returns NULL
- * where the pair is refused or the table misses its 1e-6 target, with the reason in `error`
- * (`error_len` bytes, may be NULL).
+ * Builds the law of a pair (tabulating every stretch of its path: about half a millisecond
+ * dry, half a second with a meniscus). Returns NULL where the pair is refused or the table
+ * misses its 1e-6 target, with the reason in `error` (`error_len` bytes, may be NULL).
  *
  * # Safety
  * `pair` is NULL or points to a `TaborDemPair`; `error` is NULL or points to `error_len`
@@ -206,8 +213,9 @@ struct TaborDemLaw *tabor_dem_law_new(const struct TaborDemPair *pair,
  * positive interpenetrating) for a contact whose history byte is `*history` (updated: start a
  * new contact with `TABOR_DEM_FREE`). Returns `TABOR_DEM_OK`, `TABOR_DEM_BEYOND_TABLE`
  * (written, extrapolated) or `TABOR_DEM_INVALID` (nothing written). The stiffness is infinite
- * at the jump-out fold itself, where the contact branch is vertical (and large next to any
- * fold). No allocation; safe from any number of threads on one law.
+ * at a fold itself, where the branch is vertical (the jump out of contact above lambda 0.94),
+ * and large next to one; where a branch ends without a fold it is its finite slope. No
+ * allocation; safe from any number of threads on one law.
  *
  * # Safety
  * `law` is NULL or a law from `tabor_dem_law_new` not yet freed; the other pointers are NULL or

@@ -22,12 +22,17 @@ pub const TABOR_DEM_NON_CONTACT: u8 = 1;
 /// Branch code: in contact.
 pub const TABOR_DEM_CONTACT: u8 = 2;
 
+/// The version of this interface: 2 since a pair may have a meniscus and a history byte is the
+/// law's stretch (1: a dry pair, history bytes 0, 1, 2 the branches).
+pub const TABOR_DEM_ABI_VERSION: u32 = 2;
+
 /// Return code: the force and stiffness were written.
 pub const TABOR_DEM_OK: i32 = 0;
 /// Return code: written, but the overlap lies beyond the table (the last cubic extrapolated):
 /// build the law with a larger `overlap_max_m`.
 pub const TABOR_DEM_BEYOND_TABLE: i32 = 1;
-/// Return code: nothing written: a null pointer, a NaN overlap or an unknown history byte.
+/// Return code: nothing written: a null pointer, an overlap that is not a finite number, or a
+/// history byte that is not one of the law's.
 pub const TABOR_DEM_INVALID: i32 = -1;
 
 /// A pair of elastic bodies with adhesion, in SI units.
@@ -176,9 +181,9 @@ fn write_message(msg: &str, buf: *mut c_char, len: usize) {
     }
 }
 
-/// Builds the law of a pair (tabulating its contact branch: about a millisecond). Returns NULL
-/// where the pair is refused or the table misses its 1e-6 target, with the reason in `error`
-/// (`error_len` bytes, may be NULL).
+/// Builds the law of a pair (tabulating every stretch of its path: about half a millisecond
+/// dry, half a second with a meniscus). Returns NULL where the pair is refused or the table
+/// misses its 1e-6 target, with the reason in `error` (`error_len` bytes, may be NULL).
 ///
 /// # Safety
 /// `pair` is NULL or points to a `TaborDemPair`; `error` is NULL or points to `error_len`
@@ -212,8 +217,9 @@ pub unsafe extern "C" fn tabor_dem_law_new(
 /// positive interpenetrating) for a contact whose history byte is `*history` (updated: start a
 /// new contact with `TABOR_DEM_FREE`). Returns `TABOR_DEM_OK`, `TABOR_DEM_BEYOND_TABLE`
 /// (written, extrapolated) or `TABOR_DEM_INVALID` (nothing written). The stiffness is infinite
-/// at the jump-out fold itself, where the contact branch is vertical (and large next to any
-/// fold). No allocation; safe from any number of threads on one law.
+/// at a fold itself, where the branch is vertical (the jump out of contact above lambda 0.94),
+/// and large next to one; where a branch ends without a fold it is its finite slope. No
+/// allocation; safe from any number of threads on one law.
 ///
 /// # Safety
 /// `law` is NULL or a law from `tabor_dem_law_new` not yet freed; the other pointers are NULL or
@@ -234,7 +240,7 @@ pub unsafe extern "C" fn tabor_dem_law_eval(
     let Some(mut hist) = law.pair.law.history(*h) else {
         return TABOR_DEM_INVALID;
     };
-    if overlap_m.is_nan() {
+    if !overlap_m.is_finite() {
         return TABOR_DEM_INVALID;
     }
     let e = law.pair.eval(overlap_m, &mut hist);

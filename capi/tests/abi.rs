@@ -78,6 +78,13 @@ fn the_abi_evaluates_the_library_law_and_refuses_bad_input() {
             tabor_dem_law_eval(law, f64::NAN, &mut h, &mut f, &mut k),
             TABOR_DEM_INVALID
         );
+        for bad in [f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(
+                tabor_dem_law_eval(law, bad, &mut h, &mut f, &mut k),
+                TABOR_DEM_INVALID
+            );
+        }
+        assert_eq!(TABOR_DEM_ABI_VERSION, 2);
         h = 9;
         assert_eq!(
             tabor_dem_law_eval(law, 1e-9, &mut h, &mut f, &mut k),

@@ -13,15 +13,16 @@
 //! holding it, or comes free. The loop between the two paths is the energy a slow collision
 //! loses ([`DemLaw::loop_area`]), the area of `tabor cycle`'s rigid-grip loop.
 //!
-//! Each stretch is tabulated as not-a-knot cubic splines in a variable that takes a fold's
-//! square root out: `u = sqrt(|delta - end|)` from an end where the stretch folds, `|delta -
-//! end|` from one where it does not (a bounded stretch is two such halves, one from each end;
-//! the open contact stretch one, graded as `u = v + v^2 / (2 U_S)` in `v`). The step is halved
-//! until the error measured against exact states at every interval's midpoint is within
-//! [`TARGET`] of max(|Pbar_c|, |load|). The exact state at an overlap is the law's own: a
-//! bracketed Newton search in the stretch's path parameter. An evaluation is a comparison or
-//! two, one or two square roots and a cubic: no allocation, no solve, and a law is shared
-//! read-only between threads (each contact keeps its own [`History`]).
+//! Each stretch is tabulated as a cubic spline in a variable that takes a fold's square root
+//! out: the open contact stretch in `u = sqrt(delta - delta_out)`, graded as `u = v + v^2 /
+//! (2 U_S)`; a bounded stretch in the angle theta of `delta = lo + (hi - lo)(1 - cos theta)/2`,
+//! smooth at a fold at either end. At an end without a fold the spline is given a zero slope in
+//! its variable (the stiffness is finite there). The step is halved until the error measured
+//! against exact states at every interval's midpoint is within [`TARGET`] of max(|Pbar_c|,
+//! |load|). The exact state at an overlap is the law's own: a bracketed Newton search in the
+//! stretch's path parameter. An evaluation is a comparison or two, a square root (an arc cosine
+//! on a non-contact stretch) and a cubic: no allocation, no solve, and a law is shared read-only
+//! between threads (each contact keeps its own [`History`]).
 
 use crate::law::{ContactLaw, Law, Piece};
 use crate::numeric::root::{bisect_sign, newton_bracketed};
@@ -128,16 +129,22 @@ enum Var {
     /// and `v` graded, `u = v + v^2 / (2 U_S)`.
     Root { origin: f64 },
     /// A bounded stretch: the angle `theta` of `delta = lo + width (1 - cos theta) / 2`, which
-    /// takes out a fold's square root at either end and is smooth where an end has none.
+    /// takes out a fold's square root at either end (`sqrt((delta - lo)(hi - delta))` is
+    /// `width sin(theta) / 2`) and keeps an end without a fold smooth.
     Arc { lo: f64, width: f64 },
 }
 
-/// A cubic spline of the load at uniform steps of its variable.
+/// A cubic spline of the load at uniform steps of its variable. Where an end is not a fold the
+/// load's slope in the variable is zero there (a finite stiffness over a vanishing root): the
+/// spline is made with that slope (through the values mirrored about the end), and the
+/// stiffness at the end itself is its limit, from the spline's second derivative there.
 #[derive(Debug)]
 struct Segment {
     var: Var,
     inv_h: f64,
     coef: Vec<[f64; 4]>,
+    /// Whether the low and the high end are without a fold (a zero slope in the variable).
+    flat: (bool, bool),
 }
 
 impl Segment {
@@ -158,14 +165,32 @@ impl Segment {
         let (v, dv) = match self.var {
             Var::Root { origin } => {
                 let u = (delta - origin).max(0.0).sqrt();
+                if u == 0.0 && self.flat.0 {
+                    // P = P0 + c2 (v / h)^2 and v -> u = sqrt(delta - origin) at the end.
+                    let c = &self.coef[0];
+                    return (c[0], c[2] * self.inv_h * self.inv_h);
+                }
                 let v = 2.0 * u / (1.0 + (1.0 + u * (2.0 / U_S)).sqrt());
                 // dv/ddelta = (dv/du) (du/ddelta); infinite at the fold itself.
                 (v, 1.0 / ((1.0 + v / U_S) * 2.0 * u))
             }
             Var::Arc { lo, width } => {
                 let y = ((delta - lo) / width).clamp(0.0, 1.0);
-                // dtheta/ddelta = 1 / (width sqrt(y (1 - y))): finite even at an end.
-                let q = (y * (1.0 - y)).max(1e-300).sqrt();
+                let q = (y * (1.0 - y)).sqrt();
+                if q == 0.0 {
+                    // P = P_end + P''(theta_end) phi^2 / 2 with phi^2 = 4 |delta - end| / width.
+                    let h2 = self.inv_h * self.inv_h / width;
+                    let (c0, c1) = (&self.coef[0], &self.coef[self.coef.len() - 1]);
+                    match y == 0.0 {
+                        true if self.flat.0 => return (c0[0], 4.0 * c0[2] * h2),
+                        false if self.flat.1 => {
+                            let end = c1[0] + c1[1] + c1[2] + c1[3];
+                            return (end, -2.0 * (2.0 * c1[2] + 6.0 * c1[3]) * h2);
+                        }
+                        _ => {}
+                    }
+                }
+                // dtheta/ddelta = 1 / (width sqrt(y (1 - y))): infinite at a fold.
                 ((1.0 - 2.0 * y).acos(), 1.0 / (width * q))
             }
         };
@@ -179,6 +204,22 @@ impl Segment {
         let dload_dv = ((3.0 * c[3] * s + 2.0 * c[2]) * s + c[1]) * self.inv_h;
         (load, dload_dv * dv)
     }
+}
+
+/// The not-a-knot spline of `vals`, with a zero slope at each end flagged `zero` (the values
+/// mirrored about it, so that the spline is symmetric there): the intervals of `vals` alone.
+fn spline_with(vals: &[f64], zero: (bool, bool)) -> Vec<[f64; 4]> {
+    let n = vals.len();
+    let mut y: Vec<f64> = Vec::with_capacity(3 * n);
+    if zero.0 {
+        y.extend(vals[1..].iter().rev());
+    }
+    let first = y.len();
+    y.extend_from_slice(vals);
+    if zero.1 {
+        y.extend(vals[..n - 1].iter().rev());
+    }
+    spline(&y)[first..first + n - 1].to_vec()
 }
 
 /// A stretch of the path on which the approach rises: stable under rigid grips for overlaps in
@@ -195,6 +236,12 @@ struct Stretch {
     /// The approach at `t.1` (`hi` where the stretch is bounded; the path's end for the open
     /// contact stretch).
     top: f64,
+    /// Whether the low and the high end are folds (vertical in overlap and load).
+    fold: (bool, bool),
+    /// `lo` and `hi` widened by rounding (1e-12 relative): a jump that lands within rounding of
+    /// a stretch's end (the stretches it joins agree to a few ulps) stays there.
+    floor: f64,
+    ceil: f64,
     /// The stretch the approach jumps to from `hi`, and the retract from `lo`.
     up: u8,
     down: u8,
@@ -274,6 +321,8 @@ fn runs(law: &ContactLaw, overlap_max: f64) -> Result<(Vec<Run>, f64), DemError>
     }
     let mut out: Vec<Run> = Vec::new();
     let mut least = f64::INFINITY;
+    // Whether the previous piece's last run reached its end (the path runs on into this one).
+    let mut continues = false;
     for (piece, t0, t1) in law.pieces(a_max) {
         let branch = if piece == Piece::Contact {
             Branch::Contact
@@ -336,15 +385,14 @@ fn runs(law: &ContactLaw, overlap_max: f64) -> Result<(Vec<Run>, f64), DemError>
                 last.1 = PROBES - 1;
             }
         }
+        let reaches_end = spans.last().is_some_and(|l| l.1 == PROBES - 1);
         for (i, j) in spans {
             let start_fold = i > 0;
             let end_fold = j + 1 < PROBES;
             let ta = if start_fold { fold_at(i - 1) } else { ts[0] };
             let tb = if end_fold { fold_at(j) } else { ts[PROBES - 1] };
-            let joined = i == 0
-                && out
-                    .last()
-                    .is_some_and(|r| !r.fold.1 && r.piece != piece && !r.open);
+            // The path runs on from the previous piece's end (the pieces are consecutive).
+            let joined = i == 0 && continues;
             out.push(Run {
                 piece,
                 t: (ta, tb),
@@ -353,6 +401,7 @@ fn runs(law: &ContactLaw, overlap_max: f64) -> Result<(Vec<Run>, f64), DemError>
                 open: piece == Piece::Contact && !end_fold,
             });
         }
+        continues = reaches_end;
         if piece == Piece::Contact {
             // The least load, refined where the load's slope in t changes sign.
             let k = (0..PROBES)
@@ -398,6 +447,9 @@ impl DemLaw {
             lo: f64::NEG_INFINITY,
             hi: free_end,
             top: free_end,
+            fold: (false, false),
+            floor: f64::NEG_INFINITY,
+            ceil: widen(free_end, 1.0),
             up: 0,
             down: 0,
             table: None,
@@ -424,6 +476,13 @@ impl DemLaw {
                 lo,
                 hi: if r.open { f64::INFINITY } else { top },
                 top,
+                fold: r.fold,
+                floor: widen(lo, -1.0),
+                ceil: if r.open {
+                    f64::INFINITY
+                } else {
+                    widen(top, 1.0)
+                },
                 up: 0,
                 down: 0,
                 table: None,
@@ -458,11 +517,12 @@ impl DemLaw {
         };
         dem.tabulate()?;
         dem.delta_in = dem.entry();
-        dem.delta_nc = dem.release();
-        let last = dem.stretches.len() - 1;
-        dem.disp_pulloff = dem.exact_on(last, delta_out).ok_or(DemError::Failed(
+        let (out, free_from) = dem.exit();
+        dem.delta_nc = free_from;
+        dem.delta_out = dem.stretches[out].lo;
+        dem.disp_pulloff = dem.exact_on(out, dem.delta_out).ok_or(DemError::Failed(
             Branch::Contact,
-            delta_out,
+            dem.delta_out,
             lambda,
         ))?;
         Ok(dem)
@@ -493,8 +553,6 @@ impl DemLaw {
                 .ok_or(DemError::Failed(s.branch, d, self.lambda))
         };
         let var = if s.hi.is_infinite() {
-            // The fold's square root taken out even where the stretch starts without one (a
-            // smooth load in delta is smooth in its square root too).
             Var::Root { origin: s.lo }
         } else {
             Var::Arc {
@@ -502,6 +560,8 @@ impl DemLaw {
                 width: s.top - s.lo,
             }
         };
+        // An end without a fold: the spline's slope in its variable is zero there.
+        let flat = (!s.fold.0, !s.fold.1 && !s.hi.is_infinite());
         let mut h = TABLE_H;
         for halving in 0..=MAX_HALVINGS {
             // The open contact stretch: steps of h in v, one interval past the end. A bounded
@@ -520,12 +580,13 @@ impl DemLaw {
                 var,
                 inv_h: 1.0 / step,
                 coef: Vec::new(),
+                flat,
             };
             let vals = (0..n)
                 .into_par_iter()
                 .map(|i| exact(seg.delta(i as f64 * step)))
                 .collect::<Result<Vec<_>, _>>()?;
-            seg.coef = spline(&vals);
+            seg.coef = spline_with(&vals, flat);
             // The error at every interval's midpoint.
             let errs = (0..n - 1)
                 .into_par_iter()
@@ -549,27 +610,34 @@ impl DemLaw {
         unreachable!("the loop returns at its last halving")
     }
 
-    /// The overlap where a contact coming from apart enters contact.
+    /// The overlap where a contact coming from apart enters contact: the top of the last
+    /// stretch the approach follows before one in contact.
     fn entry(&self) -> f64 {
-        let last = self.stretches.len() - 1;
+        let s = &self.stretches;
         let mut k = 0;
         loop {
-            let j = self.stretches[k].up as usize;
-            if j == last {
-                return self.stretches[k].hi;
+            let j = s[k].up as usize;
+            if s[j].branch == Branch::Contact || j == s.len() - 1 {
+                return s[k].hi;
             }
             k = j;
         }
     }
 
-    /// Where the retract from contact comes free, if not at the jump out of contact.
-    fn release(&self) -> Option<f64> {
-        let last = self.stretches.len() - 1;
-        let mut k = last;
+    /// The retract from the contact stretch down to free: the stretch on which it leaves
+    /// contact (the last in contact it follows), and where it comes free if that is after
+    /// crossing the gap on a non-contact stretch (None: at the jump out of contact).
+    fn exit(&self) -> (usize, Option<f64>) {
+        let s = &self.stretches;
+        let (mut k, mut out) = (s.len() - 1, s.len() - 1);
         loop {
-            let j = self.stretches[k].down as usize;
+            let j = s[k].down as usize;
             if j == 0 {
-                return (k != last).then_some(self.stretches[k].lo);
+                let free_from = (s[k].branch == Branch::NonContact).then_some(s[k].lo);
+                return (out, free_from);
+            }
+            if s[j].branch == Branch::Contact {
+                out = j;
             }
             k = j;
         }
@@ -580,16 +648,20 @@ impl DemLaw {
         ((code as usize) < self.stretches.len()).then_some(History(code))
     }
 
-    /// The kind of stretch a history is on.
+    /// The kind of stretch a history is on (free for a history of another law with more
+    /// stretches).
     pub fn branch(&self, history: History) -> Branch {
-        self.stretches[history.0 as usize].branch
+        self.stretches
+            .get(history.0 as usize)
+            .map_or(Branch::Free, |s| s.branch)
     }
 
     /// The overlaps the stretch of `history` holds: its low and high end (-inf and +inf at the
     /// path's ends).
     pub fn stretch_range(&self, history: History) -> (f64, f64) {
-        let s = &self.stretches[history.0 as usize];
-        (s.lo, s.hi)
+        self.stretches
+            .get(history.0 as usize)
+            .map_or((f64::NAN, f64::NAN), |s| (s.lo, s.hi))
     }
 
     /// The number of stretches: every history code is below it.
@@ -612,12 +684,12 @@ impl DemLaw {
     #[inline(always)]
     fn next(&self, mut k: usize, delta: f64) -> usize {
         let s = &self.stretches;
-        if delta > s[k].hi {
-            while delta > s[k].hi {
+        if delta > s[k].ceil {
+            while delta > s[k].ceil {
                 k = s[k].up as usize;
             }
         } else {
-            while delta < s[k].lo {
+            while delta < s[k].floor {
                 k = s[k].down as usize;
             }
         }
@@ -625,19 +697,25 @@ impl DemLaw {
     }
 
     /// The load and stiffness at overlap `delta` for a contact whose history is `history`,
-    /// which is updated. A NaN overlap gives a NaN load and leaves the history.
+    /// which is updated. A NaN or infinite overlap gives a NaN load and leaves the history (an
+    /// overlap of -inf is apart).
     // Inlined into the caller's loop: a call costs about twice the evaluation.
     #[inline(always)]
     pub fn eval(&self, delta: f64, history: &mut History) -> Eval {
-        if delta.is_nan() {
+        // A history of another law, with more stretches, is taken as a new contact's.
+        let from = match history.0 as usize {
+            k if k < self.stretches.len() => k,
+            _ => 0,
+        };
+        if delta.is_nan() || delta == f64::INFINITY {
             return Eval {
                 load: f64::NAN,
                 stiffness: f64::NAN,
-                branch: self.branch(*history),
+                branch: self.stretches[from].branch,
                 beyond_table: false,
             };
         }
-        let k = self.next(history.0 as usize, delta);
+        let k = self.next(from, delta);
         *history = History(k as u8);
         let s = &self.stretches[k];
         let (load, stiffness) = s.at(delta);
@@ -652,7 +730,7 @@ impl DemLaw {
     /// The exact load at `delta` on stretch `k` (clamped into it): the law's state where the
     /// approach equals `delta`, by a bracketed Newton search in the path parameter.
     fn exact_on(&self, k: usize, delta: f64) -> Option<f64> {
-        let s = &self.stretches[k];
+        let s = self.stretches.get(k)?;
         if s.branch == Branch::Free {
             return Some(0.0);
         }
@@ -678,7 +756,7 @@ impl DemLaw {
     }
 
     /// The exact load on the stretch a contact with history `history` is on at `delta` (no
-    /// table): what the table is measured against.
+    /// table): what the table is measured against. None for a history of another law.
     pub fn exact(&self, history: History, delta: f64) -> Option<f64> {
         self.exact_on(history.0 as usize, delta)
     }
@@ -712,8 +790,11 @@ impl DemLaw {
     /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by
     /// `pi w R` times the approach unit): the area between the approach and the retract, from
     /// the exact stretches by double-exponential quadrature between the marks. Zero where the
-    /// cycle does not reach the attraction.
+    /// cycle does not reach the attraction; None for a largest overlap that is not finite.
     pub fn loop_area(&self, overlap_max: f64) -> Option<f64> {
+        if !overlap_max.is_finite() {
+            return None;
+        }
         let app = |d: f64| self.next(0, d);
         let reached = app(overlap_max);
         let ret = |d: f64| self.next(reached, d);
@@ -777,11 +858,15 @@ fn range_error(overlap_max: f64) -> DemError {
     .into()
 }
 
+/// `x` moved by rounding (1e-12 relative) in the direction `dir`.
+fn widen(x: f64, dir: f64) -> f64 {
+    x + dir * 1e-12 * (1.0 + x.abs())
+}
+
 /// Whether stretch `s` holds the overlap `level` (within rounding: where two stretches meet at
 /// a piece's end their ends agree to a few ulps).
 fn holds(s: &Stretch, level: f64) -> bool {
-    let tol = 1e-12 * (1.0 + level.abs());
-    s.lo - tol <= level && level <= s.hi + tol
+    s.floor <= level && level <= s.ceil
 }
 
 /// The jumps: from a stretch's top on the approach to the first later stretch holding it (the

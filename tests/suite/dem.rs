@@ -359,13 +359,92 @@ fn the_wet_loop_is_the_two_zone_cycle_of_tabor_cycle() {
     }
 }
 
+/// A meniscus of vanishing stress (through the two-range code: rho = 1e-6, eta = 3) is the dry
+/// law, and one of no stress is the dry law's own code.
 #[test]
 fn a_meniscus_without_stress_is_the_dry_law() {
     for &l in &[0.3, 0.7, 3.0] {
         let dry = DemLaw::new(l, 10.0).unwrap();
-        let (wet, _) = wet(l, 0.0, 3.0);
-        let (a, b) = (dry.drive(-5.0, 8.0, 801), wet.drive(-5.0, 8.0, 801));
+        let (none, _) = wet(l, 0.0, 3.0);
+        let (a, b) = (dry.drive(-5.0, 8.0, 801), none.drive(-5.0, 8.0, 801));
         assert_eq!(format!("{a:?}"), format!("{b:?}"), "lambda {l}");
+        let (faint, _) = wet(l, 1e-6, 3.0);
+        assert!(faint.stretch_count() >= dry.stretch_count(), "lambda {l}");
+        let pc = dry.load_pulloff.abs();
+        assert!(
+            (faint.load_pulloff - dry.load_pulloff).abs() <= 4e-6 * pc,
+            "lambda {l}"
+        );
+        assert!(
+            (faint.delta_out - dry.delta_out).abs() <= 4e-6,
+            "lambda {l}"
+        );
+        let c = faint.drive(-5.0, 8.0, 801);
+        for ((d, x), (_, y)) in c.0.iter().chain(&c.1).zip(a.0.iter().chain(&a.1)) {
+            // Away from the jumps, which move by the meniscus's reach (3 h0 beyond the solid's).
+            if (d - dry.attraction_from).abs() < 4.0 * dry.attraction_from.abs()
+                && x.branch != y.branch
+            {
+                continue;
+            }
+            // The faint meniscus's own pull, of order rho eta C^2 in these units.
+            assert!(
+                (x.load - y.load).abs() <= 2e-5 * pc.max(y.load.abs()),
+                "lambda {l} at {d}: {} against {}",
+                x.load,
+                y.load
+            );
+        }
+    }
+}
+
+/// Where a stretch ends without a fold (contact entered or left at A -> 0, the meniscus's disc
+/// running on into contact) the stiffness is the branch's finite slope, at the end itself and
+/// next to it: not a spline's end error over a vanishing square root.
+#[test]
+fn the_stiffness_is_finite_and_right_where_a_stretch_ends_without_a_fold() {
+    let laws = [
+        ("md 0.5", DemLaw::new(0.5, 10.0).unwrap()),
+        ("md 0.1", DemLaw::new(0.1, 10.0).unwrap()),
+        ("wet 0.3 0.05 10", wet(0.3, 0.05, 10.0).0),
+    ];
+    for (name, law) in &laws {
+        let scale = law.load_pulloff.abs();
+        // The slope of the exact stretch `h` at `d`: central differences inside; within 1e-7 of
+        // its end `end` (the load there may carry a half power of the distance) the end's own
+        // slope, by a one-sided difference into the stretch (`inward`).
+        let slope = |h: History, d: f64, end: f64, inward: f64| {
+            let f = |x: f64| law.exact(h, x).unwrap();
+            if (d - end).abs() > 1e-7 {
+                let e = 1e-8;
+                (f(d + e) - f(d - e)) / (2.0 * e)
+            } else {
+                let e = 1e-7 * inward;
+                (-3.0 * f(end) + 4.0 * f(end + e) - f(end + 2.0 * e)) / (2.0 * e)
+            }
+        };
+        // The contact stretch's low end (contact lost at A -> 0: no fold), from above; the
+        // non-contact stretch that runs on into contact, at its top from below.
+        let contact = law.history(law.stretch_count() as u8 - 1).unwrap();
+        let nc = law.history(law.stretch_count() as u8 - 2).unwrap();
+        let (lo, _) = law.stretch_range(contact);
+        let (_, hi) = law.stretch_range(nc);
+        let cases = [
+            (contact, lo, 1.0, [lo, lo + 1e-12, lo + 1e-9, lo + 1e-6]),
+            (nc, hi, -1.0, [hi, hi - 1e-12, hi - 1e-9, hi - 1e-6]),
+        ];
+        for (h, end, inward, ds) in cases {
+            for d in ds {
+                let want = slope(h, d, end, inward);
+                let k = law.eval(d, &mut h.clone()).stiffness;
+                assert!(
+                    k.is_finite() && (k - want).abs() <= 1e-3 * want.abs().max(scale),
+                    "{name}, {:?} at {d} ({} from its end): {k} against {want}",
+                    law.branch(h),
+                    d - end
+                );
+            }
+        }
     }
 }
 
