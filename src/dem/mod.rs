@@ -24,12 +24,11 @@
 //! on a non-contact stretch) and a cubic: no allocation, no solve, and a law is shared read-only
 //! between threads (each contact keeps its own [`History`]).
 
-use crate::law::{ContactLaw, Law, Piece};
-use crate::numeric::root::{bisect_sign, newton_bracketed};
+use crate::law::stretch::{StretchError, Stretches};
+use crate::law::{ContactLaw, Law};
 use crate::physics::domain::{short, DomainError};
 use crate::physics::params::Contact;
 use crate::rough::map::{spline, u_of_v, v_of_u, TABLE_H};
-use serde::Serialize;
 
 /// The table's target: its measured error at the midpoints, relative to max(|Pbar_c|, |load|).
 pub const TARGET: f64 = 1e-6;
@@ -42,35 +41,10 @@ pub const DEFAULT_OVERLAP_MAX: f64 = 10.0;
 const MAX_HALVINGS: u32 = 8;
 /// The graded variable's scale (the rough map's: `u = v + v^2 / (2 U_S)`).
 const U_S: f64 = 4.0;
-/// Nodes per piece of the path that locate its folds (each fold then refined to the last bit).
-const PROBES: usize = 2048;
 /// The most stretches a law may have (the history is one byte).
 const MAX_STRETCHES: usize = 64;
 
-/// The kind of stretch a contact is on: what tables and the C ABI report.
-#[repr(u8)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Branch {
-    /// Apart, beyond the force's reach (or released from it).
-    #[default]
-    Free = 0,
-    /// Joined across a gap by a cohesive zone alone (no contact, A = 0).
-    NonContact = 1,
-    /// In contact.
-    Contact = 2,
-}
-
-impl Branch {
-    /// The name used in tables: `free`, `non_contact`, `contact`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Branch::Free => "free",
-            Branch::NonContact => "non_contact",
-            Branch::Contact => "contact",
-        }
-    }
-}
+pub use crate::law::Branch;
 
 /// A contact's history: the stretch of its law's path it is on (one byte; 0, free, for a new
 /// contact). Made valid for its law by [`DemLaw::history`].
@@ -111,6 +85,9 @@ pub enum DemError {
     /// The contact law refused (its numbers, or a law without a rigid-grip cycle).
     #[error(transparent)]
     Law(#[from] crate::law::LawError),
+    /// The law's path could not be cut into its stretches.
+    #[error(transparent)]
+    Stretch(#[from] StretchError),
     /// The pair's scene refused.
     #[error("{0}")]
     Scene(String),
@@ -222,43 +199,6 @@ fn spline_with(vals: &[f64], zero: (bool, bool)) -> Vec<[f64; 4]> {
     spline(&y)[first..first + n - 1].to_vec()
 }
 
-/// A stretch of the path on which the approach rises: stable under rigid grips for overlaps in
-/// `[lo, hi]`.
-#[derive(Debug)]
-struct Stretch {
-    branch: Branch,
-    piece: Piece,
-    /// The path parameter at the low and the high end (the approach rises from the first).
-    t: (f64, f64),
-    lo: f64,
-    /// The top overlap (+inf for the open contact stretch).
-    hi: f64,
-    /// The approach at `t.1` (`hi` where the stretch is bounded; the path's end for the open
-    /// contact stretch).
-    top: f64,
-    /// Whether the low and the high end are folds (vertical in overlap and load).
-    fold: (bool, bool),
-    /// `lo` and `hi` widened by rounding (1e-12 relative): a jump that lands within rounding of
-    /// a stretch's end (the stretches it joins agree to a few ulps) stays there.
-    floor: f64,
-    ceil: f64,
-    /// The stretch the approach jumps to from `hi`, and the retract from `lo`.
-    up: u8,
-    down: u8,
-    /// The load's table (None on the free branch).
-    table: Option<Segment>,
-}
-
-impl Stretch {
-    #[inline(always)]
-    fn at(&self, delta: f64) -> (f64, f64) {
-        match &self.table {
-            None => (0.0, 0.0),
-            Some(t) => t.at(delta),
-        }
-    }
-}
-
 /// The force-overlap law of one contact law, normalised (the law's load and approach units:
 /// `Pbar = P/(pi w R)`, overlap `Dbar` in `(pi^2 w^2 R / K^2)^(1/3)`, with the total w where a
 /// meniscus adds its own).
@@ -290,137 +230,9 @@ pub struct DemLaw {
     pub step: f64,
     /// The tables' nodes.
     pub nodes: usize,
-    stretches: Vec<Stretch>,
-}
-
-/// A run of the path where the approach rises, before it is tabulated.
-struct Run {
-    piece: Piece,
-    t: (f64, f64),
-    fold: (bool, bool),
-    /// It starts where the previous piece's last run ends (the path is continuous there).
-    joined: bool,
-    open: bool,
-}
-
-/// The runs of rising approach of every piece after the free one, in the order of the path, and
-/// the contact piece's least load (the load-controlled pull-off) with the path's end.
-fn runs(law: &ContactLaw, overlap_max: f64) -> Result<(Vec<Run>, f64), DemError> {
-    let lambda = law.lambda().unwrap_or(f64::NAN);
-    let failed = |b: Branch, d: f64| DemError::Failed(b, d, lambda);
-    // The contact piece must reach beyond the table's last node (two graded steps past the
-    // largest overlap).
-    let reach = overlap_max.max(0.0) * 1.05 + 1.0;
-    let mut a_max = reach.sqrt() + 2.0;
-    for _ in 0..80 {
-        let p = law.state(Piece::Contact, law.t_of_radius(a_max));
-        if p.approach >= reach {
-            break;
-        }
-        a_max *= 1.5;
-    }
-    let mut out: Vec<Run> = Vec::new();
-    let mut least = f64::INFINITY;
-    // Whether the previous piece's last run reached its end (the path runs on into this one).
-    let mut continues = false;
-    for (piece, t0, t1) in law.pieces(a_max) {
-        let branch = if piece == Piece::Contact {
-            Branch::Contact
-        } else {
-            Branch::NonContact
-        };
-        if !(t0.is_finite() && t1.is_finite() && t0 != t1) {
-            return Err(failed(branch, f64::NAN));
-        }
-        // The path runs from t0 to t1: `sign` makes the parameter rise along it.
-        let sign = (t1 - t0).signum();
-        let ts: Vec<f64> = (0..PROBES)
-            .map(|i| t0 + (t1 - t0) * i as f64 / (PROBES - 1) as f64)
-            .collect();
-        let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
-        if st
-            .iter()
-            .any(|p| !(p.approach.is_finite() && p.load.is_finite()))
-        {
-            return Err(failed(branch, f64::NAN));
-        }
-        let rising = |i: usize| sign * st[i].dapproach > 0.0;
-        // The fold between probes i and i + 1, where the approach's slope along the path
-        // changes sign: bisection on that slope, signed to be negative at the smaller t.
-        let fold_at = |i: usize| {
-            let (a, b) = (ts[i], ts[i + 1]);
-            let flip = if (a < b) == rising(i) { -sign } else { sign };
-            bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
-        };
-        // The rising runs as probe ranges; a fall between two of them (or before the first)
-        // within rounding of the approach is noise where the path is flat (near A -> 0), not a
-        // pair of folds: the runs are merged across it.
-        let flat = |i: usize, j: usize| {
-            let low = (i..=j)
-                .map(|k| st[k].approach)
-                .fold(f64::INFINITY, f64::min);
-            st[i].approach - low <= 1e-10 * (1.0 + st[i].approach.abs())
-        };
-        let mut spans: Vec<(usize, usize)> = Vec::new();
-        let mut i = 0;
-        while i < PROBES {
-            if !rising(i) {
-                i += 1;
-                continue;
-            }
-            let mut j = i;
-            while j + 1 < PROBES && rising(j + 1) {
-                j += 1;
-            }
-            match spans.last_mut() {
-                Some(last) if flat(last.1, i) => last.1 = j,
-                None if i > 0 && flat(0, i) => spans.push((0, j)),
-                _ => spans.push((i, j)),
-            }
-            i = j + 1;
-        }
-        // A fall to the piece's end within rounding: the run reaches the end.
-        if let Some(last) = spans.last_mut() {
-            if last.1 + 1 < PROBES && flat(last.1, PROBES - 1) {
-                last.1 = PROBES - 1;
-            }
-        }
-        let reaches_end = spans.last().is_some_and(|l| l.1 == PROBES - 1);
-        for (i, j) in spans {
-            let start_fold = i > 0;
-            let end_fold = j + 1 < PROBES;
-            let ta = if start_fold { fold_at(i - 1) } else { ts[0] };
-            let tb = if end_fold { fold_at(j) } else { ts[PROBES - 1] };
-            // The path runs on from the previous piece's end (the pieces are consecutive).
-            let joined = i == 0 && continues;
-            out.push(Run {
-                piece,
-                t: (ta, tb),
-                fold: (start_fold, end_fold),
-                joined,
-                open: piece == Piece::Contact && !end_fold,
-            });
-        }
-        continues = reaches_end;
-        if piece == Piece::Contact {
-            // The least load, refined where the load's slope in t changes sign.
-            let k = (0..PROBES)
-                .min_by(|&i, &j| st[i].load.total_cmp(&st[j].load))
-                .unwrap_or(0);
-            least = if k > 0 && k + 1 < PROBES {
-                let (a, b) = (ts[k - 1].min(ts[k + 1]), ts[k - 1].max(ts[k + 1]));
-                let t = bisect_sign(|t| law.state(piece, t).dload, a, b);
-                law.state(piece, t).load.min(st[k].load)
-            } else {
-                st[k].load
-            };
-        }
-    }
-    // The last run must be the open contact branch.
-    if !out.last().is_some_and(|r| r.open) {
-        return Err(failed(Branch::Contact, overlap_max));
-    }
-    Ok((out, least))
+    stretches: Stretches,
+    /// Each stretch's table (None on the free branch).
+    tables: Vec<Option<Segment>>,
 }
 
 impl DemLaw {
@@ -438,68 +250,19 @@ impl DemLaw {
             return Err(range_error(overlap_max));
         }
         let lambda = law.lambda().unwrap_or(f64::NAN);
-        let (runs, pc) = runs(&law, overlap_max)?;
-        let free_end = law.free_end();
-        let mut stretches = vec![Stretch {
-            branch: Branch::Free,
-            piece: Piece::Free,
-            t: (f64::NEG_INFINITY, free_end),
-            lo: f64::NEG_INFINITY,
-            hi: free_end,
-            top: free_end,
-            fold: (false, false),
-            floor: f64::NEG_INFINITY,
-            ceil: widen(free_end, 1.0),
-            up: 0,
-            down: 0,
-            table: None,
-        }];
-        let mut joined = vec![false];
-        let mut dropped = false;
-        for r in &runs {
-            let lo = law.state(r.piece, r.t.0).approach;
-            let top = law.state(r.piece, r.t.1).approach;
-            // A stretch narrower than rounding holds no state a contact could keep.
-            let was_dropped = std::mem::replace(&mut dropped, false);
-            if !r.open && !(top - lo > 1e-13 * (1.0 + lo.abs())) {
-                dropped = true;
-                continue;
-            }
-            stretches.push(Stretch {
-                branch: if r.piece == Piece::Contact {
-                    Branch::Contact
-                } else {
-                    Branch::NonContact
-                },
-                piece: r.piece,
-                t: r.t,
-                lo,
-                hi: if r.open { f64::INFINITY } else { top },
-                top,
-                fold: r.fold,
-                floor: widen(lo, -1.0),
-                ceil: if r.open {
-                    f64::INFINITY
-                } else {
-                    widen(top, 1.0)
-                },
-                up: 0,
-                down: 0,
-                table: None,
-            });
-            joined.push(r.joined && !was_dropped);
-        }
-        if stretches.len() > MAX_STRETCHES {
+        let stretches = Stretches::of(&law, overlap_max)?;
+        if stretches.list.len() > MAX_STRETCHES {
             return Err(DemError::Scene(format!(
                 "the law's path has {} stretches, more than the {MAX_STRETCHES} a history byte holds",
-                stretches.len()
+                stretches.list.len()
             )));
         }
-        let delta_out = stretches.last().map_or(f64::NAN, |s| s.lo);
+        let free_end = stretches.list[0].hi;
+        let delta_out = stretches.list.last().map_or(f64::NAN, |s| s.lo);
         if !(overlap_max > delta_out) {
             return Err(range_error(overlap_max));
         }
-        link(&mut stretches, &joined);
+        let pc = stretches.load_pulloff;
         let mut dem = DemLaw {
             law,
             lambda,
@@ -514,12 +277,13 @@ impl DemLaw {
             step: f64::NAN,
             nodes: 0,
             stretches,
+            tables: Vec::new(),
         };
         dem.tabulate()?;
-        dem.delta_in = dem.entry();
-        let (out, free_from) = dem.exit();
+        dem.delta_in = dem.stretches.entry();
+        let (out, free_from) = dem.stretches.exit();
         dem.delta_nc = free_from;
-        dem.delta_out = dem.stretches[out].lo;
+        dem.delta_out = dem.stretches.list[out].lo;
         dem.disp_pulloff = dem.exact_on(out, dem.delta_out).ok_or(DemError::Failed(
             Branch::Contact,
             dem.delta_out,
@@ -531,22 +295,25 @@ impl DemLaw {
     /// The tables of every stretch but the free one, each halving its step until it meets
     /// [`TARGET`].
     fn tabulate(&mut self) -> Result<(), DemError> {
-        for k in 1..self.stretches.len() {
+        let n = self.stretches.list.len();
+        let mut tables = vec![None];
+        for k in 1..n {
             let (table, err, h) = self.segment(k)?;
             self.error = self.error.max(err);
             self.nodes += table.coef.len() + 1;
-            if k == self.stretches.len() - 1 {
+            if k == n - 1 {
                 self.step = h;
             }
-            self.stretches[k].table = Some(table);
+            tables.push(Some(table));
         }
+        self.tables = tables;
         Ok(())
     }
 
     /// Stretch `k` tabulated: its table, the table's measured error and its step.
     fn segment(&self, k: usize) -> Result<(Segment, f64, f64), DemError> {
         use rayon::prelude::*;
-        let s = &self.stretches[k];
+        let s = &self.stretches.list[k];
         let scale = self.load_pulloff.abs();
         let exact = |d: f64| {
             self.exact_on(k, d)
@@ -610,48 +377,16 @@ impl DemLaw {
         unreachable!("the loop returns at its last halving")
     }
 
-    /// The overlap where a contact coming from apart enters contact: the top of the last
-    /// stretch the approach follows before one in contact.
-    fn entry(&self) -> f64 {
-        let s = &self.stretches;
-        let mut k = 0;
-        loop {
-            let j = s[k].up as usize;
-            if s[j].branch == Branch::Contact || j == s.len() - 1 {
-                return s[k].hi;
-            }
-            k = j;
-        }
-    }
-
-    /// The retract from the contact stretch down to free: the stretch on which it leaves
-    /// contact (the last in contact it follows), and where it comes free if that is after
-    /// crossing the gap on a non-contact stretch (None: at the jump out of contact).
-    fn exit(&self) -> (usize, Option<f64>) {
-        let s = &self.stretches;
-        let (mut k, mut out) = (s.len() - 1, s.len() - 1);
-        loop {
-            let j = s[k].down as usize;
-            if j == 0 {
-                let free_from = (s[k].branch == Branch::NonContact).then_some(s[k].lo);
-                return (out, free_from);
-            }
-            if s[j].branch == Branch::Contact {
-                out = j;
-            }
-            k = j;
-        }
-    }
-
     /// The history of a stored code, None where the code names no stretch of this law.
     pub fn history(&self, code: u8) -> Option<History> {
-        ((code as usize) < self.stretches.len()).then_some(History(code))
+        ((code as usize) < self.stretches.list.len()).then_some(History(code))
     }
 
     /// The kind of stretch a history is on (free for a history of another law with more
     /// stretches).
     pub fn branch(&self, history: History) -> Branch {
         self.stretches
+            .list
             .get(history.0 as usize)
             .map_or(Branch::Free, |s| s.branch)
     }
@@ -660,40 +395,34 @@ impl DemLaw {
     /// path's ends).
     pub fn stretch_range(&self, history: History) -> (f64, f64) {
         self.stretches
+            .list
             .get(history.0 as usize)
             .map_or((f64::NAN, f64::NAN), |s| (s.lo, s.hi))
     }
 
     /// The number of stretches: every history code is below it.
     pub fn stretch_count(&self) -> usize {
-        self.stretches.len()
+        self.stretches.list.len()
     }
 
     /// The contact branch at `delta` (from the table): the load and d load / d overlap.
     #[inline(always)]
     pub fn contact_branch(&self, delta: f64) -> (f64, f64) {
-        self.stretches[self.stretches.len() - 1].at(delta)
+        self.at(self.tables.len() - 1, delta)
+    }
+
+    /// The load and d load / d overlap on stretch `k`'s table at `delta`.
+    #[inline(always)]
+    fn at(&self, k: usize, delta: f64) -> (f64, f64) {
+        match &self.tables[k] {
+            None => (0.0, 0.0),
+            Some(t) => t.at(delta),
+        }
     }
 
     /// The history after overlap `delta`, coming from `history` (without evaluating the load).
     pub fn next_history(&self, history: History, delta: f64) -> History {
-        History(self.next(history.0 as usize, delta) as u8)
-    }
-
-    /// The stretch after overlap `delta`, coming from `k` (the history's one rule).
-    #[inline(always)]
-    fn next(&self, mut k: usize, delta: f64) -> usize {
-        let s = &self.stretches;
-        if delta > s[k].ceil {
-            while delta > s[k].ceil {
-                k = s[k].up as usize;
-            }
-        } else {
-            while delta < s[k].floor {
-                k = s[k].down as usize;
-            }
-        }
-        k
+        History(self.stretches.next(history.0 as usize, delta) as u8)
     }
 
     /// The load and stiffness at overlap `delta` for a contact whose history is `history`,
@@ -703,56 +432,33 @@ impl DemLaw {
     #[inline(always)]
     pub fn eval(&self, delta: f64, history: &mut History) -> Eval {
         // A history of another law, with more stretches, is taken as a new contact's.
+        let list = &self.stretches.list;
         let from = match history.0 as usize {
-            k if k < self.stretches.len() => k,
+            k if k < list.len() => k,
             _ => 0,
         };
         if delta.is_nan() || delta == f64::INFINITY {
             return Eval {
                 load: f64::NAN,
                 stiffness: f64::NAN,
-                branch: self.stretches[from].branch,
+                branch: list[from].branch,
                 beyond_table: false,
             };
         }
-        let k = self.next(from, delta);
+        let k = self.stretches.next(from, delta);
         *history = History(k as u8);
-        let s = &self.stretches[k];
-        let (load, stiffness) = s.at(delta);
+        let (load, stiffness) = self.at(k, delta);
         Eval {
             load,
             stiffness,
-            branch: s.branch,
-            beyond_table: s.hi.is_infinite() && delta > self.overlap_max,
+            branch: list[k].branch,
+            beyond_table: k == list.len() - 1 && delta > self.overlap_max,
         }
     }
 
-    /// The exact load at `delta` on stretch `k` (clamped into it): the law's state where the
-    /// approach equals `delta`, by a bracketed Newton search in the path parameter.
+    /// The exact load at `delta` on stretch `k` (clamped into it).
     fn exact_on(&self, k: usize, delta: f64) -> Option<f64> {
-        let s = self.stretches.get(k)?;
-        if s.branch == Branch::Free {
-            return Some(0.0);
-        }
-        let d = delta.clamp(s.lo, s.top);
-        let (t0, t1) = s.t;
-        let sign = (t1 - t0).signum();
-        // Increasing in the search variable x = sign t.
-        let f = |x: f64| {
-            let p = self.law.state(s.piece, sign * x);
-            (p.approach - d, sign * p.dapproach)
-        };
-        let (a, b) = (sign * t0, sign * t1);
-        let guess = a + (b - a) * ((d - s.lo) / (s.top - s.lo)).clamp(0.0, 1.0);
-        let t = if d <= s.lo {
-            t0
-        } else if d >= s.top {
-            t1
-        } else {
-            sign * newton_bracketed(f, a, b, guess)
-        };
-        let p = self.law.state(s.piece, t);
-        p.load.is_finite().then_some(p.load)
+        self.stretches.exact(&self.law, k, delta)
     }
 
     /// The exact load on the stretch a contact with history `history` is on at `delta` (no
@@ -763,7 +469,7 @@ impl DemLaw {
 
     /// The exact load on the contact branch at `delta`.
     pub fn exact_contact(&self, delta: f64) -> Option<f64> {
-        self.exact_on(self.stretches.len() - 1, delta)
+        self.exact_on(self.stretches.list.len() - 1, delta)
     }
 
     /// The smallest overlap where any force acts on the retract: where it comes free, or the
@@ -774,54 +480,12 @@ impl DemLaw {
             .min(self.attraction_from)
     }
 
-    /// The approaches where the load jumps, folds or changes stretch.
-    fn marks(&self) -> Vec<f64> {
-        let mut m: Vec<f64> = self
-            .stretches
-            .iter()
-            .flat_map(|s| [s.lo, s.hi])
-            .filter(|x| x.is_finite())
-            .collect();
-        m.sort_by(f64::total_cmp);
-        m.dedup();
-        m
-    }
-
     /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by
     /// `pi w R` times the approach unit): the area between the approach and the retract, from
     /// the exact stretches by double-exponential quadrature between the marks. Zero where the
     /// cycle does not reach the attraction; None for a largest overlap that is not finite.
     pub fn loop_area(&self, overlap_max: f64) -> Option<f64> {
-        if !overlap_max.is_finite() {
-            return None;
-        }
-        let app = |d: f64| self.next(0, d);
-        let reached = app(overlap_max);
-        let ret = |d: f64| self.next(reached, d);
-        let mut cuts = self.marks();
-        cuts.push(self.lowest_overlap());
-        cuts.retain(|&c| c < overlap_max);
-        cuts.push(overlap_max);
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup();
-        let failed = std::cell::Cell::new(false);
-        let mut area = 0.0;
-        for w in cuts.windows(2) {
-            let mid = 0.5 * (w[0] + w[1]);
-            let (ka, kr) = (app(mid), ret(mid));
-            if ka == kr {
-                continue;
-            }
-            let f = |d: f64| match (self.exact_on(ka, d), self.exact_on(kr, d)) {
-                (Some(a), Some(r)) => a - r,
-                _ => {
-                    failed.set(true);
-                    0.0
-                }
-            };
-            area += quadrature::double_exponential::integrate(f, w[0], w[1], 1e-12).integral;
-        }
-        (!failed.get()).then_some(area)
+        self.stretches.loop_area(&self.law, overlap_max)
     }
 
     /// The whole cycle from `overlap_min` (apart: below the attraction) to `overlap_max` and
@@ -856,41 +520,6 @@ fn range_error(overlap_max: f64) -> DemError {
             "give a largest overlap above the contact branch's fold and at most 1e4 approach units",
     }
     .into()
-}
-
-/// `x` moved by rounding (1e-12 relative) in the direction `dir`.
-fn widen(x: f64, dir: f64) -> f64 {
-    x + dir * 1e-12 * (1.0 + x.abs())
-}
-
-/// Whether stretch `s` holds the overlap `level` (within rounding: where two stretches meet at
-/// a piece's end their ends agree to a few ulps).
-fn holds(s: &Stretch, level: f64) -> bool {
-    s.floor <= level && level <= s.ceil
-}
-
-/// The jumps: from a stretch's top on the approach to the first later stretch holding it (the
-/// next one where the path runs on across a piece's end; the contact branch where none holds
-/// it), from its bottom on the retract to the last earlier one holding it (the free branch
-/// where none does).
-fn link(s: &mut [Stretch], joined: &[bool]) {
-    let n = s.len();
-    for k in 0..n {
-        let up = if k + 1 < n && joined[k + 1] {
-            k + 1
-        } else {
-            (k + 1..n).find(|&j| holds(&s[j], s[k].hi)).unwrap_or(n - 1)
-        };
-        let down = if k == 0 {
-            0
-        } else if joined[k] {
-            k - 1
-        } else {
-            (0..k).rev().find(|&j| holds(&s[j], s[k].lo)).unwrap_or(0)
-        };
-        s[k].up = up as u8;
-        s[k].down = down as u8;
-    }
 }
 
 /// A pair of bodies in SI units: the normalised law and its scales.

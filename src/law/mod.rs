@@ -17,6 +17,7 @@ pub mod closed;
 pub mod follow;
 pub mod md;
 pub mod path;
+pub mod stretch;
 pub mod tip;
 pub mod tip_closed;
 pub mod two_zone;

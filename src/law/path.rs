@@ -15,16 +15,18 @@ pub enum Drive {
     Spring(f64),
 }
 
-/// Which part of the equilibrium path a point is on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+/// Which part of the equilibrium path a point is on (the codes 0, 1, 2 of the DEM law's C ABI).
+#[repr(u8)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Branch {
     /// No force: the surfaces farther apart than the force range.
-    Free,
-    /// The Dugdale zone alone (A = 0).
-    NonContact,
-    /// In contact: the Maugis-Dugdale curve.
-    Contact,
+    #[default]
+    Free = 0,
+    /// A cohesive zone alone across a gap (A = 0).
+    NonContact = 1,
+    /// In contact.
+    Contact = 2,
 }
 
 impl Branch {

@@ -1,0 +1,422 @@
+//! A law's stretches under displacement control (docs/PHYSICS.md sections 10.1 and 11): the
+//! runs of its equilibrium path on which the approach rises along the path, each stable under
+//! rigid grips between its ends, in the order of the path (the free branch first, the open
+//! contact stretch last), and the jumps between them: on the approach from a stretch's top to
+//! the next stretch of the path holding it, on the retract from its bottom to the previous one
+//! holding it (or free). Found from the law's own states: each piece probed, each fold (a sign
+//! change of the approach's slope along the path) refined by bisection to the last bit.
+
+use super::path::Branch;
+use super::{Law, Piece};
+use crate::numeric::root::{bisect_sign, newton_bracketed};
+use crate::physics::domain::short;
+
+/// Probes per piece of the path that locate its folds (each fold then refined to the last bit).
+const PROBES: usize = 2048;
+
+/// Why a law's stretches could not be found.
+#[derive(Debug, thiserror::Error)]
+pub enum StretchError {
+    /// A piece of the path had no finite states, or the path did not end in an open contact
+    /// stretch reaching the overlap asked for.
+    #[error("the {} piece of the law's path could not be followed (up to overlap {}, lambda = {})", .0.name(), short(*.1), short(*.2))]
+    Path(Branch, f64, f64),
+}
+
+/// A stretch of the path on which the approach rises: stable under rigid grips for overlaps in
+/// `[lo, hi]`.
+#[derive(Debug)]
+pub struct Stretch {
+    /// Its kind: free, non-contact or contact.
+    pub branch: Branch,
+    /// The piece of the path it lies on.
+    pub piece: Piece,
+    /// The path parameter at the low and the high end (the approach rises from the first).
+    pub t: (f64, f64),
+    /// The low overlap (-inf for the free branch).
+    pub lo: f64,
+    /// The top overlap (+inf for the open contact stretch).
+    pub hi: f64,
+    /// The approach at `t.1` (`hi` where the stretch is bounded; the path's end for the open
+    /// contact stretch).
+    pub top: f64,
+    /// Whether the low and the high end are folds (vertical in overlap and load).
+    pub fold: (bool, bool),
+    /// `lo` widened by rounding (1e-12 relative): a jump that lands within rounding of a
+    /// stretch's end (the stretches it joins agree to a few ulps) stays there.
+    pub floor: f64,
+    /// `hi` widened by rounding.
+    pub ceil: f64,
+    /// The stretch the approach jumps to from `hi`.
+    pub up: usize,
+    /// The stretch the retract jumps to from `lo`.
+    pub down: usize,
+}
+
+/// A law's stretches, free first, with the contact piece's least load.
+#[derive(Debug)]
+pub struct Stretches {
+    /// The stretches in the order of the path.
+    pub list: Vec<Stretch>,
+    /// The load-controlled pull-off: the contact piece's least load.
+    pub load_pulloff: f64,
+}
+
+/// A run of the path where the approach rises, before it is a stretch.
+struct Run {
+    piece: Piece,
+    t: (f64, f64),
+    fold: (bool, bool),
+    /// It starts where the previous piece's last run ends (the path is continuous there).
+    joined: bool,
+    open: bool,
+}
+
+/// The runs of rising approach of every piece after the free one, in the order of the path, and
+/// the contact piece's least load (the load-controlled pull-off) with the path's end.
+fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), StretchError> {
+    let lambda = law.lambda().unwrap_or(f64::NAN);
+    let failed = |b: Branch, d: f64| StretchError::Path(b, d, lambda);
+    // The contact piece must reach beyond the overlap asked for (a table's last node lies two
+    // graded steps past it).
+    let reach = overlap_max.max(0.0) * 1.05 + 1.0;
+    let mut a_max = reach.sqrt() + 2.0;
+    for _ in 0..80 {
+        let p = law.state(Piece::Contact, law.t_of_radius(a_max));
+        if p.approach >= reach {
+            break;
+        }
+        a_max *= 1.5;
+    }
+    let mut out: Vec<Run> = Vec::new();
+    let mut least = f64::INFINITY;
+    // Whether the previous piece's last run reached its end (the path runs on into this one).
+    let mut continues = false;
+    for (piece, t0, t1) in law.pieces(a_max) {
+        let branch = if piece == Piece::Contact {
+            Branch::Contact
+        } else {
+            Branch::NonContact
+        };
+        if !(t0.is_finite() && t1.is_finite() && t0 != t1) {
+            return Err(failed(branch, f64::NAN));
+        }
+        // The path runs from t0 to t1: `sign` makes the parameter rise along it.
+        let sign = (t1 - t0).signum();
+        let ts: Vec<f64> = (0..PROBES)
+            .map(|i| t0 + (t1 - t0) * i as f64 / (PROBES - 1) as f64)
+            .collect();
+        let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
+        if st
+            .iter()
+            .any(|p| !(p.approach.is_finite() && p.load.is_finite()))
+        {
+            return Err(failed(branch, f64::NAN));
+        }
+        let rising = |i: usize| sign * st[i].dapproach > 0.0;
+        // The fold between probes i and i + 1, where the approach's slope along the path
+        // changes sign: bisection on that slope, signed to be negative at the smaller t.
+        let fold_at = |i: usize| {
+            let (a, b) = (ts[i], ts[i + 1]);
+            let flip = if (a < b) == rising(i) { -sign } else { sign };
+            bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
+        };
+        // The rising runs as probe ranges; a fall between two of them (or before the first)
+        // within rounding of the approach is noise where the path is flat (near A -> 0), not a
+        // pair of folds: the runs are merged across it.
+        let flat = |i: usize, j: usize| {
+            let low = (i..=j)
+                .map(|k| st[k].approach)
+                .fold(f64::INFINITY, f64::min);
+            st[i].approach - low <= 1e-10 * (1.0 + st[i].approach.abs())
+        };
+        let mut spans: Vec<(usize, usize)> = Vec::new();
+        let mut i = 0;
+        while i < PROBES {
+            if !rising(i) {
+                i += 1;
+                continue;
+            }
+            let mut j = i;
+            while j + 1 < PROBES && rising(j + 1) {
+                j += 1;
+            }
+            match spans.last_mut() {
+                Some(last) if flat(last.1, i) => last.1 = j,
+                None if i > 0 && flat(0, i) => spans.push((0, j)),
+                _ => spans.push((i, j)),
+            }
+            i = j + 1;
+        }
+        // A fall to the piece's end within rounding: the run reaches the end.
+        if let Some(last) = spans.last_mut() {
+            if last.1 + 1 < PROBES && flat(last.1, PROBES - 1) {
+                last.1 = PROBES - 1;
+            }
+        }
+        let reaches_end = spans.last().is_some_and(|l| l.1 == PROBES - 1);
+        for (i, j) in spans {
+            let start_fold = i > 0;
+            let end_fold = j + 1 < PROBES;
+            let ta = if start_fold { fold_at(i - 1) } else { ts[0] };
+            let tb = if end_fold { fold_at(j) } else { ts[PROBES - 1] };
+            // The path runs on from the previous piece's end (the pieces are consecutive).
+            let joined = i == 0 && continues;
+            out.push(Run {
+                piece,
+                t: (ta, tb),
+                fold: (start_fold, end_fold),
+                joined,
+                open: piece == Piece::Contact && !end_fold,
+            });
+        }
+        continues = reaches_end;
+        if piece == Piece::Contact {
+            // The least load, refined where the load's slope in t changes sign.
+            let k = (0..PROBES)
+                .min_by(|&i, &j| st[i].load.total_cmp(&st[j].load))
+                .unwrap_or(0);
+            least = if k > 0 && k + 1 < PROBES {
+                let (a, b) = (ts[k - 1].min(ts[k + 1]), ts[k - 1].max(ts[k + 1]));
+                let t = bisect_sign(|t| law.state(piece, t).dload, a, b);
+                law.state(piece, t).load.min(st[k].load)
+            } else {
+                st[k].load
+            };
+        }
+    }
+    // The last run must be the open contact branch.
+    if !out.last().is_some_and(|r| r.open) {
+        return Err(failed(Branch::Contact, overlap_max));
+    }
+    Ok((out, least))
+}
+
+impl Stretches {
+    /// The stretches of `law`, the contact stretch followed beyond the overlap `overlap_max`.
+    pub fn of<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<Stretches, StretchError> {
+        let (runs, load_pulloff) = runs(law, overlap_max)?;
+        let free_end = law.free_end();
+        let mut stretches = vec![Stretch {
+            branch: Branch::Free,
+            piece: Piece::Free,
+            t: (f64::NEG_INFINITY, free_end),
+            lo: f64::NEG_INFINITY,
+            hi: free_end,
+            top: free_end,
+            fold: (false, false),
+            floor: f64::NEG_INFINITY,
+            ceil: widen(free_end, 1.0),
+            up: 0,
+            down: 0,
+        }];
+        let mut joined = vec![false];
+        let mut dropped = false;
+        for r in &runs {
+            let lo = law.state(r.piece, r.t.0).approach;
+            let top = law.state(r.piece, r.t.1).approach;
+            // A stretch narrower than rounding holds no state a contact could keep.
+            let was_dropped = std::mem::replace(&mut dropped, false);
+            if !r.open && !(top - lo > 1e-13 * (1.0 + lo.abs())) {
+                dropped = true;
+                continue;
+            }
+            stretches.push(Stretch {
+                branch: if r.piece == Piece::Contact {
+                    Branch::Contact
+                } else {
+                    Branch::NonContact
+                },
+                piece: r.piece,
+                t: r.t,
+                lo,
+                hi: if r.open { f64::INFINITY } else { top },
+                top,
+                fold: r.fold,
+                floor: widen(lo, -1.0),
+                ceil: if r.open {
+                    f64::INFINITY
+                } else {
+                    widen(top, 1.0)
+                },
+                up: 0,
+                down: 0,
+            });
+            joined.push(r.joined && !was_dropped);
+        }
+        link(&mut stretches, &joined);
+        Ok(Stretches {
+            list: stretches,
+            load_pulloff,
+        })
+    }
+
+    /// The stretch after overlap `delta`, coming from `k` (the history's one rule).
+    #[inline(always)]
+    pub fn next(&self, mut k: usize, delta: f64) -> usize {
+        let s = &self.list;
+        if delta > s[k].ceil {
+            while delta > s[k].ceil {
+                k = s[k].up;
+            }
+        } else {
+            while delta < s[k].floor {
+                k = s[k].down;
+            }
+        }
+        k
+    }
+
+    /// The overlap where a contact coming from apart enters contact: the top of the last
+    /// stretch the approach follows before one in contact.
+    pub fn entry(&self) -> f64 {
+        let s = &self.list;
+        let mut k = 0;
+        loop {
+            let j = s[k].up;
+            if s[j].branch == Branch::Contact || j == s.len() - 1 {
+                return s[k].hi;
+            }
+            k = j;
+        }
+    }
+
+    /// The retract from the contact stretch down to free: the stretch on which it leaves
+    /// contact (the last in contact it follows), and where it comes free if that is after
+    /// crossing the gap on a non-contact stretch (None: at the jump out of contact).
+    pub fn exit(&self) -> (usize, Option<f64>) {
+        let s = &self.list;
+        let (mut k, mut out) = (s.len() - 1, s.len() - 1);
+        loop {
+            let j = s[k].down;
+            if j == 0 {
+                let free_from = (s[k].branch == Branch::NonContact).then_some(s[k].lo);
+                return (out, free_from);
+            }
+            if s[j].branch == Branch::Contact {
+                out = j;
+            }
+            k = j;
+        }
+    }
+
+    /// The smallest overlap where any force acts on the retract: where it comes free, or the
+    /// attraction's start.
+    pub fn lowest(&self) -> f64 {
+        let (out, free_from) = self.exit();
+        free_from.unwrap_or(self.list[out].lo).min(self.list[0].hi)
+    }
+
+    /// The exact load at `delta` on stretch `k` (clamped into it): the law's state where the
+    /// approach equals `delta`, by a bracketed Newton search in the path parameter.
+    pub fn exact<L: Law + ?Sized>(&self, law: &L, k: usize, delta: f64) -> Option<f64> {
+        let s = self.list.get(k)?;
+        if s.branch == Branch::Free {
+            return Some(0.0);
+        }
+        let d = delta.clamp(s.lo, s.top);
+        let (t0, t1) = s.t;
+        let sign = (t1 - t0).signum();
+        // Increasing in the search variable x = sign t.
+        let f = |x: f64| {
+            let p = law.state(s.piece, sign * x);
+            (p.approach - d, sign * p.dapproach)
+        };
+        let (a, b) = (sign * t0, sign * t1);
+        let guess = a + (b - a) * ((d - s.lo) / (s.top - s.lo)).clamp(0.0, 1.0);
+        let t = if d <= s.lo {
+            t0
+        } else if d >= s.top {
+            t1
+        } else {
+            sign * newton_bracketed(f, a, b, guess)
+        };
+        let p = law.state(s.piece, t);
+        p.load.is_finite().then_some(p.load)
+    }
+
+    /// The approaches where the load jumps, folds or changes stretch.
+    pub fn marks(&self) -> Vec<f64> {
+        let mut m: Vec<f64> = self
+            .list
+            .iter()
+            .flat_map(|s| [s.lo, s.hi])
+            .filter(|x| x.is_finite())
+            .collect();
+        m.sort_by(f64::total_cmp);
+        m.dedup();
+        m
+    }
+
+    /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by
+    /// `pi w R` times the approach unit): the area between the approach and the retract, from
+    /// the exact stretches by double-exponential quadrature between the marks. Zero where the
+    /// cycle does not reach the attraction; None for a largest overlap that is not finite.
+    pub fn loop_area<L: Law + ?Sized>(&self, law: &L, overlap_max: f64) -> Option<f64> {
+        if !overlap_max.is_finite() {
+            return None;
+        }
+        let app = |d: f64| self.next(0, d);
+        let reached = app(overlap_max);
+        let ret = |d: f64| self.next(reached, d);
+        let mut cuts = self.marks();
+        cuts.push(self.lowest());
+        cuts.retain(|&c| c < overlap_max);
+        cuts.push(overlap_max);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        let failed = std::cell::Cell::new(false);
+        let mut area = 0.0;
+        for w in cuts.windows(2) {
+            let mid = 0.5 * (w[0] + w[1]);
+            let (ka, kr) = (app(mid), ret(mid));
+            if ka == kr {
+                continue;
+            }
+            let f = |d: f64| match (self.exact(law, ka, d), self.exact(law, kr, d)) {
+                (Some(a), Some(r)) => a - r,
+                _ => {
+                    failed.set(true);
+                    0.0
+                }
+            };
+            area += quadrature::double_exponential::integrate(f, w[0], w[1], 1e-12).integral;
+        }
+        (!failed.get()).then_some(area)
+    }
+}
+
+/// `x` moved by rounding (1e-12 relative) in the direction `dir`.
+fn widen(x: f64, dir: f64) -> f64 {
+    x + dir * 1e-12 * (1.0 + x.abs())
+}
+
+/// Whether stretch `s` holds the overlap `level` (within rounding: where two stretches meet at
+/// a piece's end their ends agree to a few ulps).
+fn holds(s: &Stretch, level: f64) -> bool {
+    s.floor <= level && level <= s.ceil
+}
+
+/// The jumps: from a stretch's top on the approach to the first later stretch holding it (the
+/// next one where the path runs on across a piece's end; the contact branch where none holds
+/// it), from its bottom on the retract to the last earlier one holding it (the free branch
+/// where none does).
+fn link(s: &mut [Stretch], joined: &[bool]) {
+    let n = s.len();
+    for k in 0..n {
+        let up = if k + 1 < n && joined[k + 1] {
+            k + 1
+        } else {
+            (k + 1..n).find(|&j| holds(&s[j], s[k].hi)).unwrap_or(n - 1)
+        };
+        let down = if k == 0 {
+            0
+        } else if joined[k] {
+            k - 1
+        } else {
+            (0..k).rev().find(|&j| holds(&s[j], s[k].lo)).unwrap_or(0)
+        };
+        s[k].up = up;
+        s[k].down = down;
+    }
+}
