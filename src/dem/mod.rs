@@ -475,9 +475,7 @@ impl DemLaw {
     /// The smallest overlap where any force acts on the retract: where it comes free, or the
     /// attraction's start.
     pub fn lowest_overlap(&self) -> f64 {
-        self.delta_nc
-            .unwrap_or(self.delta_out)
-            .min(self.attraction_from)
+        self.stretches.lowest()
     }
 
     /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by

@@ -172,17 +172,7 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         }
         continues = reaches_end;
         if piece == Piece::Contact {
-            // The least load, refined where the load's slope in t changes sign.
-            let k = (0..PROBES)
-                .min_by(|&i, &j| st[i].load.total_cmp(&st[j].load))
-                .unwrap_or(0);
-            least = if k > 0 && k + 1 < PROBES {
-                let (a, b) = (ts[k - 1].min(ts[k + 1]), ts[k - 1].max(ts[k + 1]));
-                let t = bisect_sign(|t| law.state(piece, t).dload, a, b);
-                law.state(piece, t).load.min(st[k].load)
-            } else {
-                st[k].load
-            };
+            least = least_load(law, &ts, &st);
         }
     }
     // The last run must be the open contact branch.
@@ -190,6 +180,22 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         return Err(failed(Branch::Contact, overlap_max));
     }
     Ok((out, least))
+}
+
+/// The contact piece's least load from its probes `ts` and states `st`, refined where the
+/// load's slope in t changes sign.
+fn least_load<L: Law + ?Sized>(law: &L, ts: &[f64], st: &[super::Pt]) -> f64 {
+    let n = ts.len();
+    let k = (0..n)
+        .min_by(|&i, &j| st[i].load.total_cmp(&st[j].load))
+        .unwrap_or(0);
+    if k > 0 && k + 1 < n {
+        let (a, b) = (ts[k - 1].min(ts[k + 1]), ts[k - 1].max(ts[k + 1]));
+        let t = bisect_sign(|t| law.state(Piece::Contact, t).dload, a, b);
+        law.state(Piece::Contact, t).load.min(st[k].load)
+    } else {
+        st[k].load
+    }
 }
 
 impl Stretches {
@@ -337,15 +343,7 @@ impl Stretches {
 
     /// The approaches where the load jumps, folds or changes stretch.
     pub fn marks(&self) -> Vec<f64> {
-        let mut m: Vec<f64> = self
-            .list
-            .iter()
-            .flat_map(|s| [s.lo, s.hi])
-            .filter(|x| x.is_finite())
-            .collect();
-        m.sort_by(f64::total_cmp);
-        m.dedup();
-        m
+        marks(self.list.iter().map(|s| (s.lo, s.hi)))
     }
 
     /// The energy lost in one slow cycle from apart to `overlap_max` and back (normalised by
@@ -384,6 +382,18 @@ impl Stretches {
         }
         (!failed.get()).then_some(area)
     }
+}
+
+/// The finite ends of stretches given as `(lo, hi)`, sorted, each once: where a load jumps,
+/// folds or changes stretch.
+pub(crate) fn marks(ends: impl Iterator<Item = (f64, f64)>) -> Vec<f64> {
+    let mut m: Vec<f64> = ends
+        .flat_map(|(lo, hi)| [lo, hi])
+        .filter(|x| x.is_finite())
+        .collect();
+    m.sort_by(f64::total_cmp);
+    m.dedup();
+    m
 }
 
 /// `x` moved by rounding (1e-12 relative) in the direction `dir`.

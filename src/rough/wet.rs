@@ -492,15 +492,7 @@ impl WetSummit {
 
     /// The approaches where a summit's load jumps, folds or changes stretch.
     fn marks(&self) -> Vec<f64> {
-        let mut m: Vec<f64> = self
-            .stretches
-            .iter()
-            .flat_map(|s| [s.lo, s.hi])
-            .filter(|x| x.is_finite())
-            .collect();
-        m.sort_by(f64::total_cmp);
-        m.dedup();
-        m
+        crate::law::stretch::marks(self.stretches.iter().map(|s| (s.lo, s.hi)))
     }
 }
 
