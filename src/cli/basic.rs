@@ -196,11 +196,9 @@ impl Given {
     }
 }
 
+/// `tabor solve` for a sphere, one zone or two (a tip's states are [`super::tip::solve`]'s).
 pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     let ratios = super::two_zone_ratios(a.stress_ratio, a.range_ratio)?;
-    if let Some(tip) = &a.tip {
-        return super::tip::solve(&a, super::tip_shape(tip)?);
-    }
     if let Some(input) = &a.input {
         if let Some((rho, eta)) = ratios {
             return solve_two_zone_file(&a, input, (rho, eta));

@@ -261,7 +261,13 @@ pub fn run() -> anyhow::Result<()> {
         Err(e) => e.exit(),
     };
     match cli.command {
-        Command::Solve(a) => basic::solve(a),
+        Command::Solve(a) => match &a.tip {
+            Some(t) => {
+                two_zone_ratios(a.stress_ratio, a.range_ratio)?;
+                tip::solve(&a, tip_shape(t)?)
+            }
+            None => basic::solve(a),
+        },
         Command::Pulloff(a) => basic::pulloff(a),
         Command::Curve(a) => basic::curve(a),
         Command::Info => basic::info(),
