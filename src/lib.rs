@@ -145,6 +145,7 @@ pub mod cli;
 pub mod cycle;
 pub mod dem;
 pub mod engine;
+pub mod error;
 pub mod export;
 #[doc(hidden)]
 pub mod figure_data;

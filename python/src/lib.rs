@@ -84,7 +84,7 @@ fn run_here<T: Send>(py: Python<'_>, f: impl FnOnce() -> anyhow::Result<T> + Sen
 fn outcome<T>(r: std::thread::Result<anyhow::Result<T>>) -> PyResult<T> {
     match r {
         Ok(Ok(v)) => Ok(v),
-        Ok(Err(e)) => Err(PyValueError::new_err(python_names(&format!("{e:#}")))),
+        Ok(Err(e)) => Err(PyValueError::new_err(py_text(&e))),
         Err(p) if p.is::<tabor::interrupt::Interrupted>() => Err(PyKeyboardInterrupt::new_err(
             "interrupted (Ctrl-C): the work was stopped and nothing returned",
         )),
@@ -101,24 +101,68 @@ fn outcome<T>(r: std::thread::Result<anyhow::Result<T>>) -> PyResult<T> {
     }
 }
 
-/// The command line's flags in tabor's messages, and the Python arguments that stand for them
-/// (longest first, so that "--backend cpu" goes before "--backend").
-const FLAGS: &[(&str, &str)] = &[
-    // The fit options' own name for the segment (first: the entries below write fit_segment=).
-    ("segment=\"", "fit_segment=\""),
-    ("--backend auto", "backend=\"auto\""),
-    ("--backend cpu", "backend=\"cpu\""),
-    ("--backend gpu", "backend=\"gpu\""),
-    ("--precision f32", "precision=\"f32\""),
-    ("--load-axis linear", "load_axis=\"linear\""),
-    ("--segment approach", "fit_segment=\"approach\""),
-    ("--segment retract", "fit_segment=\"retract\""),
-    ("--check 0", "check=0"),
-    ("--npy or --json-full", "NPY files or save_json(full=True)"),
-    // The library's own phrases where a Python argument stands for them.
-    ("the linear load axis", "load_axis=\"linear\""),
-    ("f32 precision", "precision=\"f32\""),
-    ("the cpu backend", "backend=\"cpu\""),
+/// Python's names for the library's keys where they are not the library's own words (the
+/// keys are the library's quantities, `lambda_min`, and choices, `load_axis=linear`).
+const PY_NAMES: &[(&str, &str)] = &[
+    ("load_axis=linear", "load_axis=\"linear\""),
+    ("keep_exact", "NPY files or save_json(full=True)"),
+    ("precision=f32", "precision=\"f32\""),
+    ("backend=cpu", "backend=\"cpu\""),
+    ("segment", "fit_segment"),
+];
+
+/// Python's name for a key of the library's, where it has its own.
+fn py_name(key: &str) -> Option<&'static str> {
+    PY_NAMES.iter().find(|(k, _)| *k == key).map(|(_, p)| *p)
+}
+
+/// A library error as Python's ValueError, with Python's names.
+fn py_value_error(e: &impl tabor::error::Named) -> PyErr {
+    PyValueError::new_err(e.named(&py_name))
+}
+
+/// An error as Python says it: the chain of causes as anyhow's `{:#}` joins them, each typed
+/// error of the library rendered with Python's names ([`tabor::error::Named`]).
+fn py_text(e: &anyhow::Error) -> String {
+    e.chain()
+        .map(|c| py_named(c, &py_name).unwrap_or_else(|| c.to_string()))
+        .collect::<Vec<_>>()
+        .join(": ")
+}
+
+/// A library error that names quantities, with `names` for its keys; None for any other error.
+fn py_named(c: &(dyn std::error::Error + 'static), names: tabor::error::Names) -> Option<String> {
+    use tabor::error::Named;
+    macro_rules! named {
+        ($($t:ty),* $(,)?) => {
+            $(if let Some(e) = c.downcast_ref::<$t>() {
+                return Some(e.named(names));
+            })*
+        };
+    }
+    named!(
+        tabor::error::Message,
+        tabor::map::MapError,
+        tabor::rough::RoughError,
+        tabor::physics::params::ParamError,
+        tabor::physics::domain::DomainError,
+        tabor::solver::SolveError,
+        tabor::solver::two_zone::ZonesError,
+        tabor::law::LawError,
+        tabor::law::two_zone::ContextError,
+        tabor::profile::ProfileError,
+        tabor::profile::two_zone::TwoZoneProfileError,
+        tabor::profile::tip::TipProfileError,
+        tabor::profile::spec::LawProfileError,
+        tabor::dem::DemError,
+        tabor::gpu::GpuError,
+    );
+    None
+}
+
+/// The fit's advice (results' messages and warnings, not errors) names the approach or retract
+/// segment in words; Python adds its argument.
+const ADVICE: &[(&str, &str)] = &[
     (
         "the approach segment instead",
         "the approach segment instead (fit_segment=\"approach\")",
@@ -127,29 +171,14 @@ const FLAGS: &[(&str, &str)] = &[
         "the retract segment instead",
         "the retract segment instead (fit_segment=\"retract\")",
     ),
-    ("--lambda-min", "lambda_min"),
-    ("--lambda-max", "lambda_max"),
-    ("--load-min", "load_min"),
-    ("--load-max", "load_max"),
-    ("--strength-ratio", "strength_ratio"),
-    ("--tolerance", "tolerance"),
-    ("--width-mm", "width_mm"),
-    ("--points", "points"),
-    ("--dpi", "dpi"),
-    ("--sigma-min", "sigma_min"),
-    ("--sigma-max", "sigma_max"),
-    ("--press-sigmas", "press_sigmas"),
-    ("--nx", "nx"),
-    ("--ny", "ny"),
-    ("--z0", "z0_m"),
 ];
 
-/// A message of tabor's with its command-line flags replaced by the Python arguments.
+/// A fit's advice with Python's argument added where it names a segment.
 #[pyfunction]
 fn python_names(msg: &str) -> String {
-    FLAGS
-        .iter()
-        .fold(msg.to_string(), |m, (flag, arg)| m.replace(flag, arg))
+    ADVICE.iter().fold(msg.to_string(), |m, (words, with_arg)| {
+        m.replace(words, with_arg)
+    })
 }
 
 fn backend_of(s: &str) -> PyResult<Backend> {
@@ -329,7 +358,7 @@ fn solve_points<'py>(
     d.set_item("approach", out_approach)?;
     d.set_item("m_minus_1", out_m)?;
     d.set_item("status_code", out_code)?;
-    d.set_item("engine", python_names(&engine_line))?;
+    d.set_item("engine", engine_line)?;
     d.set_item("metadata", value_to_py(py, &meta)?)?;
     Ok(d)
 }
@@ -664,10 +693,11 @@ fn infer_pulloff_wet<'py>(
             })
             // Named as infer_pulloff's keywords, where a scene names its keys.
             .map_err(|e| {
-                anyhow::anyhow!(e
-                    .to_string()
-                    .replace("humidity.relative_humidity", "relative_humidity")
-                    .replace("humidity.contact_angle_deg", "contact_angle_deg"))
+                anyhow::anyhow!(tabor::error::Named::named(&e, &|key| match key {
+                    "humidity.relative_humidity" => Some("relative_humidity"),
+                    "humidity.contact_angle_deg" => Some("contact_angle_deg"),
+                    _ => None,
+                }))
             })
     })
 }
@@ -729,7 +759,7 @@ fn fit_curves<'py>(
     );
     run_py(py, move || {
         use tabor::fit::{Curve, Direction, FitOptions};
-        let opt = FitOptions::from_json(&options_json).map_err(anyhow::Error::msg)?;
+        let opt = FitOptions::from_json(&options_json)?;
         // The library's check, as the command line makes it.
         if let Err(e) = opt.validate() {
             // Named as fit_curves' keyword.
@@ -833,9 +863,8 @@ fn cycle<'py>(
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
             )
         }
-        None => {
-            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?
-        }
+        None => tabor::ContactLaw::new(lam, stress_ratio, range_ratio)
+            .map_err(|e| py_value_error(&e))?,
     };
     let spec = tabor::cycle::CycleSpec {
         law,
@@ -853,7 +882,7 @@ fn two_zone_ratios(
     range_ratio: Option<f64>,
 ) -> PyResult<Option<(f64, f64)>> {
     tabor::physics::two_zone::paired_ratios(stress_ratio, range_ratio)
-        .map_err(PyValueError::new_err)
+        .map_err(|e| py_value_error(&e))
 }
 
 /// A profile's state: `given` load|approach|radius, with its value.
@@ -892,9 +921,8 @@ fn profile<'py>(
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
             )
         }
-        None => {
-            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(PyValueError::new_err)?
-        }
+        None => tabor::ContactLaw::new(lam, stress_ratio, range_ratio)
+            .map_err(|e| py_value_error(&e))?,
     };
     let spec = tabor::profile::spec::ProfileSpec {
         law,
@@ -921,10 +949,10 @@ fn pulloff_two_zone<'py>(
     };
     let ctx = run(py, move || {
         law.context().map_err(|e| match e {
-            ContextError::Zones(e) => anyhow::anyhow!("{}", e.0),
             ContextError::Curve(s) => {
                 anyhow::anyhow!("the two-zone pull-offs were not found: {}", s.name())
             }
+            e => anyhow::Error::new(e),
         })
     })?;
     let d = PyDict::new(py);
@@ -1063,8 +1091,7 @@ impl AdhesionMap {
                 })?,
             ),
         };
-        let print = tabor::render::Print::new(width_mm, dpi)
-            .map_err(|e| PyValueError::new_err(python_names(&e)))?;
+        let print = tabor::render::Print::new(width_mm, dpi).map_err(|e| py_value_error(&e))?;
         let out = tabor::render::Outputs::from_path(std::path::Path::new(&path))
             .map_err(PyValueError::new_err)?;
         let data = &self.data;

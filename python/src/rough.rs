@@ -46,8 +46,7 @@ pub fn rough<'py>(
     range_ratio: Option<f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let c = run(py, move || {
-        let law =
-            tabor::ContactLaw::new(lam, stress_ratio, range_ratio).map_err(anyhow::Error::msg)?;
+        let law = tabor::ContactLaw::new(lam, stress_ratio, range_ratio)?;
         Ok(tabor::rough::wet::WetRough::of_law(law, sigma)?.cycle(
             lam,
             min_separation,
@@ -164,10 +163,11 @@ pub fn rough_ensemble<'py>(
             .iter()
             .map(|&d| {
                 r.ensemble_mean(leg, &heights, d).map_err(|e| {
-                    anyhow::anyhow!(e
-                        .to_string()
-                        .replace("the smallest separation =", "min_separation =")
-                        .replace("the separation =", "separations:"))
+                    anyhow::anyhow!(tabor::error::Named::named(&e, &|key| match key {
+                        "the smallest separation" => Some("min_separation"),
+                        "the separation" => Some("separations"),
+                        _ => None,
+                    }))
                 })
             })
             .collect::<anyhow::Result<Vec<Mean>>>()

@@ -268,8 +268,8 @@ def test_rough_scenes_refuse_as_the_command_line_does():
 
 
 @pytest.mark.parametrize("kw, says", [
-    (dict(separations=[0.0, float("nan")]), "separations: NaN is outside the supported domain"),
-    (dict(separations=[float("inf")]), "separations: inf is outside the supported domain"),
+    (dict(separations=[0.0, float("nan")]), "separations = NaN is outside the supported domain"),
+    (dict(separations=[float("inf")]), "separations = inf is outside the supported domain"),
     (dict(separations=[0.0], min_separation=float("nan")),
      "min_separation = NaN is outside the supported domain"),
 ])

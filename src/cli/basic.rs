@@ -115,11 +115,13 @@ pub fn engine_for(
     let adapter = super::adapter_choice(gpu.adapter.as_deref(), backend)?;
     let (mut engine, line) = Engine::select(backend.into(), adapter.as_deref())?;
     engine.set_precision(gpu.precision.into()).map_err(|e| {
-        let flags = [
-            ("f32 precision", "--precision f32"),
-            ("the cpu backend", "--backend cpu"),
-        ];
-        anyhow::anyhow!(super::with_flags(&e.to_string(), &flags))
+        super::in_flags(
+            &e,
+            &[
+                ("precision=f32", "--precision f32"),
+                ("backend=cpu", "--backend cpu"),
+            ],
+        )
     })?;
     eprintln!("{line}");
     Ok(engine)

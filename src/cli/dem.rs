@@ -3,6 +3,7 @@
 
 use super::Format;
 use crate::dem::{DemLaw, Eval, History, Pair, DEFAULT_OVERLAP_MAX};
+use crate::error::Named;
 use crate::io::{fmt17, json_num, write_output};
 use crate::law::ContactLaw;
 use crate::physics::domain::short;
@@ -80,7 +81,7 @@ fn pair_of(path: &str, overlap_max_m: Option<f64>) -> anyhow::Result<Shown> {
     let pair = Pair::from_scene(&s, overlap_max_m).map_err(|e| {
         anyhow::anyhow!(
             "{path}: {}",
-            super::with_flags(&e.to_string(), &[("overlap_max_m", "--overlap-max")])
+            e.named(&super::flags(&[("overlap_max_m", "--overlap-max")]))
         )
     })?;
     Ok(Shown {
@@ -142,14 +143,11 @@ pub fn run(a: DemLawArgs) -> anyhow::Result<()> {
                     .map_err(|e| {
                         anyhow::anyhow!(
                             "--lambda {l}: {}",
-                            super::with_flags(
-                                &e.to_string(),
-                                &[
-                                    ("overlap_max", "--overlap-max"),
-                                    ("stress_ratio", "--stress-ratio"),
-                                    ("range_ratio", "--range-ratio")
-                                ]
-                            )
+                            e.named(&super::flags(&[
+                                ("overlap_max", "--overlap-max"),
+                                ("stress_ratio", "--stress-ratio"),
+                                ("range_ratio", "--range-ratio")
+                            ]))
                         )
                     })
             })

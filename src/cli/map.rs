@@ -117,7 +117,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     }
     let spec = a.spec();
     spec.validate()
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::MAP_FLAGS)))?;
+        .map_err(|e| super::in_flags(&e, super::MAP_FLAGS))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print("map")?;
     let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);

@@ -11,6 +11,7 @@ mod rough_map;
 pub(crate) mod scene;
 mod tip;
 
+use crate::error::Named;
 use clap::{Parser, Subcommand, ValueEnum};
 
 #[derive(Parser, Debug)]
@@ -340,56 +341,41 @@ pub(crate) fn open_npy(
         .context("--npy")
 }
 
-/// The library names quantities (`lambda_min`, `width_mm`, ...), never flags; the command line
-/// adds its flag names to the library's messages, from the list for that message's source.
+/// The library names quantities by keys (`lambda_min`, `width_mm`, ...), never flags; the command
+/// line renders its errors ([`Named`]) with the flags of a table of (key, flag).
+pub(crate) fn flags(
+    table: &'static [(&'static str, &'static str)],
+) -> impl Fn(&str) -> Option<&'static str> {
+    move |key| table.iter().find(|(k, _)| *k == key).map(|(_, f)| *f)
+}
+
+/// A library error in the flags of `table`.
+pub(crate) fn in_flags(
+    e: &impl Named,
+    table: &'static [(&'static str, &'static str)],
+) -> anyhow::Error {
+    anyhow::anyhow!(e.named(&flags(table)))
+}
+
 /// The second zone's ratios, paired by the library's check, its message in flags.
 pub(crate) fn two_zone_ratios(
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
 ) -> anyhow::Result<Option<(f64, f64)>> {
-    crate::physics::two_zone::paired_ratios(stress_ratio, range_ratio).map_err(|m| {
-        anyhow::anyhow!(with_flags(
-            &m,
-            &[
-                ("stress_ratio", "--stress-ratio"),
-                ("range_ratio", "--range-ratio")
-            ]
-        ))
-    })
+    crate::physics::two_zone::paired_ratios(stress_ratio, range_ratio)
+        .map_err(|m| in_flags(&m, ZONES_FLAGS))
 }
+
+/// The two-zone law's quantities (the solid's lambda and the second zone's ratios) as flags.
+pub(crate) const ZONES_FLAGS: &[(&str, &str)] = &[
+    ("lambda", "--lambda"),
+    ("stress_ratio", "--stress-ratio"),
+    ("range_ratio", "--range-ratio"),
+];
 
 /// A two-zone refusal (the solid's lambda and the second zone's ratios) in flags.
-pub(crate) fn zones_error(e: impl std::fmt::Display) -> anyhow::Error {
-    anyhow::anyhow!(with_flags(
-        &e.to_string(),
-        &[
-            ("lambda", "--lambda"),
-            ("stress_ratio", "--stress-ratio"),
-            ("range_ratio", "--range-ratio")
-        ]
-    ))
-}
-
-pub(crate) fn with_flags(msg: &str, names: &[(&str, &str)]) -> String {
-    names.iter().fold(msg.to_string(), |m, (name, flag)| {
-        // Whole words only: `nx` in `nx_min` or `dpi` in `dpis` stays.
-        let mut out = String::with_capacity(m.len());
-        let mut rest = m.as_str();
-        while let Some(i) = rest.find(name) {
-            let before = rest[..i].chars().last();
-            let after = rest[i + name.len()..].chars().next();
-            let word =
-                |c: Option<char>| c.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '-');
-            out.push_str(&rest[..i]);
-            out.push_str(if word(before) || word(after) {
-                name
-            } else {
-                flag
-            });
-            rest = &rest[i + name.len()..];
-        }
-        out + rest
-    })
+pub(crate) fn zones_error(e: impl Named) -> anyhow::Error {
+    in_flags(&e, ZONES_FLAGS)
 }
 
 /// The rough adhesion map's quantities as flags.
@@ -421,11 +407,8 @@ pub(crate) const MAP_FLAGS: &[(&str, &str)] = &[
     ("ny", "--ny"),
     ("tolerance", "--tolerance"),
     ("strength_ratio", "--strength-ratio"),
-    ("the linear load axis", "--load-axis linear"),
-    (
-        "the f64 values kept as NPY files or full JSON",
-        "--npy or --json-full",
-    ),
+    ("load_axis=linear", "--load-axis linear"),
+    ("keep_exact", "--npy or --json-full"),
 ];
 
 /// A figure's size as flags.
@@ -440,8 +423,7 @@ impl FigureArgs {
             (None, true) => crate::render::DOUBLE_COLUMN_MM,
             (None, false) => default_mm,
         };
-        crate::render::Print::new(mm, self.dpi)
-            .map_err(|e| anyhow::Error::msg(with_flags(&e, FIGURE_FLAGS)))
+        crate::render::Print::new(mm, self.dpi).map_err(|e| in_flags(&e, FIGURE_FLAGS))
     }
 
     /// The figure's files with the options that name them (`main` given by `flag`), for

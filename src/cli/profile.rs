@@ -116,7 +116,7 @@ pub fn run(a: ProfileArgs) -> anyhow::Result<()> {
     }
     let p = profile(lambda, given, a.points);
     if let Err(e @ crate::profile::ProfileError::Points(_)) = &p {
-        bail!(super::with_flags(&e.to_string(), &[("points", "--points")]));
+        return Err(super::in_flags(e, &[("points", "--points")]));
     }
     // The library's message names the quantity, as Python's profile() shows it.
     let mut p = p?;
@@ -177,7 +177,7 @@ fn run_two_zone(
     let p = match two_zone_profile(l, rho, eta, given, a.points) {
         Ok(p) => p,
         Err(e @ TwoZoneProfileError::Points(_)) => {
-            bail!(super::with_flags(&e.to_string(), &[("points", "--points")]))
+            return Err(super::in_flags(&e, &[("points", "--points")]))
         }
         Err(e @ TwoZoneProfileError::Zones(_)) => return Err(super::zones_error(e)),
         Err(e) => bail!("{flag}: {e}"),
@@ -292,7 +292,7 @@ fn run_tip(a: &ProfileArgs, shape: crate::physics::tip::Shape) -> anyhow::Result
     let p = match spec.run() {
         Ok(LawProfile::Tip(p)) => p,
         Ok(_) => unreachable!("a tip's law gives a tip's profile"),
-        Err(e) => bail!(super::with_flags(&e.to_string(), &[("points", "--points")])),
+        Err(e) => return Err(super::in_flags(&e, &[("points", "--points")])),
     };
     let text = match a.format {
         Format::Csv => {

@@ -181,12 +181,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
     let c = crate::rough::wet::WetRough::of_law(law, sigma)
         .map_err(super::zones_error)?
         .cycle(lambda, d_min, a.max_separation, a.points)
-        .map_err(|e| {
-            anyhow::anyhow!(super::with_flags(
-                &e.to_string(),
-                &[("min_separation", "--min-separation")]
-            ))
-        })
+        .map_err(|e| super::in_flags(&e, &[("min_separation", "--min-separation")]))
         .context("the separations (--min-separation, --max-separation, --points)")?;
     let text = match a.format {
         Format::Csv => csv(&c)?,
@@ -358,16 +353,14 @@ pub fn pulloff(a: RoughPulloffArgs) -> anyhow::Result<()> {
         points: a.points,
         press_sigmas: a.press_sigmas,
     };
-    let flags = [
+    let flags = &[
         ("sigma_min", "--sigma-min"),
         ("sigma_max", "--sigma-max"),
         ("points", "--points"),
         ("press_sigmas", "--press-sigmas"),
-        ("lambda values", "--lambda values"),
+        ("lambda_values", "--lambda values"),
     ];
-    let curves = sweep
-        .compute()
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &flags)))?;
+    let curves = sweep.compute().map_err(|e| super::in_flags(&e, flags))?;
 
     let text = match a.format {
         Format::Csv => {
@@ -637,10 +630,7 @@ fn run_ensemble(a: &RoughArgs, sc: &crate::rough::scene::RoughScene) -> anyhow::
     };
     // The flag's name only where the flag was given (else the scene's key is meant).
     let flags = |e: crate::rough::RoughError| match a.min_separation_m {
-        Some(_) => anyhow::anyhow!(super::with_flags(
-            &e.to_string(),
-            &[("min_separation_m", "--min-separation-m")]
-        )),
+        Some(_) => super::in_flags(&e, &[("min_separation_m", "--min-separation-m")]),
         None => anyhow::anyhow!(e.to_string()),
     };
     spec.validate(sc).map_err(flags)?;

@@ -218,9 +218,9 @@ pub fn run(a: RoughMapArgs) -> anyhow::Result<()> {
     }
     let spec = a.spec();
     spec.validate()
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::ROUGH_MAP_FLAGS)))?;
+        .map_err(|e| super::in_flags(&e, super::ROUGH_MAP_FLAGS))?;
     crate::rough::map::check_checks(a.check)
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &[("check", "--check")])))?;
+        .map_err(|e| super::in_flags(&e, &[("check", "--check")]))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print("rough-map")?;
     let more = super::data_outputs(a.json.as_deref(), a.npy.as_deref(), &NPY_FILES);

@@ -378,12 +378,12 @@ pub struct InferArgs {
 /// `infer --pulloff` in humid air: the solid's w with the meniscus taken out.
 fn infer_wet_cmd(a: &InferArgs, pulloff: f64, e_star: f64, rh: f64) -> anyhow::Result<()> {
     let h = crate::scene::humidity::HumidityInput::water(rh, a.contact_angle_deg);
-    let flags = [
+    let flags = &[
         ("humidity.relative_humidity", "--relative-humidity"),
         ("humidity.contact_angle_deg", "--contact-angle-deg"),
     ];
     let r = crate::scene::infer_wet(pulloff, a.radius, e_star, a.z0, &h)
-        .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), &flags)))?;
+        .map_err(|e| super::in_flags(&e, flags))?;
     if a.format == Format::Json {
         return write_output("-", (serde_json::to_string_pretty(&r)? + "\n").as_bytes());
     }
@@ -809,7 +809,7 @@ pub fn humidity_cmd(a: HumidityArgs) -> anyhow::Result<()> {
         a.rh_max,
         a.points,
     )
-    .map_err(|e| anyhow::anyhow!(super::with_flags(&e.to_string(), super::HUMIDITY_FLAGS)))?;
+    .map_err(|e| super::in_flags(&e, super::HUMIDITY_FLAGS))?;
     let text = match a.format {
         Format::Json => serde_json::to_string_pretty(&r)? + "\n",
         Format::Csv => humidity_csv(&r),

@@ -24,6 +24,7 @@
 //! on a non-contact stretch) and a cubic: no allocation, no solve, and a law is shared read-only
 //! between threads (each contact keeps its own [`History`]).
 
+use crate::error::Message;
 use crate::law::stretch::{StretchError, Stretches};
 use crate::law::{ContactLaw, Law};
 use crate::physics::domain::{short, DomainError};
@@ -75,6 +76,17 @@ pub struct Eval {
     pub beyond_table: bool,
 }
 
+impl crate::error::Named for DemError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            DemError::Domain(e) => e.named(names),
+            DemError::Scene(m) => m.named(names),
+            DemError::Law(e) => e.named(names),
+            e => e.to_string(),
+        }
+    }
+}
+
 /// Why a law could not be built.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -90,7 +102,7 @@ pub enum DemError {
     Stretch(#[from] StretchError),
     /// The pair's scene refused.
     #[error("{0}")]
-    Scene(String),
+    Scene(Message),
     /// An exact state of a stretch failed (no table is built from a guess).
     #[error("the exact {} state at overlap {} failed (lambda = {}): no table is built", .0.name(), short(*.1), short(*.2))]
     Failed(Branch, f64, f64),
@@ -255,7 +267,7 @@ impl DemLaw {
             return Err(DemError::Scene(format!(
                 "the law's path has {} stretches, more than the {MAX_STRETCHES} a history byte holds",
                 stretches.list.len()
-            )));
+            ).into()));
         }
         let free_end = stretches.list[0].hi;
         let delta_out = stretches.list.last().map_or(f64::NAN, |s| s.lo);
@@ -570,7 +582,7 @@ impl Pair {
             ),
             Some(m) => {
                 let (rho, eta, units) = crate::scene::humidity::wet_ratios(&contact, m)
-                    .map_err(|e| DemError::Scene(e.to_string()))?;
+                    .map_err(|e| DemError::Scene(e.to_string().into()))?;
                 (
                     ContactLaw::solid_and_meniscus(contact.lambda(), rho, eta),
                     units.load,
@@ -589,12 +601,17 @@ impl Pair {
             .into());
         }
         let law = DemLaw::of_law(law, overlap_max_m / length_scale).map_err(|e| match e {
-            DemError::Domain(d) if d.name == "overlap_max" => DemError::Scene(format!(
-                "overlap_max_m = {} m is {} approach units ({} m each), beyond the 1e4 a table covers: give a smaller overlap_max_m",
-                short(overlap_max_m),
-                short(d.value),
-                short(length_scale)
-            )),
+            DemError::Domain(d) if d.name == "overlap_max" => DemError::Scene(
+                Message::new()
+                    .key("overlap_max_m")
+                    .text(format!(
+                        " = {} m is {} approach units ({} m each), beyond the 1e4 a table covers: give a smaller ",
+                        short(overlap_max_m),
+                        short(d.value),
+                        short(length_scale)
+                    ))
+                    .key("overlap_max_m"),
+            ),
             e => e,
         })?;
         Ok(Pair {
@@ -622,16 +639,20 @@ impl Pair {
             ("shear_strength_pa", s.shear_strength_pa.is_some()),
         ];
         if let Some((key, _)) = unused.iter().find(|k| k.1) {
-            return Err(DemError::Scene(format!(
+            return Err(DemError::Scene(
+                format!(
                 "`{key}` is not used by the DEM law (a pair under displacement control): remove it"
-            )));
+            )
+                .into(),
+            ));
         }
-        let contact = crate::scene::contact_of(s).map_err(|e| DemError::Scene(e.to_string()))?;
+        let contact =
+            crate::scene::contact_of(s).map_err(|e| DemError::Scene(e.to_string().into()))?;
         let meniscus = match &s.humidity {
             None => None,
             Some(h) => h
                 .meniscus(&contact)
-                .map_err(|e| DemError::Scene(e.to_string()))?,
+                .map_err(|e| DemError::Scene(e.to_string().into()))?,
         };
         Pair::with_meniscus(contact, meniscus, overlap_max_m)
     }

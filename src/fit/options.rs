@@ -79,7 +79,7 @@ impl FitOptions {
     /// `temperature_k`); non-finite numbers come as text ("nan", "inf"), JSON having none, and
     /// a missing radius or spring as NaN, which [`FitOptions::validate`] then refuses. Every
     /// other default is [`FitOptions::default`]'s. Not yet validated.
-    pub fn from_json(json: &str) -> Result<FitOptions, String> {
+    pub fn from_json(json: &str) -> Result<FitOptions, crate::error::Message> {
         let o: serde_json::Value =
             serde_json::from_str(json).map_err(|e| format!("not valid fit options: {e}"))?;
         let num = |k: &str| {
@@ -97,15 +97,15 @@ impl FitOptions {
             "approach" => Segments::Approach,
             "both" => Segments::Both,
             other => {
-                return Err(format!(
-                    "segment={other:?}: use \"retract\", \"approach\" or \"both\""
-                ))
+                return Err(crate::error::Message::new().key("segment").text(format!(
+                    "={other:?}: use \"retract\", \"approach\" or \"both\""
+                )))
             }
         };
         // A tip as a scene's object or as the command line's text (`cone:20`).
         let tip = match o.get("tip") {
             None | Some(serde_json::Value::Null) => None,
-            Some(serde_json::Value::String(t)) => Some(t.parse()?),
+            Some(serde_json::Value::String(t)) => Some(t.parse::<crate::physics::tip::TipInput>()?),
             Some(v) => Some(serde_json::from_value(v.clone()).map_err(|e| format!("tip: {e}"))?),
         };
         Ok(FitOptions {
@@ -288,6 +288,8 @@ mod json_tests {
         let h = FitOptions::from_json(r#"{"relative_humidity": 0.4}"#).unwrap();
         assert_eq!(h.humidity.unwrap().relative_humidity, 0.4);
         let e = FitOptions::from_json(r#"{"segment": "sideways"}"#).unwrap_err();
+        assert_eq!(e.keys().collect::<Vec<_>>(), ["segment"]);
+        let e = e.to_string();
         assert!(e.contains("\"sideways\"") && e.contains("retract"), "{e}");
     }
 }

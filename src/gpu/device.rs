@@ -12,6 +12,7 @@ use wgpu::util::DeviceExt;
 
 #[derive(Debug, thiserror::Error)]
 /// Why the GPU path could not run; the caller falls back to the CPU or says so.
+#[non_exhaustive]
 pub enum GpuError {
     #[error("no GPU adapter was found (is a Vulkan driver installed? `apt-get install mesa-vulkan-drivers` gives a software one)")]
     /// No adapter at all.
@@ -42,6 +43,19 @@ pub enum GpuError {
     #[error("the adapter {0} has no f64 shaders (SHADER_F64); use f32 precision, or the cpu backend for f64")]
     /// f64 precision asked of an adapter without f64 shaders.
     NoF64(String),
+}
+
+impl crate::error::Named for GpuError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            GpuError::NoF64(adapter) => format!(
+                "the adapter {adapter} has no f64 shaders (SHADER_F64); use {}, or {} for f64",
+                names("precision=f32").unwrap_or("f32 precision"),
+                names("backend=cpu").unwrap_or("the cpu backend")
+            ),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// A short description of an adapter, for `tabor info` and result metadata.

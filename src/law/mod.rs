@@ -109,6 +109,7 @@ pub const NODES: usize = 320;
 /// Why a law's path or states could not be had: the law's or the drive's numbers (one line
 /// naming the quantity, the value and what to give), or a two-zone curve that did not solve.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum LawError {
     /// A Maugis-Dugdale lambda or a drive out of its domain.
     #[error(transparent)]
@@ -124,6 +125,16 @@ pub enum LawError {
         /// The operation.
         what: &'static str,
     },
+}
+
+impl crate::error::Named for LawError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            LawError::Solve(e) => e.named(names),
+            LawError::Zones(e) => e.named(names),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// A contact law in the normalised units of docs/PHYSICS.md (the two-zone law in its total-w
@@ -235,7 +246,7 @@ impl ContactLaw {
         lambda: f64,
         stress_ratio: Option<f64>,
         range_ratio: Option<f64>,
-    ) -> Result<ContactLaw, String> {
+    ) -> Result<ContactLaw, crate::error::Message> {
         let ratios = crate::physics::two_zone::paired_ratios(stress_ratio, range_ratio)?;
         Ok(ContactLaw::with_ratios(lambda, ratios))
     }

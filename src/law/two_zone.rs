@@ -98,6 +98,7 @@ impl TwoZones {
 
 /// Why a two-zone law's curve was not computed ([`TwoZones::context`]).
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
 pub enum ContextError {
     /// The ratios were refused.
     #[error(transparent)]
@@ -105,6 +106,15 @@ pub enum ContextError {
     /// The curve could not be computed: the solver's status.
     #[error("the two-zone curve could not be computed ({})", .0.name())]
     Curve(Status),
+}
+
+impl crate::error::Named for ContextError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            ContextError::Zones(e) => e.named(names),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// The two-zone state of `ctx` at the load, approach or contact radius `value`.
@@ -194,7 +204,7 @@ impl Law for TwoZones {
     }
     /// `PathPoint::c` is the outer radius of the longer-range zone.
     fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
-        let err = |e: crate::solver::SolveError| ZonesError(e.to_string());
+        let err = |e: crate::solver::SolveError| ZonesError(e.message());
         let zones = self.zones()?;
         crate::solver::domain::check_lambda(self.lambda).map_err(|e| err(e.into()))?;
         check_drive(drive, max_load).map_err(err)?;
@@ -284,7 +294,7 @@ fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt
 }
 
 fn failed(what: &str, s: Status) -> ZonesError {
-    ZonesError(format!(
+    ZonesError::text(format!(
         "the two-zone contact curve could not be solved for {what} (status {}): try ratios \
          closer to 1 or a lambda nearer 1",
         s.name()

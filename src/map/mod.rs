@@ -3,6 +3,7 @@
 //! Maugis-Dugdale one.
 
 use crate::engine::Engine;
+use crate::error::Message;
 use crate::numeric::grid::axis;
 use crate::physics::closed::{dmt_radius, hertz_radius, jkr_radius};
 use crate::physics::model::ContactModel;
@@ -317,13 +318,23 @@ impl Default for ComputeOptions {
 
 #[derive(Debug, thiserror::Error)]
 /// Why a map was not computed.
+#[non_exhaustive]
 pub enum MapError {
     #[error("{0}")]
     /// A bad grid or criterion (the message names the quantity).
-    Spec(String),
+    Spec(Message),
     #[error(transparent)]
     /// The GPU failed.
     Engine(#[from] crate::engine::EngineError),
+}
+
+impl crate::error::Named for MapError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            MapError::Spec(m) => m.named(names),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// Most points a map holds (its compact records stay in memory for drawing).
@@ -348,7 +359,8 @@ impl MapSpec {
     /// A spec from JSON (the Python binding's), `load_min` and `load_max` taken from the
     /// axis's [`LoadAxis::default_range`] where absent or null; not yet validated.
     pub fn from_json(json: &str) -> Result<MapSpec, MapError> {
-        let bad = |e: serde_json::Error| MapError::Spec(format!("not a valid map spec: {e}"));
+        let bad =
+            |e: serde_json::Error| MapError::Spec(format!("not a valid map spec: {e}").into());
         let mut v: serde_json::Value = serde_json::from_str(json).map_err(bad)?;
         if let Some(o) = v.as_object_mut() {
             let axis: LoadAxis = o
@@ -370,58 +382,76 @@ impl MapSpec {
     /// One clear line for a bad value, naming the quantity.
     pub fn validate(&self) -> Result<(), MapError> {
         use crate::physics::domain::{check_lambda_range, short, LOAD_MAX};
-        let bad = |m: String| Err(MapError::Spec(m));
+        let bad = |m: Message| Err(MapError::Spec(m));
         check_lambda_range(self.lambda_min, self.lambda_max).map_err(MapError::Spec)?;
         if self.nx < 2 || self.ny < 2 || self.nx > 16384 || self.ny > 16384 {
-            return bad(format!(
-                "nx and ny must be in 2..=16384, got {} and {}",
-                self.nx, self.ny
-            ));
+            return bad(Message::new()
+                .key("nx")
+                .text(" and ")
+                .key("ny")
+                .text(format!(
+                    " must be in 2..=16384, got {} and {}",
+                    self.nx, self.ny
+                )));
         }
         if self.nx * self.ny > MAX_MAP_POINTS {
-            return bad(format!(
-                "nx {} x ny {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with the f64 values kept as NPY files or full JSON); use fewer points, or split the range into several maps",
-                self.nx,
-                self.ny,
-                self.nx * self.ny
-            ));
+            return bad(Message::new()
+                .key("nx")
+                .text(format!(" {} x ", self.nx))
+                .key("ny")
+                .text(format!(
+                    " {} is {} points, more than the {MAX_MAP_POINTS} (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with ",
+                    self.ny,
+                    self.nx * self.ny
+                ))
+                .phrase("keep_exact", "the f64 values kept as NPY files or full JSON")
+                .text("); use fewer points, or split the range into several maps"));
         }
+        let (load_min, load_max) = (short(self.load_min), short(self.load_max));
         if !(self.load_max > self.load_min
             && self.load_min.is_finite()
             && self.load_max.is_finite())
         {
-            return bad(format!(
-                "load_min must be below load_max, got {} and {}",
-                short(self.load_min),
-                short(self.load_max)
-            ));
+            return bad(Message::new()
+                .key("load_min")
+                .text(" must be below ")
+                .key("load_max")
+                .text(format!(", got {load_min} and {load_max}")));
         }
         let (lo, hi, range) = match self.load_axis {
             LoadAxis::Linear => (-LOAD_MAX, LOAD_MAX, "-1e12..1e12"),
             _ => (LOG_LOAD_MIN, LOAD_MAX, "1e-15..1e12"),
         };
         if self.load_axis != LoadAxis::Linear && self.load_min <= 0.0 {
-            return bad(format!("a log load axis needs load_min > 0 (got {}); use the linear load axis for tensile loads", short(self.load_min)));
+            return bad(Message::new()
+                .text("a log load axis needs ")
+                .key("load_min")
+                .text(format!(" > 0 (got {load_min}); use "))
+                .phrase("load_axis=linear", "the linear load axis")
+                .text(" for tensile loads"));
         }
         if !(self.load_min >= lo && self.load_max <= hi) {
-            return bad(format!(
-                "load_min {} and load_max {} must lie within {range} on this load axis (the solver's domain); narrow the range",
-                short(self.load_min),
-                short(self.load_max)
-            ));
+            return bad(Message::new()
+                .key("load_min")
+                .text(format!(" {load_min} and "))
+                .key("load_max")
+                .text(format!(
+                    " {load_max} must lie within {range} on this load axis (the solver's domain); narrow the range"
+                )));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad(format!(
-                "tolerance must be in (0, 1), got {}",
-                self.tolerance
-            ));
+            return bad(Message::new()
+                .key("tolerance")
+                .text(format!(" must be in (0, 1), got {}", self.tolerance)));
         }
         if self
             .strength_ratios
             .iter()
             .any(|r| !(*r > 0.0 && r.is_finite()))
         {
-            return bad("strength_ratio values must be > 0".into());
+            return bad(Message::new()
+                .key("strength_ratio")
+                .text(" values must be > 0"));
         }
         Ok(())
     }

@@ -88,10 +88,13 @@ pub fn compute_tip(spec: &MapSpec, shape: Shape, keep_exact: bool) -> Result<Map
     spec.validate()?;
     let (lo, hi) = crate::law::tip::LAMBDA_RANGE;
     if spec.lambda_min < lo || spec.lambda_max > hi {
-        return Err(MapError::Spec(format!(
-            "a tip's map spans lambda from {lo:e} to {hi:e}: got {:e} to {:e}; narrow the lambda range",
-            spec.lambda_min, spec.lambda_max
-        )));
+        return Err(MapError::Spec(
+            format!(
+                "a tip's map spans lambda from {lo:e} to {hi:e}: got {:e} to {:e}; narrow the lambda range",
+                spec.lambda_min, spec.lambda_max
+            )
+            .into(),
+        ));
     }
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);

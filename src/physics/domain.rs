@@ -10,6 +10,7 @@
 //! below [`LIMIT_TOL`]: JKR above [`LAMBDA_MAX`] (to [`LIMIT_LAMBDA_MAX`]), DMT below
 //! [`LAMBDA_MIN`] (from [`LIMIT_LAMBDA_MIN`]); [`method`] says which.
 
+use crate::error::Message;
 use serde::Serialize;
 
 /// Smallest Maugis parameter of the exact solver.
@@ -90,33 +91,28 @@ pub struct DomainError {
     pub hint: &'static str,
 }
 
-/// A number for a message: plain where short, else in e-notation with at most 6 digits (never a
-/// 301-digit decimal).
-pub fn short(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let trim = |m: &str| -> String {
-        if m.contains('.') {
-            m.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            m.to_string()
-        }
-    };
-    if (1e-4..1e7).contains(&x.abs()) {
-        // Six significant digits, plain.
-        let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
-        return trim(&format!("{x:.decimals$}"));
-    }
-    let e = format!("{x:.5e}");
-    match e.split_once('e') {
-        Some((m, p)) => format!("{}e{p}", trim(m)),
-        None => e,
-    }
-}
+pub use crate::error::short;
 
 fn within(x: f64, lo: f64, hi: f64) -> bool {
     x.is_finite() && x >= lo && x <= hi
+}
+
+impl DomainError {
+    /// The message, naming the quantity by its key.
+    pub fn message(&self) -> Message {
+        Message::new().key(self.name).text(format!(
+            " = {} is outside the supported domain {}: {}",
+            short(self.value),
+            self.range,
+            self.hint
+        ))
+    }
+}
+
+impl crate::error::Named for DomainError {
+    fn named(&self, names: crate::error::Names) -> String {
+        self.message().named(names)
+    }
 }
 
 /// The Maugis parameter lambda must lie in [`LAMBDA_MIN`], [`LAMBDA_MAX`] (the exact solver's
@@ -136,16 +132,20 @@ pub fn check_lambda(lambda: f64) -> Result<f64, DomainError> {
 
 /// A lambda axis (`lambda_min..lambda_max`, as a map spans it): both ends in the exact
 /// solver's domain ([`check_lambda`]) and in order. The message names the end at fault.
-pub fn check_lambda_range(lambda_min: f64, lambda_max: f64) -> Result<(), String> {
+pub fn check_lambda_range(lambda_min: f64, lambda_max: f64) -> Result<(), Message> {
     for (name, l) in [("lambda_min", lambda_min), ("lambda_max", lambda_max)] {
-        check_lambda(l).map_err(|e| format!("{name}: {e}"))?;
+        check_lambda(l).map_err(|e| Message::new().key(name).text(format!(": {e}")))?;
     }
     if !(lambda_max > lambda_min) {
-        return Err(format!(
-            "lambda_min must be below lambda_max, got {} and {}",
-            short(lambda_min),
-            short(lambda_max)
-        ));
+        return Err(Message::new()
+            .key("lambda_min")
+            .text(" must be below ")
+            .key("lambda_max")
+            .text(format!(
+                ", got {} and {}",
+                short(lambda_min),
+                short(lambda_max)
+            )));
     }
     Ok(())
 }

@@ -4,6 +4,7 @@ use std::f64::consts::PI;
 
 #[derive(Debug, thiserror::Error, PartialEq)]
 /// A physical input that cannot be normalised: one line naming the field.
+#[non_exhaustive]
 pub enum ParamError {
     #[error("{field} = {} is out of range: it must be {allowed}", super::domain::short(*.value))]
     /// A value outside its range.
@@ -20,10 +21,29 @@ pub enum ParamError {
     Missing(&'static str),
     #[error("{0}")]
     /// Inputs that do not go together, the message naming them, their values and what to do.
-    Conflict(String),
+    Conflict(crate::error::Message),
     #[error(transparent)]
     /// A normalised value outside the solver's domain.
     Domain(#[from] super::domain::DomainError),
+}
+
+impl crate::error::Named for ParamError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            ParamError::OutOfRange {
+                field,
+                value,
+                allowed,
+            } => format!(
+                "{} = {} is out of range: it must be {allowed}",
+                names(field).unwrap_or(field),
+                super::domain::short(*value)
+            ),
+            ParamError::Conflict(m) => m.named(names),
+            ParamError::Domain(e) => e.named(names),
+            ParamError::Missing(_) => self.to_string(),
+        }
+    }
 }
 
 pub(crate) fn check(

@@ -715,7 +715,7 @@ impl TipInput {
             }
             (None, TipInput::Profile { r_m, z_m }) => {
                 let p = Profile::new(r_m, z_m)
-                    .map_err(|e| ParamError::Conflict(format!("tip: {e}")))?;
+                    .map_err(|e| ParamError::Conflict(format!("tip: {e}").into()))?;
                 // l where F(l)^2 / l = 3 pi w / (4 E*), d = F(l): the power law's units for
                 // any profile (F(l)^2 / l rises: F grows at least like l for a convex tip).
                 let target = 3.0 * PI * w / (4.0 * e_star);
@@ -733,7 +733,7 @@ impl TipInput {
                 if !(excess(lo) <= 0.0 && excess(hi) >= 0.0) {
                     return Err(ParamError::Conflict(format!(
                         "tip: the measured profile's length unit was not found (E* = {e_star} Pa, w = {w} J/m^2): check the units of r_m and z_m (metres)"
-                    )));
+                    ).into()));
                 }
                 let l = crate::numeric::root::bisect_sign(excess, lo, hi);
                 let d = p.abel(l).0;

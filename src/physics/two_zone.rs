@@ -152,11 +152,16 @@ pub fn disc_displacement(r: f64, c: f64) -> f64 {
 pub fn paired_ratios(
     stress_ratio: Option<f64>,
     range_ratio: Option<f64>,
-) -> Result<Option<(f64, f64)>, String> {
+) -> Result<Option<(f64, f64)>, crate::error::Message> {
     match (stress_ratio, range_ratio) {
         (None, None) => Ok(None),
         (Some(rho), Some(eta)) => Ok(Some((rho, eta))),
-        _ => Err("give stress_ratio and range_ratio together (the second zone's stress and range over the solid's), or neither for one zone".to_string()),
+        _ => Err(crate::error::Message::new()
+            .text("give ")
+            .key("stress_ratio")
+            .text(" and ")
+            .key("range_ratio")
+            .text(" together (the second zone's stress and range over the solid's), or neither for one zone")),
     }
 }
 

@@ -395,6 +395,7 @@ impl Profile {
 
 /// Why a profile could not be made.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum ProfileError {
     #[error(transparent)]
     /// The solver refused the state.
@@ -411,4 +412,16 @@ pub enum ProfileError {
     #[error("points {0} is out of range: give 16..=100000 sampling radii")]
     /// A sampling count out of range.
     Points(usize),
+}
+
+impl crate::error::Named for ProfileError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            ProfileError::Points(n) => format!(
+                "{} {n} is out of range: give 16..=100000 sampling radii",
+                names("points").unwrap_or("points")
+            ),
+            e => e.to_string(),
+        }
+    }
 }

@@ -35,6 +35,7 @@ pub enum LawProfile {
 
 /// Why a profile was not computed: the law's own error, which names the value.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum LawProfileError {
     /// Maugis-Dugdale.
     #[error(transparent)]
@@ -48,6 +49,17 @@ pub enum LawProfileError {
     /// A law without a profile here (the closed forms are drawn beside Maugis-Dugdale's).
     #[error(transparent)]
     Law(#[from] crate::law::LawError),
+}
+
+impl crate::error::Named for LawProfileError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            LawProfileError::Md(e) => e.named(names),
+            LawProfileError::SolidAndMeniscus(e) => e.named(names),
+            LawProfileError::Tip(e) => e.named(names),
+            LawProfileError::Law(e) => e.named(names),
+        }
+    }
 }
 
 impl ProfileSpec {

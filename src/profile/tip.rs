@@ -45,8 +45,24 @@ pub struct TipProfile {
     pub energy_release_rate_over_w: Option<f64>,
 }
 
+impl crate::error::Named for TipProfileError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            TipProfileError::Points(n) => {
+                format!(
+                    "{} = {n}: give 16 to 100000 sampling points",
+                    names("points").unwrap_or("points")
+                )
+            }
+            TipProfileError::Law(e) => e.named(names),
+            e => e.to_string(),
+        }
+    }
+}
+
 /// Why a tip's profile was not computed.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum TipProfileError {
     /// The number of points is out of range.
     #[error("points = {0}: give 16 to 100000 sampling points")]

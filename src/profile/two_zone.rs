@@ -47,10 +47,11 @@ pub struct TwoZoneProfile {
 
 /// Why a two-zone profile could not be made.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum TwoZoneProfileError {
     #[error("{0}")]
     /// The zones' parameters are refused.
-    Zones(String),
+    Zones(crate::error::Message),
     #[error("the two-zone curve could not be computed (`{}`)", .0.name())]
     /// The two-zone curve could not be computed.
     Curve(Status),
@@ -60,6 +61,19 @@ pub enum TwoZoneProfileError {
     #[error("points {0} is out of range: give 16..=100000 sampling radii")]
     /// A sampling count out of range.
     Points(usize),
+}
+
+impl crate::error::Named for TwoZoneProfileError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            TwoZoneProfileError::Zones(m) => m.named(names),
+            TwoZoneProfileError::Points(n) => format!(
+                "{} {n} is out of range: give 16..=100000 sampling radii",
+                names("points").unwrap_or("points")
+            ),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// The two-zone state fixed by `given` for the solid's `lambda` and the second zone's stress

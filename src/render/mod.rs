@@ -8,6 +8,7 @@ pub mod map;
 pub mod plots;
 pub mod rough;
 
+use crate::error::Message;
 use std::path::Path;
 use std::sync::Once;
 
@@ -165,16 +166,25 @@ impl Print {
         }
     }
     /// A checked size: 40..600 mm wide, 50..2400 dpi, and a PNG of at most [`MAX_PNG_SIDE`].
-    pub fn new(width_mm: f64, dpi: f64) -> Result<Print, String> {
+    pub fn new(width_mm: f64, dpi: f64) -> Result<Print, Message> {
+        let short = crate::physics::domain::short;
         if !(40.0..=600.0).contains(&width_mm) {
-            return Err(format!("width_mm {} is outside 40..600: give the printed width in millimetres (85 for one column, 175 for two)", crate::physics::domain::short(width_mm)));
+            return Err(Message::new().key("width_mm").text(format!(" {} is outside 40..600: give the printed width in millimetres (85 for one column, 175 for two)", short(width_mm))));
         }
         if !(50.0..=2400.0).contains(&dpi) {
-            return Err(format!("dpi {} is outside 50..2400: give the PNG resolution in dots per inch (300 is usual for print)", crate::physics::domain::short(dpi)));
+            return Err(Message::new().key("dpi").text(format!(" {} is outside 50..2400: give the PNG resolution in dots per inch (300 is usual for print)", short(dpi))));
         }
         let p = Print { width_mm, dpi };
         if p.png_width() > MAX_PNG_SIDE {
-            return Err(format!("width_mm {} at dpi {} makes a PNG {} pixels wide, more than {MAX_PNG_SIDE}: lower one of them", crate::physics::domain::short(width_mm), crate::physics::domain::short(dpi), p.png_width()));
+            return Err(Message::new()
+                .key("width_mm")
+                .text(format!(" {} at ", short(width_mm)))
+                .key("dpi")
+                .text(format!(
+                    " {} makes a PNG {} pixels wide, more than {MAX_PNG_SIDE}: lower one of them",
+                    short(dpi),
+                    p.png_width()
+                )));
         }
         Ok(p)
     }

@@ -9,6 +9,7 @@
 use super::lambda_table::LambdaTables;
 use super::{RoughError, Summit, SummitBranch};
 use crate::engine::{CheckReport, Engine};
+use crate::error::Message;
 use crate::physics::domain::{short, DomainError, APPROACH_MAX};
 use crate::physics::params::{Contact, ForceRange};
 use serde::Serialize;
@@ -140,7 +141,7 @@ fn separations(
     // the largest summit's Dugdale range plus an approach unit is beyond every summit's.
     let r_max = asp.iter().map(|a| a.radius_m).fold(0.0, f64::max);
     let c = Contact::new(r_max, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
-        .map_err(|e| RoughError::Scene(e.to_string()))?;
+        .map_err(|e| RoughError::Scene(e.to_string().into()))?;
     let reach = 3.0 * (c.work / c.s0) + 2.0 * c.approach_scale();
     let d_max = d_max.unwrap_or(top + reach);
     if !(d_min.is_finite() && d_max.is_finite() && d_max > d_min) {
@@ -163,17 +164,22 @@ fn check_depth(asp: &[Asperity], m: &Materials, d_min: f64) -> Result<(), RoughE
     let mut floor = f64::NEG_INFINITY;
     for a in asp {
         let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
-            .map_err(|e| RoughError::Scene(e.to_string()))?;
+            .map_err(|e| RoughError::Scene(e.to_string().into()))?;
         floor = floor.max(a.height_m - APPROACH_MAX * c.approach_scale());
     }
     if d_min >= floor {
         return Ok(());
     }
-    Err(RoughError::Scene(format!(
-        "min_separation_m = {} m presses a summit more than {APPROACH_MAX:e} of its approach units (pi^2 w^2 R/K^2)^(1/3) deep, beyond what the summit solver takes: give min_separation_m of at least {} m",
-        short(d_min),
-        short(floor)
-    )))
+    Err(RoughError::Scene(
+        Message::new()
+            .key("min_separation_m")
+            .text(format!(
+                " = {} m presses a summit more than {APPROACH_MAX:e} of its approach units (pi^2 w^2 R/K^2)^(1/3) deep, beyond what the summit solver takes: give ",
+                short(d_min)
+            ))
+            .key("min_separation_m")
+            .text(format!(" of at least {} m", short(floor))),
+    ))
 }
 
 /// Sums per separation: force, area, contact and non-contact counts, for approach and retract.
@@ -214,9 +220,9 @@ impl std::str::FromStr for SummitSolver {
         match s {
             "tables" => Ok(SummitSolver::Tables),
             "exact" => Ok(SummitSolver::Exact),
-            _ => Err(RoughError::Scene(format!(
-                "summits {s:?} is not a summit solver: give tables or exact"
-            ))),
+            _ => Err(RoughError::Scene(
+                format!("summits {s:?} is not a summit solver: give tables or exact").into(),
+            )),
         }
     }
 }
@@ -234,7 +240,7 @@ fn add_summit(
 ) -> Result<(), RoughError> {
     crate::interrupt::checkpoint();
     let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
-        .map_err(|e| RoughError::Scene(e.to_string()))?;
+        .map_err(|e| RoughError::Scene(e.to_string().into()))?;
     let s = Summit::new(c.lambda())?;
     let stencil = tables.map(|t| t.stencil(s.lambda));
     let contact = |delta: f64| match (tables, &stencil) {
@@ -355,7 +361,7 @@ fn tables_for(
     let (mut lo, mut hi, mut delta_max) = (f64::INFINITY, 0f64, f64::NEG_INFINITY);
     for a in asp {
         let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range)
-            .map_err(|e| RoughError::Scene(e.to_string()))?;
+            .map_err(|e| RoughError::Scene(e.to_string().into()))?;
         let l = c.lambda();
         lo = lo.min(l);
         hi = hi.max(l);
@@ -445,7 +451,7 @@ pub fn cycle_with(
 fn dry_scene(scene: &super::scene::RoughScene) -> Result<(), RoughError> {
     if scene.humidity.is_some() {
         return Err(RoughError::Scene(
-            "the scene's \"humidity\" is not modelled for an explicit ensemble (--asperities, --topography; Python's rough_asperities, rough_topography): its summits are dry. Remove \"humidity\" for the dry ensemble, or drop the ensemble for the statistical model, whose summits carry the meniscus".into(),
+            "the scene's \"humidity\" is not modelled for an explicit ensemble (--asperities, --topography; Python's rough_asperities, rough_topography): its summits are dry. Remove \"humidity\" for the dry ensemble, or drop the ensemble for the statistical model, whose summits carry the meniscus".into()
         ));
     }
     Ok(())
@@ -486,7 +492,7 @@ pub fn scene_cycle(
                         "{e} (the scene's min_separation_m = {} m, measured from the mean summit height {} m)",
                         short(from_mean),
                         short(mean)
-                    ))
+                    ).into())
                 },
             )
         }
@@ -562,11 +568,14 @@ fn check_points(points: usize) -> Result<(), RoughError> {
 /// Summits from parallel arrays of heights and radii (m), checked ([`check`]).
 pub fn asperities(heights_m: &[f64], radii_m: &[f64]) -> Result<Vec<Asperity>, RoughError> {
     if heights_m.len() != radii_m.len() {
-        return Err(RoughError::Scene(format!(
-            "{} heights and {} radii: give one radius per summit",
-            heights_m.len(),
-            radii_m.len()
-        )));
+        return Err(RoughError::Scene(
+            format!(
+                "{} heights and {} radii: give one radius per summit",
+                heights_m.len(),
+                radii_m.len()
+            )
+            .into(),
+        ));
     }
     let asp: Vec<Asperity> = heights_m
         .iter()
@@ -583,7 +592,7 @@ pub fn topography_summits(z: &[f64], nx: usize, pixel_m: f64) -> Result<Vec<Aspe
     if asp.is_empty() {
         return Err(RoughError::Scene(
             "the height map has no summit (no pixel above its eight neighbours with a positive curvature)"
-                .into(),
+                .into()
         ));
     }
     check(&asp)?;

@@ -111,7 +111,7 @@ fn solve(plan: &Plan, engine: &Engine) -> Result<(Solved, Option<CheckReport>), 
         .collect();
     let states = engine
         .solve_points(&points, Control::Displacement)
-        .map_err(|e| RoughError::Scene(e.to_string()))?;
+        .map_err(|e| RoughError::Scene(e.to_string().into()))?;
     let check = (!matches!(engine, Engine::Cpu)).then(|| {
         crate::engine::cross_check(
             &points,

@@ -10,6 +10,7 @@
 
 use super::{Leg, Rough, RoughError, Summit};
 use crate::engine::{CheckReport, Engine};
+use crate::error::Message;
 use crate::map::Region;
 use crate::numeric::legendre::{gauss_legendre, Order};
 use crate::physics::closed::{jkr_approach, jkr_load};
@@ -74,27 +75,24 @@ pub struct RoughMapSpec {
 impl RoughMapSpec {
     /// One clear line for a bad value.
     pub fn validate(&self) -> Result<(), RoughError> {
-        let bad = |m: String| Err(RoughError::Scene(m));
+        let bad = |m: Message| Err(RoughError::Scene(m));
         crate::physics::domain::check_lambda_range(self.lambda_min, self.lambda_max)
             .map_err(RoughError::Scene)?;
-        if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
-            return bad(format!(
-                "sigma_min {} and sigma_max {} are not a roughness range: give 0 < sigma_min < sigma_max <= 1e4 (approach units)",
-                short(self.sigma_min),
-                short(self.sigma_max)
-            ));
-        }
+        super::check_roughness_range(self.sigma_min, self.sigma_max).or_else(bad)?;
         if !(2..=4096).contains(&self.nx) || !(2..=4096).contains(&self.ny) {
-            return bad(format!(
-                "nx and ny must be in 2..=4096, got {} and {}",
-                self.nx, self.ny
-            ));
+            return bad(Message::new()
+                .key("nx")
+                .text(" and ")
+                .key("ny")
+                .text(format!(
+                    " must be in 2..=4096, got {} and {}",
+                    self.nx, self.ny
+                )));
         }
         if !(self.tolerance > 0.0 && self.tolerance < 1.0) {
-            return bad(format!(
-                "tolerance must be in (0, 1), got {}",
-                short(self.tolerance)
-            ));
+            return bad(Message::new()
+                .key("tolerance")
+                .text(format!(" must be in (0, 1), got {}", short(self.tolerance))));
         }
         super::check_press_sigmas(self.press_sigmas).or_else(bad)
     }
@@ -1035,8 +1033,8 @@ pub const MAX_CHECK: usize = 100_000;
 /// The number of points to re-solve, checked (at most [`MAX_CHECK`]).
 pub fn check_checks(checks: usize) -> Result<(), RoughError> {
     if checks > MAX_CHECK {
-        return Err(RoughError::Scene(format!(
-            "check {checks}: give at most {MAX_CHECK} points to re-solve"
+        return Err(RoughError::Scene(Message::new().key("check").text(
+            format!(" {checks}: give at most {MAX_CHECK} points to re-solve"),
         )));
     }
     Ok(())
@@ -1092,7 +1090,7 @@ fn tables(
             .collect();
         let states = engine
             .solve_points(&points, Control::Displacement)
-            .map_err(|e| RoughError::Scene(e.to_string()))?;
+            .map_err(|e| RoughError::Scene(e.to_string().into()))?;
         let sample: Vec<usize> = (0..points.len()).step_by(every).collect();
         check.merge(crate::engine::cross_check(
             &sample.iter().map(|&i| points[i]).collect::<Vec<_>>(),

@@ -11,6 +11,7 @@ pub mod map;
 pub mod scene;
 pub mod wet;
 
+use crate::error::Message;
 use crate::numeric::golden::{Golden, Ties, Width};
 use crate::physics::domain::{short, DomainError};
 use crate::physics::md::{zero_radius_end, LAMBDA_D};
@@ -207,6 +208,7 @@ pub struct Mean {
 
 /// The error of a rough-surface computation.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum RoughError {
     #[error(transparent)]
     /// An input outside its domain.
@@ -215,11 +217,22 @@ pub enum RoughError {
     /// The solver refused a summit.
     Solve(#[from] SolveError),
     #[error("{0}")]
-    /// A scene or an option refused, in words.
-    Scene(String),
+    /// A scene or an option refused, in words naming its keys.
+    Scene(Message),
     #[error("the summit solver failed at separation {} (lambda = {}): no number is reported", short(*.0), short(*.1))]
     /// A summit's state that could not be solved (separation, lambda).
     Failed(f64, f64),
+}
+
+impl crate::error::Named for RoughError {
+    fn named(&self, names: crate::error::Names) -> String {
+        match self {
+            RoughError::Scene(m) => m.named(names),
+            RoughError::Domain(e) => e.named(names),
+            RoughError::Solve(e) => e.named(names),
+            e => e.to_string(),
+        }
+    }
 }
 
 /// The separations of a cycle, from `d_max` down to `d_min` (approach units), checked.
@@ -264,29 +277,53 @@ pub(crate) fn free_d_max(free: f64, d_min: f64) -> Result<f64, RoughError> {
         return Err(RoughError::Scene(format!(
             "the summits feel the flat out to {} approach units (their force range, 2/(pi lambda) for a dry summit, plus {Z_FREE} sigma), beyond the largest separation a cycle takes ({SEPARATION_MAX:e}): give a larger lambda or a smaller sigma",
             short(free)
-        )));
+        ).into()));
     }
     if d_min >= free {
-        return Err(RoughError::Scene(format!(
-            "min_separation = {} is beyond the summits' reach ({} approach units: no summit feels the flat there), so nothing would touch: give a smaller min_separation",
-            short(d_min),
-            short(free)
-        )));
+        return Err(RoughError::Scene(
+            Message::new()
+                .key("min_separation")
+                .text(format!(
+                    " = {} is beyond the summits' reach ({} approach units: no summit feels the flat there), so nothing would touch: give a smaller ",
+                    short(d_min),
+                    short(free)
+                ))
+                .key("min_separation"),
+        ));
     }
     Ok(free)
 }
 
 /// The press depth `press_sigmas` (in sigma below the mean summit plane) within
 /// +-[`PRESS_SIGMAS_MAX`].
-pub(crate) fn check_press_sigmas(press_sigmas: f64) -> Result<(), String> {
+/// A roughness axis: `0 < sigma_min < sigma_max <= 1e4` approach units.
+pub(crate) fn check_roughness_range(sigma_min: f64, sigma_max: f64) -> Result<(), Message> {
+    if sigma_min > 0.0 && sigma_max > sigma_min && sigma_max <= 1e4 {
+        return Ok(());
+    }
+    Err(Message::new()
+        .key("sigma_min")
+        .text(format!(" {} and ", short(sigma_min)))
+        .key("sigma_max")
+        .text(format!(
+            " {} are not a roughness range: give 0 < ",
+            short(sigma_max)
+        ))
+        .key("sigma_min")
+        .text(" < ")
+        .key("sigma_max")
+        .text(" <= 1e4 (approach units)"))
+}
+
+pub(crate) fn check_press_sigmas(press_sigmas: f64) -> Result<(), Message> {
     if press_sigmas.is_finite() && press_sigmas.abs() <= PRESS_SIGMAS_MAX {
         return Ok(());
     }
-    Err(format!(
-        "press_sigmas = {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -{m}..{m} (pressed {m} sigma, all but 1e-9 of the summits have touched: a deeper press changes nothing more)",
+    Err(Message::new().key("press_sigmas").text(format!(
+        " = {} is not valid: give how many sigma below the mean summit plane the flat was pressed, -{m}..{m} (pressed {m} sigma, all but 1e-9 of the summits have touched: a deeper press changes nothing more)",
         short(press_sigmas),
         m = short(PRESS_SIGMAS_MAX)
-    ))
+    )))
 }
 
 /// The mean state at every separation on the approach (down) and on the retract after `d_min`
@@ -900,22 +937,18 @@ impl Default for PulloffSweep {
 impl PulloffSweep {
     /// One clear line for a bad value, naming the quantity.
     pub fn validate(&self) -> Result<(), RoughError> {
-        let bad = |m: String| Err(RoughError::Scene(m));
-        if !(self.sigma_min > 0.0 && self.sigma_max > self.sigma_min && self.sigma_max <= 1e4) {
-            return bad(format!(
-                "sigma_min {} and sigma_max {} are not a roughness range: give 0 < sigma_min < sigma_max <= 1e4 (approach units)",
-                short(self.sigma_min),
-                short(self.sigma_max)
-            ));
-        }
+        let bad = |m: Message| Err(RoughError::Scene(m));
+        check_roughness_range(self.sigma_min, self.sigma_max).or_else(bad)?;
         if !(2..=1000).contains(&self.points) {
-            return bad(format!(
-                "points = {}: give 2..1000 roughnesses",
-                self.points
-            ));
+            return bad(Message::new()
+                .key("points")
+                .text(format!(" = {}: give 2..1000 roughnesses", self.points)));
         }
         if self.lambdas.is_empty() || self.lambdas.len() > 20 {
-            return bad(format!("{} lambda values: give 1..20", self.lambdas.len()));
+            return bad(Message::new()
+                .text(format!("{} ", self.lambdas.len()))
+                .phrase("lambda_values", "lambda values")
+                .text(": give 1..20"));
         }
         for &l in &self.lambdas {
             crate::physics::domain::check_lambda(l)?;

@@ -396,5 +396,5 @@ fn approach_units(key: &str, v: f64, unit: f64, max: f64) -> Result<f64, RoughEr
 }
 
 fn scene_err(e: impl std::fmt::Display) -> RoughError {
-    RoughError::Scene(e.to_string())
+    RoughError::Scene(e.to_string().into())
 }

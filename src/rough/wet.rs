@@ -16,6 +16,7 @@
 
 use super::{domain, integrate, upper_tail, Leg, Mean, Rough, RoughCycle, RoughError};
 use super::{legs, separations, SummitBranch, Z_CUT, Z_FREE};
+use crate::error::Message;
 use crate::law::{ContactLaw, Md, TwoZones};
 use crate::physics::two_zone::{non_contact_both, non_contact_single, Shape, Zones};
 use crate::solver::two_zone::TwoZoneContext;
@@ -170,8 +171,8 @@ fn approach_of(z: &Zones, part: Part, p: f64) -> f64 {
     }
 }
 
-fn zones_failed(e: impl std::fmt::Display) -> RoughError {
-    RoughError::Scene(format!("the wet summit could not be solved: {e}"))
+fn zones_failed(e: impl Into<Message>) -> RoughError {
+    RoughError::Scene(Message::from("the wet summit could not be solved: ").then(e.into()))
 }
 
 impl WetSummit {
@@ -521,11 +522,14 @@ impl WetRough {
                 stress_ratio,
                 range_ratio,
             }) => WetRough::new(lambda, stress_ratio, range_ratio, sigma),
-            closed => Err(RoughError::Scene(format!(
+            closed => Err(RoughError::Scene(
+                format!(
                 "rough summits of the {} law are not modelled: give md summits (a lambda), or a \
                  meniscus",
                 closed.model().label()
-            ))),
+            )
+                .into(),
+            )),
         }
     }
 

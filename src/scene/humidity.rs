@@ -2,6 +2,7 @@
 //! section 10). The Kelvin radius fixes the meniscus' Laplace pressure and its height; the
 //! contact is then the two-zone law, solved exactly.
 
+use crate::error::Message;
 use crate::physics::params::{Contact, ParamError};
 use crate::solver::two_zone::{dimensional_zones, TwoZoneContext, Units};
 use serde::{Deserialize, Serialize};
@@ -367,10 +368,10 @@ impl HumidityInput {
         let lower_helps = shown > self.molecular_rh();
         Err(ParamError::Conflict(
             if liquid < LAMBDA_MIN && lower_helps && inside(solid) {
-                format!(
-                "humidity.relative_humidity = {:?}: {what}: give a relative humidity below {shown:.digits$} (the meniscus model fails already where its height nears a tenth of R)",
+                Message::new().key("humidity.relative_humidity").text(format!(
+                " = {:?}: {what}: give a relative humidity below {shown:.digits$} (the meniscus model fails already where its height nears a tenth of R)",
                 self.relative_humidity,
-            )
+            ))
             } else {
                 format!(
                 "humidity (relative humidity {:?}, contact angle {} deg, surface tension {} N/m, molar volume {} m^3/mol, temperature {} K): {what}: check the liquid's values and their units",
@@ -379,7 +380,7 @@ impl HumidityInput {
                 short(self.surface_tension()),
                 short(self.molar_volume()),
                 short(self.temperature())
-            )
+            ).into()
             },
         ))
     }
@@ -401,7 +402,7 @@ pub fn wet_context(c: &Contact, m: &Meniscus) -> Result<(TwoZoneContext, Units),
             crate::physics::domain::short(m.range_m),
             crate::physics::domain::short(c.s0),
             crate::physics::domain::short(h0)
-        ))
+        ).into())
     })?;
     let ctx = TwoZoneContext::new(zones).map_err(|_| {
         bad(
@@ -535,7 +536,16 @@ pub fn sweep(
         return Err(bad("rh_min", rh_min, "in (0, 1)"));
     }
     if !(rh_max.is_finite() && rh_max > rh_min && rh_max < 1.0) {
-        return Err(bad("rh_max", rh_max, "above rh_min and below 1"));
+        return Err(ParamError::Conflict(
+            Message::new()
+                .key("rh_max")
+                .text(format!(
+                    " = {} is out of range: it must be above ",
+                    crate::physics::domain::short(rh_max)
+                ))
+                .key("rh_min")
+                .text(" and below 1"),
+        ));
     }
     if !(2..=MAX_SWEEP_POINTS).contains(&n) {
         return Err(bad("points", n as f64, "in 2..10000"));
@@ -625,7 +635,7 @@ fn reach_at(c: &Contact, base: &HumidityInput, rh_max: f64) -> Result<(), ParamE
     };
     top.meniscus(c).map(|_| ()).map_err(|e| match e {
         ParamError::Conflict(m) => {
-            ParamError::Conflict(m.replace("humidity.relative_humidity", "rh_max"))
+            ParamError::Conflict(m.rekey("humidity.relative_humidity", "rh_max"))
         }
         e => e,
     })

@@ -1,5 +1,6 @@
 //! The work of adhesion from a measured pull-off force under JKR, DMT and exact MD.
 
+use crate::error::Message;
 use crate::physics::params::{Contact, ForceRange, ParamError};
 use crate::solver::LambdaContext;
 use serde::Serialize;
@@ -120,8 +121,12 @@ pub fn wet_options(
 ) -> Result<Option<super::humidity::HumidityInput>, ParamError> {
     match (relative_humidity, contact_angle_deg) {
         (None, None) => Ok(None),
-        (None, Some(_)) => Err(ParamError::Missing(
-            "humidity.contact_angle_deg is given without humidity.relative_humidity, and would be ignored: give the relative humidity the pull-off was measured in, or leave the contact angle out",
+        (None, Some(_)) => Err(ParamError::Conflict(
+            Message::new()
+                .key("humidity.contact_angle_deg")
+                .text(" is given without ")
+                .key("humidity.relative_humidity")
+                .text(", and would be ignored: give the relative humidity the pull-off was measured in, or leave the contact angle out"),
         )),
         (Some(rh), t) => Ok(Some(super::humidity::HumidityInput::water(
             rh,
@@ -176,8 +181,10 @@ pub fn infer_wet(
     let contact = |w: f64| Contact::new(radius, e_star, w, ForceRange::LennardJones(z0));
     let w_hi = f / (1.5 * std::f64::consts::PI * radius);
     if humidity.relative_humidity == 0.0 {
-        return Err(ParamError::Missing(
-            "humidity.relative_humidity = 0 is dry air, where no meniscus forms: leave the humidity out for the dry inference",
+        return Err(ParamError::Conflict(
+            Message::new().key("humidity.relative_humidity").text(
+                " = 0 is dry air, where no meniscus forms: leave the humidity out for the dry inference",
+            ),
         ));
     }
     let mut out = WetInference {

@@ -101,7 +101,7 @@ fn materials(s: &SceneInput) -> Result<(f64, f64, f64), ParamError> {
         if given {
             return Err(ParamError::Conflict(format!(
                 "{key} is not available for a tip other than a sphere: leave it out (or give the sphere's radius_m)"
-            )));
+            ).into()));
         }
     }
     let probe = SceneInput {
@@ -225,7 +225,7 @@ fn under_control(
                 ParamError::Conflict(format!(
                     "control.cantilever_n_m = {}: the tip's cycle under kbar = {kbar:.4e} was not solved ({e})",
                     crate::physics::domain::short(*k)
-                ))
+                ).into())
             })?;
             let out = cyc
                 .jumps

@@ -107,6 +107,7 @@ impl State {
 
 #[derive(Debug, thiserror::Error)]
 /// Why a lambda's solver could not be built.
+#[non_exhaustive]
 pub enum SolveError {
     #[error(transparent)]
     /// lambda outside the domain.
@@ -114,6 +115,25 @@ pub enum SolveError {
     #[error("no load-controlled pull-off found for lambda = {}", domain::short(*.0))]
     /// The pull-off search failed at this lambda.
     NoPullOff(f64),
+}
+
+impl SolveError {
+    /// The message, naming the quantity by its key.
+    pub fn message(&self) -> crate::error::Message {
+        match self {
+            SolveError::Domain(d) => d.message(),
+            SolveError::NoPullOff(l) => crate::error::Message::new()
+                .text("no load-controlled pull-off found for ")
+                .key("lambda")
+                .text(format!(" = {}", domain::short(*l))),
+        }
+    }
+}
+
+impl crate::error::Named for SolveError {
+    fn named(&self, names: crate::error::Names) -> String {
+        self.message().named(names)
+    }
 }
 
 /// The state of one (lambda, value) point; `value` is the load or the approach.

@@ -7,6 +7,7 @@
 
 use super::context::LambdaContext;
 use super::Status;
+use crate::error::Message;
 use crate::numeric::golden::{Golden, Ties, Width};
 use crate::numeric::root::{bisect_sign, secant_bracketed, Stop};
 use crate::physics::domain::short;
@@ -37,7 +38,26 @@ pub const LAMBDA_MAX: f64 = 1e6;
 /// A bad set of zones: the message names the value and what to do.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{0}")]
-pub struct ZonesError(pub String);
+pub struct ZonesError(pub Message);
+
+impl From<ZonesError> for Message {
+    fn from(e: ZonesError) -> Message {
+        e.0
+    }
+}
+
+impl ZonesError {
+    /// A refusal that names no quantity a front end calls otherwise.
+    pub fn text(s: impl Into<std::borrow::Cow<'static, str>>) -> ZonesError {
+        ZonesError(Message::new().text(s))
+    }
+}
+
+impl crate::error::Named for ZonesError {
+    fn named(&self, names: crate::error::Names) -> String {
+        self.0.named(names)
+    }
+}
 
 impl Zones {
     /// Zones in the total-w units; `(pi/2)(lambda_1 h_1 + lambda_2 h_2)` must be 1 (to 1e-9).
@@ -46,7 +66,7 @@ impl Zones {
         for i in 0..2 {
             for (name, v) in [("stress number", lambda[i]), ("range", range[i])] {
                 if !v.is_finite() || v < 0.0 {
-                    return Err(ZonesError(format!(
+                    return Err(ZonesError::text(format!(
                         "zone {}'s {name} = {} must be a finite number >= 0",
                         i + 1,
                         short(v)
@@ -56,19 +76,19 @@ impl Zones {
         }
         let z = Zones { lambda, range };
         if !z.present(0) && !z.present(1) {
-            return Err(ZonesError(
-                "neither zone acts: give at least one zone a stress and a range > 0".into(),
+            return Err(ZonesError::text(
+                "neither zone acts: give at least one zone a stress and a range > 0",
             ));
         }
         if (z.total_work() - 1.0).abs() > 1e-9 {
-            return Err(ZonesError(format!(
+            return Err(ZonesError::text(format!(
                 "(pi/2)(lambda_1 h_1 + lambda_2 h_2) = {} must be 1 in the total-w units",
                 short(z.total_work())
             )));
         }
         for i in 0..2 {
             if z.present(i) && !(LAMBDA_MIN..=LAMBDA_MAX).contains(&z.lambda[i]) {
-                return Err(ZonesError(format!(
+                return Err(ZonesError::text(format!(
                     "zone {}'s stress number {} is outside {LAMBDA_MIN:e}..{LAMBDA_MAX:e}",
                     i + 1,
                     short(z.lambda[i])
@@ -83,19 +103,18 @@ impl Zones {
     /// (docs/PHYSICS.md section 10). `rho = 0` or `eta = 0` is the solid alone.
     pub fn from_ratios(lambda_s: f64, rho: f64, eta: f64) -> Result<Zones, ZonesError> {
         check_ratios(rho, eta)?;
-        for (name, v) in [("lambda", lambda_s)] {
-            if !v.is_finite() || v < 0.0 {
-                return Err(ZonesError(format!(
-                    "{name} = {} must be a finite number >= 0",
-                    short(v)
-                )));
-            }
+        if !lambda_s.is_finite() || lambda_s < 0.0 {
+            return Err(ZonesError(Message::new().key("lambda").text(format!(
+                " = {} must be a finite number >= 0",
+                short(lambda_s)
+            ))));
         }
         if lambda_s <= 0.0 {
-            return Err(ZonesError(format!(
-                "lambda = {} must be > 0",
-                short(lambda_s)
-            )));
+            return Err(ZonesError(
+                Message::new()
+                    .key("lambda")
+                    .text(format!(" = {} must be > 0", short(lambda_s))),
+            ));
         }
         let ratio = 1.0 + rho * eta;
         let l1 = lambda_s / ratio.cbrt();
@@ -109,7 +128,7 @@ impl Zones {
 pub fn check_ratios(rho: f64, eta: f64) -> Result<(), ZonesError> {
     for (name, v) in [("stress ratio", rho), ("range ratio", eta)] {
         if !v.is_finite() || v < 0.0 {
-            return Err(ZonesError(format!(
+            return Err(ZonesError::text(format!(
                 "{name} = {} must be a finite number >= 0",
                 short(v)
             )));
@@ -122,25 +141,44 @@ pub fn check_ratios(rho: f64, eta: f64) -> Result<(), ZonesError> {
 /// lambda_1` in [`LAMBDA_MIN`]..[`LAMBDA_MAX`] (a zone of zero stress or range is absent), in
 /// the words of the ratios given: the two-zone solver's grid is built for that span.
 fn check_stress_numbers(lambda_s: f64, rho: f64, eta: f64, l1: f64) -> Result<(), ZonesError> {
-    let given = format!(
-        "lambda {}, stress_ratio {} (rho), range_ratio {} (eta)",
-        short(lambda_s),
-        short(rho),
-        short(eta)
-    );
+    let given = Message::new()
+        .key("lambda")
+        .text(format!(" {}, ", short(lambda_s)))
+        .key("stress_ratio")
+        .text(format!(" {} (rho), ", short(rho)))
+        .key("range_ratio")
+        .text(format!(" {} (eta)", short(eta)));
     let span = format!("{LAMBDA_MIN:e}..{LAMBDA_MAX:e}");
     if !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l1) {
-        return Err(ZonesError(format!(
-            "{given}: the solid zone's stress number lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a lambda that brings it inside, or no stress_ratio and range_ratio for the one-zone law, whose lambda may be 1e-26..1e26",
-            short(l1)
-        )));
+        return Err(ZonesError(
+            given
+                .text(format!(
+                    ": the solid zone's stress number lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a ",
+                    short(l1)
+                ))
+                .key("lambda")
+                .text(" that brings it inside, or no ")
+                .key("stress_ratio")
+                .text(" and ")
+                .key("range_ratio")
+                .text(" for the one-zone law, whose ")
+                .key("lambda")
+                .text(" may be 1e-26..1e26"),
+        ));
     }
     let l2 = rho * l1;
     if rho > 0.0 && eta > 0.0 && !(LAMBDA_MIN..=LAMBDA_MAX).contains(&l2) {
-        return Err(ZonesError(format!(
-            "{given}: the second zone's stress number rho lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a stress_ratio that brings it inside, or stress_ratio 0 for no second zone",
-            short(l2)
-        )));
+        return Err(ZonesError(
+            given
+                .text(format!(
+                    ": the second zone's stress number rho lambda_s (1 + rho eta)^(-1/3) = {} is outside {span}, where the two-zone law is solved: give a ",
+                    short(l2)
+                ))
+                .key("stress_ratio")
+                .text(" that brings it inside, or ")
+                .key("stress_ratio")
+                .text(" 0 for no second zone"),
+        ));
     }
     Ok(())
 }
@@ -168,7 +206,7 @@ pub fn dimensional_zones(
 ) -> Result<(Zones, Units), ZonesError> {
     for (name, v) in [("K", k), ("R", r)] {
         if !v.is_finite() || v <= 0.0 {
-            return Err(ZonesError(format!(
+            return Err(ZonesError::text(format!(
                 "{name} = {} must be a finite number > 0",
                 short(v)
             )));
@@ -176,7 +214,7 @@ pub fn dimensional_zones(
     }
     for i in 0..2 {
         if !s[i].is_finite() || s[i] < 0.0 || !h[i].is_finite() || h[i] < 0.0 {
-            return Err(ZonesError(format!(
+            return Err(ZonesError::text(format!(
                 "zone {}: stress {} and range {} must be finite numbers >= 0",
                 i + 1,
                 short(s[i]),
@@ -626,10 +664,13 @@ pub fn state_at_radius_dimensional(
 ) -> Result<DimensionalState, ZonesError> {
     let (zones, u) = dimensional_zones(k, r, [s1, s2], [h1, h2])?;
     if !a.is_finite() || a <= 0.0 {
-        return Err(ZonesError(format!("a = {a} must be a finite number > 0")));
+        return Err(ZonesError::text(format!(
+            "a = {a} must be a finite number > 0"
+        )));
     }
-    let ctx = TwoZoneContext::new(zones)
-        .map_err(|st| ZonesError(format!("the curve could not be computed ({})", st.name())))?;
+    let ctx = TwoZoneContext::new(zones).map_err(|st| {
+        ZonesError::text(format!("the curve could not be computed ({})", st.name()))
+    })?;
     let s = ctx.state_at_radius(a / u.radius);
     if s.status != Status::Ok {
         return Ok(DimensionalState {
@@ -675,8 +716,9 @@ pub fn pulloffs_dimensional(
     h: [f64; 2],
 ) -> Result<(f64, f64), ZonesError> {
     let (zones, u) = dimensional_zones(k, r, s, h)?;
-    let ctx = TwoZoneContext::new(zones)
-        .map_err(|st| ZonesError(format!("the curve could not be computed ({})", st.name())))?;
+    let ctx = TwoZoneContext::new(zones).map_err(|st| {
+        ZonesError::text(format!("the curve could not be computed ({})", st.name()))
+    })?;
     Ok((
         ctx.load_pulloff.load * u.load,
         ctx.disp_pulloff.load * u.load,

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 /// The layers in order: a file uses only modules of its layer and of the layers before it.
 /// Mirrors the table of docs/ARCHITECTURE.md.
 const LAYERS: &[(&str, &[&str])] = &[
-    ("numeric", &["numeric"]),
+    ("numeric", &["numeric", "error"]),
     ("physics", &["physics"]),
     ("solver", &["solver"]),
     ("kernel", &["kernel"]),

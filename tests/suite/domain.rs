@@ -389,7 +389,9 @@ fn library_messages_name_quantities_not_flags() {
         spec(&|s| s.nx = 1),
         spec(&|s| s.tolerance = 2.0),
         spec(&|s| s.load_min = -1.0),
-        tabor::render::Print::new(5.0, 300.0).unwrap_err(),
+        tabor::render::Print::new(5.0, 300.0)
+            .unwrap_err()
+            .to_string(),
         tabor::profile::profile(1.0, tabor::profile::Given::Load(0.0), 3)
             .unwrap_err()
             .to_string(),
@@ -409,6 +411,53 @@ fn library_messages_name_quantities_not_flags() {
         assert!(m.contains(name), "{m}");
         assert!(!m.contains("--"), "{m}");
     }
+    // A front end's names replace the keys, and only them: typed parts, not text (`nx` in
+    // "nx_min" or a word of the message is not a key).
+    use tabor::error::Named;
+    let upper = |k: &str| match k {
+        "lambda_min" => Some("LMIN"),
+        "lambda_max" => Some("LMAX"),
+        "nx" => Some("NX"),
+        "ny" => Some("NY"),
+        "load_axis=linear" => Some("LINEAR"),
+        "width_mm" => Some("WIDTH"),
+        "precision=f32" => Some("F32"),
+        _ => None,
+    };
+    let named = |f: &dyn Fn(&mut MapSpec)| {
+        let mut s = MapSpec {
+            lambda_min: 1e-3,
+            lambda_max: 1e3,
+            nx: 8,
+            load_axis: LoadAxis::Log,
+            load_min: 1e-3,
+            load_max: 1e3,
+            ny: 8,
+            tolerance: 0.05,
+            strength_ratios: vec![],
+        };
+        f(&mut s);
+        s.validate().unwrap_err().named(&upper)
+    };
+    assert_eq!(
+        named(&|s| (s.lambda_min, s.lambda_max) = (10.0, 1.0)),
+        "LMIN must be below LMAX, got 10 and 1"
+    );
+    assert_eq!(
+        named(&|s| s.nx = 1),
+        "NX and NY must be in 2..=16384, got 1 and 8"
+    );
+    assert_eq!(
+        named(&|s| s.load_min = -1.0),
+        "a log load axis needs load_min > 0 (got -1); use LINEAR for tensile loads"
+    );
+    assert!(tabor::render::Print::new(5.0, 300.0)
+        .unwrap_err()
+        .named(&upper)
+        .starts_with("WIDTH 5 is outside 40..600"));
+    assert!(tabor::gpu::GpuError::NoF64("x".into())
+        .named(&upper)
+        .contains("use F32, or the cpu backend for f64"));
     // The command line puts its flags back.
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
         .args(["map", "--nx", "1", "--out", "/nonexistent/m.png"])

@@ -294,11 +294,15 @@ fn sizes_for_two_columns_and_the_same_bytes_each_time() {
     let img = image::load_from_memory(a.png.as_ref().unwrap()).unwrap();
     assert_eq!(img.width(), 2067);
     // Bad sizes are refused with the value and what to give.
-    let e = Print::new(5.0, 300.0).unwrap_err();
+    let e = Print::new(5.0, 300.0).unwrap_err().to_string();
     assert!(e.contains("width_mm 5") && e.contains("85"), "{e}");
-    assert!(Print::new(85.0, 0.0).unwrap_err().contains("dpi 0"));
+    assert!(Print::new(85.0, 0.0)
+        .unwrap_err()
+        .to_string()
+        .contains("dpi 0"));
     assert!(Print::new(600.0, 2400.0)
         .unwrap_err()
+        .to_string()
         .contains("pixels wide"));
 }
 

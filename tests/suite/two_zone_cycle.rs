@@ -327,6 +327,11 @@ fn the_cycle_spec_dispatches_on_the_law() {
     use tabor::{ContactLaw, ContactModel};
     let json = |c: &Cycle| serde_json::to_string(c).unwrap();
     let e = ContactLaw::new(1.0, Some(0.2), None).unwrap_err();
+    assert_eq!(
+        e.keys().collect::<Vec<_>>(),
+        ["stress_ratio", "range_ratio"]
+    );
+    let e = e.to_string();
     assert!(
         e.contains("stress_ratio") && e.contains("range_ratio"),
         "{e}"
