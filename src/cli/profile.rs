@@ -205,9 +205,7 @@ fn run_wet(
     figure: &crate::render::Outputs,
     print: &crate::render::Print,
 ) -> anyhow::Result<()> {
-    let (_, u) = crate::scene::humidity::wet_context(c, m)?;
-    let (s1, h1) = (c.s0, c.work / c.s0);
-    let (rho, eta) = (m.laplace_pressure_pa / s1, m.range_m / h1);
+    let (rho, eta, u) = crate::scene::humidity::wet_ratios(c, m)?;
     // The load in the units of the total w.
     let given = match given {
         Given::Load(f) => Given::Load(f * c.force_scale() / u.load),

@@ -71,7 +71,7 @@ impl Model {
     }
 
     /// The model's law at `lambda` (ignored by the closed forms; the two-zone law's is built
-    /// with its meniscus by [`crate::law::TwoZones::of_meniscus`]).
+    /// with its meniscus by [`crate::law::TwoZones::of_sphere_in_meniscus`]).
     pub fn law(self, lambda: f64) -> ContactLaw {
         match self {
             Model::Hertz => ContactLaw::Hertz,

@@ -144,7 +144,7 @@ pub fn law_units(
     let tip = tip.into();
     match (meniscus, tip) {
         (Some(m), Geometry::Sphere(radius)) if model == Model::SolidAndMeniscus => {
-            let (law, w) = TwoZones::of_meniscus(p.e_star, p.w, p.lambda, radius, m);
+            let (law, w) = TwoZones::of_sphere_in_meniscus(p.e_star, p.w, p.lambda, radius, m);
             (
                 ContactLaw::SolidAndMeniscus(law),
                 tip.units(p.e_star, w, spring),

@@ -39,28 +39,33 @@ enum Zoned {
 }
 
 impl TwoZones {
-    /// The two-zone law of a solid (E* in Pa, its w in J/m^2 and its Maugis parameter lambda)
-    /// on a tip of radius `radius` (m) in a meniscus of stress `s2` (Pa, the Laplace pressure)
-    /// and range `h2` (m), and the total w (J/m^2) whose units its path is in. The solid's zone
-    /// is lambda's Dugdale zone, `s1 = (lambda / 2) (pi w K^2 / R)^(1/3)` over `h1 = w / s1`.
-    pub fn of_meniscus(
-        e_star: f64,
-        w: f64,
-        lambda: f64,
-        radius: f64,
-        (s2, h2): (f64, f64),
-    ) -> (TwoZones, f64) {
-        let k = 4.0 / 3.0 * e_star;
-        let s1 = 0.5 * lambda * (std::f64::consts::PI * w * k * k / radius).cbrt();
-        let h1 = w / s1;
+    /// The two-zone law of a solid's Dugdale zone (Maugis parameter `lambda`, stress `s1` in
+    /// Pa, work `w` in J/m^2, so range `h1 = w / s1`) in a meniscus of stress `s2` (Pa, the
+    /// Laplace pressure) and range `h2` (m), and the total w (J/m^2) whose units its path is in:
+    /// the one conversion of a meniscus into the law's ratios (scenes, fits, DEM pairs).
+    pub fn of_meniscus(lambda: f64, (s1, w): (f64, f64), (s2, h2): (f64, f64)) -> (TwoZones, f64) {
         (
             TwoZones {
                 lambda,
                 stress_ratio: s2 / s1,
-                range_ratio: h2 / h1,
+                range_ratio: h2 * s1 / w,
             },
             w + s2 * h2,
         )
+    }
+
+    /// As [`TwoZones::of_meniscus`] for a sphere of radius `radius` (m) on a solid of E* (Pa),
+    /// w and lambda: its Dugdale stress is `s1 = (lambda / 2) (pi w K^2 / R)^(1/3)`.
+    pub fn of_sphere_in_meniscus(
+        e_star: f64,
+        w: f64,
+        lambda: f64,
+        radius: f64,
+        meniscus: (f64, f64),
+    ) -> (TwoZones, f64) {
+        let k = 4.0 / 3.0 * e_star;
+        let s1 = 0.5 * lambda * (std::f64::consts::PI * w * k * k / radius).cbrt();
+        TwoZones::of_meniscus(lambda, (s1, w), meniscus)
     }
 
     /// The zones in the total-w units (refused ratios: an error naming them).

@@ -419,11 +419,12 @@ pub fn wet_context(c: &Contact, m: &Meniscus) -> Result<(TwoZoneContext, Units),
 /// energy lost in joules).
 pub fn wet_ratios(c: &Contact, m: &Meniscus) -> Result<(f64, f64, Units), ParamError> {
     let (_, units) = wet_context(c, m)?;
-    Ok((
-        m.laplace_pressure_pa / c.s0,
-        m.range_m * c.s0 / c.work,
-        units,
-    ))
+    let (law, _) = crate::law::TwoZones::of_meniscus(
+        c.lambda(),
+        (c.s0, c.work),
+        (m.laplace_pressure_pa, m.range_m),
+    );
+    Ok((law.stress_ratio, law.range_ratio, units))
 }
 
 /// One relative humidity of a sweep: the pull-offs (load control, N; tensile negative).
