@@ -159,6 +159,13 @@ pub trait Law {
     /// The load-controlled pull-off's magnitude |Pbar_c| (a fit's start for w; Maugis-Dugdale:
     /// the Johnson-Greenwood fit, within 2% of the exact).
     fn pulloff(&self) -> f64;
+    /// The parameters inside `piece` where its states change formula (the two-zone law's second
+    /// disc starting), where the path's slope may jump: a path that turns back there does so
+    /// within rounding of the break, closer than evenly spread probes see.
+    fn breaks(&self, piece: Piece) -> Vec<f64> {
+        let _ = piece;
+        Vec::new()
+    }
     /// Whether a state exists at parameter `t` of `piece`.
     fn on_piece(&self, piece: Piece, t: f64) -> bool {
         let _ = piece;
@@ -325,6 +332,9 @@ impl Law for ContactLaw {
     }
     fn pulloff(&self) -> f64 {
         self.law().pulloff()
+    }
+    fn breaks(&self, piece: Piece) -> Vec<f64> {
+        self.law().breaks(piece)
     }
     fn on_piece(&self, piece: Piece, t: f64) -> bool {
         self.law().on_piece(piece, t)

@@ -103,9 +103,9 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         }
         // The path runs from t0 to t1: `sign` makes the parameter rise along it.
         let sign = (t1 - t0).signum();
-        let ts: Vec<f64> = (0..PROBES)
-            .map(|i| t0 + (t1 - t0) * i as f64 / (PROBES - 1) as f64)
-            .collect();
+        let breaks = law.breaks(piece);
+        let ts = probes(t0, t1, &breaks);
+        let n = ts.len();
         let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
         if st
             .iter()
@@ -132,13 +132,13 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         };
         let mut spans: Vec<(usize, usize)> = Vec::new();
         let mut i = 0;
-        while i < PROBES {
+        while i < n {
             if !rising(i) {
                 i += 1;
                 continue;
             }
             let mut j = i;
-            while j + 1 < PROBES && rising(j + 1) {
+            while j + 1 < n && rising(j + 1) {
                 j += 1;
             }
             match spans.last_mut() {
@@ -150,16 +150,23 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         }
         // A fall to the piece's end within rounding: the run reaches the end.
         if let Some(last) = spans.last_mut() {
-            if last.1 + 1 < PROBES && flat(last.1, PROBES - 1) {
-                last.1 = PROBES - 1;
+            if last.1 + 1 < n && flat(last.1, n - 1) {
+                last.1 = n - 1;
             }
         }
-        let reaches_end = spans.last().is_some_and(|l| l.1 == PROBES - 1);
+        let reaches_end = spans.last().is_some_and(|l| l.1 == n - 1);
         for (i, j) in spans {
-            let start_fold = i > 0;
-            let end_fold = j + 1 < PROBES;
-            let ta = if start_fold { fold_at(i - 1) } else { ts[0] };
-            let tb = if end_fold { fold_at(j) } else { ts[PROBES - 1] };
+            let ta = if i > 0 { fold_at(i - 1) } else { ts[0] };
+            let tb = if j + 1 < n { fold_at(j) } else { ts[n - 1] };
+            // A turn at a break is a kink of the path, not a fold: the load's slope in the
+            // overlap stays finite there.
+            let kink = |t: f64| {
+                breaks
+                    .iter()
+                    .any(|&b| (t - b).abs() <= 1e-12 * (1.0 + b.abs()))
+            };
+            let start_fold = i > 0 && !kink(ta);
+            let end_fold = j + 1 < n && !kink(tb);
             // The path runs on from the previous piece's end (the pieces are consecutive).
             let joined = i == 0 && continues;
             out.push(Run {
@@ -180,6 +187,28 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         return Err(failed(Branch::Contact, overlap_max));
     }
     Ok((out, least))
+}
+
+/// The probes of a piece from `t0` to `t1` (in the path's order): [`PROBES`] evenly spread, and
+/// at each break the break itself with probes closing in on it geometrically from both sides,
+/// down to 1e-12 of the probe spacing, so that a turn of the path next to it is seen.
+fn probes(t0: f64, t1: f64, breaks: &[f64]) -> Vec<f64> {
+    let step = (t1 - t0) / (PROBES - 1) as f64;
+    let mut ts: Vec<f64> = (0..PROBES).map(|i| t0 + step * i as f64).collect();
+    let (lo, hi) = (t0.min(t1), t0.max(t1));
+    for &b in breaks.iter().filter(|&&b| b > lo && b < hi) {
+        ts.push(b);
+        for k in 1..=96 {
+            let d = step.abs() * 10f64.powf(-(k as f64) / 8.0);
+            ts.extend([b - d, b + d].into_iter().filter(|&t| t > lo && t < hi));
+        }
+    }
+    ts.sort_by(|a, b| a.total_cmp(b));
+    ts.dedup();
+    if t1 < t0 {
+        ts.reverse();
+    }
+    ts
 }
 
 /// The contact piece's least load from its probes `ts` and states `st`, refined where the

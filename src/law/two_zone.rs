@@ -172,6 +172,13 @@ impl Law for TwoZones {
             Zoned::Unsolvable => f64::NAN,
         }
     }
+    /// The non-contact piece's second disc starts at `C_L`.
+    fn breaks(&self, piece: Piece) -> Vec<f64> {
+        match self.zoned() {
+            Zoned::Two(_, _, (c_l, _)) if piece == Piece::NonContact => vec![c_l],
+            _ => Vec::new(),
+        }
+    }
     /// The non-contact piece is both of its stretches: the longer zone's disc `C_L` up to its
     /// end, then `C_L` plus the shorter zone's `C_S`.
     fn pieces(&self, a_max: f64) -> Vec<(Piece, f64, f64)> {
