@@ -141,8 +141,15 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
             while j + 1 < n && rising(j + 1) {
                 j += 1;
             }
+            // (The probes only bracket the top and the bottom: a fall that looks flat at the
+            // probes is measured between its refined ends before the runs are merged.)
+            let shallow = |top: usize, bottom: usize| {
+                let a = law.state(piece, fold_at(top)).approach;
+                let b = law.state(piece, fold_at(bottom - 1)).approach;
+                a - b <= 1e-10 * (1.0 + a.abs())
+            };
             match spans.last_mut() {
-                Some(last) if flat(last.1, i) => last.1 = j,
+                Some(last) if flat(last.1, i) && shallow(last.1, i) => last.1 = j,
                 None if i > 0 && flat(0, i) => spans.push((0, j)),
                 _ => spans.push((i, j)),
             }
