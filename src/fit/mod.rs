@@ -156,102 +156,176 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
 }
 
 /// The models fitted to a prepared curve, the adequate one chosen.
-fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
-    let tip = opt.geometry();
-    let est = estimates(raw, tip, opt.spring);
+/// Where the fits of one curve start: the estimates read from the curve, the w that the
+/// measured pull-off gives a model of normalised pull-off `pc_bar`, and Maugis-Dugdale's start
+/// from another model's answer.
+struct Starts {
+    tip: Geometry,
+    est: Estimates,
+    /// The pull-off the starts' w are read from (at least ten times the noise, and a floor).
+    pull: f64,
+    /// The w of a normalised pull-off 1.75: the fits' scale of w.
+    w_ref: f64,
+    /// The units the normalised pull-offs are read in (a capped cone's at the start's E* and
+    /// the sphere-like w of its cap).
+    u_start: Units,
+}
 
-    // A floor for a curve without adhesion: a force far below the contact's (1e-6 E* R^2 on a
-    // sphere; a power law has no radius, and its largest force stands for it).
-    let floor = match tip.radius() {
-        Some(r) => 1e-6 * est.e_star * r * r,
-        None => 1e-6 * raw.scales.0,
+impl Starts {
+    fn new(raw: &Prepared, opt: &FitOptions) -> Starts {
+        let tip = opt.geometry();
+        let est = estimates(raw, tip, opt.spring);
+        // A floor for a curve without adhesion: a force far below the contact's (1e-6 E* R^2 on
+        // a sphere; a power law has no radius, and its largest force stands for it).
+        let floor = match tip.radius() {
+            Some(r) => 1e-6 * est.e_star * r * r,
+            None => 1e-6 * raw.scales.0,
+        };
+        let pull = est.pulloff.max(10.0 * raw.noise).max(floor);
+        let w_ref = tip.w_for_pulloff(pull, 1.75, est.e_star);
+        let u_start = tip.units(est.e_star, w_ref, opt.spring);
+        Starts {
+            tip,
+            est,
+            pull,
+            w_ref,
+            u_start,
+        }
+    }
+
+    /// The w whose normalised pull-off `pc_bar` is the measured pull-off.
+    fn w_of(&self, pc_bar: f64) -> f64 {
+        self.tip.w_for_pulloff(self.pull, pc_bar, self.est.e_star)
+    }
+
+    /// The estimates with this w and lambda.
+    fn at(&self, w: f64, lambda: f64) -> Params {
+        Params {
+            e_star: self.est.e_star,
+            w,
+            lambda,
+            zc: self.est.zc,
+            f0: 0.0,
+        }
+    }
+
+    /// A model's normalised pull-off at lambda, in the start's units.
+    fn pulloff(&self, model: Model, lambda: f64) -> f64 {
+        self.tip.law(model, lambda, &self.u_start).pulloff()
+    }
+
+    /// Maugis-Dugdale (pull-off `pc_md`) at lambda from a closed form's answer, its w scaled by
+    /// the ratio of the pull-offs, and from the estimates where that fit failed.
+    fn from(&self, m: &ModelFit, lambda: f64, pc_md: f64) -> Params {
+        let ok = m.status == FitStatus::Ok;
+        let scaled = m.work_of_adhesion_j_m2 * self.pulloff(m.model, 1.0) / pc_md;
+        Params {
+            e_star: if ok { m.e_star_pa } else { self.est.e_star },
+            // A closed form whose adhesion collapsed (w far below what the measured pull-off
+            // says) would start Maugis-Dugdale where w has no grip on the misfit: the
+            // pull-off's w.
+            w: if ok && scaled > 1e-2 * self.w_of(pc_md) {
+                scaled
+            } else {
+                self.w_of(pc_md)
+            },
+            lambda,
+            zc: if ok { m.contact_point_m } else { self.est.zc },
+            f0: if ok { m.force_offset_n } else { 0.0 },
+        }
+    }
+}
+
+/// A closed form with adhesion fitted, its w started from the measured pull-off with its own.
+/// It holds Hertz (w = 0), so it never fits worse: where it did, it stopped in the flat misfit
+/// of a contact point beyond every point (no point in contact), and is fitted again from Hertz's
+/// answer with a little adhesion.
+fn closed_form(
+    model: Model,
+    raw: &Prepared,
+    opt: &FitOptions,
+    s: &Starts,
+    hertz: &ModelFit,
+) -> ModelFit {
+    let w = s.w_of(s.pulloff(model, 1.0));
+    let f = fit_model(model, raw, opt, s.at(w, 1.0), s.w_ref, None);
+    // (Worse by more than rounding: at w -> 0 the two misfits agree to about 1e-13.)
+    if hertz.status != FitStatus::Ok || key(&f) <= hertz.rms_residual_n * (1.0 + 1e-9) {
+        return f;
+    }
+    let again = Params {
+        w: 1e-2 * w,
+        ..hertz.params()
     };
-    let pull = est.pulloff.max(10.0 * raw.noise).max(floor);
-    let w_of = |pc_bar: f64| tip.w_for_pulloff(pull, pc_bar, est.e_star);
-    let start = |w: f64, lambda: f64| Params {
-        e_star: est.e_star,
-        w,
-        lambda,
-        zc: est.zc,
-        f0: 0.0,
+    let mut f = better(f, fit_model(model, raw, opt, again, s.w_ref, None));
+    if key(&f) > hertz.rms_residual_n * (1.0 + 1e-9) {
+        // Still worse: a local minimum, said so. (A cone's JKR-type law reaches its punch only
+        // as w -> 0, where its contact radius in its units grows like 1/w, beyond the path's
+        // range: docs/PHYSICS.md section 12.4.)
+        f.stop += &format!(
+            "; a local minimum: worse than Hertz ({:.3e} N), which the law holds as w -> 0",
+            hertz.rms_residual_n
+        );
+    }
+    f
+}
+
+/// Maugis-Dugdale free in lambda on `d` (the curve, or its bins): the misfit has local minima
+/// in lambda (the jump moves with it), so a profile over lambda (each point a fit at fixed
+/// lambda, started from the closed form of that side: `low` below lambda 1, `jkr` above) picks
+/// the starts of the free fit and gives the confidence region of lambda.
+fn md_profiled(
+    raw: &Prepared,
+    d: &Prepared,
+    binned: bool,
+    opt: &FitOptions,
+    s: &Starts,
+    (low, jkr): (&ModelFit, &ModelFit),
+) -> (ModelFit, interval::Intervals) {
+    let profile: Vec<ModelFit> = profile_lambdas()
+        .map(|l| {
+            let pc = s.pulloff(Model::Md, l);
+            let start = s.from(if l < 1.0 { low } else { jkr }, l, pc);
+            fit_model(Model::Md, d, opt, start, s.w_ref, Some(l))
+        })
+        .collect();
+    let mut md = free_fit(d, opt, s.w_ref, profile.clone());
+    let mut profile = profile;
+    if binned {
+        // The bins' scatter set from the fit found (see `recalibrate`), for the noise that the
+        // intervals read from its misfit.
+        let n = raw.count as f64;
+        let gap = n * rms_on(&md, raw, opt, s.w_ref).powi(2) - n * md.rms_residual_n.powi(2);
+        for f in profile.iter_mut().chain(std::iter::once(&mut md)) {
+            recalibrate(f, gap, n);
+        }
+    }
+    let iv = if md.status == FitStatus::Ok {
+        interval::profile_intervals(d, opt, s.w_ref, &md, &profile)
+    } else {
+        interval::Intervals::default()
     };
-    let w_ref = w_of(1.75);
+    (md, iv)
+}
+
+fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
+    let s = Starts::new(raw, opt);
+    let (tip, w_ref) = (s.tip, s.w_ref);
     // The closed forms on the points: their fits are few and short, and the search of
     // Maugis-Dugdale starts from them.
-    let hertz = fit_model(Model::Hertz, raw, opt, start(w_ref, 1.0), w_ref, None);
+    let hertz = fit_model(Model::Hertz, raw, opt, s.at(w_ref, 1.0), w_ref, None);
+    // A tip's ladder has no DMT ([`Geometry::ladder`]): its Maugis-Dugdale profile starts
+    // from Hertz's (Sneddon's) answer on the DMT side.
+    let dmt = tip
+        .is_sphere()
+        .then(|| closed_form(Model::Dmt, raw, opt, &s, &hertz));
+    let jkr = closed_form(Model::Jkr, raw, opt, &s, &hertz);
+    let low = dmt.as_ref().unwrap_or(&hertz);
     // The search of Maugis-Dugdale runs on the curve in bins where it has many points
     // ([`Prepared::binned`]); what was measured (the pull-off, the largest load, the points)
     // is read from its points.
     let binned = raw.binned();
     let d = binned.as_ref().unwrap_or(raw);
-    // The normalised pull-offs the starts' w are read with (a capped cone's at the start's E*
-    // and the sphere-like w of its cap).
-    let u_start = tip.units(est.e_star, w_ref, opt.spring);
-    let pulloff = |model: Model, lambda: f64| tip.law(model, lambda, &u_start).pulloff();
-    // A closed form with adhesion, its w started from the measured pull-off with its own.
-    // It holds Hertz (w = 0), so it never fits worse: where it did, it stopped in the flat
-    // misfit of a contact point beyond every point (no point in contact), and is fitted again
-    // from Hertz's answer with a little adhesion.
-    let closed = |model| {
-        let s = start(w_of(pulloff(model, 1.0)), 1.0);
-        let f = fit_model(model, raw, opt, s, w_ref, None);
-        // (Worse by more than rounding: at w -> 0 the two misfits agree to about 1e-13.)
-        if hertz.status != FitStatus::Ok || key(&f) <= hertz.rms_residual_n * (1.0 + 1e-9) {
-            return f;
-        }
-        let s = Params {
-            w: 1e-2 * w_of(pulloff(model, 1.0)),
-            ..hertz.params()
-        };
-        let mut f = better(f, fit_model(model, raw, opt, s, w_ref, None));
-        if key(&f) > hertz.rms_residual_n * (1.0 + 1e-9) {
-            // Still worse: a local minimum, said so. (A cone's JKR-type law reaches its punch
-            // only as w -> 0, where its contact radius in its units grows like 1/w, beyond the
-            // path's range: docs/PHYSICS.md section 12.4.)
-            f.stop += &format!(
-                "; a local minimum: worse than Hertz ({:.3e} N), which the law holds as w -> 0",
-                hertz.rms_residual_n
-            );
-        }
-        f
-    };
-    // A tip's ladder has no DMT ([`Geometry::ladder`]): its Maugis-Dugdale profile starts
-    // from Hertz's (Sneddon's) answer on the DMT side.
-    let dmt = tip.is_sphere().then(|| closed(Model::Dmt));
-    let jkr = closed(Model::Jkr);
-    let low = dmt.as_ref().unwrap_or(&hertz);
-    // Maugis-Dugdale (pull-off pc_md) from a closed form's answer, its w scaled by the ratio
-    // of the pull-offs, and from the middle where that failed.
-    let from = |m: &ModelFit, lambda: f64, pc_md: f64| Params {
-        e_star: if m.status == FitStatus::Ok {
-            m.e_star_pa
-        } else {
-            est.e_star
-        },
-        // A closed form whose adhesion collapsed (w far below what the measured pull-off
-        // says) would start Maugis-Dugdale where w has no grip on the misfit: the pull-off's w.
-        w: if m.status == FitStatus::Ok
-            && m.work_of_adhesion_j_m2 * pulloff(m.model, 1.0) / pc_md > 1e-2 * w_of(pc_md)
-        {
-            m.work_of_adhesion_j_m2 * pulloff(m.model, 1.0) / pc_md
-        } else {
-            w_of(pc_md)
-        },
-        lambda,
-        zc: if m.status == FitStatus::Ok {
-            m.contact_point_m
-        } else {
-            est.zc
-        },
-        f0: if m.status == FitStatus::Ok {
-            m.force_offset_n
-        } else {
-            0.0
-        },
-    };
-    // Maugis-Dugdale: the misfit has local minima in lambda (the jump moves with it), so a
-    // profile over lambda (each point a fit at fixed lambda, started from the closed form of
-    // that side) picks the starts of the free fit, and gives the confidence region of lambda.
     let (md, iv) = match opt.z0 {
         // From the better adhesive closed form (a tip's only one is JKR-type: Hertz's w and
         // pull-off are 0 and would start nothing).
@@ -261,58 +335,29 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
             opt,
             z0,
             (dmt.as_ref().unwrap_or(&jkr), &jkr),
-            &from,
+            &|m, l, pc| s.from(m, l, pc),
             w_ref,
         ) {
             Ok(r) => r,
             Err(out) => return *out,
         },
-        None => {
-            let profile: Vec<ModelFit> = profile_lambdas()
-                .map(|l| {
-                    let pc = pulloff(Model::Md, l);
-                    let s = if l < 1.0 {
-                        from(low, l, pc)
-                    } else {
-                        from(&jkr, l, pc)
-                    };
-                    fit_model(Model::Md, d, opt, s, w_ref, Some(l))
-                })
-                .collect();
-            let mut md = free_fit(d, opt, w_ref, profile.clone());
-            let mut profile = profile;
-            if binned.is_some() {
-                // The bins' scatter set from the fit found (see `recalibrate`), for the noise
-                // that the intervals read from its misfit.
-                let n = raw.count as f64;
-                let gap = n * rms_on(&md, raw, opt, w_ref).powi(2) - n * md.rms_residual_n.powi(2);
-                for f in profile.iter_mut().chain(std::iter::once(&mut md)) {
-                    recalibrate(f, gap, n);
-                }
-            }
-            let iv = if md.status == FitStatus::Ok {
-                interval::profile_intervals(d, opt, w_ref, &md, &profile)
-            } else {
-                interval::Intervals::default()
-            };
-            (md, iv)
-        }
+        None => md_profiled(raw, d, binned.is_some(), opt, &s, (low, &jkr)),
     };
     // A fit that ended where it started found nothing to follow (the misfit was flat there).
     let stuck = md.status == FitStatus::Ok
-        && (md.e_star_pa / est.e_star - 1.0).abs() < 1e-9
-        && (md.contact_point_m - est.zc).abs() <= 1e-9 * est.zc.abs();
+        && (md.e_star_pa / s.est.e_star - 1.0).abs() < 1e-9
+        && (md.contact_point_m - s.est.zc).abs() <= 1e-9 * s.est.zc.abs();
     // Fitted on the bins: each fit finished on the points, the intervals holding the answer.
-    let (md, models, iv) = match binned {
+    let (md, iv) = match binned {
         Some(_) => {
-            let finish = |f: ModelFit| finish_on_points(f, raw, opt, w_ref);
             let mut iv = iv;
-            let md = keep_spread(finish(md.clone()), &md);
+            let md = keep_spread(finish_on_points(md.clone(), raw, opt, w_ref), &md);
             interval::hold(&mut iv, &md, tip);
-            (md, ladder(hertz, dmt, jkr), iv)
+            (md, iv)
         }
-        None => (md, ladder(hertz, dmt, jkr), iv),
+        None => (md, iv),
     };
+    let models = ladder(hertz, dmt, jkr);
     let mut out = summarize(curve, opt, raw, md, models, &iv);
     if stuck && out.status == FitStatus::Ok {
         out = unmoved(out, curve, raw, opt);
