@@ -101,92 +101,10 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         if !(t0.is_finite() && t1.is_finite() && t0 != t1) {
             return Err(failed(branch, f64::NAN));
         }
-        // The path runs from t0 to t1: `sign` makes the parameter rise along it.
-        let sign = (t1 - t0).signum();
-        let breaks = law.breaks(piece);
-        let ts = probes(t0, t1, &breaks);
-        let n = ts.len();
-        let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
-        if st
-            .iter()
-            .any(|p| !(p.approach.is_finite() && p.load.is_finite()))
-        {
-            return Err(failed(branch, f64::NAN));
-        }
-        let rising = |i: usize| sign * st[i].dapproach > 0.0;
-        // The fold between probes i and i + 1, where the approach's slope along the path
-        // changes sign: bisection on that slope, signed to be negative at the smaller t.
-        let fold_at = |i: usize| {
-            let (a, b) = (ts[i], ts[i + 1]);
-            let flip = if (a < b) == rising(i) { -sign } else { sign };
-            bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
-        };
-        // The rising runs as probe ranges; a fall between two of them (or before the first)
-        // within rounding of the approach is noise where the path is flat (near A -> 0), not a
-        // pair of folds: the runs are merged across it.
-        let flat = |i: usize, j: usize| {
-            let low = (i..=j)
-                .map(|k| st[k].approach)
-                .fold(f64::INFINITY, f64::min);
-            st[i].approach - low <= 1e-10 * (1.0 + st[i].approach.abs())
-        };
-        let mut spans: Vec<(usize, usize)> = Vec::new();
-        let mut i = 0;
-        while i < n {
-            if !rising(i) {
-                i += 1;
-                continue;
-            }
-            let mut j = i;
-            while j + 1 < n && rising(j + 1) {
-                j += 1;
-            }
-            // (The probes only bracket the top and the bottom: a fall that looks flat at the
-            // probes is measured between its refined ends before the runs are merged.)
-            let shallow = |top: usize, bottom: usize| {
-                let a = law.state(piece, fold_at(top)).approach;
-                let b = law.state(piece, fold_at(bottom - 1)).approach;
-                a - b <= 1e-10 * (1.0 + a.abs())
-            };
-            match spans.last_mut() {
-                Some(last) if flat(last.1, i) && shallow(last.1, i) => last.1 = j,
-                None if i > 0 && flat(0, i) => spans.push((0, j)),
-                _ => spans.push((i, j)),
-            }
-            i = j + 1;
-        }
-        // A fall to the piece's end within rounding: the run reaches the end.
-        if let Some(last) = spans.last_mut() {
-            if last.1 + 1 < n && flat(last.1, n - 1) {
-                last.1 = n - 1;
-            }
-        }
-        let reaches_end = spans.last().is_some_and(|l| l.1 == n - 1);
-        for (i, j) in spans {
-            let ta = if i > 0 { fold_at(i - 1) } else { ts[0] };
-            let tb = if j + 1 < n { fold_at(j) } else { ts[n - 1] };
-            // A turn at a break is a kink of the path, not a fold: the load's slope in the
-            // overlap stays finite there.
-            let kink = |t: f64| {
-                breaks
-                    .iter()
-                    .any(|&b| (t - b).abs() <= 1e-12 * (1.0 + b.abs()))
-            };
-            let start_fold = i > 0 && !kink(ta);
-            let end_fold = j + 1 < n && !kink(tb);
-            // The path runs on from the previous piece's end (the pieces are consecutive).
-            let joined = i == 0 && continues;
-            out.push(Run {
-                piece,
-                t: (ta, tb),
-                fold: (start_fold, end_fold),
-                joined,
-                open: piece == Piece::Contact && !end_fold,
-            });
-        }
-        continues = reaches_end;
+        let probed = Probed::of(law, piece, t0, t1).ok_or(failed(branch, f64::NAN))?;
+        continues = probed.runs(continues, &mut out);
         if piece == Piece::Contact {
-            least = least_load(law, &ts, &st);
+            least = least_load(law, &probed.ts, &probed.st);
         }
     }
     // The last run must be the open contact branch.
@@ -194,6 +112,140 @@ fn runs<L: Law + ?Sized>(law: &L, overlap_max: f64) -> Result<(Vec<Run>, f64), S
         return Err(failed(Branch::Contact, overlap_max));
     }
     Ok((out, least))
+}
+
+/// One piece of a law's path at its probes.
+struct Probed<'a, L: Law + ?Sized> {
+    law: &'a L,
+    piece: Piece,
+    /// +1 where the parameter rises along the path, -1 where it falls.
+    sign: f64,
+    breaks: Vec<f64>,
+    ts: Vec<f64>,
+    st: Vec<super::Pt>,
+}
+
+impl<'a, L: Law + ?Sized> Probed<'a, L> {
+    /// The piece from `t0` to `t1` probed ([`probes`]); None where a state is not finite.
+    fn of(law: &'a L, piece: Piece, t0: f64, t1: f64) -> Option<Probed<'a, L>> {
+        let breaks = law.breaks(piece);
+        let ts = probes(t0, t1, &breaks);
+        let st: Vec<_> = ts.iter().map(|&t| law.state(piece, t)).collect();
+        st.iter()
+            .all(|p| p.approach.is_finite() && p.load.is_finite())
+            .then_some(Probed {
+                law,
+                piece,
+                sign: (t1 - t0).signum(),
+                breaks,
+                ts,
+                st,
+            })
+    }
+
+    fn rising(&self, i: usize) -> bool {
+        self.sign * self.st[i].dapproach > 0.0
+    }
+
+    /// The fold between probes i and i + 1, where the approach's slope along the path changes
+    /// sign: bisection on that slope, signed to be negative at the smaller t.
+    fn fold_at(&self, i: usize) -> f64 {
+        let (a, b) = (self.ts[i], self.ts[i + 1]);
+        let flip = if (a < b) == self.rising(i) {
+            -self.sign
+        } else {
+            self.sign
+        };
+        let (law, piece) = (self.law, self.piece);
+        bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
+    }
+
+    /// Whether the approach falls from probe i to the lowest of probes i..=j by no more than
+    /// rounding.
+    fn flat(&self, i: usize, j: usize) -> bool {
+        let low = (i..=j)
+            .map(|k| self.st[k].approach)
+            .fold(f64::INFINITY, f64::min);
+        self.st[i].approach - low <= 1e-10 * (1.0 + self.st[i].approach.abs())
+    }
+
+    /// Whether the fall from the top after probe `top` to the bottom before probe `bottom` is
+    /// rounding, measured between its refined ends (the probes only bracket them).
+    fn shallow(&self, top: usize, bottom: usize) -> bool {
+        let a = self.law.state(self.piece, self.fold_at(top)).approach;
+        let b = self
+            .law
+            .state(self.piece, self.fold_at(bottom - 1))
+            .approach;
+        a - b <= 1e-10 * (1.0 + a.abs())
+    }
+
+    /// Whether `t` is one of the piece's breaks (to rounding).
+    fn at_break(&self, t: f64) -> bool {
+        self.breaks
+            .iter()
+            .any(|&b| (t - b).abs() <= 1e-12 * (1.0 + b.abs()))
+    }
+
+    /// The piece's rising runs appended to `out` (`continues`: the previous piece's last run
+    /// reached its end, so the path runs on into this one); whether its last run reaches the
+    /// piece's end.
+    fn runs(&self, continues: bool, out: &mut Vec<Run>) -> bool {
+        let n = self.ts.len();
+        // The rising runs as probe ranges; a fall between two of them (or before the first)
+        // within rounding of the approach is noise where the path is flat (near A -> 0), not a
+        // pair of folds: the runs are merged across it.
+        let mut spans: Vec<(usize, usize)> = Vec::new();
+        let mut i = 0;
+        while i < n {
+            if !self.rising(i) {
+                i += 1;
+                continue;
+            }
+            let mut j = i;
+            while j + 1 < n && self.rising(j + 1) {
+                j += 1;
+            }
+            match spans.last_mut() {
+                Some(last) if self.flat(last.1, i) && self.shallow(last.1, i) => last.1 = j,
+                None if i > 0 && self.flat(0, i) => spans.push((0, j)),
+                _ => spans.push((i, j)),
+            }
+            i = j + 1;
+        }
+        // A fall to the piece's end within rounding: the run reaches the end.
+        if let Some(last) = spans.last_mut() {
+            if last.1 + 1 < n && self.flat(last.1, n - 1) {
+                last.1 = n - 1;
+            }
+        }
+        let reaches_end = spans.last().is_some_and(|l| l.1 == n - 1);
+        for (i, j) in spans {
+            let ta = if i > 0 {
+                self.fold_at(i - 1)
+            } else {
+                self.ts[0]
+            };
+            let tb = if j + 1 < n {
+                self.fold_at(j)
+            } else {
+                self.ts[n - 1]
+            };
+            // Where the path turns back at a break, the load's slope in the overlap is the same
+            // on both sides: a turn, not a fold (the stiffness stays finite there).
+            let start_fold = i > 0 && !self.at_break(ta);
+            let end_fold = j + 1 < n && !self.at_break(tb);
+            out.push(Run {
+                piece: self.piece,
+                t: (ta, tb),
+                fold: (start_fold, end_fold),
+                // The path runs on from the previous piece's end (the pieces are consecutive).
+                joined: i == 0 && continues,
+                open: self.piece == Piece::Contact && !end_fold,
+            });
+        }
+        reaches_end
+    }
 }
 
 /// The probes of a piece from `t0` to `t1` (in the path's order): [`PROBES`] evenly spread, and
