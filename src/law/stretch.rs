@@ -180,6 +180,28 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
         a - b <= 1e-10 * (1.0 + a.abs())
     }
 
+    /// Whether the fall from the piece's start to the bottom before probe `bottom` is rounding,
+    /// the bottom refined.
+    fn shallow_from_start(&self, bottom: usize) -> bool {
+        let a = self.st[0].approach;
+        let b = self
+            .law
+            .state(self.piece, self.fold_at(bottom - 1))
+            .approach;
+        a - b <= 1e-10 * (1.0 + a.abs())
+    }
+
+    /// Whether the fall from the top after probe `top` to the piece's lowest approach after it
+    /// is rounding, the top refined.
+    fn shallow_to_end(&self, top: usize) -> bool {
+        let a = self.law.state(self.piece, self.fold_at(top)).approach;
+        let low = self.st[top..]
+            .iter()
+            .map(|p| p.approach)
+            .fold(f64::INFINITY, f64::min);
+        a - low <= 1e-10 * (1.0 + a.abs())
+    }
+
     /// Whether `t` is one of the piece's breaks (to rounding).
     fn at_break(&self, t: f64) -> bool {
         self.breaks
@@ -208,14 +230,16 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
             }
             match spans.last_mut() {
                 Some(last) if self.flat(last.1, i) && self.shallow(last.1, i) => last.1 = j,
-                None if i > 0 && self.flat(0, i) => spans.push((0, j)),
+                None if i > 0 && self.flat(0, i) && self.shallow_from_start(i) => {
+                    spans.push((0, j))
+                }
                 _ => spans.push((i, j)),
             }
             i = j + 1;
         }
         // A fall to the piece's end within rounding: the run reaches the end.
         if let Some(last) = spans.last_mut() {
-            if last.1 + 1 < n && self.flat(last.1, n - 1) {
+            if last.1 + 1 < n && self.flat(last.1, n - 1) && self.shallow_to_end(last.1) {
                 last.1 = n - 1;
             }
         }
@@ -241,7 +265,7 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
                 fold: (start_fold, end_fold),
                 // The path runs on from the previous piece's end (the pieces are consecutive).
                 joined: i == 0 && continues,
-                open: self.piece == Piece::Contact && !end_fold,
+                open: self.piece == Piece::Contact && j + 1 == n,
             });
         }
         reaches_end
@@ -250,14 +274,18 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
 
 /// The probes of a piece from `t0` to `t1` (in the path's order): [`PROBES`] evenly spread, and
 /// at each break the break itself with probes closing in on it geometrically from both sides,
-/// down to 1e-12 of the probe spacing, so that a turn of the path next to it is seen.
+/// down to a thousandth of the probe spacing, so that a turn of the path next to it is seen.
+/// (Nearer probes would add nothing: the two-zone law's slopes there are differences over
+/// `1e-6 (1 + |t|)`, about a thousandth of the spacing.)
 fn probes(t0: f64, t1: f64, breaks: &[f64]) -> Vec<f64> {
+    let mut ts: Vec<f64> = (0..PROBES)
+        .map(|i| t0 + (t1 - t0) * i as f64 / (PROBES - 1) as f64)
+        .collect();
     let step = (t1 - t0) / (PROBES - 1) as f64;
-    let mut ts: Vec<f64> = (0..PROBES).map(|i| t0 + step * i as f64).collect();
     let (lo, hi) = (t0.min(t1), t0.max(t1));
     for &b in breaks.iter().filter(|&&b| b > lo && b < hi) {
         ts.push(b);
-        for k in 1..=96 {
+        for k in 1..=24 {
             let d = step.abs() * 10f64.powf(-(k as f64) / 8.0);
             ts.extend([b - d, b + d].into_iter().filter(|&t| t > lo && t < hi));
         }

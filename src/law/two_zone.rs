@@ -9,6 +9,7 @@
 use super::path::{check_drive, contact_radii, free_before};
 use super::path::{Branch, Drive, PathPoint};
 use super::{cache, md, Given, Law, LawError, LawKey, Md, Piece, Pt, A_START};
+use crate::error::Message;
 use crate::physics::model::ContactModel;
 use crate::physics::two_zone::{
     non_contact_both, non_contact_ends, non_contact_single, point, point_with_slopes,
@@ -306,11 +307,16 @@ fn two_zone_state(z: &Zones, (c_l, c_s): (f64, f64), piece: Piece, t: f64) -> Pt
 }
 
 fn failed(what: &str, s: Status) -> ZonesError {
-    ZonesError::text(format!(
-        "the two-zone contact curve could not be solved for {what} (status {}): try ratios \
-         closer to 1 or a lambda nearer 1",
-        s.name()
-    ))
+    ZonesError(
+        Message::new()
+            .text(format!(
+                "the two-zone contact curve could not be solved for {what} (status {}): try \
+                 ratios closer to 1 or a ",
+                s.name()
+            ))
+            .key("lambda")
+            .text(" nearer 1"),
+    )
 }
 
 fn nc_point(p: &NonContactPoint, long: usize) -> PathPoint {

@@ -332,7 +332,7 @@ impl crate::error::Named for MapError {
     fn named(&self, names: crate::error::Names) -> String {
         match self {
             MapError::Spec(m) => m.named(names),
-            e => e.to_string(),
+            MapError::Engine(e) => e.named(names),
         }
     }
 }

@@ -421,6 +421,8 @@ impl crate::error::Named for ProfileError {
                 "{} {n} is out of range: give 16..=100000 sampling radii",
                 names("points").unwrap_or("points")
             ),
+            ProfileError::Solve(e) => e.named(names),
+            ProfileError::Domain(e) => e.named(names),
             e => e.to_string(),
         }
     }

@@ -378,7 +378,7 @@ fn a_turn_where_the_second_disc_starts_ends_a_stretch_with_a_finite_stiffness() 
         let brk = z.breaks(Piece::NonContact)[0];
         let at = |t: f64| z.state(Piece::NonContact, t);
         // The turn: the overlap's slope along the path changes sign at the break, the load's
-        // slope in the overlap does not (to the differences' 1e-5).
+        // slope in the overlap does not (measured 1e-5 apart; checked to 1e-3).
         let (below, above) = (at(brk - 1e-9), at(brk + 1e-9));
         assert!(below.dapproach > 0.0 && above.dapproach < 0.0, "{case}");
         let k_exact = below.dload / below.dapproach;

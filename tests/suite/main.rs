@@ -5,6 +5,7 @@
 mod architecture;
 mod atlas;
 mod cli;
+mod cli_refusals;
 mod common;
 mod cycle;
 mod dem;
