@@ -311,20 +311,31 @@ pub fn profile_intervals(
         lambda[k] = Some(ends);
     }
     let (basins, set95) = basins(&search, &pts, lambda[1].unwrap_or([None, None]));
-    // The other quantities: min over the profile's fits of chi + (theta - theta_l)^2 / var_l.
+    let tip = opt.geometry();
+    let mut out = quantities(&pts, lambda, s2, (f_scale, z_scale), tip);
+    out.extra_fits = extra + basins.len();
+    widen_by_basins(&mut out, &basins, tip);
+    out.basins = basins.into_iter().map(|b| b.0).collect();
+    out.lambda_set_95 = set95;
+    out
+}
+
+/// The intervals at each level from the profile's points `pts` and lambda's ends at each level:
+/// every other quantity's from the min over the profile's fits of chi + (theta - theta_l)^2 /
+/// var_l, each nested in the next level's.
+fn quantities(
+    pts: &[Point],
+    lambda: [Option<Interval>; 2],
+    s2: f64,
+    scales: (f64, f64),
+    tip: super::Geometry,
+) -> Intervals {
     let determined: Vec<bool> = lambda
         .iter()
         .map(|l| matches!(l, Some([Some(_), Some(_)])))
         .collect();
-    let tip = opt.geometry();
-    let quantity = |q: usize, k: usize| {
-        quantity_interval(&pts, &determined, q, k, s2, (f_scale, z_scale), tip)
-    };
-    let mut out = Intervals {
-        extra_fits: extra,
-        ..Intervals::default()
-    };
-    out.extra_fits += basins.len();
+    let quantity = |q: usize, k: usize| quantity_interval(pts, &determined, q, k, s2, scales, tip);
+    let mut out = Intervals::default();
     for (k, &lam) in lambda.iter().enumerate() {
         out.e_star_pa[k] = quantity(0, k);
         out.work_of_adhesion_j_m2[k] = quantity(1, k);
@@ -345,10 +356,14 @@ pub fn profile_intervals(
     ] {
         nest(q);
     }
-    // A second basin below the 99% level is as plausible as the 95% sets say: its E*, w,
-    // contact point and z0 are held by their 95% intervals (at 68% where it is below that
-    // level), so that what lambda's ambiguity does to them shows.
-    for b in &basins {
+    out
+}
+
+/// A second basin below the 99% level is as plausible as the 95% sets say: its E*, w, contact
+/// point and z0 are held by their 95% intervals (at 68% where it is below that level), so that
+/// what lambda's ambiguity does to them shows.
+fn widen_by_basins(out: &mut Intervals, basins: &[(Basin, ModelFit)], tip: super::Geometry) {
+    for b in basins {
         for (k, level) in LEVELS.iter().enumerate() {
             if b.0.delta_chi2 <= *level || (k == 1 && b.0.delta_chi2 <= LEVEL_99) {
                 let z0 = tip.z0_from_lambda(b.1.e_star_pa, b.1.work_of_adhesion_j_m2, b.0.lambda);
@@ -366,9 +381,6 @@ pub fn profile_intervals(
             }
         }
     }
-    out.basins = basins.into_iter().map(|b| b.0).collect();
-    out.lambda_set_95 = set95;
-    out
 }
 
 /// The basins of lambda's profile apart from the best fit's (each with its fit) and lambda's
