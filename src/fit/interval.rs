@@ -420,45 +420,58 @@ fn basins(
                 && (k + 1 == o.len() || c <= pts[o[k + 1]].chi)
         })
         .collect();
-    let mut found: Vec<(Basin, ModelFit)> = Vec::new();
-    for k in candidates {
-        let i = o[k];
-        let from = pts[i].fit.clone();
-        let (left, right) = (
-            k.checked_sub(1).map_or(f64::NEG_INFINITY, |j| pts[o[j]].x),
-            o.get(k + 1).map_or(f64::INFINITY, |&j| pts[j].x),
-        );
-        let f = fit_md_from(
-            &from,
-            search.d,
-            search.opt,
-            from.params(),
-            search.w_ref,
-            None,
-            PATIENCE,
-        );
-        let refined = f
-            .lambda
-            .filter(|l| f.rms_residual_n.is_finite() && l.ln() > left && l.ln() < right)
-            .map(|_| (search.chi)(&f))
-            .filter(|&c| c <= pts[i].chi);
-        let (fit, chi) = match refined {
-            Some(c) => (f, c),
-            None => (from, pts[i].chi),
-        };
-        let lambda = fit.lambda.unwrap_or(f64::NAN);
-        found.push((
-            Basin {
-                lambda,
-                delta_chi2: chi,
-                e_star_pa: fit.e_star_pa,
-                work_of_adhesion_j_m2: fit.work_of_adhesion_j_m2,
-            },
-            fit,
-        ));
-    }
-    // The 95% set: each run's inner ends between its last point below the level and the next
-    // point above it, sqrt(Delta chi^2) linear in ln lambda; the outer ends the hull's.
+    let found = candidates
+        .into_iter()
+        .map(|k| basin_at(search, pts, &o, k))
+        .collect();
+    (found, set_95(pts, &o, hull))
+}
+
+/// The basin of the profile's local minimum `o[k]` (`o` the points in the order of lambda): its
+/// point's fit freed in lambda, kept where it stays between its neighbours and lowers the
+/// misfit, else the point's own fit.
+fn basin_at(search: &Search, pts: &[Point], o: &[usize], k: usize) -> (Basin, ModelFit) {
+    let i = o[k];
+    let from = pts[i].fit.clone();
+    let (left, right) = (
+        k.checked_sub(1).map_or(f64::NEG_INFINITY, |j| pts[o[j]].x),
+        o.get(k + 1).map_or(f64::INFINITY, |&j| pts[j].x),
+    );
+    let f = fit_md_from(
+        &from,
+        search.d,
+        search.opt,
+        from.params(),
+        search.w_ref,
+        None,
+        PATIENCE,
+    );
+    let refined = f
+        .lambda
+        .filter(|l| f.rms_residual_n.is_finite() && l.ln() > left && l.ln() < right)
+        .map(|_| (search.chi)(&f))
+        .filter(|&c| c <= pts[i].chi);
+    let (fit, chi) = match refined {
+        Some(c) => (f, c),
+        None => (from, pts[i].chi),
+    };
+    let lambda = fit.lambda.unwrap_or(f64::NAN);
+    (
+        Basin {
+            lambda,
+            delta_chi2: chi,
+            e_star_pa: fit.e_star_pa,
+            work_of_adhesion_j_m2: fit.work_of_adhesion_j_m2,
+        },
+        fit,
+    )
+}
+
+/// Lambda's 95% set from the profile's points (`o` in the order of lambda): each run below the
+/// level, its inner ends between its last point below the level and the next point above it,
+/// sqrt(Delta chi^2) linear in ln lambda; the outer ends the hull's.
+fn set_95(pts: &[Point], o: &[usize], hull: Interval) -> Vec<Interval> {
+    let level = LEVELS[1];
     let mut set: Vec<Interval> = Vec::new();
     let mut k = 0;
     while k < o.len() {
@@ -499,7 +512,7 @@ fn basins(
     if let Some(first) = set.first_mut() {
         first[0] = hull[0];
     }
-    (found, set)
+    set
 }
 
 /// Each interval widened to hold the fit `md`'s value (on the tip `tip`): a fit
