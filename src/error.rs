@@ -106,6 +106,13 @@ impl fmt::Display for Message {
 
 impl std::error::Error for Message {}
 
+/// In a result (a warning), as the library's words; a front end renders its own before writing.
+impl serde::Serialize for Message {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.to_string())
+    }
+}
+
 impl From<&'static str> for Message {
     fn from(s: &'static str) -> Message {
         Message::new().text(s)

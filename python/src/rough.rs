@@ -65,7 +65,9 @@ pub fn rough<'py>(
     d.set_item("smooth_pulloff", c.smooth_pulloff)?;
     d.set_item("fuller_tabor_parameter", c.fuller_tabor_parameter)?;
     d.set_item("quadrature_error", c.quadrature_error)?;
-    d.set_item("warnings", c.warnings.clone())?;
+    // The library's words name rough()'s own arguments (max_separation, points).
+    let warnings: Vec<String> = c.warnings.iter().map(|w| w.to_string()).collect();
+    d.set_item("warnings", warnings)?;
     Ok(d)
 }
 

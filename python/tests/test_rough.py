@@ -291,3 +291,12 @@ def test_rough_warns_as_the_command_line_does():
     assert abs(few["hysteresis"] - full["hysteresis"]) <= 1e-9 * full["hysteresis"]
     assert abs(few["pulloff_load"] - full["pulloff_load"]) <= 1e-9 * abs(full["pulloff_load"])
     assert any("miss the pull-off" in w for w in few["warnings"]), few["warnings"]
+
+
+def test_a_rough_cycles_advice_names_its_own_arguments():
+    # The library's warnings name keys; the command line says --max-separation and --points.
+    r = tabor.rough(1.0, 0.63, -1.9, max_separation=0.5, points=5)
+    assert len(r["warnings"]) == 2
+    assert "give a larger max_separation, or none" in r["warnings"][0]
+    assert "give more points to draw it" in r["warnings"][1]
+    assert not any("--" in w for w in r["warnings"])

@@ -1,6 +1,7 @@
 //! `tabor rough`: a rough surface of Maugis-Dugdale summits through an approach and a retract.
 
 use super::Format;
+use crate::error::Named;
 use crate::io::{fmt17, write_output};
 use crate::physics::domain::short;
 use crate::render::Kind;
@@ -141,7 +142,7 @@ struct Json<'a> {
     quadrature_error: f64,
     model: &'a str,
     #[serde(skip_serializing_if = "<[String]>::is_empty")]
-    warnings: &'a [String],
+    warnings: Vec<String>,
 }
 
 use crate::rough::scene::MODEL;
@@ -183,6 +184,17 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         .cycle(lambda, d_min, a.max_separation, a.points)
         .map_err(|e| super::in_flags(&e, &[("min_separation", "--min-separation")]))
         .context("the separations (--min-separation, --max-separation, --points)")?;
+    // The cycle's advice in this command's flags.
+    let warnings: Vec<String> = c
+        .warnings
+        .iter()
+        .map(|w| {
+            w.named(&super::flags(&[
+                ("max_separation", "--max-separation"),
+                ("points", "--points"),
+            ]))
+        })
+        .collect();
     let text = match a.format {
         Format::Csv => csv(&c)?,
         _ => {
@@ -200,7 +212,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
                 fuller_tabor_parameter: c.fuller_tabor_parameter,
                 quadrature_error: c.quadrature_error,
                 model: if wet.is_some() { MODEL_WET } else { MODEL },
-                warnings: &c.warnings,
+                warnings: warnings.clone(),
             };
             serde_json::to_string_pretty(&j)? + "\n"
         }
@@ -228,7 +240,7 @@ pub fn run(a: RoughArgs) -> anyhow::Result<()> {
         short(c.smooth_pulloff),
         short(c.hysteresis)
     );
-    for w in &c.warnings {
+    for w in &warnings {
         eprintln!("warning: {w}");
     }
     Ok(())

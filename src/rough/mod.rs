@@ -653,29 +653,39 @@ pub(crate) fn cycle_warnings(
     d_max: f64,
     retract: &[Mean],
     pulloff: (f64, f64),
-) -> Vec<String> {
+) -> Vec<Message> {
     let mut w = Vec::new();
     let held = upper_tail((d_max - reach) / sigma);
     if held > 1e-9 {
-        w.push(format!(
-            "the largest separation {} is inside the summits' force range (a fraction {} of them still feel the flat there; all are free beyond {}): the retract ends before the surfaces separate, so its pull-off and energy loss are this partial cycle's; give a larger --max-separation, or none",
-            short(d_max),
-            short(held),
-            short(reach + Z_FREE * sigma)
-        ));
+        w.push(
+            Message::new()
+                .text(format!(
+                    "the largest separation {} is inside the summits' force range (a fraction {} of them still feel the flat there; all are free beyond {}): the retract ends before the surfaces separate, so its pull-off and energy loss are this partial cycle's; give a larger ",
+                    short(d_max),
+                    short(held),
+                    short(reach + Z_FREE * sigma)
+                ))
+                .key("max_separation")
+                .text(", or none"),
+        );
         if (d_max - pulloff.0).abs() <= 1e-9 * (1.0 + d_max.abs()) {
-            w.push("the most tensile retract load is at the largest separation: the true pull-off lies beyond it".into());
+            w.push(Message::from("the most tensile retract load is at the largest separation: the true pull-off lies beyond it"));
         }
     }
     let least = retract.iter().map(|m| m.load).fold(f64::INFINITY, f64::min);
     if pulloff.1 < 0.0 && least > pulloff.1 + 0.01 * pulloff.1.abs() {
-        w.push(format!(
-            "the {} reported separations miss the pull-off's dip (their most tensile load, {}, is {}% above the pull-off {}, found between them): give more --points to draw it",
-            retract.len(),
-            short(least),
-            short(100.0 * (least - pulloff.1) / pulloff.1.abs()),
-            short(pulloff.1)
-        ));
+        w.push(
+            Message::new()
+                .text(format!(
+                    "the {} reported separations miss the pull-off's dip (their most tensile load, {}, is {}% above the pull-off {}, found between them): give more ",
+                    retract.len(),
+                    short(least),
+                    short(100.0 * (least - pulloff.1) / pulloff.1.abs()),
+                    short(pulloff.1)
+                ))
+                .key("points")
+                .text(" to draw it"),
+        );
     }
     w
 }
@@ -708,7 +718,7 @@ pub struct RoughCycle {
     pub quadrature_error: f64,
     /// What the cycle's range or sampling cannot show (empty when it shows everything).
     #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub warnings: Vec<String>,
+    pub warnings: Vec<Message>,
 }
 
 impl Rough {

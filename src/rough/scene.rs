@@ -295,7 +295,8 @@ impl RoughScene {
             .fold(0.0f64, |m, a| m.max(*a))
             / area;
         let mut warnings = stretched(sigma_m, self.summit_radius_m, n, densest);
-        warnings.extend(cyc.warnings.iter().cloned());
+        // (In the library's words: a scene's front ends both call the sampling `points`.)
+        warnings.extend(cyc.warnings.iter().map(|w| w.to_string()));
         let mut dry_pulloff_force_n = None;
         if let Some(h) = &self.humidity {
             warnings.extend(h.warnings(c.radius));
