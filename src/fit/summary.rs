@@ -9,6 +9,45 @@ use crate::physics::params::{plausibility, E_STAR_RANGE, W_MAX};
 /// (m): a water meniscus's height reaches about this at high humidity.
 const SURFACE_FORCE_RANGE: f64 = 1e-8;
 
+/// A result that stops before the judgement: its message, a status where it is not the fit's
+/// own, and the fits made.
+fn unfinished(
+    mut out: CurveFit,
+    status: Option<FitStatus>,
+    message: String,
+    md: ModelFit,
+    models: Vec<ModelFit>,
+) -> CurveFit {
+    out.message = message;
+    if let Some(s) = status {
+        out.status = s;
+    }
+    out.models = models;
+    out.md = Some(md);
+    out
+}
+
+/// The humid fit's warnings: a doubtful reading of the fitted zone, and the limits of the
+/// meniscus model at the tip, as every front end reports them.
+fn humid_warnings(
+    out: &CurveFit,
+    opt: &FitOptions,
+    h: &crate::scene::humidity::HumidityInput,
+) -> Vec<String> {
+    let mut warn = Vec::new();
+    if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
+        warn.push(format!("humidity: {}", fh.note));
+    }
+    warn.extend(
+        h.warnings(opt.radius)
+            .into_iter()
+            .map(|w| format!("humidity: {w}")),
+    );
+    warn
+}
+
+/// A curve's result from its Maugis-Dugdale fit, the closed forms' fits and the intervals: the
+/// parameters, the adequate model, the verdict on the adhesion map and the warnings.
 pub(super) fn summarize(
     curve: &Curve,
     opt: &FitOptions,
@@ -27,10 +66,8 @@ pub(super) fn summarize(
     out.baseline_tilt_n_m = opt.tilt.then_some(d.baseline.1);
     out.warnings = d.notes.clone();
     if md.status != FitStatus::Ok {
-        out.message = format!("the Maugis-Dugdale fit did not converge: {}", md.stop);
-        out.models = models;
-        out.md = Some(md);
-        return out;
+        let message = format!("the Maugis-Dugdale fit did not converge: {}", md.stop);
+        return unfinished(out, None, message, md, models);
     }
     let p = Params {
         e_star: md.e_star_pa,
@@ -49,14 +86,11 @@ pub(super) fn summarize(
         &d.dir,
         None,
     ) else {
-        out.message = format!(
+        let message = format!(
             "the fitted parameters (E* = {} Pa, w = {} J/m^2, lambda = {}) cannot be evaluated: the fit left the models' domain{}",
             short(p.e_star), short(p.w), short(p.lambda), unit_hints(d, opt)
         );
-        out.status = FitStatus::NotConverged;
-        out.models = models;
-        out.md = Some(md);
-        return out;
+        return unfinished(out, Some(FitStatus::NotConverged), message, md, models);
     };
     let in_contact = states.iter().filter(|s| s.piece == Piece::Contact).count();
     if let Some((status, message)) = implausible(&p, in_contact, d, opt) {
@@ -98,15 +132,7 @@ pub(super) fn summarize(
     let mut warn = warnings(&out, d, opt, &p, &md, amax, in_contact);
     if let Some(h) = &opt.humidity {
         out.humidity = humidity::in_humid_air(&out, d, opt, &md, h);
-        if let Some(fh) = out.humidity.as_ref().filter(|fh| !fh.fair_reading) {
-            warn.push(format!("humidity: {}", fh.note));
-        }
-        // The limits of the meniscus model at the tip, as every front end reports them.
-        warn.extend(
-            h.warnings(opt.radius)
-                .into_iter()
-                .map(|w| format!("humidity: {w}")),
-        );
+        warn.extend(humid_warnings(&out, opt, h));
     }
     out.status = FitStatus::Ok;
     out.message = "ok".into();

@@ -577,8 +577,31 @@ pub fn sweep(
     let share = |rh: f64| -> Result<f64, ParamError> {
         Ok(point_at(c, base, rh, dry)?.map_or(0.0, |p| p.meniscus_share))
     };
+    let (above, text) = dominance(&points, (rh_min, rh_max), &share)?;
+    let w2 = points_w(base);
+    let warnings = sweep_warnings(c, base, &points);
+    Ok(HumiditySweep {
+        name: name.to_string(),
+        contact_angle_deg: base.contact_angle_deg,
+        work_of_adhesion_solid_j_m2: c.work,
+        work_of_adhesion_meniscus_j_m2: w2,
+        points,
+        meniscus_dominates_above_rh: above,
+        meniscus_dominates: text,
+        warnings,
+    })
+}
+
+/// Where the meniscus adds more than half of the pull-off over a sweep's `points` (from
+/// `rh_min` to `rh_max`): the humidity above which it does (its crossing refined by bisection on
+/// `share`, the meniscus's share at a humidity) and the sentence that says so.
+fn dominance(
+    points: &[HumidityPoint],
+    (rh_min, rh_max): (f64, f64),
+    share: &dyn Fn(f64) -> Result<f64, ParamError>,
+) -> Result<(Option<f64>, String), ParamError> {
     let first = &points[0];
-    let (above, text) = if first.meniscus_share > 0.5 {
+    Ok(if first.meniscus_share > 0.5 {
         (
             Some(rh_min),
             format!(
@@ -612,18 +635,6 @@ pub fn sweep(
                 100.0 * rh_max
             ),
         )
-    };
-    let w2 = points_w(base);
-    let warnings = sweep_warnings(c, base, &points);
-    Ok(HumiditySweep {
-        name: name.to_string(),
-        contact_angle_deg: base.contact_angle_deg,
-        work_of_adhesion_solid_j_m2: c.work,
-        work_of_adhesion_meniscus_j_m2: w2,
-        points,
-        meniscus_dominates_above_rh: above,
-        meniscus_dominates: text,
-        warnings,
     })
 }
 
