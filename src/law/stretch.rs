@@ -160,46 +160,41 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
         bisect_sign(|t| flip * law.state(piece, t).dapproach, a.min(b), a.max(b))
     }
 
+    /// The lowest approach of probes i..=j.
+    fn lowest(&self, i: usize, j: usize) -> f64 {
+        self.st[i..=j]
+            .iter()
+            .map(|p| p.approach)
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The approach at the fold between probes i and i + 1 (the probes only bracket it).
+    fn refined(&self, i: usize) -> f64 {
+        self.law.state(self.piece, self.fold_at(i)).approach
+    }
+
     /// Whether the approach falls from probe i to the lowest of probes i..=j by no more than
     /// rounding.
     fn flat(&self, i: usize, j: usize) -> bool {
-        let low = (i..=j)
-            .map(|k| self.st[k].approach)
-            .fold(f64::INFINITY, f64::min);
-        self.st[i].approach - low <= 1e-10 * (1.0 + self.st[i].approach.abs())
+        rounding(self.st[i].approach, self.lowest(i, j))
     }
 
     /// Whether the fall from the top after probe `top` to the bottom before probe `bottom` is
-    /// rounding, measured between its refined ends (the probes only bracket them).
+    /// rounding, measured between its refined ends.
     fn shallow(&self, top: usize, bottom: usize) -> bool {
-        let a = self.law.state(self.piece, self.fold_at(top)).approach;
-        let b = self
-            .law
-            .state(self.piece, self.fold_at(bottom - 1))
-            .approach;
-        a - b <= 1e-10 * (1.0 + a.abs())
+        rounding(self.refined(top), self.refined(bottom - 1))
     }
 
     /// Whether the fall from the piece's start to the bottom before probe `bottom` is rounding,
     /// the bottom refined.
     fn shallow_from_start(&self, bottom: usize) -> bool {
-        let a = self.st[0].approach;
-        let b = self
-            .law
-            .state(self.piece, self.fold_at(bottom - 1))
-            .approach;
-        a - b <= 1e-10 * (1.0 + a.abs())
+        rounding(self.st[0].approach, self.refined(bottom - 1))
     }
 
     /// Whether the fall from the top after probe `top` to the piece's lowest approach after it
     /// is rounding, the top refined.
     fn shallow_to_end(&self, top: usize) -> bool {
-        let a = self.law.state(self.piece, self.fold_at(top)).approach;
-        let low = self.st[top..]
-            .iter()
-            .map(|p| p.approach)
-            .fold(f64::INFINITY, f64::min);
-        a - low <= 1e-10 * (1.0 + a.abs())
+        rounding(self.refined(top), self.lowest(top, self.st.len() - 1))
     }
 
     /// Whether `t` is one of the piece's breaks (to rounding).
@@ -270,6 +265,11 @@ impl<'a, L: Law + ?Sized> Probed<'a, L> {
         }
         reaches_end
     }
+}
+
+/// Whether a fall of the approach from `top` to `bottom` is rounding (the path flat, near A -> 0).
+fn rounding(top: f64, bottom: f64) -> bool {
+    top - bottom <= 1e-10 * (1.0 + top.abs())
 }
 
 /// The probes of a piece from `t0` to `t1` (in the path's order): [`PROBES`] evenly spread, and

@@ -368,7 +368,8 @@ fn command_line_reports_the_method() {
 #[test]
 fn library_messages_name_quantities_not_flags() {
     use tabor::map::{LoadAxis, MapSpec};
-    let spec = |f: &dyn Fn(&mut MapSpec)| {
+    // A valid spec with one change.
+    let with = |f: &dyn Fn(&mut MapSpec)| {
         let mut s = MapSpec {
             lambda_min: 1e-3,
             lambda_max: 1e3,
@@ -381,8 +382,9 @@ fn library_messages_name_quantities_not_flags() {
             strength_ratios: vec![],
         };
         f(&mut s);
-        s.validate().unwrap_err().to_string()
+        s
     };
+    let spec = |f: &dyn Fn(&mut MapSpec)| with(f).validate().unwrap_err().to_string();
     let msgs = [
         spec(&|s| s.lambda_min = 1e200),
         spec(&|s| (s.lambda_min, s.lambda_max) = (10.0, 1.0)),
@@ -424,21 +426,7 @@ fn library_messages_name_quantities_not_flags() {
         "precision=f32" => Some("F32"),
         _ => None,
     };
-    let named = |f: &dyn Fn(&mut MapSpec)| {
-        let mut s = MapSpec {
-            lambda_min: 1e-3,
-            lambda_max: 1e3,
-            nx: 8,
-            load_axis: LoadAxis::Log,
-            load_min: 1e-3,
-            load_max: 1e3,
-            ny: 8,
-            tolerance: 0.05,
-            strength_ratios: vec![],
-        };
-        f(&mut s);
-        s.validate().unwrap_err().named(&upper)
-    };
+    let named = |f: &dyn Fn(&mut MapSpec)| with(f).validate().unwrap_err().named(&upper);
     assert_eq!(
         named(&|s| (s.lambda_min, s.lambda_max) = (10.0, 1.0)),
         "LMIN must be below LMAX, got 10 and 1"
