@@ -89,7 +89,7 @@ pub fn map_json(
     engine: &Engine,
     check: Option<&crate::engine::CheckReport>,
 ) -> serde_json::Value {
-    json!({
+    let mut doc = json!({
         "metadata": {
             "tabor_version": env!("CARGO_PKG_VERSION"),
             "backend": engine.name(),
@@ -99,13 +99,25 @@ pub fn map_json(
             "grid": {"nx": d.spec.nx, "ny": d.spec.ny},
             "spec": d.spec,
             "cross_check": check,
-            "criteria": {
-                "order": ["hertz", "rigid", "dmt", "jkr", "md"],
-                "hertz": "|A_Hertz/A - 1| <= tolerance, A_Hertz = Pbar^(1/3), Pbar >= 0",
-                "rigid": "(pi lambda / 2) max(A^2, |Dbar|) <= tolerance",
-                "dmt": "|A_DMT/A - 1| <= tolerance, A_DMT = (Pbar + 2)^(1/3)",
-                "jkr": "|A_JKR/A - 1| <= tolerance, A_JKR^3 = Pbar + 3 + sqrt(9 + 6 Pbar), Pbar >= -3/2",
-                "no_contact": "Pbar below the load-controlled pull-off",
+            "criteria": match d.tip {
+                None => json!({
+                    "order": ["hertz", "rigid", "dmt", "jkr", "md"],
+                    "hertz": "|A_Hertz/A - 1| <= tolerance, A_Hertz = Pbar^(1/3), Pbar >= 0",
+                    "rigid": "(pi lambda / 2) max(A^2, |Dbar|) <= tolerance",
+                    "dmt": "|A_DMT/A - 1| <= tolerance, A_DMT = (Pbar + 2)^(1/3)",
+                    "jkr": "|A_JKR/A - 1| <= tolerance, A_JKR^3 = Pbar + 3 + sqrt(9 + 6 Pbar), Pbar >= -3/2",
+                    "no_contact": "Pbar below the load-controlled pull-off",
+                }),
+                // A tip's own closed forms (docs/PHYSICS.md section 12), Qbar(A) the shape's
+                // adhesion-free load and Fbar(A) its approach.
+                Some(_) => json!({
+                    "order": ["hertz", "rigid", "dmt", "jkr", "md"],
+                    "hertz": "|A_Hertz/A - 1| <= tolerance, Qbar(A_Hertz) = Pbar, Pbar >= 0 (Sneddon's punch)",
+                    "rigid": "(pi lambda / 2) max(Fbar(A), |Dbar|) <= tolerance",
+                    "dmt": "|A_DMT/A - 1| <= tolerance, Qbar(A_DMT) = Pbar + Pbar_rigid (the rigid tip's Dugdale force at this lambda)",
+                    "jkr": "|A_JKR/A - 1| <= tolerance, Qbar(A_JKR) - sqrt(6 A_JKR^3) = Pbar, on its stable branch",
+                    "no_contact": "Pbar below the load-controlled pull-off",
+                }),
             },
             "region_counts": d.region_counts().iter().map(|(r, n)| (r.name().to_string(), json!(n))).collect::<serde_json::Map<_, _>>(),
         },
@@ -116,7 +128,11 @@ pub fn map_json(
         },
         "thresholds": d.thresholds(),
         "large_deformation": d.large_deformation,
-    })
+    });
+    if let Some(tip) = d.tip {
+        doc["metadata"]["tip"] = json!(tip);
+    }
+    doc
 }
 
 pub(crate) fn npy_write<T: npyz::AutoSerialize + Copy>(

@@ -445,7 +445,7 @@ fn solve_tip<'py>(
     given: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::law::{tip, Given};
-    let shape: tabor::physics::tip::Shape = tip.parse().map_err(PyValueError::new_err)?;
+    let shape = tabor::scene::tip::shape_of(tip).map_err(PyValueError::new_err)?;
     let given = match given {
         "load" => Given::Load,
         "approach" => Given::Approach,
@@ -857,7 +857,7 @@ fn cycle<'py>(
                     "tip= has no second zone: leave stress_ratio and range_ratio out",
                 ));
             }
-            let shape = t.parse().map_err(PyValueError::new_err)?;
+            let shape = tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?;
             tabor::ContactLaw::Tip(
                 tabor::law::Tip::new(shape, lam)
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
@@ -915,7 +915,7 @@ fn profile<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let law = match tip {
         Some(t) => {
-            let shape = t.parse().map_err(PyValueError::new_err)?;
+            let shape = tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?;
             tabor::ContactLaw::Tip(
                 tabor::law::Tip::new(shape, lam)
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
@@ -998,7 +998,7 @@ impl AdhesionMap {
                     ));
                 }
                 backend = Backend::Cpu;
-                Some(t.parse().map_err(PyValueError::new_err)?)
+                Some(tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?)
             }
             None => None,
         };

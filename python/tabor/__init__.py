@@ -264,12 +264,14 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
         errors in ``metadata["cross_check"]``.
     adapter : str, optional
         Use the first GPU adapter whose name contains this text.
-    tip : str, optional
+    tip : str or dict, optional
         A tip that is not a sphere (``tabor solve --tip``, docs/PHYSICS.md section 12):
         ``"cone"``, ``"power:N"`` or ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its
         Maugis parameter (1e-3 .. 1e3) and the values in its units; on the CPU in f64. The
         result then has ``A``, ``load``, ``approach``, ``C`` (the zone's outer radius),
-        ``status`` and ``message``.
+        ``status`` and ``message``. A scene (a dict with a ``"tip"``, ``e_star_pa``
+        and ``work_of_adhesion_j_m2``) gives its tip in the units of its E* and w: any tip in SI
+        units, a measured profile among them (``--tip scene:FILE``).
 
     Returns
     -------
@@ -340,11 +342,21 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
     return Result(out, meta)
 
 
+def _tip_text(tip):
+    """A normalised-unit call's ``tip``: a shape's text, or a scene (dict) as its JSON, whose
+    tip the library takes in the units of the scene's E* and w."""
+    if tip is None or isinstance(tip, str):
+        return tip
+    if isinstance(tip, dict):
+        return json.dumps(tip)
+    raise TypeError(f"tip = {tip!r}: give a shape string such as \"cone\" or \"power:3\", "
+                    "or a scene (dict) with a \"tip\"")
+
+
 def _solve_tip(tip, lam_f, val_f, given, shape):
     """``solve(..., tip=...)``: the tip's states (``tabor solve --tip``)."""
-    if not isinstance(tip, str):
-        raise TypeError(f"tip = {tip!r}: give a string such as \"cone\" or \"power:3\"")
-    r = _tabor.solve_tip(tip, lam_f, val_f, "approach" if given == "approach" else given)
+    r = _tabor.solve_tip(_tip_text(tip), lam_f, val_f,
+                         "approach" if given == "approach" else given)
     out = {k: np.asarray(r[k]).reshape(shape) for k in ("A", "load", "approach", "C")}
     out["status"] = _status(np.asarray(r["status_code"]), shape)
     why = {"ok": "", "no_contact": "below the pull-off of this control: no contact",
@@ -715,11 +727,13 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
         GPU points re-solved on the CPU for the cross-check.
     adapter : str, optional
         The GPU adapter whose name contains this text.
-    tip : str, optional
+    tip : str or dict, optional
         The map of a tip that is not a sphere (``tabor map --tip``; docs/PHYSICS.md section 12):
         ``"cone"``, ``"power:N"`` (f = B r^N; every B has the same map) or
         ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, in the tip's normalised units; solved by the
-        f64 CPU solver (``backend`` ``"cpu"`` or ``"auto"``), lambda within the tip law's range.
+        f64 CPU solver (``backend`` ``"cpu"`` or ``"auto"``), lambda within the tip law's range. A scene (a dict with a ``"tip"``, ``e_star_pa``
+        and ``work_of_adhesion_j_m2``) gives its tip in the units of its E* and w: any tip in SI
+        units, a measured profile among them (``--tip scene:FILE``).
 
     Returns
     -------
@@ -751,9 +765,8 @@ def adhesion_map(lambda_min=1e-3, lambda_max=1e3, nx=1024, ny=1024, load_axis="l
         "tolerance": _finite(tolerance, "tolerance"),
         "strength_ratios": [_finite(s, "strength_ratio") for s in strength_ratio],
     }
-    if tip is not None and not isinstance(tip, str):
-        raise ValueError(f"tip = {tip!r}: give a shape string such as 'cone' or 'power:4'")
-    inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check), tip)
+    inner = _tabor.AdhesionMap(json.dumps(spec), backend, precision, adapter, int(check),
+                               _tip_text(tip))
     return AdhesionMap(inner)
 
 
@@ -1422,10 +1435,12 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
     stress_ratio, range_ratio : float, optional
         A second Dugdale zone (a water meniscus: its stress and range over the solid's; both or
         neither): the cycle of both zones, in the units of the total w.
-    tip : str, optional
+    tip : str or dict, optional
         A tip that is not a sphere (``tabor cycle --tip``): ``"cone"``, ``"power:N"`` or
         ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its Maugis parameter and the
-        loads in its units (docs/PHYSICS.md section 12).
+        loads in its units (docs/PHYSICS.md section 12). A scene (a dict with a ``"tip"``, ``e_star_pa``
+        and ``work_of_adhesion_j_m2``) gives its tip in the units of its E* and w: any tip in SI
+        units, a measured profile among them (``--tip scene:FILE``).
 
     Returns
     -------
@@ -1454,7 +1469,7 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
     opt = lambda v, n: None if v is None else _real(v, n)
     c = _tabor.cycle(_real(lam, "lam"), drive, opt(stiffness, "stiffness"),
                      _real(max_load, "max_load"), opt(stress_ratio, "stress_ratio"),
-                     opt(range_ratio, "range_ratio"), tip)
+                     opt(range_ratio, "range_ratio"), _tip_text(tip))
     steps = c["steps"]
     out = {
         "phase": np.array([s["phase"] for s in steps]),
@@ -1487,10 +1502,12 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
     stress_ratio, range_ratio : float, optional
         A second Dugdale zone: the two-zone profile (model ``two_zone`` first, with both zone
         edges), then Hertz, DMT and JKR of the total w.
-    tip : str, optional
+    tip : str or dict, optional
         A tip that is not a sphere (``tabor profile --tip``): ``"cone"``, ``"power:N"`` or
         ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"``, with ``lam`` its Maugis parameter and the
-        values in its units. The result is then the one state's ``r``, ``pressure`` (NaN at a
+        values in its units. A scene (a dict with a ``"tip"``, ``e_star_pa``
+        and ``work_of_adhesion_j_m2``) gives its tip in the units of its E* and w: any tip in SI
+        units, a measured profile among them (``--tip scene:FILE``). The result is then the one state's ``r``, ``pressure`` (NaN at a
         cone's apex), ``gap``, ``a``, ``c``, ``load``, ``approach``, ``status`` and
         ``energy_release_rate_over_w``.
 
@@ -1524,7 +1541,7 @@ def profile(lam, load=None, approach=None, radius=None, points=400, stress_ratio
     # its model "two_zone" first, with both zone edges, then Hertz, DMT and JKR of the total w.
     p = _tabor.profile(_real(lam, "lam"), given[0][0], _real(given[0][1], given[0][0]),
                        int(points), _optional(stress_ratio, "stress_ratio"),
-                       _optional(range_ratio, "range_ratio"), tip)
+                       _optional(range_ratio, "range_ratio"), _tip_text(tip))
     if tip is not None:
         # A tip's profile (``tabor profile --tip``): one state, its arrays at the top level.
         p["r"] = np.array(p["r"], dtype=float)

@@ -170,6 +170,38 @@ def test_a_tips_adhesion_map_is_the_command_lines(tmp_path):
         tabor.adhesion_map(nx=8, ny=8, tip="conee")
 
 
+def test_a_scenes_tip_in_its_units_is_the_command_lines(tmp_path):
+    """A scene (dict) as the ``tip`` of the calls in normalised units takes its tip in the units
+    of its E* and w, as ``--tip scene:FILE`` does: a measured profile's map and state, bit for
+    bit; a scene without a tip is refused."""
+    r = np.linspace(0.0, 3e-8, 60)
+    scene = {"e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05, "s0_pa": 5e7,
+             "tip": {"shape": "profile", "r_m": r.tolist(), "z_m": (1e15 * r**3).tolist()}}
+    path = tmp_path / "cubic.json"
+    path.write_text(json.dumps(scene))
+    binary = str(ROOT / "target" / "release" / "tabor")
+    m = tabor.adhesion_map(nx=6, ny=5, lambda_min=0.1, lambda_max=10, tip=scene, backend="cpu")
+    prefix = tmp_path / "cubic"
+    subprocess.run([binary, "map", "--tip", f"scene:{path}", "--nx", "6", "--ny", "5",
+                    "--lambda-min", "0.1", "--lambda-max", "10", "--out",
+                    str(tmp_path / "cubic.png"), "--npy", str(prefix)],
+                   check=True, capture_output=True)
+    assert np.array_equal(m.region, np.load(f"{prefix}_region.npy").reshape(m.region.shape))
+    a = np.load(f"{prefix}_A.npy").reshape(m.A.shape)
+    assert np.array_equal(a[~np.isnan(a)], m.A[~np.isnan(m.A)])
+    s = tabor.solve(1.0, load=0.5, tip=scene)
+    out = subprocess.run([binary, "solve", "--tip", f"scene:{path}", "--lambda", "1", "--load",
+                          "0.5", "--format", "json"], check=True, capture_output=True, text=True)
+    cli = json.loads(out.stdout)["results"][0]
+    assert float(s.A) == cli["A"] and float(s.C) == cli["C"]
+    # Within the table's error of the cubic power law itself (the units are the same).
+    assert float(s.A) == pytest.approx(float(tabor.solve(1.0, load=0.5, tip="power:3").A),
+                                       rel=2e-3)
+    with pytest.raises(ValueError, match='has no "tip"'):
+        tabor.solve(1.0, load=0.5, tip={"e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05,
+                                        "s0_pa": 5e7, "radius_m": 1e-8})
+
+
 def test_a_cones_curve_fits_as_the_command_line_fits_it():
     """fit_curves(tip=...) is `tabor fit --tip`'s fit of the same curve, bit for bit (the tip as
     text or as a scene's dict); a cone's closed forms are Sneddon's punch and the JKR-type law;
@@ -194,7 +226,8 @@ def test_a_cones_curve_fits_as_the_command_line_fits_it():
     assert lo < 1e6 < hi
     with pytest.raises(ValueError, match="radius_m and tip"):
         tabor.fit_curves([], [], [], tip="cone:65", radius_m=1e-8, spring_n_m=0.5)
-    with pytest.raises(ValueError, match="measured profile is not fitted"):
+    # A measured profile is fitted (tests/suite/fit_tip.rs); a table too short is refused.
+    with pytest.raises(ValueError, match="give at least 4"):
         tabor.fit_curves([], [], [], tip={"shape": "profile", "r_m": [0, 1e-8],
                                           "z_m": [0, 1e-9]}, spring_n_m=0.5)
     with pytest.raises(ValueError, match="relative_humidity"):

@@ -50,6 +50,8 @@ pub struct SolveArgs {
     /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
     /// parameter and the load, approach and radii in its units, on the CPU: cone, power:N or
     /// capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    /// Or scene:FILE, the tip of a scene file in the units of its E* and w (any SI tip, a measured
+    /// profile among them).
     #[arg(long, conflicts_with_all = ["stress_ratio", "range_ratio"])]
     pub tip: Option<String>,
     /// Output format (default: text for one state, csv for a file).

@@ -68,6 +68,8 @@ pub struct MapArgs {
     /// The map of a tip that is not a sphere (docs/PHYSICS.md section 12), on the CPU: cone,
     /// power:N (f = B r^N; every B has the same map), or capped-cone:R_OVER_L:HALF_ANGLE_DEG
     /// (the cap's radius in the tip's length unit l).
+    /// Or scene:FILE, the tip of a scene file in the units of its E* and w (any SI tip, a measured
+    /// profile among them).
     #[arg(long)]
     pub tip: Option<String>,
 }

@@ -521,9 +521,25 @@ pub(crate) fn write_with_figure(
 }
 
 /// A `--tip` value as a shape in its normalised units ([`Shape`]'s parser, its message named
-/// as the flag).
+/// as the flag), or `scene:FILE`: the tip of a scene file in the units of its E* and w
+/// ([`units_of`]; a measured profile's shape in the units depends on them).
 ///
 /// [`Shape`]: crate::physics::tip::Shape
+/// [`units_of`]: crate::scene::tip::units_of
 pub fn tip_shape(s: &str) -> anyhow::Result<crate::physics::tip::Shape> {
-    s.parse().map_err(|e| anyhow::anyhow!("--{e}"))
+    match s.strip_prefix("scene:") {
+        Some(f) => {
+            let u = crate::scene::tip::units_of(&scene::read_scene(f)?)
+                .map_err(|e| anyhow::anyhow!("--tip {s}: {e}"))?;
+            eprintln!(
+                "the tip of {f} in the units of its E* and w: {} (l = {} m, d = {} m; the scene's own lambda is {:.6})",
+                u.shape.label(),
+                crate::physics::domain::short(u.length_m),
+                crate::physics::domain::short(u.approach_m),
+                u.lambda
+            );
+            Ok(u.shape)
+        }
+        None => s.parse().map_err(|e| anyhow::anyhow!("--{e}")),
+    }
 }

@@ -40,6 +40,8 @@ pub struct ProfileArgs {
     /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
     /// parameter and the values in its units: cone, power:N or
     /// capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    /// Or scene:FILE, the tip of a scene file in the units of its E* and w (any SI tip, a measured
+    /// profile among them).
     #[arg(long, conflicts_with_all = ["scene", "preset", "stress_ratio", "range_ratio", "plot"])]
     pub tip: Option<String>,
     /// Sampling points on the uniform part of the r grid (more are added near a and c).

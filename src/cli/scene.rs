@@ -552,6 +552,8 @@ pub struct CycleArgs {
     pub range_ratio: Option<f64>,
     /// A tip that is not a sphere (docs/PHYSICS.md section 12), with --lambda its Maugis
     /// parameter and loads in its units: cone, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG.
+    /// Or scene:FILE, the tip of a scene file in the units of its E* and w (any SI tip, a measured
+    /// profile among them).
     #[arg(long, conflicts_with_all = ["scene", "preset", "stress_ratio", "range_ratio"])]
     pub tip: Option<String>,
     #[arg(long, short, default_value = "-")]

@@ -118,7 +118,7 @@ fn moments(
         2 => (f.contact_point_m, inv[(zc, zc)] * v * z_scale * z_scale),
         _ => {
             // ln z0 = c (ln w - ln E*) - ln lambda + const (the sphere's c = 2/3).
-            let c = tip.z0_slope();
+            let c = tip.z0_slope(f.e_star_pa, f.work_of_adhesion_j_m2);
             let g: &[f64] = if free { &[-c, c, -1.0] } else { &[-c, c] };
             let mut var = 0.0;
             for i in 0..g.len() {

@@ -1046,7 +1046,7 @@ pub(super) fn standard_errors(
         Some(0.0)
     } else if model.has_lambda() {
         // Fixed z0: lambda follows E* and w, ln lambda = c (ln w - ln E*) + const.
-        let c2 = prob.tip.z0_slope().powi(2);
+        let c2 = prob.tip.z0_slope(p.e_star, p.w).powi(2);
         cov.as_ref().map(|c| {
             let v = c2 * (c[(0, 0)] + c[(1, 1)] - 2.0 * c[(0, 1)]);
             p.lambda * v.max(0.0).sqrt()

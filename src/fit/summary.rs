@@ -228,7 +228,7 @@ pub(super) fn put_parameters(
         // The covariance of (ln E*, ln w, ln lambda, ...) of a free fit.
         (Some(c), None) if c.nrows() == 5 => {
             // ln z0 = c (ln w - ln E*) - ln lambda + const (the sphere's c = 2/3).
-            let slope = tip.z0_slope();
+            let slope = tip.z0_slope(p.e_star, p.w);
             let g = [-slope, slope, -1.0];
             let mut v = 0.0;
             for i in 0..3 {

@@ -5,8 +5,9 @@
 
 use super::{Model, Units};
 use crate::law::{ContactLaw, Tip, TipClosed};
+use crate::physics::measured::Profile;
 use crate::physics::params::LJ_STRESS;
-use crate::physics::tip::{k_n, Shape, TipInput};
+use crate::physics::tip::{k_n, MeasuredTip, Shape, TipInput};
 use std::f64::consts::PI;
 
 /// The tip of a fit, its numbers checked.
@@ -28,6 +29,23 @@ pub enum Geometry {
         /// The cone's half-angle (radians, axis to flank).
         half_angle: f64,
     },
+    /// A measured profile (metres; docs/PHYSICS.md section 12.3): its units are a search per
+    /// E* and w ([`MeasuredTip::of`]).
+    Measured(&'static Profile),
+}
+
+impl Units {
+    /// A tip's units from its radial length l and approach unit d (m): the force unit
+    /// `pi w l^2 / d` and the spring constant `spring` (N/m) in them.
+    fn of_tip(w: f64, l: f64, d: f64, spring: f64) -> Units {
+        let force = PI * w * l * l / d;
+        Units {
+            force,
+            approach: d,
+            radius: l,
+            kbar: spring * d / force,
+        }
+    }
 }
 
 /// A radius is a sphere's.
@@ -38,15 +56,13 @@ impl From<f64> for Geometry {
 }
 
 impl Geometry {
-    /// The tip a scene's `"tip"` describes, its numbers checked as a scene checks them; a
-    /// measured profile is refused (its units are a search per E* and w, which a fit's every
-    /// step would repeat).
+    /// The tip a scene's `"tip"` describes, its numbers checked as a scene checks them (a
+    /// measured profile's table as [`Profile::new`] checks it).
     pub fn of(tip: &TipInput) -> Result<Geometry, String> {
-        if let TipInput::Profile { .. } = tip {
-            return Err(
-                "a measured profile is not fitted: fit with the power law or the capped cone nearest it (tabor scene reports a profile's own answers)"
-                    .into(),
-            );
+        if let TipInput::Profile { r_m, z_m } = tip {
+            return Profile::interned(r_m, z_m)
+                .map(Geometry::Measured)
+                .map_err(|e| format!("tip: {e}"));
         }
         // The scene's checks of every number (named by its key).
         tip.units(1.0, 1.0, 1.0).map_err(|e| e.to_string())?;
@@ -84,7 +100,7 @@ impl Geometry {
     pub fn radius(&self) -> Option<f64> {
         match *self {
             Geometry::Sphere(r) | Geometry::CappedCone { radius: r, .. } => Some(r),
-            Geometry::Power { .. } => None,
+            Geometry::Power { .. } | Geometry::Measured(_) => None,
         }
     }
 
@@ -107,15 +123,13 @@ impl Geometry {
             }
             Geometry::Power { n, kb } => {
                 let l = (3.0 * PI * w / (4.0 * e_star * kb * kb)).powf(1.0 / (2.0 * n - 1.0));
-                let d = kb * l.powf(n);
-                let force = PI * w * l * l / d;
-                Units {
-                    force,
-                    approach: d,
-                    radius: l,
-                    kbar: spring * d / force,
-                }
+                Units::of_tip(w, l, kb * l.powf(n), spring)
             }
+            Geometry::Measured(table) => match MeasuredTip::of(table, e_star, w) {
+                Some(m) => Units::of_tip(w, m.length(), m.height(), spring),
+                // No unit within 1e12 of the table's radii: no number for this E* and w.
+                None => Units::of_tip(w, f64::NAN, f64::NAN, spring),
+            },
         }
     }
 
@@ -128,6 +142,7 @@ impl Geometry {
                 rho: radius / u.radius,
                 half_angle,
             }),
+            Geometry::Measured(table) => Some(Shape::Measured(MeasuredTip::at(table, u.radius))),
         }
     }
 
@@ -188,9 +203,9 @@ impl Geometry {
 
     /// Whether the normalised laws depend on lambda alone, so that E* and w only scale them
     /// (the analytic Jacobian's premise): not a capped cone's, whose cap is `R / l` in units
-    /// that move with E* and w.
+    /// that move with E* and w, nor a measured profile's.
     pub fn scales(&self) -> bool {
-        !matches!(self, Geometry::CappedCone { .. })
+        !matches!(self, Geometry::CappedCone { .. } | Geometry::Measured(_))
     }
 
     /// How ln E* and ln w move the force unit, the approach unit and kbar (each a
@@ -234,13 +249,18 @@ impl Geometry {
         }
     }
 
-    /// c in `ln z0 = c (ln w - ln E*) - ln lambda + const`: `1 - (n - 1)/(2n - 1)`, the sphere's
-    /// and the capped cone's 2/3.
-    pub fn z0_slope(&self) -> f64 {
-        match *self {
-            Geometry::Power { n, .. } => n / (2.0 * n - 1.0),
-            _ => 2.0 / 3.0,
-        }
+    /// c in `ln z0 = c (ln w - ln E*) - ln lambda + const` at `e_star`, `w`: `g / (2g - 1)`
+    /// with `g = d ln F / d ln l` (a power law's n, the sphere's and the capped cone's 2/3;
+    /// a measured profile's at its unit l).
+    pub fn z0_slope(&self, e_star: f64, w: f64) -> f64 {
+        let g = match *self {
+            Geometry::Power { n, .. } => n,
+            Geometry::Measured(table) => {
+                MeasuredTip::of(table, e_star, w).map_or(f64::NAN, |m| m.log_slope())
+            }
+            _ => 2.0,
+        };
+        g / (2.0 * g - 1.0)
     }
 
     /// The w whose force unit at `e_star` times the normalised pull-off `pc_bar` is `pull` (N):
@@ -256,6 +276,23 @@ impl Geometry {
                 let c = 3.0 * PI / (4.0 * e_star * kb * kb);
                 (pull * kb / (pc_bar * PI * c.powf(g))).powf(1.0 / (1.0 + g))
             }
+            // Newton in ln w: ln force rises with ln w at the slope (g + 1)/(2g - 1).
+            Geometry::Measured(table) => {
+                let mut w = 0.01;
+                for _ in 0..60 {
+                    let Some(m) = MeasuredTip::of(table, e_star, w) else {
+                        return f64::NAN;
+                    };
+                    let force = PI * w * m.length() * m.length() / m.height();
+                    let g = m.log_slope();
+                    let step = (pull / (pc_bar * force)).ln() * (2.0 * g - 1.0) / (g + 1.0);
+                    w *= step.exp();
+                    if step.abs() < 1e-13 {
+                        break;
+                    }
+                }
+                w
+            }
         }
     }
 
@@ -270,6 +307,16 @@ impl Geometry {
             Geometry::Power { n, kb } => {
                 4.0 / 3.0 * force * (n + 1.0) * kb.powf(1.0 / n)
                     / (2.0 * n * delta.powf((n + 1.0) / n))
+            }
+            // The punch's radius a where F(a) = delta, its load `2 E* I(a)` (Sneddon's load
+            // integral; section 12).
+            Geometry::Measured(table) => {
+                let mut hi = table.largest_radius;
+                while table.abel(hi).0 < delta && hi < 1e12 * table.largest_radius {
+                    hi *= 4.0;
+                }
+                let a = crate::numeric::root::bisect_sign(|a| table.abel(a).0 - delta, 0.0, hi);
+                2.0 / 3.0 * force / table.load_integral(a)
             }
         }
     }
@@ -330,7 +377,7 @@ mod tests {
             // z0's slope: ln z0 against ln w - ln E* at fixed lambda.
             let z = |e: f64, w: f64| g.z0_from_lambda(e, w, 0.7).ln();
             let d = (z(e, w * f64::exp(h)) - z(e, w * f64::exp(-h))) / (2.0 * h);
-            assert!((d - g.z0_slope()).abs() < 1e-7, "{g:?}: {d}");
+            assert!((d - g.z0_slope(e, w)).abs() < 1e-7, "{g:?}: {d}");
             // The start's w gives back the pull-off.
             let wp = g.w_for_pulloff(3e-9, 1.2, e);
             assert!((1.2 * g.units(e, wp, 1.0).force / 3e-9 - 1.0).abs() < 1e-12);

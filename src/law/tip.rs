@@ -262,8 +262,9 @@ pub(super) fn shape_bits(shape: &Shape) -> [u64; 3] {
     match *shape {
         Shape::Power { exponent } => [1, exponent.to_bits(), 0],
         Shape::CappedCone { rho, half_angle } => [2, rho.to_bits(), half_angle.to_bits()],
-        // A measured table is one leaked allocation: its address is its identity.
-        Shape::Measured(p) => [3, p as *const _ as u64, 0],
+        // A measured table is one leaked allocation: its address is its identity, and its
+        // length unit gives the height unit.
+        Shape::Measured(p) => [3, p.table_address(), p.length().to_bits()],
     }
 }
 

@@ -129,6 +129,31 @@ impl Profile {
         Ok(Profile::with_half(r.to_vec(), z))
     }
 
+    /// [`Profile::new`] held for the life of the process, once per distinct table (a shape is
+    /// `Copy` and holds a reference to it): the tips a fleet's every curve and a fit's every
+    /// step build from the same table share one.
+    pub fn interned(r: &[f64], z: &[f64]) -> Result<&'static Profile, String> {
+        use std::collections::HashMap;
+        use std::sync::{Mutex, OnceLock};
+        static TABLES: OnceLock<Mutex<HashMap<Vec<u64>, &'static Profile>>> = OnceLock::new();
+        let key: Vec<u64> = r
+            .iter()
+            .chain(z)
+            .map(|v| v.to_bits())
+            .chain([r.len() as u64])
+            .collect();
+        let tables = TABLES.get_or_init(Default::default);
+        if let Some(&p) = tables.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+            return Ok(p);
+        }
+        let p: &'static Profile = Box::leak(Box::new(Profile::new(r, z)?));
+        Ok(*tables
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .entry(key)
+            .or_insert(p))
+    }
+
     fn interpolant(r: Vec<f64>, z: Vec<f64>) -> Profile {
         let s = monotone_slopes(&r, &z);
         let c = (0..r.len() - 1)
@@ -219,8 +244,9 @@ impl Profile {
 
     /// `int_0^(pi/2) sin^j(phi) f'(T sin phi) dphi` combined into `F/T`, `F'` (weights 1, 2, 3
     /// on the powers of sin phi: `f' + r f''`) and Sneddon's load integral over A^2 (j + 2), in
-    /// closed form interval by interval: on interval k, f' is `a0 + a1 sin + a2 sin^2`.
-    fn moments(&self, t: f64) -> [f64; 3] {
+    /// closed form interval by interval: on interval k, f' is `a0 + a1 sin + a2 sin^2`. The
+    /// load's moment only when `LOAD` (the gap integrals call the transform alone, most often).
+    fn moments<const LOAD: bool>(&self, t: f64) -> [f64; 3] {
         let (mut f, mut df, mut q) = (0.0, 0.0, 0.0);
         // sin, cos and phi at the interval's start.
         let (mut sa, mut ca, mut pa) = (0.0f64, 1.0f64, 0.0f64);
@@ -243,13 +269,15 @@ impl Profile {
             let i0 = dp;
             let i1 = ca - cb;
             let i2 = 0.5 * dp - 0.5 * (scb - sca);
-            let i3 = (ca - cb) - (ca.powi(3) - cb.powi(3)) / 3.0;
-            // int sin^4 = 3 phi/8 - sin(2 phi)/4 + sin(4 phi)/32, sin 4phi = 4 s c (1 - 2 s^2).
-            let i4 = 0.375 * dp - 0.5 * (scb - sca)
-                + (scb * (1.0 - 2.0 * sb * sb) - sca * (1.0 - 2.0 * sa * sa)) / 8.0;
             f += a0 * i0 + a1 * i1 + a2 * i2;
             df += a0 * i0 + 2.0 * a1 * i1 + 3.0 * a2 * i2;
-            q += a0 * i2 + a1 * i3 + a2 * i4;
+            if LOAD {
+                let i3 = (ca - cb) - (ca.powi(3) - cb.powi(3)) / 3.0;
+                // int sin^4 = 3 phi/8 - sin(2 phi)/4 + sin(4 phi)/32, sin 4phi = 4 s c (1 - 2 s^2).
+                let i4 = 0.375 * dp - 0.5 * (scb - sca)
+                    + (scb * (1.0 - 2.0 * sb * sb) - sca * (1.0 - 2.0 * sa * sa)) / 8.0;
+                q += a0 * i2 + a1 * i3 + a2 * i4;
+            }
             if pb == FRAC_PI_2 {
                 return [f, df, q];
             }
@@ -271,7 +299,7 @@ impl Profile {
         if t <= 0.0 {
             return (0.0, self.s[0] * FRAC_PI_2);
         }
-        let [f, df, _] = self.moments(t);
+        let [f, df, _] = self.moments::<false>(t);
         (t * f, df)
     }
 
@@ -281,7 +309,7 @@ impl Profile {
         if a <= 0.0 {
             return 0.0;
         }
-        a * a * self.moments(a)[2]
+        a * a * self.moments::<true>(a)[2]
     }
 }
 

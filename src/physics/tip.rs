@@ -27,9 +27,131 @@ pub enum Shape {
         half_angle: f64,
     },
     /// A measured profile (section 12.3), in the units: interpolated, its tangent beyond its
-    /// last point. Held for the life of the process (a shape is `Copy`; a scene leaks one
-    /// table of a few kilobytes).
-    Measured(&'static Profile),
+    /// last point.
+    Measured(MeasuredTip),
+}
+
+/// A measured profile in a tip's units: the table as given (held for the life of the process,
+/// since a shape is `Copy`: one table of a few kilobytes per profile read) and the units its
+/// radii and heights are divided by. The monotone cubic commutes with that scaling, so the
+/// units of every E* and w a fit tries share the one table.
+#[derive(Clone, Copy, Debug)]
+pub struct MeasuredTip {
+    /// The table, in its own length unit.
+    table: &'static Profile,
+    /// The radial unit l, in the table's unit.
+    length: f64,
+    /// The height (approach) unit d = F(l), in the table's unit.
+    height: f64,
+}
+
+impl PartialEq for MeasuredTip {
+    fn eq(&self, other: &MeasuredTip) -> bool {
+        std::ptr::eq(self.table, other.table)
+            && self.length == other.length
+            && self.height == other.height
+    }
+}
+
+impl Serialize for MeasuredTip {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("MeasuredTip", 2)?;
+        st.serialize_field("points", &self.points())?;
+        st.serialize_field("largest_radius", &self.largest_radius())?;
+        st.end()
+    }
+}
+
+impl MeasuredTip {
+    /// The radial unit l (the table's unit, metres for a scene's).
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// The height unit d = F(l) (the table's unit).
+    pub fn height(&self) -> f64 {
+        self.height
+    }
+
+    /// The table's address: with l, the tip's identity.
+    pub fn table_address(&self) -> u64 {
+        self.table as *const Profile as u64
+    }
+
+    /// The table's points.
+    pub fn points(&self) -> usize {
+        self.table.points
+    }
+
+    /// The table's largest radius, in l.
+    pub fn largest_radius(&self) -> f64 {
+        self.table.largest_radius / self.length
+    }
+
+    /// `fbar(r) = f(r l) / d` and its slope.
+    fn eval(&self, r: f64) -> (f64, f64) {
+        let (f, d, _) = self.table.eval(r * self.length);
+        (f / self.height, d * self.length / self.height)
+    }
+
+    /// `Fbar(T) = F(T l) / d` and its slope.
+    fn abel(&self, t: f64) -> (f64, f64) {
+        let (f, d) = self.table.abel(t * self.length);
+        (f / self.height, d * self.length / self.height)
+    }
+
+    /// Sneddon's load integral in the units: `I(A l) / (l d)`.
+    fn load_integral(&self, a: f64) -> f64 {
+        self.table.load_integral(a * self.length) / (self.length * self.height)
+    }
+
+    /// [`Profile::error_between`] over the radii `lo..hi` (in l).
+    pub fn error_between(&self, lo: f64, hi: f64) -> f64 {
+        self.table.error_between(lo * self.length, hi * self.length)
+    }
+
+    /// The units of `table` for the reduced modulus `e_star` and the work of adhesion `w`
+    /// (SI, the table in metres): l where `F(l)^2 / l = 3 pi w / (4 E*)`, `d = F(l)` (the power
+    /// law's units for any profile: `F(l)^2 / l` rises, F growing at least like l for a convex
+    /// tip). None where no l is found within 1e12 of the table's radii.
+    pub fn of(table: &'static Profile, e_star: f64, w: f64) -> Option<MeasuredTip> {
+        let target = 3.0 * PI * w / (4.0 * e_star);
+        let excess = |l: f64| {
+            let f = table.abel(l).0;
+            f * f / l - target
+        };
+        let (mut lo, mut hi) = (table.largest_radius * 1e-12, table.largest_radius);
+        while excess(hi) < 0.0 && hi < 1e12 * table.largest_radius {
+            hi *= 4.0;
+        }
+        while excess(lo) > 0.0 && lo > 1e-300 {
+            lo *= 1e-4;
+        }
+        if !(excess(lo) <= 0.0 && excess(hi) >= 0.0) {
+            return None;
+        }
+        Some(MeasuredTip::at(
+            table,
+            crate::numeric::root::bisect_sign(excess, lo, hi),
+        ))
+    }
+
+    /// `table` in the radial unit `length` (its height unit `F(length)`).
+    pub fn at(table: &'static Profile, length: f64) -> MeasuredTip {
+        MeasuredTip {
+            table,
+            length,
+            height: table.abel(length).0,
+        }
+    }
+
+    /// `g = d ln F / d ln l` at the unit l: the units move with `s = ln(w / E*)` as
+    /// `d ln l / ds = 1 / (2g - 1)` (a power law's g is n).
+    pub fn log_slope(&self) -> f64 {
+        let (f, d) = self.table.abel(self.length);
+        self.length * d / f
+    }
 }
 
 /// The Gauss-Legendre rule every integral here uses, on [0, 1].
@@ -73,7 +195,8 @@ impl Shape {
             ),
             Shape::Measured(p) => format!(
                 "a measured profile ({} points to r = {:.4} l)",
-                p.points, p.largest_radius
+                p.points(),
+                p.largest_radius()
             ),
         }
     }
@@ -93,7 +216,8 @@ impl Shape {
             ),
             Shape::Measured(p) => format!(
                 "A measured profile of {} points to r = {:.3} l, continued by its tangent",
-                p.points, p.largest_radius
+                p.points(),
+                p.largest_radius()
             ),
         }
     }
@@ -126,10 +250,7 @@ impl Shape {
                     )
                 }
             }
-            Shape::Measured(p) => {
-                let (f, d, _) = p.eval(r);
-                (f, d)
-            }
+            Shape::Measured(p) => p.eval(r),
         }
     }
 
@@ -714,31 +835,14 @@ impl TipInput {
                 )
             }
             (None, TipInput::Profile { r_m, z_m }) => {
-                let p = Profile::new(r_m, z_m)
+                let p = Profile::interned(r_m, z_m)
                     .map_err(|e| ParamError::Conflict(format!("tip: {e}").into()))?;
-                // l where F(l)^2 / l = 3 pi w / (4 E*), d = F(l): the power law's units for
-                // any profile (F(l)^2 / l rises: F grows at least like l for a convex tip).
-                let target = 3.0 * PI * w / (4.0 * e_star);
-                let excess = |l: f64| {
-                    let f = p.abel(l).0;
-                    f * f / l - target
-                };
-                let (mut lo, mut hi) = (p.largest_radius * 1e-12, p.largest_radius);
-                while excess(hi) < 0.0 && hi < 1e12 * p.largest_radius {
-                    hi *= 4.0;
-                }
-                while excess(lo) > 0.0 && lo > 1e-300 {
-                    lo *= 1e-4;
-                }
-                if !(excess(lo) <= 0.0 && excess(hi) >= 0.0) {
-                    return Err(ParamError::Conflict(format!(
+                let m = MeasuredTip::of(p, e_star, w).ok_or_else(|| {
+                    ParamError::Conflict(format!(
                         "tip: the measured profile's length unit was not found (E* = {e_star} Pa, w = {w} J/m^2): check the units of r_m and z_m (metres)"
-                    ).into()));
-                }
-                let l = crate::numeric::root::bisect_sign(excess, lo, hi);
-                let d = p.abel(l).0;
-                let scaled: &'static Profile = Box::leak(Box::new(p.scaled(l, d)));
-                (Shape::Measured(scaled), l, d)
+                    ).into())
+                })?;
+                (Shape::Measured(m), m.length, m.height)
             }
             (None, _) => unreachable!("every other tip is a power law"),
         };

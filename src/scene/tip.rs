@@ -6,7 +6,7 @@
 use super::{checked_tolerance, scene_loads, SceneInput};
 use crate::law::{Drive, Tip};
 use crate::physics::params::ParamError;
-use crate::physics::tip::{TipInput, TipUnits};
+use crate::physics::tip::{Shape, TipInput, TipUnits};
 use crate::solver::Status;
 use serde::Serialize;
 
@@ -113,6 +113,31 @@ fn materials(s: &SceneInput) -> Result<(f64, f64, f64), ParamError> {
     Ok((c.e_star, c.work, c.s0))
 }
 
+/// The units of a scene's tip (its E*, w and s0): its shape in them, with its Maugis
+/// parameter.
+pub fn units_of(s: &SceneInput) -> Result<TipUnits, ParamError> {
+    let tip = s.tip.as_ref().ok_or(ParamError::Missing(
+        "the scene has no \"tip\": give one (a sphere's scene has no shape beyond the paraboloid)",
+    ))?;
+    let (e_star, w, s0) = materials(s)?;
+    tip.units(e_star, w, s0)
+}
+
+/// A tip in its normalised units as the command line and Python give it: a shape (`cone`,
+/// `sphere`, `power:N`, `capped-cone:R_OVER_L:HALF_ANGLE_DEG`), or a scene as JSON text whose
+/// tip is taken in the units of its E* and w ([`units_of`]): any tip given in SI units, a
+/// measured profile among them, whose shape in the units depends on E* and w.
+pub fn shape_of(text: &str) -> Result<Shape, String> {
+    if !text.trim_start().starts_with('{') {
+        return text.parse();
+    }
+    let scene: SceneInput =
+        serde_json::from_str(text).map_err(|e| format!("tip: not a valid scene: {e}"))?;
+    units_of(&scene)
+        .map(|u| u.shape)
+        .map_err(|e| format!("tip: the scene's {e}"))
+}
+
 /// Solves a scene whose `tip` is given.
 pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult, ParamError> {
     let (e_star, w, s0) = materials(s)?;
@@ -143,7 +168,7 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
     let mut warnings = tip_warnings(tip);
     let mut profile_error = None;
     if let crate::physics::tip::Shape::Measured(p) = u.shape {
-        let last_m = p.largest_radius * u.length_m;
+        let last_m = p.largest_radius() * u.length_m;
         // The radii the states rest on: the least contact radius above 0, the widest zone.
         let narrowest = loads
             .iter()
@@ -159,7 +184,7 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         profile_error = Some(e);
         warnings.push(format!(
             "the measured profile ({} points to r = {} m) gives these results within {:.1e} (relative; an upper estimate: over the radii they rest on, its interpolant's Abel transform differs by that from that of every other point)",
-            p.points,
+            p.points(),
             crate::physics::domain::short(last_m),
             e
         ));

@@ -224,3 +224,70 @@ fn a_tip_with_a_fixed_range_and_a_spherical_tip() {
         );
     }
 }
+
+/// The capped cone of [`capped`] as a measured table: `points` heights from the axis to 40 nm
+/// (its flank's tangent continues it exactly).
+fn capped_table(points: usize) -> TipInput {
+    let (radius, theta) = (20e-9f64, 25f64.to_radians());
+    let joint = radius * theta.cos();
+    let r_m: Vec<f64> = (0..points)
+        .map(|i| 40e-9 * i as f64 / (points - 1) as f64)
+        .collect();
+    let z_m = r_m
+        .iter()
+        .map(|&r| {
+            if r <= joint {
+                r * r / (radius + (radius * radius - r * r).sqrt())
+            } else {
+                radius - radius / theta.sin() + r / theta.tan()
+            }
+        })
+        .collect();
+    TipInput::Profile { r_m, z_m }
+}
+
+/// A measured profile fits (docs/PHYSICS.md section 12.3): a noise-free Maugis-Dugdale curve
+/// made on a table gives back E*, w and lambda to 1e-6; and a coarse table of the capped cone
+/// (2 nm apart) fits the capped cone's own curve with E* and w within the error the table
+/// brings to its Abel transform (the approach every state rests on), and lambda, which the
+/// curve's shape near the pull-off gives (the small radii, where the table is least exact),
+/// within twice it.
+#[test]
+fn a_measured_profile_fits_its_curve_and_the_capped_cones() {
+    let table = capped_table(21);
+    let cases = [(table.clone(), table.clone()), (capped(), table.clone())];
+    let fits: Vec<_> = cases
+        .par_iter()
+        .map(|(made, fitted)| {
+            // (A measured profile's every state sums over its table: few points.)
+            let (s, opt) = case(fitted, Model::Md, 1e8, 0.5, 1.0, 0.0, 50);
+            let c = try_synthetic_on(&s, Geometry::of(made).unwrap()).unwrap();
+            fit_curve(&c, &opt)
+        })
+        .collect();
+    let error = match Geometry::of(&table).unwrap() {
+        Geometry::Measured(p) => p.error_between(1e-9, 40e-9),
+        g => panic!("{g:?}"),
+    };
+    assert!(error > 1e-3 && error < 0.1, "{error}");
+    for ((made, _), r) in cases.iter().zip(&fits) {
+        let what = format!("{made:?}")[..20].to_string();
+        assert_eq!(r.status, FitStatus::Ok, "{what}: {}", r.message);
+        let (fe, fw, fl) = (
+            r.e_star_pa.unwrap(),
+            r.work_of_adhesion_j_m2.unwrap(),
+            r.lambda.unwrap(),
+        );
+        let (within, lambda_within) = if matches!(made, TipInput::Profile { .. }) {
+            (1e-6, 1e-6)
+        } else {
+            (error, 2.0 * error)
+        };
+        assert!(
+            rel(fe, 1e8) < within && rel(fw, 0.02) < within && rel(fl, 0.5) < lambda_within,
+            "{what}: E* {fe}, w {fw}, lambda {fl} (table error {error:e})"
+        );
+        let names: Vec<Model> = r.models.iter().map(|m| m.model).collect();
+        assert_eq!(names, vec![Model::Hertz, Model::Jkr], "{what}");
+    }
+}

@@ -674,3 +674,138 @@ fn a_tabulated_tip_is_its_shape_within_the_stated_error() {
         assert!(e.contains(words) && !e.contains('\n'), "{e}");
     }
 }
+
+/// A scene's tip in the normalised commands (`--tip scene:FILE`, its shape in the units of the
+/// scene's E* and w): a measured table of the cubic power law gives `power:3`'s state, pull-offs,
+/// map thresholds, cycle and profile within the error the scene states for its table; the
+/// command says the units and the scene's own lambda; a scene without a tip is refused.
+#[test]
+fn a_scenes_tip_in_its_units_from_the_command_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("cubic.json");
+    let base =
+        r#""e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05, "s0_pa": 5e7, "loads_n": [0, 2e-9]"#;
+    let table = tabulated(|r| 1e15 * r.powi(3), 3e-8, 100);
+    std::fs::write(&file, format!(r#"{{{base}, "tip": {table}}}"#)).unwrap();
+    let tabor::scene::Solved::Tip(stated) =
+        scene(&format!(r#"{{{base}, "tip": {table}}}"#)).unwrap()
+    else {
+        panic!("a table is a tip scene")
+    };
+    let (error, scene_lambda) = (stated.profile_error.unwrap(), stated.lambda);
+    assert!(error > 1e-5 && error < 1e-2, "{error}");
+    let tip = format!("scene:{}", file.display());
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+            .args(args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr).to_string();
+        assert!(out.status.success(), "{args:?}: {err}");
+        (String::from_utf8(out.stdout).unwrap(), err)
+    };
+    let json = |args: &[&str]| -> (serde_json::Value, String) {
+        let (out, err) = run(args);
+        (serde_json::from_str(&out).unwrap(), err)
+    };
+    let near = |x: &serde_json::Value, y: &serde_json::Value, what: &str| {
+        let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+        assert!(
+            (x - y).abs() <= error * y.abs().max(1e-12),
+            "{what}: {x} against {y} (stated {error:e})"
+        );
+    };
+    // One state, with the pull-offs.
+    let state = |t: &str| {
+        json(&[
+            "solve", "--tip", t, "--lambda", "1", "--load", "0.5", "--format", "json",
+        ])
+    };
+    let ((m, said), (p, _)) = (state(&tip), state("power:3"));
+    assert!(
+        said.contains("a measured profile (100 points")
+            && said.contains(&format!("the scene's own lambda is {scene_lambda:.6}")),
+        "{said}"
+    );
+    let (m, p) = (&m["results"][0], &p["results"][0]);
+    for k in ["A", "C", "approach"] {
+        near(&m[k], &p[k], k);
+    }
+    // The map: pull-off per lambda, and where each closed form becomes adequate.
+    let map = |t: &str| {
+        let out = dir.path().join(format!("{}.json", t.len()));
+        let png = dir.path().join(format!("{}.png", t.len()));
+        let (o, p) = (out.to_str().unwrap(), png.to_str().unwrap());
+        let args = [
+            "map",
+            "--tip",
+            t,
+            "--nx",
+            "6",
+            "--ny",
+            "8",
+            "--lambda-min",
+            "0.1",
+            "--lambda-max",
+            "10",
+            "--out",
+            p,
+            "--json",
+            o,
+        ];
+        run(&args);
+        serde_json::from_str::<serde_json::Value>(&std::fs::read_to_string(&out).unwrap()).unwrap()
+    };
+    let (mm, pm) = (map(&tip), map("power:3"));
+    assert_eq!(
+        mm["metadata"]["tip"]["shape"], "measured",
+        "{}",
+        mm["metadata"]["tip"]
+    );
+    let (mt, pt) = (
+        mm["thresholds"].as_array().unwrap(),
+        pm["thresholds"].as_array().unwrap(),
+    );
+    assert_eq!(mt.len(), 6);
+    for (a, b) in mt.iter().zip(pt) {
+        near(&a["pulloff_load"], &b["pulloff_load"], "the map's pull-off");
+        for k in ["hertz", "rigid", "dmt", "jkr"] {
+            let key = format!("{k}_adequate_above_load");
+            assert_eq!(a[&key], b[&key], "{key} at lambda {}", a["lambda"]);
+        }
+    }
+    // The cycle's loop and its separation (the non-contact branch's fold: the table's path,
+    // nearly flat where the contact shrinks to nothing, may add a jump of 6e-5 in approach
+    // before it), and the profile's radii.
+    let cycle = |t: &str| json(&["cycle", "--tip", t, "--lambda", "1", "--format", "json"]).0;
+    let (mc, pc) = (cycle(&tip), cycle("power:3"));
+    near(&mc["hysteresis"], &pc["hysteresis"], "the loop");
+    let last =
+        |c: &serde_json::Value| c["jumps"].as_array().unwrap().last().unwrap()["from"].clone();
+    near(
+        &last(&mc)["load"],
+        &last(&pc)["load"],
+        "the separation's load",
+    );
+    let profile = |t: &str| {
+        json(&[
+            "profile", "--tip", t, "--lambda", "1", "--load", "0.5", "--format", "json",
+        ])
+        .0
+    };
+    let (mp, pp) = (profile(&tip), profile("power:3"));
+    for k in ["a", "c"] {
+        near(&mp[k], &pp[k], k);
+    }
+    // A sphere's scene has no tip to take.
+    std::fs::write(&file, format!(r#"{{{base}, "radius_m": 1e-8}}"#)).unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_tabor"))
+        .args(["solve", "--tip", &tip, "--lambda", "1", "--load", "0.5"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("has no \"tip\""),
+        "{err}"
+    );
+}
