@@ -446,10 +446,13 @@ fn solve_tip<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::law::{tip, Given};
     let shape = tabor::scene::tip::shape_of(tip).map_err(PyValueError::new_err)?;
+    // "approach_in": the approach followed without a jump (`Tip::approach_state`), the
+    // nanite models' path.
     let given = match given {
-        "load" => Given::Load,
-        "approach" => Given::Approach,
-        "radius" => Given::Radius,
+        "load" => Some(Given::Load),
+        "approach" => Some(Given::Approach),
+        "radius" => Some(Given::Radius),
+        "approach_in" => None,
         g => return Err(PyValueError::new_err(format!("given = {g:?}"))),
     };
     let (lam, value) = (lam.as_slice()?, value.as_slice()?);
@@ -478,7 +481,10 @@ fn solve_tip<'py>(
             let states: Vec<_> = lam
                 .par_iter()
                 .zip(value)
-                .map(|(&l, &v)| tip::solve(shape, l, given, v))
+                .map(|(&l, &v)| match given {
+                    Some(g) => tip::solve(shape, l, g, v),
+                    None => tip::approach_in(shape, l, v),
+                })
                 .collect();
             for (i, (status, p)) in states.into_iter().enumerate() {
                 let v = p.map_or([f64::NAN; 4], |p| [p.load, p.approach, p.a, p.c]);
@@ -498,6 +504,17 @@ fn solve_tip<'py>(
     }
     d.set_item("status_code", out_code)?;
     Ok(d)
+}
+
+/// The units of a scene's tip (JSON): `length_m`, `approach_m`, `force_n`, `lambda` and the
+/// shape in them (`tabor::scene::tip::units_of`).
+#[pyfunction]
+fn tip_units<'py>(py: Python<'py>, scene_json: String) -> PyResult<Bound<'py, PyAny>> {
+    run_py(py, move || {
+        let s: tabor::scene::SceneInput = serde_json::from_str(&scene_json)
+            .map_err(|e| anyhow::anyhow!("not a valid scene: {e}"))?;
+        Ok(tabor::scene::tip::units_of(&s)?)
+    })
 }
 
 /// Per lambda, how `solve` answers a load or an approach (`tabor::physics::domain::method`):
@@ -1165,6 +1182,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(python_names, m)?)?;
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
     m.add_function(wrap_pyfunction!(solve_tip, m)?)?;
+    m.add_function(wrap_pyfunction!(tip_units, m)?)?;
     m.add_function(wrap_pyfunction!(status_names, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form, m)?)?;

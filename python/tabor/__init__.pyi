@@ -41,7 +41,7 @@ def solve(
     precision: Precision = "f32",
     check: int = 1000,
     adapter: Optional[str] = None,
-    tip: Optional[str] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> Result: ...
 def pulloff(
     lam: ArrayLike, stress_ratio: Optional[float] = None, range_ratio: Optional[float] = None
@@ -92,7 +92,7 @@ def adhesion_map(
     precision: Precision = "f32",
     check: int = 1000,
     adapter: Optional[str] = None,
-    tip: Optional[str] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> AdhesionMap: ...
 def presets() -> List[str]: ...
 
@@ -183,7 +183,7 @@ def cycle(
     max_load: float = 2.0,
     stress_ratio: Optional[float] = None,
     range_ratio: Optional[float] = None,
-    tip: Optional[str] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> Result: ...
 def profile(
     lam: float,
@@ -193,7 +193,7 @@ def profile(
     points: int = 400,
     stress_ratio: Optional[float] = None,
     range_ratio: Optional[float] = None,
-    tip: Optional[str] = None,
+    tip: Union[None, str, Dict[str, Any]] = None,
 ) -> Dict[str, Any]: ...
 def rough(
     lam: float,

@@ -1,4 +1,5 @@
-"""The exact Maugis-Dugdale force of a sphere on an elastic half-space, as a nanite model.
+"""The exact Maugis-Dugdale force of a sphere, or of a tip of another shape, on an elastic
+half-space, as nanite models.
 
 nanite (the AFM force-curve fitting library behind PyJibe) fits registered models to the force
 against the tip position. Register this one and select it by its key::
@@ -13,10 +14,25 @@ the branch where only the Dugdale zone attracts (the surfaces a gap apart), and 
 the force range. On approach the contact forms where the attracting branch meets the contact
 branch at zero radius (exact for lambda <= LAMBDA_D; above it the retract curve stays in contact
 down to a smaller indentation, which this approach model does not follow).
+
+The tips of docs/PHYSICS.md section 12 are models too, on the same path (the tip's exact
+Maugis-Dugdale law in its units): ``cone`` (key ``tabor_md_cone``, half-angle ``alpha`` in
+degrees, as nanite's ``hertz_cone``), ``pyr3s`` and ``pyr4s`` (``tabor_md_pyr3s``,
+``tabor_md_pyr4s``: three- and four-sided pyramids of face angle ``alpha``, as the cone of the
+same area function), and :func:`for_tip` for any fixed tip a scene takes (a power law, a capped
+cone, a measured profile)::
+
+    nanite.model.register_model(tabor.nanite_model.cone)
+    nanite.model.register_model(tabor.nanite_model.for_tip(
+        {"shape": "capped_cone", "radius_m": 20e-9, "half_angle_deg": 20}, "my_tip"))
 """
+
+import json
+import types
 
 import numpy as np
 
+from . import _tabor
 from . import solve as _solve
 
 #: LJ-matched Dugdale stress: s0 = LJ_STRESS * w / z0.
@@ -113,3 +129,91 @@ parameter_names = ["Young's Modulus", "Work of Adhesion", "Force Range z0", "Tip
 parameter_units = ["Pa", "J/m²", "m", "m", "", "m", "N"]
 valid_axes_x = ["tip position"]
 valid_axes_y = ["force"]
+
+
+def tip_md_force(delta, tip, E, w, z0, nu, contact_point=0, baseline=0):
+    """The Maugis-Dugdale force of the tip ``tip`` (a scene's ``"tip"`` object, SI units) at
+    the tip positions ``delta``, on the path the sphere's model follows: no force while the gap
+    exceeds the range, the Dugdale zone alone until it meets the contact (A -> 0), then the
+    contact (docs/PHYSICS.md section 12; ``Tip::approach_state``). E is Young's modulus (E* =
+    E/(1 - nu^2)), z0 the Lennard-Jones range (s0 = LJ_STRESS w / z0)."""
+    x = np.asarray(delta, dtype=float)
+    scene = json.dumps({"e_star_pa": E / (1.0 - nu ** 2), "work_of_adhesion_j_m2": w,
+                        "s0_pa": LJ_STRESS * w / z0, "tip": tip})
+    u = _tabor.tip_units(scene)
+    d = np.ascontiguousarray((contact_point - x) / u["approach_m"]).ravel()
+    r = _tabor.solve_tip(scene, np.full(d.shape, float(u["lambda"])), d, "approach_in")
+    p = np.where(r["status_code"] == 0, r["load"], np.nan).reshape(x.shape)
+    return u["force_n"] * np.nan_to_num(p, nan=0.0) + baseline
+
+
+_TIP_KEYS = ["E", "w", "z0", "nu", "contact_point", "baseline"]
+_TIP_NAMES = ["Young's Modulus", "Work of Adhesion", "Force Range z0", "Poisson's Ratio",
+              "Contact Point", "Force Baseline"]
+_TIP_UNITS = ["Pa", "J/m²", "m", "", "m", "N"]
+
+
+def _model(key, name, func, keys, names, units, defaults):
+    """A nanite model object (what nanite reads from a model module)."""
+    m = types.ModuleType(key)
+    m.model_func, m.model_doc, m.model_key, m.model_name = func, func.__doc__, key, name
+    m.parameter_keys, m.parameter_names, m.parameter_units = keys, names, units
+    m.valid_axes_x, m.valid_axes_y = ["tip position"], ["force"]
+
+    def get_parameter_defaults():
+        import lmfit
+        params = lmfit.Parameters()
+        for k, (value, vary, lo, hi) in defaults.items():
+            params.add(k, value=value, vary=vary, min=lo, max=hi)
+        return params
+
+    m.get_parameter_defaults = get_parameter_defaults
+    return m
+
+
+_DEFAULTS = {"E": (3e3, True, 0, np.inf), "w": (1e-4, True, 0, np.inf),
+             "z0": (0.3e-9, False, 0, np.inf), "nu": (0.5, False, 0, 0.5),
+             "contact_point": (0.0, True, -np.inf, np.inf), "baseline": (0.0, True, -np.inf, np.inf)}
+
+
+def for_tip(tip, key, name=None):
+    """A nanite model of the exact Maugis-Dugdale force of a fixed tip (a scene's ``"tip"``
+    object: a power law, a capped cone, a measured profile, ...), under ``key``; its parameters
+    are the sphere model's without R."""
+    tip = dict(tip)
+
+    def force(delta, E, w, z0, nu, contact_point=0, baseline=0):
+        return tip_md_force(delta, tip, E, w, z0, nu, contact_point, baseline)
+
+    force.__doc__ = (f"Maugis-Dugdale force of the tip {json.dumps(tip)[:200]} (exact, tabor)"
+                     "\n\n" + (tip_md_force.__doc__ or ""))
+    return _model(key, name or f"Maugis-Dugdale tip, exact (tabor): {tip.get('shape')}", force,
+                  _TIP_KEYS, _TIP_NAMES, _TIP_UNITS, _DEFAULTS)
+
+
+def _angled(key, name, tip_of, doc):
+    def force(delta, E, w, z0, alpha, nu, contact_point=0, baseline=0):
+        return tip_md_force(delta, tip_of(alpha), E, w, z0, nu, contact_point, baseline)
+
+    force.__doc__ = doc
+    defaults = dict(_DEFAULTS)
+    defaults = {k: defaults[k] for k in ("E", "w", "z0")}
+    defaults["alpha"] = (20.0, False, 0, 90)
+    defaults.update({k: _DEFAULTS[k] for k in ("nu", "contact_point", "baseline")})
+    keys = ["E", "w", "z0", "alpha", "nu", "contact_point", "baseline"]
+    names = _TIP_NAMES[:3] + ["Half Cone Angle" if "cone" in key else "Face Angle"] + _TIP_NAMES[3:]
+    units = _TIP_UNITS[:3] + ["°"] + _TIP_UNITS[3:]
+    return _model(key, name, force, keys, names, units, defaults)
+
+
+cone = _angled("tabor_md_cone", "Maugis-Dugdale cone, exact (tabor)",
+               lambda a: {"shape": "cone", "half_angle_deg": a},
+               "Maugis-Dugdale force of a cone of half-angle alpha (degrees; exact, tabor)")
+pyr3s = _angled("tabor_md_pyr3s", "Maugis-Dugdale three-sided pyramid, exact (tabor)",
+                lambda a: {"shape": "pyramid", "faces": 3, "face_angle_deg": a},
+                "Maugis-Dugdale force of a three-sided pyramid of face angle alpha (degrees), "
+                "as the cone of the same area function (exact, tabor)")
+pyr4s = _angled("tabor_md_pyr4s", "Maugis-Dugdale four-sided pyramid, exact (tabor)",
+                lambda a: {"shape": "pyramid", "faces": 4, "face_angle_deg": a},
+                "Maugis-Dugdale force of a four-sided pyramid of face angle alpha (degrees), "
+                "as the cone of the same area function (exact, tabor)")

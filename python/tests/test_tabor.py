@@ -258,6 +258,73 @@ def test_nanite_fits_a_synthetic_md_curve():
         nanite.model.deregister_model(tm)
 
 
+def test_the_nanite_tip_models_follow_the_tips_path():
+    """The tip models (tabor_md_cone, pyramids, for_tip): a paraboloid given as a tip is the
+    sphere model's force to rounding (below lambda_D, where both follow the same path); a cone's
+    zone-alone branch is the closed form `P = -(pi lambda/2) C^2`, `D = (2/pi) C - 8 lambda C /
+    (3 pi) - 2/(pi lambda)` (section 12, k_1 = pi/2); nanite fits a cone's curve back to 1e-6."""
+    import tabor.nanite_model as tm
+    import tabor._tabor as raw
+    r_tip = 20e-9
+    truth = dict(E=1e9, w=0.05, z0=0.6e-9, nu=0.5, contact_point=1e-9, baseline=0.0)
+    lam = tm.scales(1e9, 0.05, 0.6e-9, r_tip, 0.5)[0]
+    assert 0.3 < lam < 0.9  # below lambda_D: no jump on the approach
+    x = np.linspace(4e-9, -2e-9, 61)
+    para = tm.for_tip({"shape": "power", "exponent": 2, "coefficient": 0.5 / r_tip}, "para")
+    sphere = tm.md_force(x, R=r_tip, **truth)
+    tip = para.model_func(x, **truth)
+    assert np.count_nonzero(sphere) > 30 and np.count_nonzero(sphere < 0) > 8
+    assert np.max(np.abs(tip - sphere)) <= 1e-12 * np.max(np.abs(sphere))
+    # The cone's zone alone, against its closed form.
+    scene = {"e_star_pa": 1e6, "work_of_adhesion_j_m2": 0.02, "s0_pa": 2e5,
+             "tip": {"shape": "cone", "half_angle_deg": 70}}
+    u = raw.tip_units(json.dumps(scene))
+    c = np.linspace(0.05, 0.6, 12) * u["lambda"] ** -1
+    d = 2 / np.pi * c - 8 * u["lambda"] * c / (3 * np.pi) - 2 / (np.pi * u["lambda"])
+    r = raw.solve_tip(json.dumps(scene), np.full(12, u["lambda"]), d, "approach_in")
+    zone = np.isnan(r["A"]) | (r["A"] == 0)
+    assert zone.sum() >= 4, r
+    assert np.allclose(r["C"][zone], c[zone], rtol=1e-12)
+    assert np.allclose(r["load"][zone], -np.pi * u["lambda"] / 2 * c[zone] ** 2, rtol=1e-12)
+    try:
+        import nanite
+    except ImportError:
+        if IN_CI:
+            pytest.fail("nanite is not installed (.ci/run installs it)")
+        pytest.skip("SKIPPED: nanite is not installed (pip install nanite)")
+    nanite.model.register_model(tm.cone)
+    try:
+        truth = dict(E=1e6, w=0.02, z0=2e-9, alpha=70.0, nu=0.5, contact_point=2e-7,
+                     baseline=0.0)
+        x = np.linspace(3e-7, -8e-7, 300)
+        f = tm.cone.model_func(x, **truth)
+        assert f.min() < 0 < f.max()
+        n = len(x)
+        data = {"force": np.concatenate([f, f[::-1]]),
+                "height (measured)": np.concatenate([x, x[::-1]]),
+                "tip position": np.concatenate([x, x[::-1]]),
+                "segment": np.concatenate([np.zeros(n, bool), np.ones(n, bool)]),
+                "time": np.linspace(0, 1, 2 * n)}
+        meta = {"spring constant": 1.0, "imaging mode": "force-distance", "sensitivity": 1e-8,
+                "duration": 1.0, "point count": 2 * n, "format": "synthetic",
+                "path": "synthetic", "enum": 0}
+        idnt = nanite.Indentation(data=data, metadata=meta)
+        p = tm.cone.get_parameter_defaults()
+        p["E"].set(5e5)
+        p["w"].set(0.01)
+        p["z0"].set(2e-9)
+        p["alpha"].set(70.0)
+        p["contact_point"].set(1.9e-7)
+        idnt.fit_model(model_key="tabor_md_cone", params_initial=p, x_axis="tip position",
+                       y_axis="force", segment="approach", weight_cp=False, range_x=(0, 0),
+                       range_type="absolute")
+        fitted = idnt.fit_properties["params_fitted"]
+        for k in ("E", "w", "contact_point"):
+            assert fitted[k].value == pytest.approx(truth[k], rel=1e-6), k
+    finally:
+        nanite.model.deregister_model(tm.cone)
+
+
 def test_extended_domain_and_the_limits_method():
     # lambda = 1e-12 (the Python peer's DMT-limit case) is inside the exact solver's domain:
     # A within 1e-10 of DMT's at Pbar = 0 (MD differs by pi lambda A^2 in the load), method "md".

@@ -1,5 +1,5 @@
 //! The per-thread cache of the laws' costly values: a radius's parameter on the contact piece,
-//! the states at a piece's nodes, two zones' non-contact ends. A fit at fixed lambda asks for
+//! the states at a piece's nodes, a law's ends (two zones' non-contact ends, a tip's). A fit at fixed lambda asks for
 //! the same ones again; a cached value is the value computed, bit for bit.
 
 use super::{LawKey, Piece, Pt};
@@ -78,7 +78,8 @@ pub(crate) fn nodes(
     }
 }
 
-/// Two zones' non-contact ends.
+/// A law's pair of costly ends: two zones' non-contact ends, a tip's zone end and the start of
+/// its contact piece's part stable under rigid grips.
 pub(crate) fn ends(law: LawKey, f: impl FnOnce() -> (f64, f64)) -> (f64, f64) {
     match cached(Key::Ends(law), || Cached::Ends(f())) {
         Cached::Ends(e) => e,

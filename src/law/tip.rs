@@ -251,6 +251,49 @@ impl Tip {
         self.stable_at(Drive::DeadLoad, t0, p)
     }
 
+    /// The state at approach `dbar` on the way in under rigid grips, following the path
+    /// without a jump as a quasi-static indentation does: the free surfaces while the gap
+    /// exceeds the range (`dbar` below [`Law::free_end`]), the zone alone (the non-contact
+    /// piece, where its approach rises) up to its end at A -> 0, then the contact piece's
+    /// stable part (where the contact piece folds, large lambda, its stable part from the
+    /// fold). None beyond A = e^60.
+    pub fn approach_state(&self, dbar: f64) -> Option<PathPoint> {
+        if dbar < self.free_end() {
+            return Some(PathPoint {
+                branch: Branch::Free,
+                approach: dbar,
+                load: 0.0,
+                a: 0.0,
+                c: 0.0,
+            });
+        }
+        // The zone's end and the grips' stable start, once per law and thread (a curve's
+        // points share them).
+        let (c_end, t0) = super::cache::ends(self.key(), || {
+            (self.zone_end(), self.stable_from(Drive::RigidGrips))
+        });
+        let zone = |c: f64| self.state(Piece::NonContact, c);
+        if dbar >= zone(c_end).approach {
+            return self.stable_at(Drive::RigidGrips, t0, dbar);
+        }
+        // The non-contact piece's approach falls from the free end while fbar' < 8 lambda /
+        // (3 pi), then rises to its end: the root on the rising part.
+        let lowest = if zone(0.0).dapproach < 0.0 {
+            bisect_sign(|c| zone(c).dapproach, 0.0, c_end)
+        } else {
+            0.0
+        };
+        let c = bisect_sign(|c| zone(c).approach - dbar, lowest, c_end);
+        let p = zone(c);
+        Some(PathPoint {
+            branch: Branch::NonContact,
+            approach: p.approach,
+            load: p.load,
+            a: 0.0,
+            c,
+        })
+    }
+
     /// Whether the contact piece at radius `a` is stable under `drive` (its control rises).
     pub fn stable_under(&self, drive: Drive, a: f64) -> bool {
         self.control_slope(drive, self.t_of_radius(a)).0 > 0.0
@@ -284,6 +327,21 @@ pub fn solve(shape: Shape, lambda: f64, given: Given, value: f64) -> (Status, Op
         Given::Approach => tip.state_under(Drive::RigidGrips, value),
     };
     match point {
+        Some(p) => (Status::Ok, Some(p)),
+        None => (Status::NoContact, None),
+    }
+}
+
+/// [`Tip::approach_state`] of `shape` at `lambda`, with its status as [`solve`]'s (`Ok` on every
+/// branch, the free one included; `NoContact` beyond A = e^60).
+pub fn approach_in(shape: Shape, lambda: f64, value: f64) -> (Status, Option<PathPoint>) {
+    let Ok(tip) = Tip::new(shape, lambda) else {
+        return (Status::InvalidInput, None);
+    };
+    if !value.is_finite() {
+        return (Status::InvalidInput, None);
+    }
+    match tip.approach_state(value) {
         Some(p) => (Status::Ok, Some(p)),
         None => (Status::NoContact, None),
     }
