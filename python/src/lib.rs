@@ -578,6 +578,42 @@ fn pulloff<'py>(py: Python<'py>, lam: PyReadonlyArray1<'py, f64>) -> PyResult<Bo
     Ok(d)
 }
 
+/// A tip's pull-offs in its units (`tabor pulloff --tip`): per lambda the states at the folds of
+/// its contact piece under a dead load and under rigid grips (or its A -> 0 end).
+#[pyfunction]
+fn pulloff_tip<'py>(
+    py: Python<'py>,
+    tip: &str,
+    lam: PyReadonlyArray1<'py, f64>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use tabor::law::{Drive, Tip};
+    let shape = tabor::scene::tip::shape_of(tip).map_err(PyValueError::new_err)?;
+    let lam: Vec<f64> = lam.as_slice()?.to_vec();
+    let states = run(py, move || {
+        use rayon::prelude::*;
+        lam.par_iter()
+            .map(|&l| {
+                let t = Tip::new(shape, l).map_err(|e| anyhow::anyhow!("lam = {l}: {e}"))?;
+                Ok((
+                    t.pulloff_state(Drive::DeadLoad),
+                    t.pulloff_state(Drive::RigidGrips),
+                ))
+            })
+            .collect::<anyhow::Result<Vec<_>>>()
+    })?;
+    let d = PyDict::new(py);
+    let col = |f: &dyn Fn(&(tabor::law::PathPoint, tabor::law::PathPoint)) -> f64| {
+        arr(py, states.iter().map(f).collect())
+    };
+    d.set_item("load_control_load", col(&|s| s.0.load))?;
+    d.set_item("load_control_A", col(&|s| s.0.a))?;
+    d.set_item("load_control_approach", col(&|s| s.0.approach))?;
+    d.set_item("displacement_control_load", col(&|s| s.1.load))?;
+    d.set_item("displacement_control_A", col(&|s| s.1.a))?;
+    d.set_item("displacement_control_approach", col(&|s| s.1.approach))?;
+    Ok(d)
+}
+
 /// A closed form elementwise: `model` hertz|dmt|jkr, `what` radius (A from Pbar) or load (Pbar
 /// from A); NaN where the model has no answer.
 #[pyfunction]
@@ -1183,6 +1219,7 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
     m.add_function(wrap_pyfunction!(solve_tip, m)?)?;
     m.add_function(wrap_pyfunction!(tip_units, m)?)?;
+    m.add_function(wrap_pyfunction!(pulloff_tip, m)?)?;
     m.add_function(wrap_pyfunction!(status_names, m)?)?;
     m.add_function(wrap_pyfunction!(pulloff, m)?)?;
     m.add_function(wrap_pyfunction!(closed_form, m)?)?;

@@ -368,7 +368,7 @@ def _solve_tip(tip, lam_f, val_f, given, shape):
     return Result(out, {"backend": "cpu", "precision": "f64", "control": control, "tip": tip})
 
 
-def pulloff(lam, stress_ratio=None, range_ratio=None):
+def pulloff(lam, stress_ratio=None, range_ratio=None, *, tip=None):
     """Pull-off (jump-out) under load and displacement control, as ``tabor pulloff``.
 
     Parameters
@@ -379,6 +379,11 @@ def pulloff(lam, stress_ratio=None, range_ratio=None):
     stress_ratio, range_ratio : float, optional
         A second Dugdale zone, such as a water meniscus: its stress and range relative to the
         solid's (both or neither; docs/PHYSICS.md section 10).
+    tip : str or dict, optional
+        A tip that is not a sphere (``tabor pulloff --tip``): ``"cone"``, ``"power:N"``,
+        ``"capped-cone:R_OVER_L:HALF_ANGLE_DEG"`` or a scene (dict) whose tip is taken in the
+        units of its E* and w; ``lam`` its Maugis parameter (1e-3 .. 1e3), the loads in its
+        units (docs/PHYSICS.md section 12). The same keys, without the zero-radius end's.
 
     Returns
     -------
@@ -406,6 +411,12 @@ def pulloff(lam, stress_ratio=None, range_ratio=None):
     >>> round(tabor.pulloff(1.0, stress_ratio=0.5, range_ratio=3.0)["load_control_load"], 6)
     -1.617368
     """
+    if tip is not None:
+        if stress_ratio is not None or range_ratio is not None:
+            raise ValueError("tip= has no second zone: leave stress_ratio and range_ratio out")
+        (lam_f,), shape = _flat(lam, names=["lam"])
+        r = _tabor.pulloff_tip(_tip_text(tip), lam_f)
+        return Result({k: np.asarray(v).reshape(shape) for k, v in r.items()}, {"tip": tip})
     if _tabor.two_zone_ratios(_optional(stress_ratio, "stress_ratio"),
                               _optional(range_ratio, "range_ratio")) is not None:
         return _tabor.pulloff_two_zone(_real(lam, "lam"), _real(stress_ratio, "stress_ratio"),

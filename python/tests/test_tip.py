@@ -197,6 +197,13 @@ def test_a_scenes_tip_in_its_units_is_the_command_lines(tmp_path):
     # Within the table's error of the cubic power law itself (the units are the same).
     assert float(s.A) == pytest.approx(float(tabor.solve(1.0, load=0.5, tip="power:3").A),
                                        rel=2e-3)
+    # Pull-offs: the table within its error of the cubic law; power:2 is the sphere's.
+    p, q = tabor.pulloff(1.0, tip=scene), tabor.pulloff(1.0, tip="power:3")
+    assert float(p["load_control_load"]) == pytest.approx(float(q["load_control_load"]), rel=2e-3)
+    lam = [0.3, 1.0, 5.0]
+    two, sphere = tabor.pulloff(lam, tip="power:2"), tabor.pulloff(lam)
+    for k in ("load_control_load", "load_control_A", "displacement_control_load"):
+        assert np.allclose(two[k], sphere[k], rtol=0, atol=1e-11), k
     with pytest.raises(ValueError, match='has no "tip"'):
         tabor.solve(1.0, load=0.5, tip={"e_star_pa": 1e9, "work_of_adhesion_j_m2": 0.05,
                                         "s0_pa": 5e7, "radius_m": 1e-8})

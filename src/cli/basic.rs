@@ -972,16 +972,80 @@ pub struct PulloffArgs {
     /// The second zone's range over the solid's, h2/h1.
     #[arg(long)]
     pub range_ratio: Option<f64>,
+    /// The pull-offs of a tip that is not a sphere (docs/PHYSICS.md section 12), in its units:
+    /// cone, power:N, capped-cone:R_OVER_L:HALF_ANGLE_DEG or scene:FILE (a scene's tip in the
+    /// units of its E* and w).
+    #[arg(long, conflicts_with_all = ["stress_ratio", "range_ratio"])]
+    pub tip: Option<String>,
     #[arg(long, value_enum, default_value_t = Format::Text)]
     pub format: Format,
     #[arg(long, short, default_value = "-")]
     pub output: String,
 }
 
+/// A pull-off table as `a.format` asks: CSV of `cols`, JSON `results` (one object per row, the
+/// keys of `head` beside them), or the text `text` writes.
+fn write_pulloffs(
+    a: &PulloffArgs,
+    cols: &[&str],
+    rows: &[Vec<f64>],
+    head: &[(&str, serde_json::Value)],
+    text: impl FnOnce() -> String,
+) -> anyhow::Result<()> {
+    let out = match a.format {
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(cols)?;
+            for r in rows {
+                w.write_record(r.iter().map(|&v| fmt17(v)))?;
+            }
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        Format::Json => {
+            let res: Vec<_> = rows
+                .iter()
+                .map(|r| {
+                    let m: serde_json::Map<_, _> = cols
+                        .iter()
+                        .zip(r)
+                        .map(|(k, &v)| (k.to_string(), json_num(v)))
+                        .collect();
+                    serde_json::Value::Object(m)
+                })
+                .collect();
+            let mut doc: serde_json::Map<_, _> = head
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.clone()))
+                .collect();
+            doc.insert("results".into(), serde_json::Value::Array(res));
+            serde_json::to_string_pretty(&doc)? + "\n"
+        }
+        Format::Text => text(),
+    };
+    write_output(&a.output, out.as_bytes())
+}
+
+/// The text table's heading line of the two pull-offs.
+fn pulloff_heading() -> String {
+    format!(
+        "{:>12}  {:>20} {:>12}   {:>20} {:>12}\n",
+        "lambda", "Pbar_c (load ctl)", "A there", "Pbar (displ. ctl)", "A there"
+    )
+}
+
+/// One text row: lambda, the load-controlled pull-off's load and radius, the
+/// displacement-controlled one's, and a note where the latter is lost at A = 0.
+fn pulloff_line(t: &mut String, lambda: f64, load: (f64, f64), disp: (f64, f64), note: &str) {
+    let _ = writeln!(
+        t,
+        "{:>12}  {:>20.15} {:>12.8}   {:>20.15} {:>12.8}{}",
+        lambda, load.0, load.1, disp.0, disp.1, note
+    );
+}
+
 /// Pull-offs of the two-zone law: the solid's lambda with a second zone given by its stress and
 /// range ratios.
 fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
-    use crate::solver::two_zone::TwoZoneContext;
     let mut rows = Vec::new();
     for &l in &a.lambda {
         rows.push((l, two_zone_context(l, rho, eta)?));
@@ -997,73 +1061,92 @@ fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
         "displacement_control_A",
         "displacement_control_approach",
     ];
-    let vals = |l: f64, c: &TwoZoneContext| {
-        [
-            l,
-            rho,
-            eta,
-            c.load_pulloff.load,
-            c.load_pulloff.a,
-            c.load_pulloff.approach,
-            c.disp_pulloff.load,
-            c.disp_pulloff.a,
-            c.disp_pulloff.approach,
-        ]
-    };
-    let text = match a.format {
-        Format::Csv => {
-            let mut w = crate::io::csv_writer();
-            w.write_record(cols)?;
-            for (l, c) in &rows {
-                w.write_record(vals(*l, c).map(fmt17))?;
-            }
-            String::from_utf8(crate::io::csv_finish(w)?)?
-        }
-        Format::Json => {
-            let res: Vec<_> = rows
-                .iter()
-                .map(|(l, c)| {
-                    let m: serde_json::Map<_, _> = cols
-                        .iter()
-                        .zip(vals(*l, c))
-                        .map(|(k, v)| (k.to_string(), json_num(v)))
-                        .collect();
-                    serde_json::Value::Object(m)
-                })
-                .collect();
-            serde_json::to_string_pretty(&json!({"units": "total w = w1 + w2", "results": res}))?
-                + "\n"
-        }
-        Format::Text => {
+    let values: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|(l, c)| {
+            vec![
+                *l,
+                rho,
+                eta,
+                c.load_pulloff.load,
+                c.load_pulloff.a,
+                c.load_pulloff.approach,
+                c.disp_pulloff.load,
+                c.disp_pulloff.a,
+                c.disp_pulloff.approach,
+            ]
+        })
+        .collect();
+    write_pulloffs(
+        a,
+        &cols,
+        &values,
+        &[("units", json!("total w = w1 + w2"))],
+        || {
             let mut t = format!(
-                "two Dugdale zones, stress ratio {rho}, range ratio {eta}; loads in pi (w1 + w2) R\n{:>12}  {:>20} {:>12}   {:>20} {:>12}\n",
-                "lambda", "Pbar_c (load ctl)", "A there", "Pbar (displ. ctl)", "A there"
+                "two Dugdale zones, stress ratio {rho}, range ratio {eta}; loads in pi (w1 + w2) R\n{}",
+                pulloff_heading()
             );
             for (l, c) in &rows {
-                let _ = writeln!(
-                    t,
-                    "{:>12}  {:>20.15} {:>12.8}   {:>20.15} {:>12.8}{}",
-                    l,
-                    c.load_pulloff.load,
-                    c.load_pulloff.a,
-                    c.disp_pulloff.load,
-                    c.disp_pulloff.a,
-                    if c.disp_pulloff.at_zero_radius() {
-                        "  (lost at A = 0)"
-                    } else {
-                        ""
-                    }
-                );
+                let (lc, dc) = (&c.load_pulloff, &c.disp_pulloff);
+                let note = if dc.at_zero_radius() {
+                    "  (lost at A = 0)"
+                } else {
+                    ""
+                };
+                pulloff_line(&mut t, *l, (lc.load, lc.a), (dc.load, dc.a), note);
             }
             t
+        },
+    )
+}
+
+/// Pull-offs of a tip's law (docs/PHYSICS.md section 12) in its units: the states at the folds
+/// of its contact piece under a dead load and under rigid grips (or its A -> 0 end).
+fn pulloff_tip(a: &PulloffArgs, shape: crate::physics::tip::Shape) -> anyhow::Result<()> {
+    use crate::law::{Drive, Tip};
+    let mut rows = Vec::new();
+    for &l in &a.lambda {
+        let tip = Tip::new(shape, l).context("--lambda")?;
+        rows.push((
+            l,
+            tip.pulloff_state(Drive::DeadLoad),
+            tip.pulloff_state(Drive::RigidGrips),
+        ));
+    }
+    let cols = [
+        "lambda",
+        "load_control_load",
+        "load_control_A",
+        "load_control_approach",
+        "displacement_control_load",
+        "displacement_control_A",
+        "displacement_control_approach",
+    ];
+    let values: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|(l, d, g)| vec![*l, d.load, d.a, d.approach, g.load, g.a, g.approach])
+        .collect();
+    let label = shape.label();
+    write_pulloffs(a, &cols, &values, &[("tip", json!(label))], || {
+        let mut t = format!(
+            "Maugis-Dugdale on {label}; loads in its units (docs/PHYSICS.md section 12)\n{}",
+            pulloff_heading()
+        );
+        for (l, d, g) in &rows {
+            let note = if g.a == 0.0 { "  (lost at A = 0)" } else { "" };
+            pulloff_line(&mut t, *l, (d.load, d.a), (g.load, g.a), note);
         }
-    };
-    write_output(&a.output, text.as_bytes())
+        t
+    })
 }
 
 pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
     if let Some((rho, eta)) = super::two_zone_ratios(a.stress_ratio, a.range_ratio)? {
         return pulloff_two_zone(&a, rho, eta);
+    }
+    if let Some(t) = &a.tip {
+        return pulloff_tip(&a, super::tip_shape(t)?);
     }
     let mut rows = Vec::new();
     for &l in &a.lambda {
@@ -1081,71 +1164,39 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
         "zero_radius_end_load",
         "zero_radius_end_approach",
     ];
-    let vals = |c: &LambdaContext| {
-        [
-            c.lambda,
-            c.load_pulloff.load,
-            c.load_pulloff.a,
-            c.load_pulloff.approach,
-            c.disp_pulloff().load,
-            c.disp_pulloff().a,
-            c.disp_pulloff().approach,
-            c.end.load,
-            c.end.approach,
-        ]
-    };
-    let text = match a.format {
-        Format::Csv => {
-            let mut w = crate::io::csv_writer();
-            w.write_record(cols)?;
-            for c in &rows {
-                w.write_record(vals(c).map(fmt17))?;
-            }
-            String::from_utf8(crate::io::csv_finish(w)?)?
+    let values: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|c| {
+            vec![
+                c.lambda,
+                c.load_pulloff.load,
+                c.load_pulloff.a,
+                c.load_pulloff.approach,
+                c.disp_pulloff().load,
+                c.disp_pulloff().a,
+                c.disp_pulloff().approach,
+                c.end.load,
+                c.end.approach,
+            ]
+        })
+        .collect();
+    write_pulloffs(&a, &cols, &values, &[], || {
+        let mut t = pulloff_heading();
+        for c in &rows {
+            let (lc, dc) = (&c.load_pulloff, c.disp_pulloff());
+            let note = if dc.at_zero_radius() {
+                "  (lost at A = 0: lambda <= lambda_D)"
+            } else {
+                ""
+            };
+            pulloff_line(&mut t, c.lambda, (lc.load, lc.a), (dc.load, dc.a), note);
         }
-        Format::Json => {
-            let res: Vec<_> = rows
-                .iter()
-                .map(|c| {
-                    let m: serde_json::Map<_, _> = cols
-                        .iter()
-                        .zip(vals(c))
-                        .map(|(k, v)| (k.to_string(), json_num(v)))
-                        .collect();
-                    serde_json::Value::Object(m)
-                })
-                .collect();
-            serde_json::to_string_pretty(&json!({"results": res}))? + "\n"
-        }
-        Format::Text => {
-            let mut t = format!(
-                "{:>12}  {:>20} {:>12}   {:>20} {:>12}\n",
-                "lambda", "Pbar_c (load ctl)", "A there", "Pbar (displ. ctl)", "A there"
-            );
-            for c in &rows {
-                let _ = writeln!(
-                    t,
-                    "{:>12}  {:>20.15} {:>12.8}   {:>20.15} {:>12.8}{}",
-                    c.lambda,
-                    c.load_pulloff.load,
-                    c.load_pulloff.a,
-                    c.disp_pulloff().load,
-                    c.disp_pulloff().a,
-                    if c.disp_pulloff().at_zero_radius() {
-                        "  (lost at A = 0: lambda <= lambda_D)"
-                    } else {
-                        ""
-                    }
-                );
-            }
-            let _ = writeln!(
-                t,
-                "lambda_D = {LAMBDA_D}: below it the rigid-grip contact shrinks to zero radius."
-            );
-            t
-        }
-    };
-    write_output(&a.output, text.as_bytes())
+        let _ = writeln!(
+            t,
+            "lambda_D = {LAMBDA_D}: below it the rigid-grip contact shrinks to zero radius."
+        );
+        t
+    })
 }
 
 #[derive(Args, Debug)]

@@ -429,6 +429,24 @@ fn tip_states_from_the_command_line() {
             }
         }
     }
+    // `tabor pulloff --tip power:2` is `tabor pulloff` (the sphere's solver) at both controls.
+    let tip = json(&["pulloff", "--tip", "power:2", "--lambda", "0.3,1,5"]);
+    let md = json(&["pulloff", "--lambda", "0.3,1,5"]);
+    for (t, m) in tip["results"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(md["results"].as_array().unwrap())
+    {
+        for k in [
+            "load_control_load",
+            "load_control_A",
+            "displacement_control_load",
+        ] {
+            let (x, y) = (t[k].as_f64().unwrap(), m[k].as_f64().unwrap());
+            assert!((x - y).abs() <= 1e-11, "{k}: {x} against {y}");
+        }
+    }
     let none = json(&["solve", "--tip", "cone", "--lambda", "1", "--load", "-50"]);
     assert_eq!(none["results"][0]["status"], "no_contact");
     assert!(none["results"][0]["A"].is_null(), "{none}");
@@ -730,6 +748,11 @@ fn a_scenes_tip_in_its_units_from_the_command_line() {
     let (m, p) = (&m["results"][0], &p["results"][0]);
     for k in ["A", "C", "approach"] {
         near(&m[k], &p[k], k);
+    }
+    let pulloffs = |t: &str| json(&["pulloff", "--tip", t, "--lambda", "1", "--format", "json"]).0;
+    let (mp, pp) = (pulloffs(&tip), pulloffs("power:3"));
+    for k in ["load_control_load", "displacement_control_load"] {
+        near(&mp["results"][0][k], &pp["results"][0][k], k);
     }
     // The map: pull-off per lambda, and where each closed form becomes adequate.
     let map = |t: &str| {
