@@ -329,6 +329,9 @@ pub(super) fn warnings(
     in_contact: usize,
 ) -> Vec<String> {
     let mut warn = d.notes.clone();
+    // The tip's own stretched idealisations (a steep flank, a pyramid as its cone), as its
+    // scene says them.
+    warn.extend(opt.tip.iter().flat_map(|t| t.warnings()));
     // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
     // on that value.
     for h in hints(d, opt) {

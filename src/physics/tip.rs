@@ -794,6 +794,32 @@ impl TipInput {
         })
     }
 
+    /// Where the tip's idealisation is stretched, in words: a flank too steep for Sneddon's
+    /// half-space theory, a pyramid solved as its equivalent cone. A scene and a fit say them.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        let half_angle = match *self {
+            TipInput::Cone { half_angle_deg } | TipInput::CappedCone { half_angle_deg, .. } => {
+                Some(half_angle_deg)
+            }
+            TipInput::Pyramid { .. } => self.equivalent_cone_deg(),
+            _ => None,
+        };
+        if let Some(a) = half_angle.filter(|&a| a < 60.0) {
+            w.push(format!(
+                "the flank's slope cot({a:.1} deg) = {:.2} is not small: Sneddon's half-space theory, which this law rests on, is an approximation for so sharp a tip",
+                1.0 / a.to_radians().tan()
+            ));
+        }
+        if let TipInput::Pyramid { faces, .. } = self {
+            w.push(format!(
+                "a {faces}-sided pyramid is solved as the cone of the same area function (half-angle {:.2} deg): its contact is not a circle",
+                self.equivalent_cone_deg().unwrap_or(f64::NAN)
+            ));
+        }
+        w
+    }
+
     /// The half-angle of the cone a pyramid is solved as (degrees), where the tip is one.
     pub fn equivalent_cone_deg(&self) -> Option<f64> {
         match self {

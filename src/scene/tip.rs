@@ -165,7 +165,7 @@ pub fn solve_tip_scene(s: &SceneInput, tip: &TipInput) -> Result<TipSceneResult,
         .max()
         .map_or("none", |i| order[i]);
     let (under, control) = under_control(s, &law, &u, grips.load)?;
-    let mut warnings = tip_warnings(tip);
+    let mut warnings = tip.warnings();
     let mut profile_error = None;
     if let crate::physics::tip::Shape::Measured(p) = u.shape {
         let last_m = p.largest_radius() * u.length_m;
@@ -344,30 +344,4 @@ fn load_result(
             }
         }
     })
-}
-
-/// Where the tip stretches the idealisation: steep flanks (the half-space theory needs small
-/// slopes) and pyramids (solved as a cone).
-fn tip_warnings(tip: &TipInput) -> Vec<String> {
-    let mut w = Vec::new();
-    let half_angle = match *tip {
-        TipInput::Cone { half_angle_deg } | TipInput::CappedCone { half_angle_deg, .. } => {
-            Some(half_angle_deg)
-        }
-        TipInput::Pyramid { .. } => tip.equivalent_cone_deg(),
-        _ => None,
-    };
-    if let Some(a) = half_angle.filter(|&a| a < 60.0) {
-        w.push(format!(
-            "the flank's slope cot({a:.1} deg) = {:.2} is not small: Sneddon's half-space theory, which this law rests on, is an approximation for so sharp a tip",
-            1.0 / a.to_radians().tan()
-        ));
-    }
-    if let TipInput::Pyramid { faces, .. } = tip {
-        w.push(format!(
-            "a {faces}-sided pyramid is solved as the cone of the same area function (half-angle {:.2} deg): its contact is not a circle",
-            tip.equivalent_cone_deg().unwrap_or(f64::NAN)
-        ));
-    }
-    w
 }

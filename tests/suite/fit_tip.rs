@@ -291,3 +291,42 @@ fn a_measured_profile_fits_its_curve_and_the_capped_cones() {
         assert_eq!(names, vec![Model::Hertz, Model::Jkr], "{what}");
     }
 }
+
+/// A four-sided pyramid is fitted as the cone of the same area function and says so: a cone's
+/// noise-free curve fitted with the pyramid whose equivalent cone it is gives the cone's E*, w
+/// and lambda (to 1e-6), with the pyramid's warning.
+#[test]
+fn a_pyramid_is_fitted_as_its_equivalent_cone_and_says_so() {
+    // tan(cone) = tan(face) sqrt(4 tan(pi/4) / pi).
+    let face = (65f64.to_radians().tan() / (4.0 / std::f64::consts::PI).sqrt())
+        .atan()
+        .to_degrees();
+    let pyramid = TipInput::Pyramid {
+        faces: 4,
+        face_angle_deg: face,
+    };
+    assert!((pyramid.equivalent_cone_deg().unwrap() - 65.0).abs() < 1e-12);
+    let (s, _) = case(&cone(), Model::Md, 1e6, 1.0, 0.05, 0.0, 200);
+    let (_, opt) = case(&pyramid, Model::Md, 1e6, 1.0, 0.05, 0.0, 200);
+    let r = fit_curve(
+        &try_synthetic_on(&s, Geometry::of(&cone()).unwrap()).unwrap(),
+        &opt,
+    );
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    assert!(
+        rel(r.e_star_pa.unwrap(), 1e6) < 1e-6
+            && rel(r.work_of_adhesion_j_m2.unwrap(), 0.02) < 1e-6
+            && rel(r.lambda.unwrap(), 1.0) < 1e-6,
+        "{:?} {:?} {:?}",
+        r.e_star_pa,
+        r.work_of_adhesion_j_m2,
+        r.lambda
+    );
+    assert!(
+        r.warnings
+            .iter()
+            .any(|w| w.contains("4-sided pyramid is solved as the cone of the same area function (half-angle 65.00 deg)")),
+        "{:?}",
+        r.warnings
+    );
+}
