@@ -344,13 +344,28 @@ def solve(lam, load=None, approach=None, radius=None, *, backend="cpu", precisio
 
 def _tip_text(tip):
     """A normalised-unit call's ``tip``: a shape's text, or a scene (dict) as its JSON, whose
-    tip the library takes in the units of the scene's E* and w."""
+    tip the library takes in the units of the scene's E* and w (NumPy arrays as lists)."""
     if tip is None or isinstance(tip, str):
         return tip
-    if isinstance(tip, dict):
-        return json.dumps(tip)
-    raise TypeError(f"tip = {tip!r}: give a shape string such as \"cone\" or \"power:3\", "
-                    "or a scene (dict) with a \"tip\"")
+    if not isinstance(tip, dict):
+        raise TypeError(f"tip = {tip!r}: give a shape string such as \"cone\" or \"power:3\", "
+                        "or a scene (dict) with a \"tip\"")
+    if "shape" in tip and "tip" not in tip:
+        raise ValueError(f"tip = {{\"shape\": {tip['shape']!r}, ...}} is a tip in SI units, which "
+                         "has no normalised shape without its materials: give the scene, "
+                         "{\"e_star_pa\": ..., \"work_of_adhesion_j_m2\": ..., \"s0_pa\": ..., "
+                         "\"tip\": {...}}")
+
+    def plain(o):
+        if isinstance(o, (np.ndarray, np.generic)):
+            return o.tolist()
+        raise TypeError(f"{type(o).__name__} is not a number, string, list or dict")
+
+    try:
+        return json.dumps(tip, allow_nan=False, default=plain)
+    except ValueError:
+        raise ValueError("tip: the scene holds a value that is not a finite number; give "
+                         "finite values") from None
 
 
 def _solve_tip(tip, lam_f, val_f, given, shape):
@@ -398,7 +413,8 @@ def pulloff(lam, stress_ratio=None, range_ratio=None, *, tip=None):
     Raises
     ------
     ValueError
-        a lambda outside 1e-26 .. 1e26, or one ratio without the other.
+        a lambda outside 1e-26 .. 1e26 (a tip's: 1e-3 .. 1e3), one ratio without the other, or
+        a tip with a ratio.
 
     Examples
     --------

@@ -12,8 +12,9 @@ The tip follows the equilibrium path of a contact under displacement control (th
 already contains the cantilever's bending): in contact the Maugis-Dugdale branch, before it
 the branch where only the Dugdale zone attracts (the surfaces a gap apart), and no force beyond
 the force range. On approach the contact forms where the attracting branch meets the contact
-branch at zero radius (exact for lambda <= LAMBDA_D; above it the retract curve stays in contact
-down to a smaller indentation, which this approach model does not follow).
+branch at zero radius; for lambda^3 > 9/32 (lambda > 0.655) that meeting lies beyond the range,
+and the surfaces jump into contact where the gap closes within it (the retract curve stays in
+contact down to a smaller indentation, which this approach model does not follow).
 
 The tips of docs/PHYSICS.md section 12 are models too, on the same path (the tip's exact
 Maugis-Dugdale law in its units): ``cone`` (key ``tabor_md_cone``, half-angle ``alpha`` in
@@ -32,7 +33,7 @@ import types
 
 import numpy as np
 
-from . import _tabor
+from . import _tabor, _tip_text
 from . import solve as _solve
 
 #: LJ-matched Dugdale stress: s0 = LJ_STRESS * w / z0.
@@ -115,7 +116,10 @@ def md_force(delta, E, w, z0, R, nu, contact_point=0, baseline=0):
     free = d + 2.0 / (np.pi * lam)
     c = b + np.sqrt(np.maximum(b * b + 2.0 * free, 0.0))
     attract = np.where(free >= 0.0, -(np.pi * lam / 2.0) * np.minimum(c, c_end) ** 2, 0.0)
-    p = np.where(d >= d_end, p, attract)
+    # Contact from the zone's end on; where that end lies beyond the range (lambda^3 > 9/32, the
+    # zone alone has no stable state to approach on), from the free end, where the gap closes
+    # within the range and the surfaces jump into contact.
+    p = np.where(d >= max(d_end, -2.0 / (np.pi * lam)), p, attract)
     return force_unit * np.nan_to_num(p, nan=0.0) + baseline
 
 
@@ -138,13 +142,17 @@ def tip_md_force(delta, tip, E, w, z0, nu, contact_point=0, baseline=0):
     contact (docs/PHYSICS.md section 12; ``Tip::approach_state``). E is Young's modulus (E* =
     E/(1 - nu^2)), z0 the Lennard-Jones range (s0 = LJ_STRESS w / z0)."""
     x = np.asarray(delta, dtype=float)
-    scene = json.dumps({"e_star_pa": E / (1.0 - nu ** 2), "work_of_adhesion_j_m2": w,
-                        "s0_pa": LJ_STRESS * w / z0, "tip": tip})
+    scene = _tip_text({"e_star_pa": E / (1.0 - nu ** 2), "work_of_adhesion_j_m2": w,
+                       "s0_pa": LJ_STRESS * w / z0, "tip": tip})
     u = _tabor.tip_units(scene)
     d = np.ascontiguousarray((contact_point - x) / u["approach_m"]).ravel()
     r = _tabor.solve_tip(scene, np.full(d.shape, float(u["lambda"])), d, "approach_in")
-    p = np.where(r["status_code"] == 0, r["load"], np.nan).reshape(x.shape)
-    return u["force_n"] * np.nan_to_num(p, nan=0.0) + baseline
+    # A lambda outside the tip law's 1e-3..1e3 (status invalid_input) gives NaN, which lmfit
+    # refuses, not a flat curve; beyond A = e^60 (no_contact) no force.
+    code = np.asarray(r["status_code"]).reshape(x.shape)
+    p = np.where(code == 0, np.asarray(r["load"]).reshape(x.shape), 0.0)
+    p = np.where(code == 3, np.nan, p)
+    return u["force_n"] * p + baseline
 
 
 _TIP_KEYS = ["E", "w", "z0", "nu", "contact_point", "baseline"]
@@ -173,7 +181,8 @@ def _model(key, name, func, keys, names, units, defaults):
 
 _DEFAULTS = {"E": (3e3, True, 0, np.inf), "w": (1e-4, True, 0, np.inf),
              "z0": (0.3e-9, False, 0, np.inf), "nu": (0.5, False, 0, 0.5),
-             "contact_point": (0.0, True, -np.inf, np.inf), "baseline": (0.0, True, -np.inf, np.inf)}
+             "contact_point": (0.0, True, -np.inf, np.inf),
+             "baseline": (0.0, True, -np.inf, np.inf)}
 
 
 def for_tip(tip, key, name=None):
@@ -185,7 +194,8 @@ def for_tip(tip, key, name=None):
     def force(delta, E, w, z0, nu, contact_point=0, baseline=0):
         return tip_md_force(delta, tip, E, w, z0, nu, contact_point, baseline)
 
-    force.__doc__ = (f"Maugis-Dugdale force of the tip {json.dumps(tip)[:200]} (exact, tabor)"
+    shown = json.dumps(tip, default=str)[:200]
+    force.__doc__ = (f"Maugis-Dugdale force of the tip {shown} (exact, tabor)"
                      "\n\n" + (tip_md_force.__doc__ or ""))
     return _model(key, name or f"Maugis-Dugdale tip, exact (tabor): {tip.get('shape')}", force,
                   _TIP_KEYS, _TIP_NAMES, _TIP_UNITS, _DEFAULTS)

@@ -260,21 +260,23 @@ def test_nanite_fits_a_synthetic_md_curve():
 
 def test_the_nanite_tip_models_follow_the_tips_path():
     """The tip models (tabor_md_cone, pyramids, for_tip): a paraboloid given as a tip is the
-    sphere model's force to rounding (below lambda_D, where both follow the same path); a cone's
+    sphere model's force to rounding (below lambda_D: at 0.59, where the zone alone leads into
+    contact, and at 0.8, where the zone's end lies beyond the range and both jump in); a cone's
     zone-alone branch is the closed form `P = -(pi lambda/2) C^2`, `D = (2/pi) C - 8 lambda C /
     (3 pi) - 2/(pi lambda)` (section 12, k_1 = pi/2); nanite fits a cone's curve back to 1e-6."""
     import tabor.nanite_model as tm
     import tabor._tabor as raw
     r_tip = 20e-9
-    truth = dict(E=1e9, w=0.05, z0=0.6e-9, nu=0.5, contact_point=1e-9, baseline=0.0)
-    lam = tm.scales(1e9, 0.05, 0.6e-9, r_tip, 0.5)[0]
-    assert 0.3 < lam < 0.9  # below lambda_D: no jump on the approach
-    x = np.linspace(4e-9, -2e-9, 61)
     para = tm.for_tip({"shape": "power", "exponent": 2, "coefficient": 0.5 / r_tip}, "para")
-    sphere = tm.md_force(x, R=r_tip, **truth)
-    tip = para.model_func(x, **truth)
-    assert np.count_nonzero(sphere) > 30 and np.count_nonzero(sphere < 0) > 8
-    assert np.max(np.abs(tip - sphere)) <= 1e-12 * np.max(np.abs(sphere))
+    x = np.linspace(4e-9, -2e-9, 61)
+    for z0, (lo, hi) in ((0.6e-9, (0.3, 0.655)), (0.44e-9, (0.655, 0.9))):
+        truth = dict(E=1e9, w=0.05, z0=z0, nu=0.5, contact_point=1e-9, baseline=0.0)
+        lam = tm.scales(1e9, 0.05, z0, r_tip, 0.5)[0]
+        assert lo < lam < hi, lam
+        sphere = tm.md_force(x, R=r_tip, **truth)
+        tip = para.model_func(x, **truth)
+        assert np.count_nonzero(sphere) > 30 and np.count_nonzero(sphere < 0) > 8
+        assert np.max(np.abs(tip - sphere)) <= 1e-12 * np.max(np.abs(sphere)), lam
     # The cone's zone alone, against its closed form.
     scene = {"e_star_pa": 1e6, "work_of_adhesion_j_m2": 0.02, "s0_pa": 2e5,
              "tip": {"shape": "cone", "half_angle_deg": 70}}

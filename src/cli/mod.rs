@@ -540,6 +540,8 @@ pub fn tip_shape(s: &str) -> anyhow::Result<crate::physics::tip::Shape> {
             );
             Ok(u.shape)
         }
-        None => s.parse().map_err(|e| anyhow::anyhow!("--{e}")),
+        None => s
+            .parse()
+            .map_err(|e| anyhow::anyhow!("--{e} (or scene:FILE, a scene's tip)")),
     }
 }

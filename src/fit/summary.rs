@@ -332,6 +332,25 @@ pub(super) fn warnings(
     // The tip's own stretched idealisations (a steep flank, a pyramid as its cone), as its
     // scene says them.
     warn.extend(opt.tip.iter().flat_map(|t| t.warnings()));
+    // A measured table's error over the contact radii the fit reached, and its tangent beyond
+    // its last point, as its scene states them.
+    if let super::Geometry::Measured(table) = opt.geometry() {
+        let short = crate::physics::domain::short;
+        warn.push(format!(
+            "the measured profile ({} points to r = {} m) gives these states within {:.1e} (relative; an upper estimate: up to the largest contact radius {} m, its interpolant's Abel transform differs by that from that of every other point)",
+            table.points,
+            short(table.largest_radius),
+            table.error_between(0.0, amax),
+            short(amax)
+        ));
+        if amax > table.largest_radius {
+            warn.push(format!(
+                "the contact reaches r = {} m, beyond the measured profile's last radius {} m: the tip is continued there by its tangent",
+                short(amax),
+                short(table.largest_radius)
+            ));
+        }
+    }
     // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
     // on that value.
     for h in hints(d, opt) {

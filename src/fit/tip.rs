@@ -1,6 +1,6 @@
 //! The tip a curve is fitted with: a sphere (its paraboloid) of radius R, or an axisymmetric tip
 //! of docs/PHYSICS.md section 12 (a power law: a cone, a pyramid as its equivalent cone, a
-//! blunt tip; a capped cone). It gives each fitted model's law in the tip's normalised units,
+//! blunt tip; a capped cone; a measured profile). It gives each fitted model's law in the tip's normalised units,
 //! those units from E* and w, and how they move with E* and w (section 12.4).
 
 use super::{Model, Units};
@@ -96,7 +96,7 @@ impl Geometry {
     }
 
     /// The sphere's or the cap's radius (m): the scale the small-strain warnings and Tabor's
-    /// parameter read; None for a power law.
+    /// parameter read; None for a power law and a measured profile.
     pub fn radius(&self) -> Option<f64> {
         match *self {
             Geometry::Sphere(r) | Geometry::CappedCone { radius: r, .. } => Some(r),
@@ -212,7 +212,8 @@ impl Geometry {
     /// `(dln force, dln d, dln kbar)`): with `s = ln w - ln E*`, `ln l = s/(2n - 1)`,
     /// `ln d = n ln l`, `ln force = ln w + (2 - n) ln l`, `ln kbar = (2n - 2) ln l - ln w` (the
     /// sphere's n = 2). A capped cone's are its cap's units' only: its law moves with E* and w
-    /// too (`rho = R / l`), so its Jacobian is taken by differences ([`Geometry::scales`]).
+    /// too (`rho = R / l`), so its Jacobian is taken by differences ([`Geometry::scales`]); a
+    /// measured profile's shape moves with them too, and it has none (NaN).
     pub fn log_slopes(&self) -> [(f64, f64, f64); 2] {
         match *self {
             Geometry::Power { n, .. } => {
@@ -222,7 +223,11 @@ impl Geometry {
                     (1.0 + (2.0 - n) * a, n * a, -1.0 + (2.0 * n - 2.0) * a),
                 ]
             }
-            _ => [(0.0, -2.0 / 3.0, -2.0 / 3.0), (1.0, 2.0 / 3.0, -1.0 / 3.0)],
+            Geometry::Sphere(_) | Geometry::CappedCone { .. } => {
+                [(0.0, -2.0 / 3.0, -2.0 / 3.0), (1.0, 2.0 / 3.0, -1.0 / 3.0)]
+            }
+            // Its shape moves with E* and w: no slopes scale it (never read, `scales` false).
+            Geometry::Measured(_) => [(f64::NAN, f64::NAN, f64::NAN); 2],
         }
     }
 
@@ -250,8 +255,8 @@ impl Geometry {
     }
 
     /// c in `ln z0 = c (ln w - ln E*) - ln lambda + const` at `e_star`, `w`: `g / (2g - 1)`
-    /// with `g = d ln F / d ln l` (a power law's n, the sphere's and the capped cone's 2/3;
-    /// a measured profile's at its unit l).
+    /// with `g = d ln F / d ln l` (a power law's g = n; the sphere's and the capped cone's
+    /// g = 2, c = 2/3; a measured profile's g at its unit l).
     pub fn z0_slope(&self, e_star: f64, w: f64) -> f64 {
         let g = match *self {
             Geometry::Power { n, .. } => n,
@@ -288,10 +293,10 @@ impl Geometry {
                     let step = (pull / (pc_bar * force)).ln() * (2.0 * g - 1.0) / (g + 1.0);
                     w *= step.exp();
                     if step.abs() < 1e-13 {
-                        break;
+                        return w;
                     }
                 }
-                w
+                f64::NAN
             }
         }
     }
@@ -325,6 +330,44 @@ impl Geometry {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A finely tabulated `f = B r^3` has the cubic power law's units, starts and z0 slope
+    /// within its table's error; its z0 slope is its units' (by differences), and its start's
+    /// w gives back the pull-off.
+    #[test]
+    fn a_measured_tables_units_and_starts_are_its_power_laws() {
+        let b = 1e15;
+        let r: Vec<f64> = (0..=600).map(|i| 3e-8 * i as f64 / 600.0).collect();
+        let z: Vec<f64> = r.iter().map(|x| b * x.powi(3)).collect();
+        let table = Geometry::Measured(Profile::interned(&r, &z).unwrap());
+        let cubic = Geometry::Power {
+            n: 3.0,
+            kb: k_n(3.0) * b,
+        };
+        let (e, w) = (1e9, 0.05);
+        let (um, up) = (table.units(e, w, 1.0), cubic.units(e, w, 1.0));
+        for (a, c) in [
+            (um.force, up.force),
+            (um.approach, up.approach),
+            (um.radius, up.radius),
+            (um.kbar, up.kbar),
+        ] {
+            assert!((a / c - 1.0).abs() < 1e-5, "{a} {c}");
+        }
+        assert!((table.z0_slope(e, w) - 0.6).abs() < 1e-5);
+        let h = 1e-5;
+        let z0 = |w: f64| table.z0_from_lambda(e, w, 0.7).ln();
+        let d = (z0(w * f64::exp(h)) - z0(w * f64::exp(-h))) / (2.0 * h);
+        assert!((d - table.z0_slope(e, w)).abs() < 1e-6, "{d}");
+        let wp = table.w_for_pulloff(3e-9, 1.2, e);
+        assert!((1.2 * table.units(e, wp, 1.0).force / 3e-9 - 1.0).abs() < 1e-12);
+        let (sm, sp) = (
+            table.punch_stiffness(2e-8, 5e-9),
+            cubic.punch_stiffness(2e-8, 5e-9),
+        );
+        assert!((sm / sp - 1.0).abs() < 1e-5, "{sm} {sp}");
+        assert!(!table.scales() && table.radius().is_none());
+    }
 
     /// The power law's units at n = 2 are the sphere's, its lambda from z0 too; the log slopes
     /// are the units' derivatives (by differences).

@@ -274,7 +274,10 @@ impl Tip {
         });
         let zone = |c: f64| self.state(Piece::NonContact, c);
         if dbar >= zone(c_end).approach {
-            return self.stable_at(Drive::RigidGrips, t0, dbar);
+            // Between the zone's end and the contact piece's first node (A = 1e-9): its start.
+            return self
+                .stable_at(Drive::RigidGrips, t0, dbar)
+                .or_else(|| (dbar < self.point(t0).approach).then(|| self.point(t0)));
         }
         // The non-contact piece's approach falls from the free end while fbar' < 8 lambda /
         // (3 pi), then rises to its end: the root on the rising part.

@@ -114,7 +114,8 @@ impl MeasuredTip {
     /// The units of `table` for the reduced modulus `e_star` and the work of adhesion `w`
     /// (SI, the table in metres): l where `F(l)^2 / l = 3 pi w / (4 E*)`, `d = F(l)` (the power
     /// law's units for any profile: `F(l)^2 / l` rises, F growing at least like l for a convex
-    /// tip). None where no l is found within 1e12 of the table's radii.
+    /// tip). None where no l is found within 1e12 of the table's radii, or where the table is
+    /// so far from convex there that `d ln F / d ln l <= 1/2`.
     pub fn of(table: &'static Profile, e_star: f64, w: f64) -> Option<MeasuredTip> {
         let target = 3.0 * PI * w / (4.0 * e_star);
         let excess = |l: f64| {
@@ -131,10 +132,10 @@ impl MeasuredTip {
         if !(excess(lo) <= 0.0 && excess(hi) >= 0.0) {
             return None;
         }
-        Some(MeasuredTip::at(
-            table,
-            crate::numeric::root::bisect_sign(excess, lo, hi),
-        ))
+        let m = MeasuredTip::at(table, crate::numeric::root::bisect_sign(excess, lo, hi));
+        // A convex tip's F grows at least like l (g >= 1): below g = 1/2 the unit is not
+        // unique and the units' slopes change sign (a plateau or a concave table).
+        (m.log_slope() > 0.5).then_some(m)
     }
 
     /// `table` in the radial unit `length` (its height unit `F(length)`).
@@ -865,7 +866,7 @@ impl TipInput {
                     .map_err(|e| ParamError::Conflict(format!("tip: {e}").into()))?;
                 let m = MeasuredTip::of(p, e_star, w).ok_or_else(|| {
                     ParamError::Conflict(format!(
-                        "tip: the measured profile's length unit was not found (E* = {e_star} Pa, w = {w} J/m^2): check the units of r_m and z_m (metres)"
+                        "tip: the measured profile's length unit was not found (E* = {e_star} Pa, w = {w} J/m^2): check the units of r_m and z_m (metres), and that the tip is convex (its table neither flat nor concave over the contact)"
                     ).into())
                 })?;
                 (Shape::Measured(m), m.length, m.height)

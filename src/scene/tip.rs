@@ -135,7 +135,7 @@ pub fn shape_of(text: &str) -> Result<Shape, String> {
         serde_json::from_str(text).map_err(|e| format!("tip: not a valid scene: {e}"))?;
     units_of(&scene)
         .map(|u| u.shape)
-        .map_err(|e| format!("tip: the scene's {e}"))
+        .map_err(|e| format!("tip (a scene): {e}"))
 }
 
 /// Solves a scene whose `tip` is given.

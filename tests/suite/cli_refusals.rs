@@ -133,7 +133,7 @@ const REFUSALS: &[(&str, &str)] = &[
     ),
     (
         r"profile --lambda 1 --load 1 --points 3 --tip cone:70",
-        r"--tip cone:70: give cone, sphere, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG",
+        r"--tip cone:70: give cone, sphere, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG (or scene:FILE, a scene's tip)",
     ),
     (
         r"profile --lambda 1 --load 1 --stress-ratio 1",
