@@ -15,7 +15,7 @@
 
 use crate::law::path::{control_of, free_landing};
 use crate::law::stretch::Stretches;
-use crate::law::{Law, LawError, Md};
+use crate::law::{Law, LawError, Md, Piece};
 use serde::Serialize;
 
 pub use crate::law::{Branch, Drive, PathPoint};
@@ -124,11 +124,22 @@ pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycl
     let path = law.cycle_path(drive, max_load)?;
     let f = follow(&path, drive);
     let mut jumps = f.jumps;
-    for j in jumps
-        .iter_mut()
-        .filter(|j| j.phase == Phase::Retract && j.from.branch == Branch::Contact)
-    {
-        if let Some(p) = law.fold(drive, &j.from) {
+    for j in jumps.iter_mut().filter(|j| j.phase == Phase::Retract) {
+        let exact = match j.from.branch {
+            Branch::Contact => law.fold(drive, &j.from),
+            // Off the zone alone onto the free surfaces (the sampled landing there carries no
+            // load, whatever its label; a landing elsewhere is left sampled).
+            Branch::NonContact if j.to.is_none_or(|t| t.load == 0.0) => {
+                non_contact_fold(law, drive, &j.from).map(|p| {
+                    if let Some(to) = j.to.as_mut() {
+                        to.approach = free_landing(&p, drive);
+                    }
+                    p
+                })
+            }
+            _ => None,
+        };
+        if let Some(p) = exact {
             if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
                 to.approach = free_landing(&p, drive);
             }
@@ -151,6 +162,42 @@ pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycl
         jumps,
         hysteresis,
     })
+}
+
+/// The fold of the non-contact piece (the zone alone, t = C) under `drive` near the sampled
+/// jump `near`: where the control's slope along the piece changes sign, from negative below to
+/// positive above, bracketed outward from the sample and bisected. None where no sign change
+/// lies within 25% of its C (the samples are sparse there at small lambda: 4% off at 0.1).
+fn non_contact_fold<L: Law + ?Sized>(law: &L, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
+    let slope = |t: f64| {
+        let p = law.state(Piece::NonContact, t);
+        match drive {
+            Drive::RigidGrips => p.dapproach,
+            Drive::Spring(k) => p.dapproach + p.dload / k,
+            Drive::DeadLoad => p.dload,
+        }
+    };
+    let t = near.c;
+    if !(t > 0.0) {
+        return None;
+    }
+    let mut h = 1e-4 * t;
+    while h <= 0.25 * t {
+        let (lo, hi) = ((t - h).max(0.0), t + h);
+        if slope(lo) < 0.0 && slope(hi) > 0.0 {
+            let c = crate::numeric::root::bisect_sign(slope, lo, hi);
+            let p = law.state(Piece::NonContact, c);
+            return Some(PathPoint {
+                branch: Branch::NonContact,
+                approach: p.approach,
+                load: p.load,
+                a: 0.0,
+                c,
+            });
+        }
+        h *= 2.0;
+    }
+    None
 }
 
 /// Why a cycle was not computed: a bad law, drive or load (the message names the quantity, the

@@ -62,7 +62,9 @@ fn vanishing_roughness_is_the_single_summit() {
 /// sigma -> 0 is `tabor cycle --control grips` itself: the rough retract after pressing to the
 /// approach 1, at the separation minus each retract state of the single summit's grips cycle,
 /// is that state's load within 1e-9 (the states at a jump, whose landing is interpolated on the
-/// path, and those within 1e-6 of a jump, where the Gaussian mixes two branches, left out).
+/// path, and those within 1e-5 of a jump left out: there the Gaussian mixes two branches, and
+/// the last sample before a jump off the zone alone, which the cycle puts at the exact fold,
+/// may lie just past that fold, on the branch's unstable side).
 #[test]
 fn vanishing_roughness_is_the_grips_cycle() {
     use tabor::cycle::{cycle, Drive, Phase};
@@ -82,7 +84,7 @@ fn vanishing_roughness_is_the_grips_cycle() {
             .filter(|s| s.phase == Phase::Retract && !s.jump)
         {
             let delta = s.point.approach;
-            if delta > 1.0 || jumps.iter().any(|j| (delta - j).abs() < 1e-6) {
+            if delta > 1.0 || jumps.iter().any(|j| (delta - j).abs() < 1e-5) {
                 continue;
             }
             let m = r.mean(Leg::Retract { d_min: -1.0 }, -delta).unwrap();
