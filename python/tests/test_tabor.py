@@ -215,6 +215,25 @@ def test_gpu_results_follow_the_f32_contract():
     assert np.max(np.abs(s["A"][far] / ref[far] - 1)) <= 1e-5
 
 
+def _nanite_fit(nanite, key, x, f, spring, params):
+    """nanite's fit of the model `key` to the force `f` at the tip positions `x` (the same
+    curve as approach and retract, under a cantilever of `spring` N/m): the fitted parameters."""
+    n = len(x)
+    data = {"force": np.concatenate([f, f[::-1]]),
+            "height (measured)": np.concatenate([x, x[::-1]]),
+            "tip position": np.concatenate([x, x[::-1]]),
+            "segment": np.concatenate([np.zeros(n, bool), np.ones(n, bool)]),
+            "time": np.linspace(0, 1, 2 * n)}
+    meta = {"spring constant": spring, "imaging mode": "force-distance", "sensitivity": 1e-8,
+            "duration": 1.0, "point count": 2 * n, "format": "synthetic",
+            "path": "synthetic", "enum": 0}
+    idnt = nanite.Indentation(data=data, metadata=meta)
+    idnt.fit_model(model_key=key, params_initial=params, x_axis="tip position",
+                   y_axis="force", segment="approach", weight_cp=False, range_x=(0, 0),
+                   range_type="absolute")
+    return idnt.fit_properties["params_fitted"]
+
+
 def test_nanite_fits_a_synthetic_md_curve():
     """nanite's own fitting API with tabor's model recovers the parameters of a curve made
     with them."""
@@ -233,25 +252,12 @@ def test_nanite_fits_a_synthetic_md_curve():
         x = np.linspace(4e-9, -2e-9, 600)
         f = tm.md_force(x, **truth)
         assert f.min() < -force_unit  # the adhesive well is in the curve
-        n = len(x)
-        data = {"force": np.concatenate([f, f[::-1]]),
-                "height (measured)": np.concatenate([x, x[::-1]]),
-                "tip position": np.concatenate([x, x[::-1]]),
-                "segment": np.concatenate([np.zeros(n, bool), np.ones(n, bool)]),
-                "time": np.linspace(0, 1, 2 * n)}
-        meta = {"spring constant": 40.0, "imaging mode": "force-distance", "sensitivity": 1e-8,
-                "duration": 1.0, "point count": 2 * n, "format": "synthetic",
-                "path": "synthetic", "enum": 0}
-        idnt = nanite.Indentation(data=data, metadata=meta)
         p = tm.get_parameter_defaults()
         p["E"].set(3e8)
         p["w"].set(0.02)
         p["R"].set(20e-9)
         p["contact_point"].set(0.5e-9)
-        idnt.fit_model(model_key="tabor_md", params_initial=p, x_axis="tip position",
-                       y_axis="force", segment="approach", weight_cp=False, range_x=(0, 0),
-                       range_type="absolute")
-        fitted = idnt.fit_properties["params_fitted"]
+        fitted = _nanite_fit(nanite, "tabor_md", x, f, 40.0, p)
         for k in ("E", "w", "contact_point"):
             assert fitted[k].value == pytest.approx(truth[k], rel=1e-6), k
     finally:
@@ -301,26 +307,13 @@ def test_the_nanite_tip_models_follow_the_tips_path():
         x = np.linspace(3e-7, -8e-7, 300)
         f = tm.cone.model_func(x, **truth)
         assert f.min() < 0 < f.max()
-        n = len(x)
-        data = {"force": np.concatenate([f, f[::-1]]),
-                "height (measured)": np.concatenate([x, x[::-1]]),
-                "tip position": np.concatenate([x, x[::-1]]),
-                "segment": np.concatenate([np.zeros(n, bool), np.ones(n, bool)]),
-                "time": np.linspace(0, 1, 2 * n)}
-        meta = {"spring constant": 1.0, "imaging mode": "force-distance", "sensitivity": 1e-8,
-                "duration": 1.0, "point count": 2 * n, "format": "synthetic",
-                "path": "synthetic", "enum": 0}
-        idnt = nanite.Indentation(data=data, metadata=meta)
         p = tm.cone.get_parameter_defaults()
         p["E"].set(5e5)
         p["w"].set(0.01)
         p["z0"].set(2e-9)
         p["alpha"].set(70.0)
         p["contact_point"].set(1.9e-7)
-        idnt.fit_model(model_key="tabor_md_cone", params_initial=p, x_axis="tip position",
-                       y_axis="force", segment="approach", weight_cp=False, range_x=(0, 0),
-                       range_type="absolute")
-        fitted = idnt.fit_properties["params_fitted"]
+        fitted = _nanite_fit(nanite, "tabor_md_cone", x, f, 1.0, p)
         for k in ("E", "w", "contact_point"):
             assert fitted[k].value == pytest.approx(truth[k], rel=1e-6), k
     finally:

@@ -1025,6 +1025,21 @@ fn write_pulloffs(
     write_output(&a.output, out.as_bytes())
 }
 
+/// The two pull-offs' columns, each control's load, radius and approach.
+const PULLOFF_COLS: [&str; 6] = [
+    "load_control_load",
+    "load_control_A",
+    "load_control_approach",
+    "displacement_control_load",
+    "displacement_control_A",
+    "displacement_control_approach",
+];
+
+/// `head`, the two pull-offs' columns, then `tail`.
+fn pulloff_cols(head: &[&'static str], tail: &[&'static str]) -> Vec<&'static str> {
+    [head, &PULLOFF_COLS[..], tail].concat()
+}
+
 /// The text table's heading line of the two pull-offs.
 fn pulloff_heading() -> String {
     format!(
@@ -1050,17 +1065,7 @@ fn pulloff_two_zone(a: &PulloffArgs, rho: f64, eta: f64) -> anyhow::Result<()> {
     for &l in &a.lambda {
         rows.push((l, two_zone_context(l, rho, eta)?));
     }
-    let cols = [
-        "lambda",
-        "stress_ratio",
-        "range_ratio",
-        "load_control_load",
-        "load_control_A",
-        "load_control_approach",
-        "displacement_control_load",
-        "displacement_control_A",
-        "displacement_control_approach",
-    ];
+    let cols = pulloff_cols(&["lambda", "stress_ratio", "range_ratio"], &[]);
     let values: Vec<Vec<f64>> = rows
         .iter()
         .map(|(l, c)| {
@@ -1114,15 +1119,7 @@ fn pulloff_tip(a: &PulloffArgs, shape: crate::physics::tip::Shape) -> anyhow::Re
             tip.pulloff_state(Drive::RigidGrips),
         ));
     }
-    let cols = [
-        "lambda",
-        "load_control_load",
-        "load_control_A",
-        "load_control_approach",
-        "displacement_control_load",
-        "displacement_control_A",
-        "displacement_control_approach",
-    ];
+    let cols = pulloff_cols(&["lambda"], &[]);
     let values: Vec<Vec<f64>> = rows
         .iter()
         .map(|(l, d, g)| vec![*l, d.load, d.a, d.approach, g.load, g.a, g.approach])
@@ -1153,17 +1150,10 @@ pub fn pulloff(a: PulloffArgs) -> anyhow::Result<()> {
         let ctx = LambdaContext::new(l).context("--lambda")?;
         rows.push(ctx);
     }
-    let cols = [
-        "lambda",
-        "load_control_load",
-        "load_control_A",
-        "load_control_approach",
-        "displacement_control_load",
-        "displacement_control_A",
-        "displacement_control_approach",
-        "zero_radius_end_load",
-        "zero_radius_end_approach",
-    ];
+    let cols = pulloff_cols(
+        &["lambda"],
+        &["zero_radius_end_load", "zero_radius_end_approach"],
+    );
     let values: Vec<Vec<f64>> = rows
         .iter()
         .map(|c| {

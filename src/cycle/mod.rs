@@ -329,10 +329,11 @@ fn follow_retract(
 }
 
 /// The loop area, integral of P dD along approach then retract (trapezoids over the samples;
-/// under rigid grips [`run`] replaces it by the exact stretches' loop).
-/// The stretches followed both ways cancel exactly, but at large loads their terms dwarf the
-/// loop (1e17 against 0.5 at a final load of 1e10): Neumaier's compensated sum keeps it.
-fn loop_area(steps: &[Step]) -> f64 {
+/// under rigid grips [`run`] replaces it by the exact stretches' loop, which this measures
+/// independently). The stretches followed both ways cancel exactly, but at large loads their
+/// terms dwarf the loop (1e17 against 0.5 at a final load of 1e10): Neumaier's compensated sum
+/// keeps it.
+pub fn trapezoid_loop(steps: &[Step]) -> f64 {
     let (mut sum, mut comp) = (0.0f64, 0.0f64);
     for s in steps.windows(2) {
         let t =
@@ -356,7 +357,7 @@ fn follow(path: &[PathPoint], drive: Drive) -> Followed {
     let mut jumps = Vec::new();
     follow_approach(path, &u, &mut steps, &mut jumps);
     let separated = follow_retract(path, &u, &mut steps, &mut jumps);
-    let hysteresis = (!separated).then(|| loop_area(&steps));
+    let hysteresis = (!separated).then(|| trapezoid_loop(&steps));
     let stable = (0..n)
         .map(|i| {
             if i + 1 < n {

@@ -316,24 +316,13 @@ pub(super) fn put_intervals(out: &mut CurveFit, iv: &interval::Intervals) {
     }
 }
 
-/// The warnings of a converged fit: the data's notes, implausible options, a residual far above
-/// the noise, a stretched theory, too few points in contact, lambda undetermined, an unresolved
-/// jump-out.
-pub(super) fn warnings(
-    out: &CurveFit,
-    d: &Prepared,
-    opt: &FitOptions,
-    p: &Params,
-    md: &ModelFit,
-    amax: f64,
-    in_contact: usize,
-) -> Vec<String> {
-    let mut warn = d.notes.clone();
-    // The tip's own stretched idealisations (a steep flank, a pyramid as its cone), as its
-    // scene says them.
-    warn.extend(opt.tip.iter().flat_map(|t| t.warnings()));
-    // A measured table's error over the contact radii the fit reached, and its tangent beyond
-    // its last point, as its scene states them.
+/// What the fit's tip stretches, as its scene says it: a steep flank, a pyramid as its cone
+/// ([`TipInput::warnings`]); a measured table's error up to the largest contact radius `amax`
+/// (m), and its tangent beyond its last point.
+///
+/// [`TipInput::warnings`]: crate::physics::tip::TipInput::warnings
+fn tip_warnings(opt: &FitOptions, amax: f64) -> Vec<String> {
+    let mut warn: Vec<String> = opt.tip.iter().flat_map(|t| t.warnings()).collect();
     if let super::Geometry::Measured(table) = opt.geometry() {
         let short = crate::physics::domain::short;
         warn.push(format!(
@@ -351,6 +340,23 @@ pub(super) fn warnings(
             ));
         }
     }
+    warn
+}
+
+/// The warnings of a converged fit: the data's notes, implausible options, a residual far above
+/// the noise, a stretched theory, too few points in contact, lambda undetermined, an unresolved
+/// jump-out.
+pub(super) fn warnings(
+    out: &CurveFit,
+    d: &Prepared,
+    opt: &FitOptions,
+    p: &Params,
+    md: &ModelFit,
+    amax: f64,
+    in_contact: usize,
+) -> Vec<String> {
+    let mut warn = d.notes.clone();
+    warn.extend(tip_warnings(opt, amax));
     // A fit that looks sound with a radius or a spring constant no AFM has: its numbers rest
     // on that value.
     for h in hints(d, opt) {

@@ -82,24 +82,6 @@ fn the_stiffness_is_the_slope_of_the_exact_branches() {
     }
 }
 
-/// The integral of P dD over a cycle's sampled steps, approach then retract (trapezoids,
-/// Neumaier's compensated sum: the top of the path is crossed both ways).
-fn trapezoids(c: &tabor::cycle::Cycle) -> f64 {
-    let (mut sum, mut comp) = (0.0f64, 0.0f64);
-    for s in c.steps.windows(2) {
-        let t =
-            0.5 * (s[0].point.load + s[1].point.load) * (s[1].point.approach - s[0].point.approach);
-        let next = sum + t;
-        comp += if sum.abs() >= t.abs() {
-            (sum - next) + t
-        } else {
-            (t - next) + sum
-        };
-        sum = next;
-    }
-    sum + comp
-}
-
 #[test]
 fn the_loop_is_the_rigid_grip_cycle_of_tabor_cycle() {
     for &lambda in &[0.1, 0.5, 1.0, 3.0, 10.0] {
@@ -116,7 +98,7 @@ fn the_loop_is_the_rigid_grip_cycle_of_tabor_cycle() {
             (h - area).abs() <= 1e-12 * area.abs(),
             "lambda {lambda}: {h} {area}"
         );
-        let want = trapezoids(&c);
+        let want = tabor::cycle::trapezoid_loop(&c.steps);
         println!("lambda {lambda}: loop {area}, the cycle's trapezoids {want}");
         assert!(
             (area - want).abs() <= 5e-3 * want.abs(),
@@ -360,7 +342,7 @@ fn the_wet_loop_is_the_two_zone_cycle_of_tabor_cycle() {
             (h - area).abs() <= 1e-12 * area.abs(),
             "{l}, {rho}, {eta}: {h} {area}"
         );
-        let want = trapezoids(&c);
+        let want = tabor::cycle::trapezoid_loop(&c.steps);
         println!("lambda_s {l}, rho {rho}, eta {eta}: loop {area}, the cycle's trapezoids {want}");
         // The cycle's jump out of contact is the exact fold, and lands where the law's retract
         // goes on: a meniscus stretch or free. Without a jump (contact lost at A -> 0 onto the

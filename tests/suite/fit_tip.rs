@@ -44,6 +44,20 @@ fn case(
     (s, opt)
 }
 
+/// A fit that gives back the cone curves' E* = 1 MPa, w = 0.02 J/m^2 and lambda = 1 to 1e-6.
+fn gives_back_the_cone(r: &tabor::fit::CurveFit) {
+    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
+    assert!(
+        rel(r.e_star_pa.unwrap(), 1e6) < 1e-6
+            && rel(r.work_of_adhesion_j_m2.unwrap(), 0.02) < 1e-6
+            && rel(r.lambda.unwrap(), 1.0) < 1e-6,
+        "{:?} {:?} {:?}",
+        r.e_star_pa,
+        r.work_of_adhesion_j_m2,
+        r.lambda
+    );
+}
+
 fn cone() -> TipInput {
     TipInput::Cone {
         half_angle_deg: 65.0,
@@ -172,16 +186,7 @@ fn a_tip_with_a_fixed_range_and_a_spherical_tip() {
         ..opt
     };
     let r = fit_curve(&try_synthetic_on(&s, g).unwrap(), &opt);
-    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
-    assert!(
-        rel(r.e_star_pa.unwrap(), 1e6) < 1e-6
-            && rel(r.work_of_adhesion_j_m2.unwrap(), 0.02) < 1e-6
-            && rel(r.lambda.unwrap(), 1.0) < 1e-6,
-        "{:?} {:?} {:?}",
-        r.e_star_pa,
-        r.work_of_adhesion_j_m2,
-        r.lambda
-    );
+    gives_back_the_cone(&r);
     // Without adhesion the range puts lambda below the tip's domain (1e-3): refused in one
     // line with the numbers it read, not a NaN.
     let (s, _) = case(&tip, Model::Hertz, 1e6, 1.0, 0.5, 0.0, 200);
@@ -312,16 +317,7 @@ fn a_pyramid_is_fitted_as_its_equivalent_cone_and_says_so() {
         &try_synthetic_on(&s, Geometry::of(&cone()).unwrap()).unwrap(),
         &opt,
     );
-    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
-    assert!(
-        rel(r.e_star_pa.unwrap(), 1e6) < 1e-6
-            && rel(r.work_of_adhesion_j_m2.unwrap(), 0.02) < 1e-6
-            && rel(r.lambda.unwrap(), 1.0) < 1e-6,
-        "{:?} {:?} {:?}",
-        r.e_star_pa,
-        r.work_of_adhesion_j_m2,
-        r.lambda
-    );
+    gives_back_the_cone(&r);
     assert!(
         r.warnings
             .iter()
