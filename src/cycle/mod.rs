@@ -125,22 +125,21 @@ pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycl
     let f = follow(&path, drive);
     let mut jumps = f.jumps;
     for j in jumps.iter_mut().filter(|j| j.phase == Phase::Retract) {
-        let exact = match j.from.branch {
-            Branch::Contact => law.fold(drive, &j.from),
-            // Off the zone alone onto the free surfaces (the sampled landing there carries no
-            // load, whatever its label; a landing elsewhere is left sampled).
+        // A landing on the free surfaces moves with the fold (off the zone alone the sampled
+        // landing there carries no load, whatever its label; a landing elsewhere is left
+        // sampled).
+        let (exact, lands_free) = match j.from.branch {
+            Branch::Contact => (
+                law.fold(drive, &j.from),
+                j.to.is_some_and(|t| t.branch == Branch::Free),
+            ),
             Branch::NonContact if j.to.is_none_or(|t| t.load == 0.0) => {
-                non_contact_fold(law, drive, &j.from).map(|p| {
-                    if let Some(to) = j.to.as_mut() {
-                        to.approach = free_landing(&p, drive);
-                    }
-                    p
-                })
+                (non_contact_fold(law, drive, &j.from), true)
             }
-            _ => None,
+            _ => (None, false),
         };
         if let Some(p) = exact {
-            if let Some(to) = j.to.as_mut().filter(|t| t.branch == Branch::Free) {
+            if let Some(to) = j.to.as_mut().filter(|_| lands_free) {
                 to.approach = free_landing(&p, drive);
             }
             j.from = p;

@@ -38,8 +38,8 @@ fn rigid_dugdale_law_for_small_lambda() {
     }
 }
 
-/// Under rigid grips the retract leaves the zone alone (the non-contact branch, `Dbar = fbar(C)
-/// - 8 lambda C / (3 pi) - 2/(pi lambda)`) at its fold, `fbar'(C) = 8 lambda / (3 pi)`, for the
+/// Under rigid grips the retract leaves the zone alone (the non-contact branch,
+/// `Dbar = fbar(C) - 8 lambda C / (3 pi) - 2/(pi lambda)`) at its fold, `fbar'(C) = 8 lambda / (3 pi)`, for the
 /// load `-(pi lambda / 2) C^2`: the sphere's `C = 8 lambda / (3 pi)` below lambda_D, and the
 /// cubic tip's `C^2 = 8 k_3 lambda / (9 pi)` (`-pi/3` at lambda = 1). The cycle's samples only
 /// bracket it (8% off in load at lambda 0.1 before it was refined).
