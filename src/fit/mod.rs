@@ -240,6 +240,13 @@ impl Starts {
 /// It holds Hertz (w = 0), so it never fits worse: where it did, it stopped in the flat misfit
 /// of a contact point beyond every point (no point in contact), and is fitted again from Hertz's
 /// answer with a little adhesion.
+///
+/// The first fit has a short budget ([`FIRST_PATIENCE`]): from the pull-off's w the model's
+/// jump can lie inside the curve where the data show none, and as the jump crosses points the
+/// misfit changes in steps, which Levenberg-Marquardt crawls along for a long budget, often
+/// without converging. Where it stops unconverged, the fit from Hertz's answer (whose jump is
+/// small) is made, and the better of the two taken: the first as it stands where it fits better
+/// than Hertz. Where neither does, the first goes on with the full budget.
 fn closed_form(
     model: Model,
     raw: &Prepared,
@@ -248,16 +255,44 @@ fn closed_form(
     hertz: &ModelFit,
 ) -> ModelFit {
     let w = s.w_of(s.pulloff(model, 1.0));
-    let f = fit_model(model, raw, opt, s.at(w, 1.0), s.w_ref, None);
+    let full = |from: Params| fit_model(model, raw, opt, from, s.w_ref, None);
+    let first = fit_model_for(
+        model,
+        raw,
+        opt,
+        s.at(w, 1.0),
+        s.w_ref,
+        None,
+        FIRST_PATIENCE,
+        None,
+    );
     // (Worse by more than rounding: at w -> 0 the two misfits agree to about 1e-13.)
-    if hertz.status != FitStatus::Ok || key(&f) <= hertz.rms_residual_n * (1.0 + 1e-9) {
-        return f;
+    let holds = |f: &ModelFit| key(f) <= hertz.rms_residual_n * (1.0 + 1e-9);
+    if first.status == FitStatus::Ok && (hertz.status != FitStatus::Ok || holds(&first)) {
+        return first;
     }
-    let again = Params {
-        w: 1e-2 * w,
-        ..hertz.params()
+    let again = (hertz.status == FitStatus::Ok).then(|| {
+        full(Params {
+            w: 1e-2 * w,
+            ..hertz.params()
+        })
+    });
+    let mut f = match again {
+        Some(a)
+            if first.status == FitStatus::Ok
+                || (a.status == FitStatus::Ok && rank(&a) <= rank(&first)) =>
+        {
+            better(first.clone(), a)
+        }
+        // Stopped by the short budget where it fits better than Hertz and than the fit from
+        // Hertz's answer: taken as it stands (as a free Maugis-Dugdale fit is, see `scout`).
+        _ if rank(&first) <= hertz.rms_residual_n * (1.0 + 1e-9) => ModelFit {
+            status: FitStatus::Ok,
+            ..first.clone()
+        },
+        // Neither: the first fit goes on with the full budget.
+        a => better(full(first.params()), a.unwrap_or_else(|| first.clone())),
     };
-    let mut f = better(f, fit_model(model, raw, opt, again, s.w_ref, None));
     if key(&f) > hertz.rms_residual_n * (1.0 + 1e-9) {
         // Still worse: a local minimum, said so. (A cone's JKR-type law reaches its punch only
         // as w -> 0, where its contact radius in its units grows like 1/w, beyond the path's
@@ -269,6 +304,9 @@ fn closed_form(
     }
     f
 }
+
+/// The budget of a closed form's first fit (MINPACK's, as [`PATIENCE`]).
+const FIRST_PATIENCE: usize = 30;
 
 /// Maugis-Dugdale free in lambda on `d` (the curve, or its bins): the misfit has local minima
 /// in lambda (the jump moves with it), so a profile over lambda (each point a fit at fixed

@@ -348,6 +348,15 @@ impl Problem<'_> {
         if self.model.has_lambda() && !self.tip.admits_lambda(p.lambda) {
             return None;
         }
+        // A Dugdale zone longer than the curve's height span pulls nearly alike at every point
+        // (its end is never seen): its adhesion trades against the force offset along a valley
+        // whose misfit falls without end (w and z0 growing together), not a model of the curve.
+        if self.model.has_lambda()
+            && self.z0.is_none()
+            && !(self.tip.z0_from_lambda(p.e_star, p.w, p.lambda) <= self.z_scale)
+        {
+            return None;
+        }
         Some((p, law, u))
     }
 

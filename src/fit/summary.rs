@@ -108,6 +108,9 @@ pub(super) fn summarize(
         .collect();
     let z0 = put_parameters(&mut out, opt, d, &p, &md, amax, in_contact, &loads);
     put_intervals(&mut out, iv);
+    if zone_past_curve(&out, d, opt) {
+        zone_bound(&mut out);
+    }
     let l95 = iv.lambda[1];
     let m = d.force.len() as f64;
     let n_md = if opt.z0.is_some() { 4.0 } else { 5.0 };
@@ -401,7 +404,12 @@ pub(super) fn warnings(
             "only {in_contact} fitted points are in contact: E* is poorly determined"
         ));
     }
-    if let (Some(false), Some(b)) = (out.lambda_determined, &out.lambda_bound) {
+    if zone_past_curve(out, d, opt) {
+        warn.push(format!(
+            "the best Maugis-Dugdale fit has its Dugdale zone as long as the curve (z0 = {:.3e} m, the height span the fit allows): the misfit falls further as the zone grows past the curve's end, where its pull cannot be told from the force offset, so w, z0 and lambda are not determined; fit the curve with its baseline far from contact, or give the Lennard-Jones range z0",
+            out.z0_m.unwrap_or(f64::NAN)
+        ));
+    } else if let (Some(false), Some(b)) = (out.lambda_determined, &out.lambda_bound) {
         warn.push(format!(
             "lambda is not determined by this curve: {b}; quote that bound and the intervals of E* and w (they span the lambdas the data cannot tell apart), or fix lambda by giving the Lennard-Jones range z0, fit both segments, or use a stiffer cantilever"
         ));
@@ -433,6 +441,36 @@ pub(super) fn warnings(
         ));
     }
     warn
+}
+
+/// Where a fitted zone's range must end: within the fitted points' height span (`Problem`
+/// refuses longer ones). A best fit within 1% of it lies on that bound, not at a minimum.
+const ZONE_AT_SPAN: f64 = 0.99;
+
+/// Whether the Maugis-Dugdale fit lies on the bound of its zone's range (the curve's height
+/// span): there the misfit still falls as the zone grows, trading its pull against the offset.
+fn zone_past_curve(out: &CurveFit, d: &Prepared, opt: &FitOptions) -> bool {
+    opt.z0.is_none() && out.z0_m.is_some_and(|z| z >= ZONE_AT_SPAN * d.scales.1)
+}
+
+/// A fit on the bound of its zone's range: lambda not determined, and the upper ends of w's and
+/// z0's intervals open (they grow along the valley).
+fn zone_bound(out: &mut CurveFit) {
+    out.lambda_determined = Some(false);
+    out.lambda_bound = Some(format!(
+        "the best fit's Dugdale zone is as long as the curve (z0 = {:.3e} m): adhesion and the force offset cannot be told apart",
+        out.z0_m.unwrap_or(f64::NAN)
+    ));
+    for iv in [
+        &mut out.work_of_adhesion_j_m2_interval_68,
+        &mut out.work_of_adhesion_j_m2_interval_95,
+        &mut out.z0_m_interval_68,
+        &mut out.z0_m_interval_95,
+    ] {
+        if let Some(i) = iv.as_mut() {
+            i[1] = None;
+        }
+    }
 }
 
 /// Three significant figures, as a bound is written.
