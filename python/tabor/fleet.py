@@ -356,7 +356,7 @@ def _json(options):
     return json.dumps(options, sort_keys=True, default=plain)
 
 
-def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
+def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, store=None, **options):
     """Fits a fleet of AFM force maps, each map one task, serially or on a Dask cluster, into one
     xarray Dataset of dims ``(map, y, x)``.
 
@@ -379,6 +379,13 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
         Fit on this Dask cluster, one task per map (the default: serially, here, without
         importing Dask). A worker holds one map's curves at a time per thread; the maps' fits
         are written into the Dataset's arrays as they arrive.
+    store : str or os.PathLike, optional
+        A Zarr store (a folder that must not exist yet) to write the Dataset to, map by map:
+        each map's fit goes to a temporary file beside it as it arrives, and the maps are then
+        written in order, padded to the largest, so that this process holds one map's numbers
+        at a time (without ``store`` the whole Dataset is held: about 0.4 kB a pixel). The
+        store appears only when complete (written under a temporary name, then renamed). The
+        Dataset returned is then the store's, opened lazily.
     **options
         Passed on to :func:`fit_afmformats` / :func:`fit_curves`: ``poisson``,
         ``fit_segment``, ``z0_m``, ``tilt``, ``tolerance``, ``relative_humidity``,
@@ -420,7 +427,10 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
     TypeError
         a map that is neither a path nor a dict; values that are not numbers.
     ImportError
-        xarray missing; afmformats missing where a map is a file or a folder.
+        xarray missing; afmformats missing where a map is a file or a folder; zarr missing
+        where ``store`` is given.
+    FileExistsError
+        ``store`` exists already (it is never overwritten).
 
     Examples
     --------
@@ -462,18 +472,74 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, **options):
     if any(kind == "path" for _, _, (kind, _) in fleet) \
             and importlib.util.find_spec("afmformats") is None:
         raise ImportError("fitting force-map files needs afmformats (pip install afmformats)")
-    grid = _Grid(len(fleet))
     specs = [spec for _, _, spec in fleet]
-    if client is None:
-        for i, spec in enumerate(specs):
-            grid.put(i, _fit_map(spec, radius_m, spring_n_m, options))
-    else:
-        _on_dask(client, specs, radius_m, spring_n_m, options, grid)
+    if store is not None:
+        return _to_store(store, fleet, specs, client, radius_m, spring_n_m, options)
+    grid = _Grid(len(fleet))
+    _fit_all(specs, client, radius_m, spring_n_m, options, grid.put)
     grid.finish()
     return _dataset(fleet, grid, radius_m, spring_n_m, options)
 
 
-def _on_dask(client, specs, radius_m, spring_n_m, options, grid):
+def _fit_all(specs, client, radius_m, spring_n_m, options, put):
+    """Every map's fit, serially or on the client, each handed to put(i, result) as it
+    arrives."""
+    if client is None:
+        for i, spec in enumerate(specs):
+            put(i, _fit_map(spec, radius_m, spring_n_m, options))
+    else:
+        _on_dask(client, specs, radius_m, spring_n_m, options, put)
+
+
+def _to_store(store, fleet, specs, client, radius_m, spring_n_m, options):
+    """The fleet's Dataset written to the Zarr store map by map (see fit_fleet's ``store``)."""
+    import pickle
+    import shutil
+    import tempfile
+
+    import xarray as xr
+
+    if importlib.util.find_spec("zarr") is None:
+        raise ImportError("store= writes Zarr: pip install zarr (or tabor[dask])")
+    store = pathlib.Path(store)
+    if store.exists():
+        raise FileExistsError(f"store: {store} exists already; give a new path (it is never "
+                              "overwritten)")
+    parent = store.parent if str(store.parent) else pathlib.Path(".")
+    with tempfile.TemporaryDirectory(dir=parent, prefix=f".{store.name}.") as tmp:
+        tmp = pathlib.Path(tmp)
+        size = {"ny": 0, "nx": 0, "failed": False}
+
+        def put(i, res):
+            size["ny"], size["nx"] = max(size["ny"], res["ny"]), max(size["nx"], res["nx"])
+            size["failed"] |= res["columns"] is None
+            with open(tmp / f"{i}.pickle", "wb") as f:
+                pickle.dump(res, f, protocol=pickle.HIGHEST_PROTOCOL)
+
+        _fit_all(specs, client, radius_m, spring_n_m, options, put)
+        ny, nx = size["ny"], size["nx"]
+        if size["failed"]:  # at least one pixel to say so, as the Dataset in memory has
+            ny, nx = max(ny, 1), max(nx, 1)
+        partial = tmp / "store.zarr"
+        for i in range(len(fleet)):
+            with open(tmp / f"{i}.pickle", "rb") as f:
+                res = pickle.load(f)
+            grid = _Grid(1)
+            grid.put(0, res)
+            grid._grow(ny, nx)
+            grid.finish()
+            one = _dataset(fleet[i:i + 1], grid, radius_m, spring_n_m, options)
+            if i == 0:
+                # (Zarr 3 has no consolidated metadata in its specification.)
+                one.to_zarr(partial, mode="w-", consolidated=False)
+            else:
+                one.to_zarr(partial, append_dim="map", consolidated=False)
+            (tmp / f"{i}.pickle").unlink()
+        shutil.move(str(partial), str(store))
+    return xr.open_dataset(store, engine="zarr", chunks=None, consolidated=False)
+
+
+def _on_dask(client, specs, radius_m, spring_n_m, options, put):
     from distributed import as_completed
 
     run = uuid.uuid4().hex
@@ -489,7 +555,7 @@ def _on_dask(client, specs, radius_m, spring_n_m, options, grid):
             exc = result[1] if isinstance(result, tuple) and len(result) == 3 else result
             result = {"ny": 0, "nx": 0, "spring_n_m": np.nan, "columns": None,
                       "message": f"the task failed: {type(exc).__name__}: {exc}"}
-        grid.put(i, result)
+        put(i, result)
         del future, result
 
 

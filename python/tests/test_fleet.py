@@ -154,6 +154,29 @@ def test_zarr_and_netcdf_round_trips_are_identical(serial, tmp_path):
         xr.testing.assert_identical(serial, back.load())
 
 
+@pytest.mark.filterwarnings("error::UserWarning")
+def test_a_store_is_written_map_by_map_and_reads_back_as_the_dataset(fleet, serial, client,
+                                                                       tmp_path):
+    """store=: the maps written to Zarr one by one as they are fitted, serially and on Dask,
+    read back identical to the Dataset held in memory; a map that cannot be read is padded as
+    there; nothing is left beside the store, and an existing store is never overwritten."""
+    xr = _need("xarray")
+    _need("zarr")
+    for name, c in (("serial.zarr", None), ("dask.zarr", client)):
+        ds = tabor.fit_fleet(fleet, radius_m=R, spring_n_m=K, poisson=0.3, client=c,
+                             store=tmp_path / name)
+        xr.testing.assert_identical(serial, ds.load())
+    maps = {"lost": "no/such/map.jpk-force-map", "good": fleet["wide"]}
+    ds = tabor.fit_fleet(maps, radius_m=R, spring_n_m=K, store=str(tmp_path / "lost.zarr"))
+    xr.testing.assert_identical(tabor.fit_fleet(maps, radius_m=R, spring_n_m=K), ds.load())
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dask.zarr", "lost.zarr",
+                                                          "serial.zarr"]
+    before = sorted(str(p) for p in (tmp_path / "lost.zarr").rglob("*"))
+    with pytest.raises(FileExistsError, match="exists already"):
+        tabor.fit_fleet(maps, radius_m=R, spring_n_m=K, store=tmp_path / "lost.zarr")
+    assert sorted(str(p) for p in (tmp_path / "lost.zarr").rglob("*")) == before
+
+
 def test_the_serial_path_needs_no_dask(fleet, tmp_path):
     """In a fresh interpreter where Dask cannot be imported (xarray itself imports dask.array
     when it is installed), the serial fit runs; and where it can, the serial path loads no
