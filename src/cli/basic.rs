@@ -263,52 +263,75 @@ pub fn solve(a: SolveArgs) -> anyhow::Result<()> {
     let format = a.format.unwrap_or(Format::Text);
     let meta = json!({"tabor_version": env!("CARGO_PKG_VERSION"), "backend": "cpu", "precision": "f64", "control": given.name()});
     let text = if given == Given::Radius {
-        crate::solver::domain::check_radius(value).context("--radius-a")?;
-        let ctx = ctx.context("--lambda")?;
-        let s = ctx.solve_radius(value);
-        match format {
-            Format::Json => json_doc(&[radius_json(&s)], &meta)?,
-            Format::Csv => {
-                let mut w = crate::io::csv_writer();
-                w.write_record(RADIUS_CSV_HEADER)?;
-                w.write_record(radius_fields(&s))?;
-                String::from_utf8(crate::io::csv_finish(w)?)?
-            }
-            Format::Text => radius_text(&ctx, &s),
-        }
+        radius_doc(ctx, value, format, &meta)?
     } else {
-        let control = if given == Given::Load {
-            crate::solver::domain::check_load(value).context("--load")?;
-            Control::Load
-        } else {
-            crate::solver::domain::check_approach(value).context("--approach")?;
-            Control::Displacement
-        };
-        let s = match &ctx {
-            Some(ctx) => crate::solver::solve_with(ctx, value, control),
-            None => crate::solver::solve_one(lambda, value, control),
-        };
-        if ctx.is_none() && s.status == Status::InvalidInput {
-            bail!(
-                "--lambda {} with {} {}: {}",
-                crate::solver::domain::short(lambda),
-                given.flag(),
-                crate::solver::domain::short(value),
-                crate::solver::limits::refusal(lambda, control)
-            );
-        }
-        match format {
-            Format::Json => json_doc(&[state_json(&s)], &meta)?,
-            Format::Csv => {
-                let mut w = crate::io::csv_writer();
-                w.write_record(CSV_HEADER)?;
-                w.write_record(state_fields(&s, 17, control))?;
-                String::from_utf8(crate::io::csv_finish(w)?)?
-            }
-            Format::Text => state_text(ctx.as_ref(), &s, control),
-        }
+        state_doc(ctx.as_ref(), lambda, given, value, format, &meta)?
     };
     write_output(&a.output, text.as_bytes())
+}
+
+/// `tabor solve --radius-a`'s one state in its format.
+fn radius_doc(
+    ctx: Option<LambdaContext>,
+    value: f64,
+    format: Format,
+    meta: &serde_json::Value,
+) -> anyhow::Result<String> {
+    crate::solver::domain::check_radius(value).context("--radius-a")?;
+    let ctx = ctx.context("--lambda")?;
+    let s = ctx.solve_radius(value);
+    Ok(match format {
+        Format::Json => json_doc(&[radius_json(&s)], meta)?,
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(RADIUS_CSV_HEADER)?;
+            w.write_record(radius_fields(&s))?;
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        Format::Text => radius_text(&ctx, &s),
+    })
+}
+
+/// `tabor solve --load` or `--approach`'s one state in its format: the exact solver's, or
+/// (`ctx` None) the closed-form limit's where it is certified.
+fn state_doc(
+    ctx: Option<&LambdaContext>,
+    lambda: f64,
+    given: Given,
+    value: f64,
+    format: Format,
+    meta: &serde_json::Value,
+) -> anyhow::Result<String> {
+    let control = if given == Given::Load {
+        crate::solver::domain::check_load(value).context("--load")?;
+        Control::Load
+    } else {
+        crate::solver::domain::check_approach(value).context("--approach")?;
+        Control::Displacement
+    };
+    let s = match ctx {
+        Some(ctx) => crate::solver::solve_with(ctx, value, control),
+        None => crate::solver::solve_one(lambda, value, control),
+    };
+    if ctx.is_none() && s.status == Status::InvalidInput {
+        bail!(
+            "--lambda {} with {} {}: {}",
+            crate::solver::domain::short(lambda),
+            given.flag(),
+            crate::solver::domain::short(value),
+            crate::solver::limits::refusal(lambda, control)
+        );
+    }
+    Ok(match format {
+        Format::Json => json_doc(&[state_json(&s)], meta)?,
+        Format::Csv => {
+            let mut w = crate::io::csv_writer();
+            w.write_record(CSV_HEADER)?;
+            w.write_record(state_fields(&s, 17, control))?;
+            String::from_utf8(crate::io::csv_finish(w)?)?
+        }
+        Format::Text => state_text(ctx, &s, control),
+    })
 }
 
 /// One state of the two-zone law (solid's lambda, stress and range ratios) on the CPU: the state

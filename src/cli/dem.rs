@@ -301,139 +301,152 @@ fn table_text(
     format: Format,
 ) -> anyhow::Result<String> {
     let si = laws[0].pair.is_some();
-    let (ox, fx, kx) = if si {
+    let names = if si {
         ("overlap_m", "force_n", "stiffness_n_m")
     } else {
         ("overlap", "load", "stiffness")
     };
     match format {
-        Format::Text => {
-            let mut t = String::new();
-            for s in laws {
-                let law = &s.law;
-                let (l, f) = (s.length(), s.force());
-                let (lu, fu) = if si { (" m", " N") } else { ("", "") };
-                let _ = writeln!(
-                    t,
-                    "{} force-overlap law, lambda = {}{}",
-                    title(law),
-                    short(law.lambda),
-                    if let Some(c) = &s.contact {
-                        format!(
-                            " (R = {} m, E* = {} Pa, w = {} J/m^2, s0 = {} Pa; force unit pi w R = {} N, overlap unit {} m{})",
-                            short(c.radius),
-                            short(c.e_star),
-                            short(c.work),
-                            short(c.s0),
-                            short(f),
-                            short(l),
-                            if s.meniscus.is_some() { ", w the total" } else { "" }
-                        )
-                    } else if law.law.model()
-                        == crate::physics::model::ContactModel::SolidAndMeniscus
-                    {
-                        " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3), w the total)"
-                            .into()
-                    } else {
-                        " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3))".into()
-                    }
-                );
-                if let Some(m) = &s.meniscus {
-                    let _ = writeln!(
-                        t,
-                        "  meniscus: Kelvin radius {} m, Laplace pressure {} Pa over a height of {} m, w {} J/m^2",
-                        short(m.kelvin_radius_m),
-                        short(m.laplace_pressure_pa),
-                        short(m.range_m),
-                        short(m.work_of_adhesion_j_m2)
-                    );
-                }
-                let _ = writeln!(
-                    t,
-                    "  approach: attraction from overlap {}{lu}, into contact at {}{lu}",
-                    short(law.attraction_from * l),
-                    short(law.delta_in * l)
-                );
-                let _ = writeln!(
-                    t,
-                    "  retract: out of contact at {}{lu} (force {}{fu}){}",
-                    short(law.delta_out * l),
-                    short(law.disp_pulloff * f),
-                    match law.delta_nc {
-                        Some(nc) => format!(", then across the gap down to {}{lu}", short(nc * l)),
-                        None => ", then free".into(),
-                    }
-                );
-                let _ = writeln!(
-                    t,
-                    "  pull-off under load control {}{fu}",
-                    short(law.load_pulloff * f)
-                );
-                if let Some(e) = law.loop_area(law.overlap_max) {
-                    let _ = writeln!(
-                        t,
-                        "  energy lost per slow cycle: {}{}",
-                        short(e * f * l),
-                        if si {
-                            " J"
-                        } else {
-                            " (pi w R x approach unit)"
-                        }
-                    );
-                }
-                let _ = writeln!(
-                    t,
-                    "  table: {} nodes up to overlap {}{lu}; largest measured error {} of max(|pull-off|, |load|)",
-                    law.nodes,
-                    short(law.overlap_max * l),
-                    short(law.error)
-                );
-            }
-            Ok(t)
+        Format::Text => Ok(laws.iter().map(|s| law_text(s, si)).collect()),
+        Format::Json => table_json(laws, cycles, names),
+        Format::Csv => table_csv(laws, cycles, names),
+    }
+}
+
+/// One law's lines of the text table: its units, its marks along approach and retract, its
+/// pull-off, loop and table.
+fn law_text(s: &Shown, si: bool) -> String {
+    let mut t = String::new();
+    let law = &s.law;
+    let (l, f) = (s.length(), s.force());
+    let (lu, fu) = if si { (" m", " N") } else { ("", "") };
+    let _ = writeln!(
+        t,
+        "{} force-overlap law, lambda = {}{}",
+        title(law),
+        short(law.lambda),
+        if let Some(c) = &s.contact {
+            format!(
+                " (R = {} m, E* = {} Pa, w = {} J/m^2, s0 = {} Pa; force unit pi w R = {} N, overlap unit {} m{})",
+                short(c.radius),
+                short(c.e_star),
+                short(c.work),
+                short(c.s0),
+                short(f),
+                short(l),
+                if s.meniscus.is_some() { ", w the total" } else { "" }
+            )
+        } else if law.law.model() == crate::physics::model::ContactModel::SolidAndMeniscus {
+            " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3), w the total)".into()
+        } else {
+            " (loads in pi w R, overlaps in (pi^2 w^2 R / K^2)^(1/3))".into()
         }
-        Format::Json => {
-            let list: Vec<_> = laws
-                .iter()
-                .zip(cycles)
-                .map(|(s, (xs, app, ret))| {
-                    let back: Vec<f64> = xs.iter().rev().copied().collect();
-                    let half = |x: &[f64], e: &[Eval]| {
-                        json!({
-                            ox: x.iter().map(|v| json_num(v * s.length())).collect::<Vec<_>>(),
-                            fx: e.iter().map(|e| json_num(e.load * s.force())).collect::<Vec<_>>(),
-                            kx: e.iter().map(|e| json_num(e.stiffness * s.force() / s.length())).collect::<Vec<_>>(),
-                            "branch": e.iter().map(|e| e.branch.name()).collect::<Vec<_>>(),
-                        })
-                    };
-                    let mut m = marks(s);
-                    m["approach"] = half(xs, app);
-                    m["retract"] = half(&back, ret);
-                    m
+    );
+    if let Some(m) = &s.meniscus {
+        let _ = writeln!(
+            t,
+            "  meniscus: Kelvin radius {} m, Laplace pressure {} Pa over a height of {} m, w {} J/m^2",
+            short(m.kelvin_radius_m),
+            short(m.laplace_pressure_pa),
+            short(m.range_m),
+            short(m.work_of_adhesion_j_m2)
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  approach: attraction from overlap {}{lu}, into contact at {}{lu}",
+        short(law.attraction_from * l),
+        short(law.delta_in * l)
+    );
+    let _ = writeln!(
+        t,
+        "  retract: out of contact at {}{lu} (force {}{fu}){}",
+        short(law.delta_out * l),
+        short(law.disp_pulloff * f),
+        match law.delta_nc {
+            Some(nc) => format!(", then across the gap down to {}{lu}", short(nc * l)),
+            None => ", then free".into(),
+        }
+    );
+    let _ = writeln!(
+        t,
+        "  pull-off under load control {}{fu}",
+        short(law.load_pulloff * f)
+    );
+    if let Some(e) = law.loop_area(law.overlap_max) {
+        let _ = writeln!(
+            t,
+            "  energy lost per slow cycle: {}{}",
+            short(e * f * l),
+            if si {
+                " J"
+            } else {
+                " (pi w R x approach unit)"
+            }
+        );
+    }
+    let _ = writeln!(
+        t,
+        "  table: {} nodes up to overlap {}{lu}; largest measured error {} of max(|pull-off|, |load|)",
+        law.nodes,
+        short(law.overlap_max * l),
+        short(law.error)
+    );
+    t
+}
+
+/// The laws' samples along approach and retract as JSON, with their marks.
+fn table_json(
+    laws: &[Shown],
+    cycles: &[(Vec<f64>, Vec<Eval>, Vec<Eval>)],
+    (ox, fx, kx): (&str, &str, &str),
+) -> anyhow::Result<String> {
+    let list: Vec<_> = laws
+        .iter()
+        .zip(cycles)
+        .map(|(s, (xs, app, ret))| {
+            let back: Vec<f64> = xs.iter().rev().copied().collect();
+            let half = |x: &[f64], e: &[Eval]| {
+                json!({
+                    ox: x.iter().map(|v| json_num(v * s.length())).collect::<Vec<_>>(),
+                    fx: e.iter().map(|e| json_num(e.load * s.force())).collect::<Vec<_>>(),
+                    kx: e.iter().map(|e| json_num(e.stiffness * s.force() / s.length())).collect::<Vec<_>>(),
+                    "branch": e.iter().map(|e| e.branch.name()).collect::<Vec<_>>(),
                 })
-                .collect();
-            Ok(serde_json::to_string_pretty(&json!({ "laws": list }))? + "\n")
-        }
-        Format::Csv => {
-            let mut w = crate::io::csv_writer();
-            w.write_record(["lambda", "phase", ox, fx, kx, "branch"])?;
-            for (s, (xs, app, ret)) in laws.iter().zip(cycles) {
-                let back: Vec<f64> = xs.iter().rev().copied().collect();
-                for (phase, x, e) in [("approach", xs, app), ("retract", &back, ret)] {
-                    for (d, e) in x.iter().zip(e) {
-                        w.write_record([
-                            fmt17(s.lambda_given),
-                            phase.to_string(),
-                            fmt17(d * s.length()),
-                            fmt17(e.load * s.force()),
-                            fmt17(e.stiffness * s.force() / s.length()),
-                            e.branch.name().to_string(),
-                        ])?;
-                    }
-                }
+            };
+            let mut m = marks(s);
+            m["approach"] = half(xs, app);
+            m["retract"] = half(&back, ret);
+            m
+        })
+        .collect();
+    Ok(serde_json::to_string_pretty(&json!({ "laws": list }))? + "\n")
+}
+
+/// The laws' samples along approach and retract as CSV, a row a sample.
+fn table_csv(
+    laws: &[Shown],
+    cycles: &[(Vec<f64>, Vec<Eval>, Vec<Eval>)],
+    (ox, fx, kx): (&str, &str, &str),
+) -> anyhow::Result<String> {
+    let mut w = crate::io::csv_writer();
+    w.write_record(["lambda", "phase", ox, fx, kx, "branch"])?;
+    for (s, (xs, app, ret)) in laws.iter().zip(cycles) {
+        let back: Vec<f64> = xs.iter().rev().copied().collect();
+        for (phase, x, e) in [("approach", xs, app), ("retract", &back, ret)] {
+            for (d, e) in x.iter().zip(e) {
+                w.write_record([
+                    fmt17(s.lambda_given),
+                    phase.to_string(),
+                    fmt17(d * s.length()),
+                    fmt17(e.load * s.force()),
+                    fmt17(e.stiffness * s.force() / s.length()),
+                    e.branch.name().to_string(),
+                ])?;
             }
-            Ok(String::from_utf8(w.into_inner()?)?)
         }
     }
+    Ok(String::from_utf8(w.into_inner()?)?)
 }
 
 fn write_npy(

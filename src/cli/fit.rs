@@ -120,46 +120,9 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         ),
         None => (!figure.is_empty()).then_some(0),
     };
-    let progress = std::sync::Mutex::new(crate::progress::Progress::new(
-        "fitting",
-        curves.len() as u64,
-        "curves",
-    ));
-    let results: Vec<CurveFit> = curves
-        .par_iter()
-        .map(|c| {
-            let r = fit::fit_curve(c, &opt);
-            if let Ok(mut p) = progress.lock() {
-                p.inc(1);
-            }
-            r
-        })
-        .collect();
-    if let Ok(p) = progress.into_inner() {
-        p.finish();
-    }
+    let results = fit_all(&curves, &opt);
     let text = match a.format {
-        Format::Json => {
-            #[derive(serde::Serialize)]
-            struct Out<'a> {
-                #[serde(skip_serializing_if = "Option::is_none")]
-                radius_m: Option<f64>,
-                #[serde(skip_serializing_if = "Option::is_none")]
-                tip: Option<&'a crate::physics::tip::TipInput>,
-                spring_n_m: f64,
-                segment: Segments,
-                tolerance: f64,
-                curves: &'a [CurveFit],
-            }
-            serde_json::to_string_pretty(&Out {
-                radius_m: a.radius,
-                tip: a.tip.as_ref(),
-                spring_n_m: a.spring_n_m,
-                segment: opt.segments,
-                tolerance: a.tolerance,
-                curves: &results,
-            })? + "\n"
-        }
+        Format::Json => fits_json(&a, &opt, &results)?,
         _ => csv_rows(&results, opt.humidity.is_some())?,
     };
     write_output(&a.output, text.as_bytes())?;
@@ -195,6 +158,53 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
         );
     }
     Ok(())
+}
+
+/// Every curve fitted, on all cores, with a progress bar on stderr.
+fn fit_all(curves: &[fit::Curve], opt: &FitOptions) -> Vec<CurveFit> {
+    let progress = std::sync::Mutex::new(crate::progress::Progress::new(
+        "fitting",
+        curves.len() as u64,
+        "curves",
+    ));
+    let results: Vec<CurveFit> = curves
+        .par_iter()
+        .map(|c| {
+            let r = fit::fit_curve(c, opt);
+            if let Ok(mut p) = progress.lock() {
+                p.inc(1);
+            }
+            r
+        })
+        .collect();
+    if let Ok(p) = progress.into_inner() {
+        p.finish();
+    }
+    results
+}
+
+/// The fits as the JSON document of `tabor fit`: the options they were made with, then the
+/// curves.
+fn fits_json(a: &FitArgs, opt: &FitOptions, results: &[CurveFit]) -> anyhow::Result<String> {
+    #[derive(serde::Serialize)]
+    struct Out<'a> {
+        #[serde(skip_serializing_if = "Option::is_none")]
+        radius_m: Option<f64>,
+        #[serde(skip_serializing_if = "Option::is_none")]
+        tip: Option<&'a crate::physics::tip::TipInput>,
+        spring_n_m: f64,
+        segment: Segments,
+        tolerance: f64,
+        curves: &'a [CurveFit],
+    }
+    Ok(serde_json::to_string_pretty(&Out {
+        radius_m: a.radius,
+        tip: a.tip.as_ref(),
+        spring_n_m: a.spring_n_m,
+        segment: opt.segments,
+        tolerance: a.tolerance,
+        curves: results,
+    })? + "\n")
 }
 
 /// The library's options from the flags, checked by the library.

@@ -190,6 +190,13 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     for o in figure_out.into_iter().flatten().chain(json_out).chain(npy) {
         o.commit()?;
     }
+    report(&a, &spec, &data);
+    Ok(())
+}
+
+/// What a map cost and what it shows, on stderr: the stages' times, the files written and each
+/// region's share.
+fn report(a: &MapArgs, spec: &crate::map::MapSpec, data: &crate::map::MapData) {
     let tm = &data.timings;
     eprintln!(
         "map {}x{}: solve {:.3} s, classify {:.3} s, render {:.3} s; wrote {}{}",
@@ -217,5 +224,4 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         })
         .collect();
     eprintln!("regions: {}", counts.join(", "));
-    Ok(())
 }

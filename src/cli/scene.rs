@@ -568,7 +568,7 @@ pub struct CycleArgs {
 }
 
 pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
-    use crate::cycle::{normalised_stiffness, CycleSpec, Drive};
+    use crate::cycle::CycleSpec;
     use crate::law::ContactLaw;
     let scene = match (&a.scene, &a.preset) {
         (Some(f), _) => Some(read_scene(f)?),
@@ -619,27 +619,11 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         std::iter::once(("--output".to_string(), std::path::PathBuf::from(&a.output))),
     )?;
     let print = a.figure.print("cycle")?;
-    if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
-        bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
-            DriveKind::Grips => "grips",
-            _ => "dead-load",
-        });
-    }
-    let drive = match a.control {
-        DriveKind::Grips => Drive::RigidGrips,
-        DriveKind::DeadLoad => Drive::DeadLoad,
-        DriveKind::Spring => {
-            let k = match (a.stiffness, a.spring_n_m, &contact) {
-                (Some(k), None, _) => k,
-                (None, Some(k), Some(c)) if wet.is_none() => normalised_stiffness(k, c),
-                (None, Some(k), Some(c)) => k * scale(c).1 / scale(c).0,
-                (None, Some(_), None) => bail!("--spring-n-m needs a scene (--scene or --preset) to normalise it; or give --stiffness"),
-                _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
-            };
-            // The library checks k (and the rest), in the same words as for Python.
-            Drive::Spring(k)
-        }
-    };
+    let drive = cycle_drive(
+        &a,
+        contact.as_ref(),
+        wet.as_ref().map(|w| (w.2.load, w.2.approach)),
+    )?;
     let ratios = match &wet {
         Some((rho, eta, _)) => Some((*rho, *eta)),
         None => super::two_zone_ratios(a.stress_ratio, a.range_ratio)?,
@@ -676,6 +660,39 @@ pub fn cycle(a: CycleArgs) -> anyhow::Result<()> {
         eprintln!("wrote the figure");
     }
     Ok(())
+}
+
+/// The drive of `tabor cycle` from its flags: a spring's constant normalised by the scene's
+/// units (`wet`: a humid scene's total-w force and approach units).
+fn cycle_drive(
+    a: &CycleArgs,
+    contact: Option<&crate::physics::params::Contact>,
+    wet: Option<(f64, f64)>,
+) -> anyhow::Result<crate::cycle::Drive> {
+    use crate::cycle::{normalised_stiffness, Drive};
+    if a.control != DriveKind::Spring && (a.stiffness.is_some() || a.spring_n_m.is_some()) {
+        bail!("--stiffness and --spring-n-m set the spring of --control spring; --control {} has none", match a.control {
+            DriveKind::Grips => "grips",
+            _ => "dead-load",
+        });
+    }
+    Ok(match a.control {
+        DriveKind::Grips => Drive::RigidGrips,
+        DriveKind::DeadLoad => Drive::DeadLoad,
+        DriveKind::Spring => {
+            let k = match (a.stiffness, a.spring_n_m, contact) {
+                (Some(k), None, _) => k,
+                (None, Some(k), Some(c)) => match wet {
+                    None => normalised_stiffness(k, c),
+                    Some((load, approach)) => k * approach / load,
+                },
+                (None, Some(_), None) => bail!("--spring-n-m needs a scene (--scene or --preset) to normalise it; or give --stiffness"),
+                _ => bail!("--control spring needs --stiffness (normalised) or --spring-n-m with a scene"),
+            };
+            // The library checks k (and the rest), in the same words as for Python.
+            Drive::Spring(k)
+        }
+    })
 }
 
 /// The limits of a scene's meniscus model on stderr, as `tabor scene` reports them.
