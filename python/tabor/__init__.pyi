@@ -178,6 +178,7 @@ def fit_fleet(
     spring_n_m: Optional[float] = None,
     *,
     client: Any = None,
+    store: Union[None, str, PathLike[str]] = None,
     **options: Any,
 ) -> Any: ...  # an xarray.Dataset (xarray is an optional dependency)
 def cycle(

@@ -430,7 +430,9 @@ def fit_fleet(maps, radius_m, spring_n_m=None, *, client=None, store=None, **opt
         xarray missing; afmformats missing where a map is a file or a folder; zarr missing
         where ``store`` is given.
     FileExistsError
-        ``store`` exists already (it is never overwritten).
+        ``store`` exists already (it is never overwritten), checked before any map is fitted.
+    FileNotFoundError
+        ``store``'s folder does not exist (before any map is fitted).
 
     Examples
     --------
@@ -494,7 +496,6 @@ def _fit_all(specs, client, radius_m, spring_n_m, options, put):
 def _to_store(store, fleet, specs, client, radius_m, spring_n_m, options):
     """The fleet's Dataset written to the Zarr store map by map (see fit_fleet's ``store``)."""
     import pickle
-    import shutil
     import tempfile
 
     import xarray as xr
@@ -535,7 +536,10 @@ def _to_store(store, fleet, specs, client, radius_m, spring_n_m, options):
             else:
                 one.to_zarr(partial, append_dim="map", consolidated=False)
             (tmp / f"{i}.pickle").unlink()
-        shutil.move(str(partial), str(store))
+        if store.exists():  # made while the maps were fitted: never overwritten
+            raise FileExistsError(f"store: {store} appeared while the maps were fitted; the "
+                                  "results are not written (give a new path)")
+        os.rename(partial, store)
     return xr.open_dataset(store, engine="zarr", chunks=None, consolidated=False)
 
 

@@ -277,6 +277,7 @@ fn closed_form(
             ..hertz.params()
         })
     });
+    let beats_hertz = |f: &ModelFit| rank(f) <= hertz.rms_residual_n * (1.0 + 1e-9);
     let mut f = match again {
         Some(a)
             if first.status == FitStatus::Ok
@@ -285,8 +286,9 @@ fn closed_form(
             better(first.clone(), a)
         }
         // Stopped by the short budget where it fits better than Hertz and than the fit from
-        // Hertz's answer: taken as it stands (as a free Maugis-Dugdale fit is, see `scout`).
-        _ if rank(&first) <= hertz.rms_residual_n * (1.0 + 1e-9) => ModelFit {
+        // Hertz's answer: taken as it stands (as a free Maugis-Dugdale fit is, see `scout`; its
+        // stop says so, and the adequacy test does not reject the model on it).
+        Some(a) if beats_hertz(&first) && rank(&first) <= rank(&a) => ModelFit {
             status: FitStatus::Ok,
             ..first.clone()
         },

@@ -348,13 +348,11 @@ impl Problem<'_> {
         if self.model.has_lambda() && !self.tip.admits_lambda(p.lambda) {
             return None;
         }
-        // A Dugdale zone longer than the curve's height span pulls nearly alike at every point
-        // (its end is never seen): its adhesion trades against the force offset along a valley
-        // whose misfit falls without end (w and z0 growing together), not a model of the curve.
-        if self.model.has_lambda()
-            && self.z0.is_none()
-            && !(self.tip.z0_from_lambda(p.e_star, p.w, p.lambda) <= self.z_scale)
-        {
+        // A force offset beyond the largest force measured (the baseline, read on the far
+        // approach, is the zero of force up to a drift): there a Dugdale zone longer than the
+        // curve pulls nearly alike at every point and its adhesion trades against the offset
+        // along a valley whose misfit falls without end (w, z0 and f0 growing together).
+        if self.model.has_lambda() && self.z0.is_none() && !(p.f0.abs() <= self.f_scale) {
             return None;
         }
         Some((p, law, u))

@@ -108,8 +108,8 @@ pub(super) fn summarize(
         .collect();
     let z0 = put_parameters(&mut out, opt, d, &p, &md, amax, in_contact, &loads);
     put_intervals(&mut out, iv);
-    if zone_past_curve(&out, d, opt) {
-        zone_bound(&mut out);
+    if offset_at_bound(&md, d, opt) {
+        offset_bound(&mut out, &md);
     }
     let l95 = iv.lambda[1];
     let m = d.force.len() as f64;
@@ -404,9 +404,10 @@ pub(super) fn warnings(
             "only {in_contact} fitted points are in contact: E* is poorly determined"
         ));
     }
-    if zone_past_curve(out, d, opt) {
+    if offset_at_bound(md, d, opt) {
         warn.push(format!(
-            "the best Maugis-Dugdale fit has its Dugdale zone as long as the curve (z0 = {:.3e} m, the height span the fit allows): the misfit falls further as the zone grows past the curve's end, where its pull cannot be told from the force offset, so w, z0 and lambda are not determined; fit the curve with its baseline far from contact, or give the Lennard-Jones range z0",
+            "the best Maugis-Dugdale fit needs a force offset as large as the largest force the curve measured ({:.3e} N, the bound the fit allows): its Dugdale zone (z0 = {:.3e} m) pulls nearly alike along the whole curve, so its adhesion trades against the offset (the misfit falls further as both grow), and w, z0 and lambda are not determined; fit the curve with its baseline far from contact, or give the Lennard-Jones range z0",
+            md.force_offset_n,
             out.z0_m.unwrap_or(f64::NAN)
         ));
     } else if let (Some(false), Some(b)) = (out.lambda_determined, &out.lambda_bound) {
@@ -443,24 +444,30 @@ pub(super) fn warnings(
     warn
 }
 
-/// Where a fitted zone's range must end: within the fitted points' height span (`Problem`
-/// refuses longer ones). A best fit within 1% of it lies on that bound, not at a minimum.
-const ZONE_AT_SPAN: f64 = 0.99;
+/// How close to its bound (the largest force measured) a fit's force offset lies on it.
+const OFFSET_AT_BOUND: f64 = 0.99;
 
-/// Whether the Maugis-Dugdale fit lies on the bound of its zone's range (the curve's height
-/// span): there the misfit still falls as the zone grows, trading its pull against the offset.
-fn zone_past_curve(out: &CurveFit, d: &Prepared, opt: &FitOptions) -> bool {
-    opt.z0.is_none() && out.z0_m.is_some_and(|z| z >= ZONE_AT_SPAN * d.scales.1)
+/// Whether the Maugis-Dugdale fit lies on the bound of its force offset (`Problem` refuses
+/// offsets beyond the largest force measured): there the misfit still falls as the offset and the
+/// pull of a zone longer than the curve grow together.
+fn offset_at_bound(md: &ModelFit, d: &Prepared, opt: &FitOptions) -> bool {
+    opt.z0.is_none() && md.force_offset_n.abs() >= OFFSET_AT_BOUND * d.scales.0
 }
 
-/// A fit on the bound of its zone's range: lambda not determined, and the upper ends of w's and
-/// z0's intervals open (they grow along the valley).
-fn zone_bound(out: &mut CurveFit) {
+/// A fit on the bound of its force offset: lambda not determined (what lambda_bound said is
+/// kept after it), and the upper ends of w's and z0's intervals open (they grow along the
+/// valley).
+fn offset_bound(out: &mut CurveFit, md: &ModelFit) {
     out.lambda_determined = Some(false);
-    out.lambda_bound = Some(format!(
-        "the best fit's Dugdale zone is as long as the curve (z0 = {:.3e} m): adhesion and the force offset cannot be told apart",
+    let why = format!(
+        "the best fit needs a force offset as large as the largest force measured (f0 = {:.3e} N): its Dugdale zone (z0 = {:.3e} m) pulls alike along the curve, and its adhesion and the offset cannot be told apart",
+        md.force_offset_n,
         out.z0_m.unwrap_or(f64::NAN)
-    ));
+    );
+    out.lambda_bound = Some(match out.lambda_bound.take() {
+        Some(b) => format!("{why}; {b}"),
+        None => why,
+    });
     for iv in [
         &mut out.work_of_adhesion_j_m2_interval_68,
         &mut out.work_of_adhesion_j_m2_interval_95,
@@ -516,7 +523,10 @@ pub(super) fn adequate_by_test(
         let dchi = (rss(f) - rss(md)) / s2;
         // A fit that stopped short of its minimum says nothing of the model: its misfit is
         // only an upper bound, and a test on it would reject the model for the search's sake.
-        if f.status != FitStatus::Ok && dchi.is_finite() {
+        // (A closed form's first fit taken as it stands at its short budget is one too; within
+        // the criterion it shows the model adequate all the same.)
+        let short = f.stop == super::problem::stop_text(&TerminationReason::LostPatience);
+        if (f.status != FitStatus::Ok || (short && dchi > crit)) && dchi.is_finite() {
             notes.push(format!(
                 "{}'s fit did not converge (Delta chi^2 = {:.3} is an upper bound), so it is not tested",
                 f.model.label(),

@@ -1060,11 +1060,12 @@ fn binned_long_curves_keep_their_coverage() {
 }
 
 /// A curve cut off inside its Dugdale zone: its far part, where the baseline is read, still
-/// feels the zone's pull, so no point shows where the zone ends. The fit's zone may reach no
-/// farther than the curve spans (beyond it adhesion trades against the force offset without
-/// end); its best fit lies on that bound and says that w, z0 and lambda are not determined.
+/// feels the zone's pull (a force offset), and no point lies beyond the zone's end. The zone's
+/// shape along the curve still gives lambda: a fit may have a zone longer than the curve, and a
+/// force offset up to the largest force measured (beyond that, its adhesion could trade against
+/// the offset without end: `tabor.fit_afmformats` on the soft samples of python/tests).
 #[test]
-fn a_curve_cut_off_inside_its_zone_leaves_lambda_undetermined() {
+fn a_curve_cut_off_inside_its_zone_still_gives_its_lambda() {
     let (s, opt) = case(Model::Md, 0.05, 40.0, 2e-12, 11);
     let whole = synthetic(&s);
     let z0 = tabor::fit::z0_from_lambda(1.5e9, 0.05, 20e-9, 0.05);
@@ -1078,34 +1079,32 @@ fn a_curve_cut_off_inside_its_zone_leaves_lambda_undetermined() {
         force: keep.iter().map(|&i| whole.force[i]).collect(),
         ..whole.clone()
     };
-    let heights = |c: &tabor::fit::Curve| {
+    let span = |c: &tabor::fit::Curve| {
         let lo = c.height.iter().cloned().fold(f64::INFINITY, f64::min);
         let hi = c.height.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
         hi - lo
     };
     assert!(
-        heights(&cut) < z0 && heights(&whole) > z0,
+        span(&cut) < z0 && span(&whole) > z0,
         "the cut is inside the zone"
     );
-    // The whole curve: the truth, lambda determined.
-    let r = fit_curve(&whole, &opt);
-    assert_recovers(&r, 0.05, 1e-2, "the whole curve");
-    assert_eq!(r.lambda_determined, Some(true), "{:?}", r.lambda_bound);
-    let r = fit_curve(&cut, &opt);
-    assert_eq!(r.status, FitStatus::Ok, "{}", r.message);
-    let z = r.z0_m.unwrap();
-    assert!(
-        z <= heights(&cut) && z > 0.99 * heights(&cut),
-        "z0 {z} against the span {}",
-        heights(&cut)
-    );
-    assert_eq!(r.lambda_determined, Some(false), "{:?}", r.lambda_bound);
-    assert!(
-        r.warnings
-            .iter()
-            .any(|w| w.contains("Dugdale zone as long as the curve")),
-        "{:?}",
-        r.warnings
-    );
-    assert_eq!(r.work_of_adhesion_j_m2_interval_95.unwrap()[1], None);
+    // (Cut, w trades a little against the offset: 1.6% found.)
+    for (c, what, tol) in [
+        (&whole, "the whole curve", 1e-2),
+        (&cut, "the cut curve", 3e-2),
+    ] {
+        let r = fit_curve(c, &opt);
+        assert_recovers(&r, 0.05, tol, what);
+        assert_eq!(
+            r.lambda_determined,
+            Some(true),
+            "{what}: {:?}",
+            r.lambda_bound
+        );
+        assert!(
+            rel(r.z0_m.unwrap(), z0) < tol,
+            "{what}: z0 {:?} against {z0}",
+            r.z0_m
+        );
+    }
 }
