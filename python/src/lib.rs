@@ -445,7 +445,7 @@ fn solve_tip<'py>(
     given: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::law::{tip, Given};
-    let shape = tabor::scene::tip::shape_of(tip).map_err(PyValueError::new_err)?;
+    let shape = tabor::scene::tip::shape_of(tip).map_err(|e| py_value_error(&e))?;
     // "approach_in": the approach followed without a jump (`Tip::approach_state`), the
     // nanite models' path.
     let given = match given {
@@ -587,7 +587,7 @@ fn pulloff_tip<'py>(
     lam: PyReadonlyArray1<'py, f64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::law::{Drive, Tip};
-    let shape = tabor::scene::tip::shape_of(tip).map_err(PyValueError::new_err)?;
+    let shape = tabor::scene::tip::shape_of(tip).map_err(|e| py_value_error(&e))?;
     let lam: Vec<f64> = lam.as_slice()?.to_vec();
     let states = run(py, move || {
         use rayon::prelude::*;
@@ -815,14 +815,16 @@ fn fit_curves<'py>(
         let opt = FitOptions::from_json(&options_json)?;
         // The library's check, as the command line makes it.
         if let Err(e) = opt.validate() {
-            // Named as fit_curves' keyword.
-            let kw = match e.option {
-                "z0" => "z0_m",
-                "spring" => "spring_n_m",
-                "radius" => "radius_m",
-                o => o,
-            };
-            anyhow::bail!("{kw}: {}", e.message);
+            // Named as fit_curves' keywords.
+            anyhow::bail!(
+                "{}",
+                tabor::error::Named::named(&e, &|key| match key {
+                    "z0" => Some("z0_m"),
+                    "spring" => Some("spring_n_m"),
+                    "radius" => Some("radius_m"),
+                    _ => None,
+                })
+            );
         }
         let mut curves: Vec<Curve> = Vec::new();
         // Each curve's directions, None for a point of a dwell (-1).
@@ -910,7 +912,7 @@ fn cycle<'py>(
                     "tip= has no second zone: leave stress_ratio and range_ratio out",
                 ));
             }
-            let shape = tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?;
+            let shape = tabor::scene::tip::shape_of(t).map_err(|e| py_value_error(&e))?;
             tabor::ContactLaw::Tip(
                 tabor::law::Tip::new(shape, lam)
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
@@ -968,7 +970,7 @@ fn profile<'py>(
 ) -> PyResult<Bound<'py, PyAny>> {
     let law = match tip {
         Some(t) => {
-            let shape = tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?;
+            let shape = tabor::scene::tip::shape_of(t).map_err(|e| py_value_error(&e))?;
             tabor::ContactLaw::Tip(
                 tabor::law::Tip::new(shape, lam)
                     .map_err(|e| PyValueError::new_err(format!("lam = {lam}: {e}")))?,
@@ -1051,7 +1053,7 @@ impl AdhesionMap {
                     ));
                 }
                 backend = Backend::Cpu;
-                Some(tabor::scene::tip::shape_of(t).map_err(PyValueError::new_err)?)
+                Some(tabor::scene::tip::shape_of(t).map_err(|e| py_value_error(&e))?)
             }
             None => None,
         };
@@ -1146,7 +1148,7 @@ impl AdhesionMap {
         };
         let print = tabor::render::Print::new(width_mm, dpi).map_err(|e| py_value_error(&e))?;
         let out = tabor::render::Outputs::from_path(std::path::Path::new(&path))
-            .map_err(PyValueError::new_err)?;
+            .map_err(|e| PyValueError::new_err(e.to_string()))?;
         let data = &self.data;
         run_here(py, move || tabor::render::map::save(data, q, &print, &out))
     }

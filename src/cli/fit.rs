@@ -1,6 +1,7 @@
 //! `tabor fit`: measured force curves in, exact Maugis-Dugdale parameters out.
 
 use super::Format;
+use crate::error::Named;
 use crate::fit::{self, CurveFit, FitOptions, FitStatus, Segments};
 use crate::io::output::write_output;
 use anyhow::{bail, Context};
@@ -236,14 +237,25 @@ fn options(a: &FitArgs) -> anyhow::Result<FitOptions> {
     .sphere_as_radius();
     // One check of the options, the library's, as Python's fit_curves makes it.
     if let Err(e) = opt.validate() {
-        let flag = match e.option {
-            "spring" => "spring-n-m".to_string(),
-            o => o.replace('_', "-"),
-        };
-        bail!("--{flag}: {}", e.message);
+        bail!("{}", e.named(&super::flags(FIT_FLAGS)));
     }
     Ok(opt)
 }
+
+/// The fit's options as flags.
+const FIT_FLAGS: &[(&str, &str)] = &[
+    ("spring", "--spring-n-m"),
+    ("radius", "--radius"),
+    ("tip", "--tip"),
+    ("poisson", "--poisson"),
+    ("z0", "--z0"),
+    ("tolerance", "--tolerance"),
+    ("relative_humidity", "--relative-humidity"),
+    ("contact_angle_deg", "--contact-angle-deg"),
+    ("surface_tension_n_m", "--surface-tension-n-m"),
+    ("molar_volume_m3_mol", "--molar-volume-m3-mol"),
+    ("temperature_k", "--temperature-k"),
+];
 
 /// Every output is distinct and can be written: checked before the fits (which can take
 /// minutes), a temporary file made beside each and removed again.

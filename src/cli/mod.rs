@@ -397,6 +397,9 @@ pub(crate) const HUMIDITY_FLAGS: &[(&str, &str)] = &[
     ("points", "--points"),
 ];
 
+/// A tip as a flag.
+pub(crate) const TIP_FLAGS: &[(&str, &str)] = &[("tip", "--tip")];
+
 /// The map's quantities as flags.
 pub(crate) const MAP_FLAGS: &[(&str, &str)] = &[
     ("lambda_min", "--lambda-min"),
@@ -540,8 +543,11 @@ pub fn tip_shape(s: &str) -> anyhow::Result<crate::physics::tip::Shape> {
             );
             Ok(u.shape)
         }
-        None => s
-            .parse()
-            .map_err(|e| anyhow::anyhow!("--{e} (or scene:FILE, a scene's tip)")),
+        None => s.parse().map_err(|e: crate::error::Message| {
+            anyhow::anyhow!(
+                "{} (or scene:FILE, a scene's tip)",
+                e.named(&flags(TIP_FLAGS))
+            )
+        }),
     }
 }

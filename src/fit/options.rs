@@ -180,7 +180,7 @@ impl FitOptions {
             ));
         }
         if let Some(tip) = &self.tip {
-            super::Geometry::of(tip).map_err(|e| ("tip", e))?;
+            super::Geometry::of(tip).map_err(|e| ("tip", e.to_string()))?;
             if self.humidity.is_some() {
                 return Err((
                     "relative_humidity",
@@ -263,6 +263,17 @@ pub struct OptionError {
 impl std::fmt::Display for OptionError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&self.message)
+    }
+}
+
+/// The option by a front end's name (its field's where it has none), then what is wrong.
+impl crate::error::Named for OptionError {
+    fn named(&self, names: crate::error::Names) -> String {
+        format!(
+            "{}: {}",
+            names(self.option).unwrap_or(self.option),
+            self.message
+        )
     }
 }
 

@@ -4,6 +4,7 @@
 //! those units from E* and w, and how they move with E* and w (section 12.4).
 
 use super::{Model, Units};
+use crate::error::Message;
 use crate::law::{ContactLaw, Tip, TipClosed};
 use crate::physics::measured::Profile;
 use crate::physics::params::LJ_STRESS;
@@ -58,14 +59,15 @@ impl From<f64> for Geometry {
 impl Geometry {
     /// The tip a scene's `"tip"` describes, its numbers checked as a scene checks them (a
     /// measured profile's table as [`Profile::new`] checks it).
-    pub fn of(tip: &TipInput) -> Result<Geometry, String> {
+    pub fn of(tip: &TipInput) -> Result<Geometry, Message> {
         if let TipInput::Profile { r_m, z_m } = tip {
             return Profile::interned(r_m, z_m)
                 .map(Geometry::Measured)
-                .map_err(|e| format!("tip: {e}"));
+                .map_err(|e| Message::new().key("tip").text(": ").then(e));
         }
         // The scene's checks of every number (named by its key).
-        tip.units(1.0, 1.0, 1.0).map_err(|e| e.to_string())?;
+        tip.units(1.0, 1.0, 1.0)
+            .map_err(|e| Message::from(e.to_string()))?;
         Ok(match *tip {
             TipInput::Sphere { radius_m } => Geometry::Sphere(radius_m),
             TipInput::CappedCone {
@@ -78,8 +80,8 @@ impl Geometry {
             _ => {
                 let (n, b) = tip
                     .power()
-                    .map_err(|e| e.to_string())?
-                    .ok_or("the tip is not a power law")?;
+                    .map_err(|e| Message::from(e.to_string()))?
+                    .ok_or(Message::from("the tip is not a power law"))?;
                 if n == 2.0 {
                     // The paraboloid f = B r^2 is the sphere of radius 1/(2B), exactly.
                     Geometry::Sphere(0.5 / b)

@@ -4,6 +4,7 @@
 //! form, interval by interval (the cubic's slope is a quadratic in sin phi along r = T sin phi).
 
 use super::domain::short;
+use crate::error::Message;
 use serde::Serialize;
 use std::f64::consts::FRAC_PI_2;
 
@@ -78,53 +79,57 @@ impl Profile {
     /// The profile of the table `r`, `z` (any one length unit): `r` from 0 (the axis) strictly
     /// rising, `z` never falling (its value at r = 0 is the apex). Errors name the first bad
     /// point.
-    pub fn new(r: &[f64], z: &[f64]) -> Result<Profile, String> {
+    pub fn new(r: &[f64], z: &[f64]) -> Result<Profile, Message> {
+        let rk = || Message::new().key("r_m");
+        let zk = || Message::new().key("z_m");
         if r.len() != z.len() {
-            return Err(format!(
-                "r_m has {} values and z_m {}: give one height per radius",
-                r.len(),
-                z.len()
-            ));
+            return Err(rk()
+                .text(format!(" has {} values and ", r.len()))
+                .then(zk().text(format!(" {}: give one height per radius", z.len()))));
         }
         if r.len() < 4 {
             return Err(format!(
                 "the profile has {} points: give at least 4 (r, z) pairs from the axis outwards",
                 r.len()
-            ));
+            )
+            .into());
         }
         if let Some(i) = (0..r.len()).find(|&i| !(r[i].is_finite() && z[i].is_finite())) {
-            return Err(format!(
-                "point {i} of the profile (r_m = {}, z_m = {}) is not a finite number",
-                short(r[i]),
-                short(z[i])
-            ));
+            return Err(Message::new()
+                .text(format!("point {i} of the profile ("))
+                .then(rk().text(format!(" = {}, ", short(r[i]))))
+                .then(zk().text(format!(" = {}) is not a finite number", short(z[i])))));
         }
         if r[0] != 0.0 {
-            return Err(format!(
-                "r_m[0] = {} is not 0: the profile starts on the tip's axis (r = 0 at the apex)",
+            return Err(rk().text(format!(
+                "[0] = {} is not 0: the profile starts on the tip's axis (r = 0 at the apex)",
                 short(r[0])
-            ));
+            )));
         }
         if let Some(i) = (1..r.len()).find(|&i| r[i] <= r[i - 1]) {
-            return Err(format!(
-                "r_m[{i}] = {} does not rise from r_m[{}] = {}: give the radii in increasing order",
-                short(r[i]),
-                i - 1,
-                short(r[i - 1])
-            ));
+            return Err(rk()
+                .text(format!("[{i}] = {} does not rise from ", short(r[i])))
+                .then(rk().text(format!(
+                    "[{}] = {}: give the radii in increasing order",
+                    i - 1,
+                    short(r[i - 1])
+                ))));
         }
         if let Some(i) = (1..z.len()).find(|&i| z[i] < z[i - 1]) {
-            return Err(format!(
-                "z_m[{i}] = {} falls below z_m[{}] = {}: the tip's height must not fall away from \
-                 its apex (smooth the measured profile, or cut it where it turns)",
-                short(z[i]),
-                i - 1,
-                short(z[i - 1])
-            ));
+            return Err(zk()
+                .text(format!("[{i}] = {} falls below ", short(z[i])))
+                .then(zk().text(format!(
+                    "[{}] = {}: the tip's height must not fall away from its apex (smooth the \
+                     measured profile, or cut it where it turns)",
+                    i - 1,
+                    short(z[i - 1])
+                ))));
         }
         let z: Vec<f64> = z.iter().map(|v| v - z[0]).collect();
         if !(z[z.len() - 1] > 0.0) {
-            return Err("z_m is flat: the tip's height must rise away from its apex".into());
+            return Err(Message::new()
+                .key("z_m")
+                .text(" is flat: the tip's height must rise away from its apex"));
         }
         Ok(Profile::with_half(r.to_vec(), z))
     }
@@ -134,7 +139,7 @@ impl Profile {
     /// step build from the same table share one. Memory grows by one table (a few kilobytes)
     /// per distinct table a process reads, bit for bit: a study of many measured tips holds
     /// them all.
-    pub fn interned(r: &[f64], z: &[f64]) -> Result<&'static Profile, String> {
+    pub fn interned(r: &[f64], z: &[f64]) -> Result<&'static Profile, Message> {
         use std::collections::HashMap;
         use std::sync::{Mutex, OnceLock};
         static TABLES: OnceLock<Mutex<HashMap<Vec<u64>, &'static Profile>>> = OnceLock::new();
@@ -343,10 +348,10 @@ mod tests {
     #[test]
     fn bad_tables_are_refused_naming_the_point() {
         let e = Profile::new(&[0.0, 1.0, 2.0, 3.0], &[0.0, 1.0, 0.5, 2.0]).unwrap_err();
-        assert!(e.contains("z_m[2] = 0.5"), "{e}");
+        assert!(e.to_string().contains("z_m[2] = 0.5"), "{e}");
         let e = Profile::new(&[0.1, 1.0, 2.0, 3.0], &[0.0, 1.0, 1.5, 2.0]).unwrap_err();
-        assert!(e.contains("r_m[0]"), "{e}");
+        assert!(e.to_string().contains("r_m[0]"), "{e}");
         let e = Profile::new(&[0.0, 1.0, 1.0, 3.0], &[0.0, 1.0, 1.5, 2.0]).unwrap_err();
-        assert!(e.contains("r_m[2]"), "{e}");
+        assert!(e.to_string().contains("r_m[2]"), "{e}");
     }
 }

@@ -4,6 +4,7 @@
 
 use super::measured::Profile;
 use super::params::{check, ParamError};
+use crate::error::Message;
 use crate::numeric::legendre::{gauss_legendre, Order};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -588,13 +589,14 @@ impl Shape {
 /// A shape as the command line and Python give it, in its normalised units: `cone`, `sphere`,
 /// `power:N` or `capped-cone:R_OVER_L:HALF_ANGLE_DEG` (the cap's radius in the length unit l).
 impl std::str::FromStr for Shape {
-    type Err = String;
+    type Err = Message;
 
-    fn from_str(s: &str) -> Result<Shape, String> {
+    fn from_str(s: &str) -> Result<Shape, Message> {
         let usage = "give cone, sphere, power:N or capped-cone:R_OVER_L:HALF_ANGLE_DEG";
-        let num = |p: &str, what: &str| -> Result<f64, String> {
+        let tip = |rest: String| Message::new().key("tip").text(format!(" {s}: {rest}"));
+        let num = |p: &str, what: &str| -> Result<f64, Message> {
             p.parse::<f64>()
-                .map_err(|_| format!("tip {s}: {what} {p:?} is not a number; {usage}"))
+                .map_err(|_| tip(format!("{what} {p:?} is not a number; {usage}")))
         };
         let parts: Vec<&str> = s.split(':').collect();
         match parts.as_slice() {
@@ -603,23 +605,23 @@ impl std::str::FromStr for Shape {
             ["power", n] => {
                 let n = num(n, "the exponent")?;
                 if !(1.0..=8.0).contains(&n) {
-                    return Err(format!(
-                        "tip {s}: the exponent {n} is out of range: give one from 1 (a cone) to 8"
-                    ));
+                    return Err(tip(format!(
+                        "the exponent {n} is out of range: give one from 1 (a cone) to 8"
+                    )));
                 }
                 Ok(Shape::Power { exponent: n })
             }
             ["capped-cone", rho, deg] => {
                 let (rho, deg) = (num(rho, "the cap's radius")?, num(deg, "the half-angle")?);
                 if !(rho > 0.0 && rho.is_finite() && deg > 0.0 && deg < 90.0) {
-                    return Err(format!("tip {s}: give a positive cap radius (in l) and a half-angle between 0 and 90 degrees"));
+                    return Err(tip("give a positive cap radius (in l) and a half-angle between 0 and 90 degrees".into()));
                 }
                 Ok(Shape::CappedCone {
                     rho,
                     half_angle: deg.to_radians(),
                 })
             }
-            _ => Err(format!("tip {s}: {usage}")),
+            _ => Err(tip(usage.into())),
         }
     }
 }
@@ -629,16 +631,17 @@ impl std::str::FromStr for Shape {
 /// or a scene's `"tip"` object as JSON. Its numbers are checked where it is used
 /// ([`TipInput::units`]).
 impl std::str::FromStr for TipInput {
-    type Err = String;
+    type Err = Message;
 
-    fn from_str(s: &str) -> Result<TipInput, String> {
+    fn from_str(s: &str) -> Result<TipInput, Message> {
+        let tip = |rest: String| Message::new().key("tip").text(format!(" {s}: {rest}"));
         if s.trim_start().starts_with('{') {
-            return serde_json::from_str(s).map_err(|e| format!("tip {s}: {e}"));
+            return serde_json::from_str(s).map_err(|e| tip(e.to_string()));
         }
         let usage = "give sphere:R_M, cone:HALF_ANGLE_DEG, pyramid:FACES:FACE_ANGLE_DEG, power:N:B, capped-cone:R_M:HALF_ANGLE_DEG or a scene's tip object as JSON";
-        let num = |p: &str, what: &str| -> Result<f64, String> {
+        let num = |p: &str, what: &str| -> Result<f64, Message> {
             p.parse::<f64>()
-                .map_err(|_| format!("tip {s}: {what} {p:?} is not a number; {usage}"))
+                .map_err(|_| tip(format!("{what} {p:?} is not a number; {usage}")))
         };
         let parts: Vec<&str> = s.split(':').collect();
         Ok(match parts.as_slice() {
@@ -650,7 +653,9 @@ impl std::str::FromStr for TipInput {
             },
             ["pyramid", faces, deg] => TipInput::Pyramid {
                 faces: faces.parse().map_err(|_| {
-                    format!("tip {s}: the number of faces {faces:?} is not a whole number; {usage}")
+                    tip(format!(
+                        "the number of faces {faces:?} is not a whole number; {usage}"
+                    ))
                 })?,
                 face_angle_deg: num(deg, "the face angle")?,
             },
@@ -662,7 +667,7 @@ impl std::str::FromStr for TipInput {
                 radius_m: num(r, "the cap's radius")?,
                 half_angle_deg: num(deg, "the half-angle")?,
             },
-            _ => return Err(format!("tip {s}: {usage}")),
+            _ => return Err(tip(usage.into())),
         })
     }
 }

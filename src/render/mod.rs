@@ -302,15 +302,27 @@ pub struct Outputs {
     pub pdf: Option<std::path::PathBuf>,
 }
 
+/// A figure file that cannot be one of a figure's outputs: the path, and why.
+#[derive(Clone, Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum FigureFileError {
+    /// Its extension is none of .png, .svg and .pdf.
+    #[error("{}: a figure is written as .png, .svg or .pdf; name the file with one of those extensions", .0.display())]
+    Extension(std::path::PathBuf),
+    /// A second file of one format (its extension).
+    #[error("{}: a second {} output for one figure; give each format once", .0.display(), .1)]
+    Twice(std::path::PathBuf, String),
+}
+
 impl Outputs {
     /// A figure file whose format is its extension (.png, .svg or .pdf).
-    pub fn from_path(path: &Path) -> Result<Outputs, String> {
+    pub fn from_path(path: &Path) -> Result<Outputs, FigureFileError> {
         let mut o = Outputs::default();
         o.add(path)?;
         Ok(o)
     }
     /// Adds a file, its format chosen by its extension.
-    pub fn add(&mut self, path: &Path) -> Result<(), String> {
+    pub fn add(&mut self, path: &Path) -> Result<(), FigureFileError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -319,13 +331,12 @@ impl Outputs {
             Some("png") => &mut self.png,
             Some("svg") => &mut self.svg,
             Some("pdf") => &mut self.pdf,
-            _ => return Err(format!("{}: a figure is written as .png, .svg or .pdf; name the file with one of those extensions", path.display())),
+            _ => return Err(FigureFileError::Extension(path.to_path_buf())),
         };
         if slot.is_some() {
-            return Err(format!(
-                "{}: a second {} output for one figure; give each format once",
-                path.display(),
-                ext.unwrap_or_default()
+            return Err(FigureFileError::Twice(
+                path.to_path_buf(),
+                ext.unwrap_or_default(),
             ));
         }
         *slot = Some(path.to_path_buf());

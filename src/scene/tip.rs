@@ -4,6 +4,7 @@
 //! Maugis-Dugdale law).
 
 use super::{checked_tolerance, scene_loads, SceneInput};
+use crate::error::Message;
 use crate::law::{Drive, Tip};
 use crate::physics::params::ParamError;
 use crate::physics::tip::{Shape, TipInput, TipUnits};
@@ -127,15 +128,18 @@ pub fn units_of(s: &SceneInput) -> Result<TipUnits, ParamError> {
 /// `sphere`, `power:N`, `capped-cone:R_OVER_L:HALF_ANGLE_DEG`), or a scene as JSON text whose
 /// tip is taken in the units of its E* and w ([`units_of`]): any tip given in SI units, a
 /// measured profile among them, whose shape in the units depends on E* and w.
-pub fn shape_of(text: &str) -> Result<Shape, String> {
+pub fn shape_of(text: &str) -> Result<Shape, Message> {
     if !text.trim_start().starts_with('{') {
         return text.parse();
     }
-    let scene: SceneInput =
-        serde_json::from_str(text).map_err(|e| format!("tip: not a valid scene: {e}"))?;
+    let scene: SceneInput = serde_json::from_str(text).map_err(|e| {
+        Message::new()
+            .key("tip")
+            .text(format!(": not a valid scene: {e}"))
+    })?;
     units_of(&scene)
         .map(|u| u.shape)
-        .map_err(|e| format!("tip (a scene): {e}"))
+        .map_err(|e| Message::new().key("tip").text(format!(" (a scene): {e}")))
 }
 
 /// Solves a scene whose `tip` is given.
