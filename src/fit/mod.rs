@@ -169,6 +169,8 @@ struct Starts {
     /// The units the normalised pull-offs are read in (a capped cone's at the start's E* and
     /// the sphere-like w of its cap).
     u_start: Units,
+    /// The largest force measured (N): the bound of a Maugis-Dugdale fit's force offset.
+    f_max: f64,
 }
 
 impl Starts {
@@ -190,6 +192,7 @@ impl Starts {
             pull,
             w_ref,
             u_start,
+            f_max: raw.scales.0,
         }
     }
 
@@ -231,7 +234,14 @@ impl Starts {
             },
             lambda,
             zc: if ok { m.contact_point_m } else { self.est.zc },
-            f0: if ok { m.force_offset_n } else { 0.0 },
+            // Within the bound of Maugis-Dugdale's offset (`Problem::checked`), which a closed
+            // form does not have: a start beyond it would be refused whole.
+            f0: if ok {
+                m.force_offset_n
+                    .clamp(-0.99 * self.f_max, 0.99 * self.f_max)
+            } else {
+                0.0
+            },
         }
     }
 }
