@@ -506,8 +506,7 @@ def _to_store(store, fleet, specs, client, radius_m, spring_n_m, options):
     if store.exists():
         raise FileExistsError(f"store: {store} exists already; give a new path (it is never "
                               "overwritten)")
-    parent = store.parent if str(store.parent) else pathlib.Path(".")
-    with tempfile.TemporaryDirectory(dir=parent, prefix=f".{store.name}.") as tmp:
+    with tempfile.TemporaryDirectory(dir=store.parent, prefix=f".{store.name}.") as tmp:
         tmp = pathlib.Path(tmp)
         size = {"ny": 0, "nx": 0, "failed": False}
 

@@ -276,9 +276,10 @@ fn closed_form(
         FIRST_PATIENCE,
         None,
     );
-    // (Worse by more than rounding: at w -> 0 the two misfits agree to about 1e-13.)
-    let holds = |f: &ModelFit| key(f) <= hertz.rms_residual_n * (1.0 + 1e-9);
-    if first.status == FitStatus::Ok && (hertz.status != FitStatus::Ok || holds(&first)) {
+    // Hertz's misfit, which the law holds as w -> 0: worse by more than rounding (at w -> 0 the
+    // two misfits agree to about 1e-13) is a local minimum.
+    let limit = hertz.rms_residual_n * (1.0 + 1e-9);
+    if first.status == FitStatus::Ok && (hertz.status != FitStatus::Ok || key(&first) <= limit) {
         return first;
     }
     let again = (hertz.status == FitStatus::Ok).then(|| {
@@ -287,25 +288,27 @@ fn closed_form(
             ..hertz.params()
         })
     });
-    let beats_hertz = |f: &ModelFit| rank(f) <= hertz.rms_residual_n * (1.0 + 1e-9);
     let mut f = match again {
         Some(a)
             if first.status == FitStatus::Ok
                 || (a.status == FitStatus::Ok && rank(&a) <= rank(&first)) =>
         {
-            better(first.clone(), a)
+            better(first, a)
         }
         // Stopped by the short budget where it fits better than Hertz and than the fit from
         // Hertz's answer: taken as it stands (as a free Maugis-Dugdale fit is, see `scout`; its
         // stop says so, and the adequacy test does not reject the model on it).
-        Some(a) if beats_hertz(&first) && rank(&first) <= rank(&a) => ModelFit {
+        Some(a) if rank(&first) <= limit && rank(&first) <= rank(&a) => ModelFit {
             status: FitStatus::Ok,
-            ..first.clone()
+            ..first
         },
         // Neither: the first fit goes on with the full budget.
-        a => better(full(first.params()), a.unwrap_or_else(|| first.clone())),
+        a => {
+            let on = full(first.params());
+            better(on, a.unwrap_or(first))
+        }
     };
-    if key(&f) > hertz.rms_residual_n * (1.0 + 1e-9) {
+    if key(&f) > limit {
         // Still worse: a local minimum, said so. (A cone's JKR-type law reaches its punch only
         // as w -> 0, where its contact radius in its units grows like 1/w, beyond the path's
         // range: docs/PHYSICS.md section 12.4.)

@@ -510,6 +510,7 @@ pub(super) fn adequate_by_test(
     let rss = |f: &ModelFit| f.rms_residual_n.powi(2) * m;
     let fixed = opt.z0.is_some();
     let mut notes = Vec::new();
+    let stopped = super::problem::stop_text(&TerminationReason::LostPatience);
     for f in models {
         // E*, the contact point, the offset, and w where the model has one.
         let n = if f.model.adhesive() { 4.0 } else { 3.0 };
@@ -525,7 +526,7 @@ pub(super) fn adequate_by_test(
         // only an upper bound, and a test on it would reject the model for the search's sake.
         // (A closed form's first fit taken as it stands at its short budget is one too; within
         // the criterion it shows the model adequate all the same.)
-        let short = f.stop == super::problem::stop_text(&TerminationReason::LostPatience);
+        let short = f.stop == stopped;
         if (f.status != FitStatus::Ok || (short && dchi > crit)) && dchi.is_finite() {
             notes.push(format!(
                 "{}'s fit did not converge (Delta chi^2 = {:.3} is an upper bound), so it is not tested",

@@ -333,6 +333,18 @@ impl Geometry {
 mod tests {
     use super::*;
 
+    /// Two tips' units (force, approach, radius, kbar) agree within `tol` (relative).
+    fn same_units(a: Units, b: Units, tol: f64) {
+        for (x, y) in [
+            (a.force, b.force),
+            (a.approach, b.approach),
+            (a.radius, b.radius),
+            (a.kbar, b.kbar),
+        ] {
+            assert!((x / y - 1.0).abs() < tol, "{x} {y}");
+        }
+    }
+
     /// A finely tabulated `f = B r^3` has the cubic power law's units, starts and z0 slope
     /// within its table's error; its z0 slope is its units' (by differences), and its start's
     /// w gives back the pull-off.
@@ -347,15 +359,7 @@ mod tests {
             kb: k_n(3.0) * b,
         };
         let (e, w) = (1e9, 0.05);
-        let (um, up) = (table.units(e, w, 1.0), cubic.units(e, w, 1.0));
-        for (a, c) in [
-            (um.force, up.force),
-            (um.approach, up.approach),
-            (um.radius, up.radius),
-            (um.kbar, up.kbar),
-        ] {
-            assert!((a / c - 1.0).abs() < 1e-5, "{a} {c}");
-        }
+        same_units(table.units(e, w, 1.0), cubic.units(e, w, 1.0), 1e-5);
         assert!((table.z0_slope(e, w) - 0.6).abs() < 1e-5);
         let h = 1e-5;
         let z0 = |w: f64| table.z0_from_lambda(e, w, 0.7).ln();
@@ -382,15 +386,7 @@ mod tests {
             kb: k_n(2.0) * 0.5 / r,
         };
         let (e, w) = (2e9, 0.05);
-        let (us, up) = (sphere.units(e, w, 1.0), square.units(e, w, 1.0));
-        for (a, b) in [
-            (us.force, up.force),
-            (us.approach, up.approach),
-            (us.radius, up.radius),
-            (us.kbar, up.kbar),
-        ] {
-            assert!((a / b - 1.0).abs() < 1e-13, "{a} {b}");
-        }
+        same_units(sphere.units(e, w, 1.0), square.units(e, w, 1.0), 1e-13);
         let (ls, lp) = (
             sphere.lambda_from_z0(e, w, 3e-10),
             square.lambda_from_z0(e, w, 3e-10),

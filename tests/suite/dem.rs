@@ -88,23 +88,23 @@ fn the_loop_is_the_rigid_grip_cycle_of_tabor_cycle() {
         let law = DemLaw::new(lambda, 50.0).unwrap();
         let c = tabor::cycle(lambda, tabor::Drive::RigidGrips, 2.0).unwrap();
         let dmax = tabor::solve_one(lambda, 2.0, tabor::Control::Load).approach;
-        let area = law.loop_area(dmax).unwrap();
-        // tabor cycle's loop under grips is this law's (the same stretches, probed up to another
-        // overlap: to rounding); the trapezoids over
-        // its sampled steps (a few hundred states) are another measure of it, within their
-        // sampling error.
-        let h = c.hysteresis.unwrap();
-        assert!(
-            (h - area).abs() <= 1e-12 * area.abs(),
-            "lambda {lambda}: {h} {area}"
-        );
-        let want = tabor::cycle::trapezoid_loop(&c.steps);
-        println!("lambda {lambda}: loop {area}, the cycle's trapezoids {want}");
-        assert!(
-            (area - want).abs() <= 5e-3 * want.abs(),
-            "lambda {lambda}: loop {area} against the trapezoids' {want}"
-        );
+        assert_loop(&law, &c, dmax, &format!("lambda {lambda}"));
     }
+}
+
+/// The law's loop up to `dmax` is the rigid-grip cycle's `c` (the same stretches, probed up to
+/// another overlap: to rounding), and the trapezoids over the cycle's sampled steps (a few
+/// hundred states) are another measure of it, within their sampling error.
+fn assert_loop(law: &DemLaw, c: &tabor::cycle::Cycle, dmax: f64, what: &str) {
+    let area = law.loop_area(dmax).unwrap();
+    let h = c.hysteresis.unwrap();
+    assert!((h - area).abs() <= 1e-12 * area.abs(), "{what}: {h} {area}");
+    let want = tabor::cycle::trapezoid_loop(&c.steps);
+    println!("{what}: loop {area}, the cycle's trapezoids {want}");
+    assert!(
+        (area - want).abs() <= 5e-3 * want.abs(),
+        "{what}: loop {area} against the trapezoids' {want}"
+    );
 }
 
 #[test]
@@ -336,14 +336,12 @@ fn the_wet_loop_is_the_two_zone_cycle_of_tabor_cycle() {
         let (dem, z) = wet(l, rho, eta);
         let c = tabor::cycle::run(&z, tabor::Drive::RigidGrips, 2.0).unwrap();
         let dmax = z.context().unwrap().state_at_load(2.0).approach;
-        let area = dem.loop_area(dmax).unwrap();
-        let h = c.hysteresis.unwrap();
-        assert!(
-            (h - area).abs() <= 1e-12 * area.abs(),
-            "{l}, {rho}, {eta}: {h} {area}"
+        assert_loop(
+            &dem,
+            &c,
+            dmax,
+            &format!("lambda_s {l}, rho {rho}, eta {eta}"),
         );
-        let want = tabor::cycle::trapezoid_loop(&c.steps);
-        println!("lambda_s {l}, rho {rho}, eta {eta}: loop {area}, the cycle's trapezoids {want}");
         // The cycle's jump out of contact is the exact fold, and lands where the law's retract
         // goes on: a meniscus stretch or free. Without a jump (contact lost at A -> 0 onto the
         // meniscus) the law's retract goes on across the gap too.
@@ -369,11 +367,6 @@ fn the_wet_loop_is_the_two_zone_cycle_of_tabor_cycle() {
             }
             None => assert_eq!(after, Branch::NonContact, "{l}, {rho}, {eta}"),
         }
-        // The trapezoids over the cycle's sampled path against the quadrature here.
-        assert!(
-            (area - want).abs() <= 5e-3 * want.abs(),
-            "lambda_s {l}, rho {rho}, eta {eta}: loop {area} against the trapezoids' {want}"
-        );
     }
 }
 
