@@ -109,6 +109,15 @@ const PY_NAMES: &[(&str, &str)] = &[
     ("precision=f32", "precision=\"f32\""),
     ("backend=cpu", "backend=\"cpu\""),
     ("segment", "fit_segment"),
+    // A fit's advice to fit the other segment, with the argument that does.
+    (
+        "segments=approach",
+        "the approach segment instead (fit_segment=\"approach\")",
+    ),
+    (
+        "segments=retract",
+        "the retract segment instead (fit_segment=\"retract\")",
+    ),
 ];
 
 /// Python's name for a key of the library's, where it has its own.
@@ -162,25 +171,6 @@ fn py_named(c: &(dyn std::error::Error + 'static), names: tabor::error::Names) -
 
 /// The fit's advice (results' messages and warnings, not errors) names the approach or retract
 /// segment in words; Python adds its argument.
-const ADVICE: &[(&str, &str)] = &[
-    (
-        "the approach segment instead",
-        "the approach segment instead (fit_segment=\"approach\")",
-    ),
-    (
-        "the retract segment instead",
-        "the retract segment instead (fit_segment=\"retract\")",
-    ),
-];
-
-/// A fit's advice with Python's argument added where it names a segment.
-#[pyfunction]
-fn python_names(msg: &str) -> String {
-    ADVICE.iter().fold(msg.to_string(), |m, (words, with_arg)| {
-        m.replace(words, with_arg)
-    })
-}
-
 fn backend_of(s: &str) -> PyResult<Backend> {
     match s {
         "cpu" => Ok(Backend::Cpu),
@@ -867,7 +857,10 @@ fn fit_curves<'py>(
             .par_iter()
             .map(|cv| {
                 tabor::interrupt::checkpoint();
-                tabor::fit::fit_curve(cv, &opt)
+                let mut r = tabor::fit::fit_curve(cv, &opt);
+                // Its message with Python's names (the advice names fit_segment).
+                r.message = tabor::error::Named::named(&r.message, &py_name).into();
+                r
             })
             .collect();
         Ok(results)
@@ -1217,7 +1210,6 @@ fn _tabor(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<dem::PyDemLaw>()?;
     m.add_function(wrap_pyfunction!(rough::rough_scene, m)?)?;
     m.add_function(wrap_pyfunction!(solve_points, m)?)?;
-    m.add_function(wrap_pyfunction!(python_names, m)?)?;
     m.add_function(wrap_pyfunction!(solve_radius, m)?)?;
     m.add_function(wrap_pyfunction!(solve_tip, m)?)?;
     m.add_function(wrap_pyfunction!(tip_units, m)?)?;

@@ -1267,15 +1267,7 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m=None, spring_
             if v is not None:
                 options[k] = num(v, k)
     out = _tabor.fit_curves(ids, seg, h, f, json.dumps(options))
-    for r in out:  # the fit's advice names command-line flags: name the arguments instead
-        for k in ("message", "why"):
-            if isinstance(r.get(k), str):
-                r[k] = _tabor.python_names(r[k])
-        if isinstance(r.get("warnings"), list):
-            r["warnings"] = [_tabor.python_names(w) if isinstance(w, str) else w
-                             for w in r["warnings"]]
-        if isinstance(r.get("humidity"), dict) and isinstance(r["humidity"].get("note"), str):
-            r["humidity"]["note"] = _tabor.python_names(r["humidity"]["note"])
+    for r in out:
         # Each interval a (low, high) tuple, None for an end the data leave open (as JSON's
         # null), whether one end is open or both.
         for k, v in r.items():

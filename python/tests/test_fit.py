@@ -84,6 +84,22 @@ def test_many_curves_and_bad_ones_in_one_call():
         tabor.fit_curve(h, f, np.array(["up"] * len(h)), radius_m=20e-9, spring_n_m=2.0)
 
 
+def test_advice_to_fit_the_other_segment_names_the_argument():
+    rows = np.genfromtxt(CURVE, delimiter=",", names=True, dtype=None, encoding="utf-8")
+    h, f, s = rows["height_m"], rows["force_n"], rows["segment"]
+    approach = s == "approach"
+    r = tabor.fit_curve(h[approach], f[approach], np.zeros(approach.sum(), np.int64),
+                        radius_m=20e-9, spring_n_m=40.0)
+    assert r["status"] == "invalid_input"
+    assert r["message"] == ('no retract segment: fit the approach segment instead '
+                            '(fit_segment="approach"), or check the segment column '
+                            '(approach/retract or 0/1)')
+    r = tabor.fit_curve(h[~approach], f[~approach], np.ones((~approach).sum(), np.int64),
+                        radius_m=20e-9, spring_n_m=40.0, fit_segment="approach")
+    assert r["message"] == ('no approach segment: fit the retract segment instead '
+                            '(fit_segment="retract"), or check the segment column')
+
+
 def _afmformats_samples(data):
     """The JPK sample curves from afmformats' source distribution on PyPI (`data`: the
     afmformats_data fixture)."""

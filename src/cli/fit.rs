@@ -155,7 +155,9 @@ pub fn run(a: FitArgs) -> anyhow::Result<()> {
     if ok == 0 {
         bail!(
             "no curve could be fitted ({}): see the status and message of each",
-            results.first().map_or("no curves", |r| r.message.as_str())
+            results
+                .first()
+                .map_or("no curves".to_string(), |r| r.message.to_string())
         );
     }
     Ok(())
@@ -636,7 +638,7 @@ fn csv_rows(results: &[CurveFit], humid: bool) -> anyhow::Result<String> {
             r.adequate_model.map_or("", |m| m.name()).to_string(),
             r.iterations.to_string(),
             r.warnings.join("; "),
-            r.message.clone(),
+            r.message.to_string(),
         ];
         if humid {
             row.extend(humidity_cells(r.humidity.as_ref()));

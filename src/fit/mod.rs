@@ -38,6 +38,7 @@ use search::*;
 use summary::*;
 pub use tip::Geometry;
 
+use crate::error::Message;
 use crate::law::follow::{PathState, Side};
 use crate::law::{Law, Piece};
 use crate::physics::params::LJ_STRESS;
@@ -47,13 +48,13 @@ use serde::Serialize;
 use std::cell::RefCell;
 use std::f64::consts::PI;
 
-pub(super) fn fail(curve: &Curve, status: FitStatus, message: String) -> CurveFit {
+pub(super) fn fail(curve: &Curve, status: FitStatus, message: impl Into<Message>) -> CurveFit {
     CurveFit {
         curve: curve.id.clone(),
         x: curve.x,
         y: curve.y,
         status,
-        message,
+        message: message.into(),
         e_star_pa: None,
         e_star_pa_stderr: None,
         youngs_modulus_pa: None,
@@ -149,7 +150,7 @@ fn fit_curve_inner(curve: &Curve, opt: &FitOptions) -> CurveFit {
         opt.segments != Segments::Approach && d.dwell.as_ref().is_some_and(|w| w.relaxed);
     if out.status == FitStatus::Ok && switched {
         if let Some(note) = d.notes.first() {
-            out.message = format!("ok: {note}");
+            out.message = format!("ok: {note}").into();
         }
     }
     out

@@ -44,30 +44,31 @@ pub const MIN_POINTS: usize = 20;
 pub const MIN_CONTACT_POINTS: usize = 10;
 
 /// Checks a curve and removes its baseline.
-pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, String)> {
-    let bad = |m: String| Err((FitStatus::InvalidInput, m));
+pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, Message)> {
+    let bad = |m: Message| Err((FitStatus::InvalidInput, m));
     // The options' one check (the spring constant and the radius among them).
     if let Err(e) = opt.validate() {
-        return bad(e.message);
+        return bad(e.message.into());
     }
     for (i, (&h, &f)) in curve.height.iter().zip(&curve.force).enumerate() {
         if !h.is_finite() || !f.is_finite() {
             return bad(format!(
                 "point {} has height_m = {h} and force_n = {f}: remove or repair non-finite values",
                 i + 1
-            ));
+            )
+            .into());
         }
     }
     if let Some(m) = &curve.refused {
-        return bad(m.clone());
+        return bad(m.clone().into());
     }
     let mut notes = curve.notes.clone();
     if let Err(m) = check_cycles(curve) {
-        return bad(m);
+        return bad(m.into());
     }
     for d in [Direction::Approach, Direction::Retract] {
         match check_order(curve, d) {
-            Err(m) => return bad(m),
+            Err(m) => return bad(m.into()),
             Ok(Some(note)) => notes.push(note),
             Ok(None) => {}
         }
@@ -101,17 +102,24 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .collect();
     if fitted.is_empty() {
         let which = match segments {
-            Segments::Retract => "no retract segment: fit the approach segment instead, or check the segment column (approach/retract or 0/1)",
-            Segments::Approach => "no approach segment: fit the retract segment instead, or check the segment column",
-            Segments::Both => "no points",
+            Segments::Retract => Message::new()
+                .text("no retract segment: fit ")
+                .then(the_other(Direction::Approach))
+                .text(", or check the segment column (approach/retract or 0/1)"),
+            Segments::Approach => Message::new()
+                .text("no approach segment: fit ")
+                .then(the_other(Direction::Retract))
+                .text(", or check the segment column"),
+            Segments::Both => "no points".into(),
         };
-        return bad(which.to_string());
+        return bad(which);
     }
     if fitted.len() < MIN_POINTS {
         return bad(format!(
             "only {} points in the fitted segments: at least {MIN_POINTS} are needed",
             fitted.len()
-        ));
+        )
+        .into());
     }
     let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
     let force: Vec<f64> = fitted
@@ -150,6 +158,21 @@ fn scales_of(force: &[f64], height: &[f64]) -> (f64, f64) {
     (f, hspan.max(1e-30))
 }
 
+/// The advice to fit the segment `d` instead, keyed by the segment option's choice
+/// (`segments=approach`: Python adds its argument).
+fn the_other(d: Direction) -> Message {
+    Message::new().phrase(
+        match d {
+            Direction::Approach => "segments=approach",
+            Direction::Retract => "segments=retract",
+        },
+        match d {
+            Direction::Approach => "the approach segment instead",
+            Direction::Retract => "the retract segment instead",
+        },
+    )
+}
+
 /// Whether a segment's forces (baseline removed) rise above the baseline: beyond five times
 /// its noise and a thousandth of their range.
 fn shows_contact(force: &[f64], noise: f64) -> bool {
@@ -166,7 +189,7 @@ fn no_contact(
     force: &[f64],
     (b0, b1): (f64, f64),
     noise: f64,
-) -> (FitStatus, String) {
+) -> (FitStatus, Message) {
     let fmax = force.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     let mut largest = fmax;
     for other in [Direction::Approach, Direction::Retract] {
@@ -187,12 +210,13 @@ fn no_contact(
             let top = f.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
             return (
                 FitStatus::InvalidInput,
-                format!(
-                    "the {} never rises above five times the baseline's noise (largest {fmax:.3e} N, noise {noise:.2e} N) while the {} does (up to {top:.3e} N), so it holds too little contact to fit; fit the {} segment instead",
-                    fitted,
-                    seg_name(other),
-                    seg_name(other)
-                ),
+                Message::new()
+                    .text(format!(
+                        "the {} never rises above five times the baseline's noise (largest {fmax:.3e} N, noise {noise:.2e} N) while the {} does (up to {top:.3e} N), so it holds too little contact to fit; fit ",
+                        fitted,
+                        seg_name(other),
+                    ))
+                    .then(the_other(other)),
             );
         }
     }
@@ -200,7 +224,8 @@ fn no_contact(
         FitStatus::NoContact,
         format!(
             "no contact: no segment of the curve rises above the baseline (largest {largest:.3e} N, noise {noise:.2e} N); check the sign of force_n (positive is repulsive)"
-        ),
+        )
+        .into(),
     )
 }
 

@@ -77,8 +77,9 @@ pub struct CurveFit {
     pub y: Option<i64>,
     /// How the fit ended; the fitted values are null unless it is `ok`.
     pub status: FitStatus,
-    /// `ok`, or why the curve was not fitted.
-    pub message: String,
+    /// `ok`, or why the curve was not fitted. Advice to fit the other segment names it by the
+    /// key `segments=approach` or `segments=retract` (Python adds its argument there).
+    pub message: Message,
     /// The reduced modulus E* of the Maugis-Dugdale fit (Pa).
     pub e_star_pa: Option<f64>,
     /// Its standard error (Pa).

@@ -18,7 +18,7 @@ fn unfinished(
     md: ModelFit,
     models: Vec<ModelFit>,
 ) -> CurveFit {
-    out.message = message;
+    out.message = message.into();
     if let Some(s) = status {
         out.status = s;
     }

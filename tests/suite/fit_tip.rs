@@ -193,9 +193,11 @@ fn a_tip_with_a_fixed_range_and_a_spherical_tip() {
     let r = fit_curve(&try_synthetic_on(&s, g).unwrap(), &opt);
     assert_eq!(r.status, FitStatus::InvalidInput, "{}", r.message);
     assert!(
-        r.message.contains("outside the models' domain 1e-3..1e3")
-            && !r.message.contains("NaN")
-            && !r.message.contains("inf "),
+        r.message
+            .to_string()
+            .contains("outside the models' domain 1e-3..1e3")
+            && !r.message.to_string().contains("NaN")
+            && !r.message.to_string().contains("inf "),
         "{}",
         r.message
     );
