@@ -1,6 +1,8 @@
 //! Rough surfaces (docs/PHYSICS.md section 9): Greenwood-Williamson summits of Gaussian height,
-//! each an exact Maugis-Dugdale sphere under the separation of a rigid flat, with its own
-//! history (free, the non-contact Dugdale branch, contact) through an approach and a retract.
+//! each under the separation of a rigid flat with its own history (free, the non-contact
+//! branch, contact) through an approach and a retract. One model ([`Rough`]) sums any summit
+//! law ([`SummitLaw`]): the exact Maugis-Dugdale sphere ([`Summit`]) here, the two-zone summit
+//! of section 10 in [`wet`].
 //!
 //! Units are one summit's (Johnson and Greenwood): loads per summit in `pi w R`, separations and
 //! sigma in the approach unit `(pi^2 w^2 R / K^2)^(1/3)`.
@@ -159,15 +161,146 @@ impl Summit {
     }
 }
 
+/// A summit's law as the rough model reads it (docs/PHYSICS.md sections 9 and 10.1): where a
+/// summit is on its path under rigid grips (a state: its branch, or its stretch) on the approach
+/// and on the retract, its load there, and the approaches where the load jumps or folds. One
+/// rough model ([`Rough`]) sums any such law over the heights: the dry Maugis-Dugdale summit
+/// ([`Summit`]) and the wet one of two zones ([`wet::WetSummit`]).
+pub trait SummitLaw: Sync {
+    /// Where a summit is on its path.
+    type State: Copy;
+    /// The Maugis parameter a failure is reported with.
+    fn lambda(&self) -> f64;
+    /// The state on the approach at approach `delta` (coming from far away).
+    fn approach_state(&self, delta: f64) -> Self::State;
+    /// The state on the retract at approach `delta`, after the deepest approach `delta_max`.
+    fn retract_state(&self, delta: f64, delta_max: f64) -> Self::State;
+    /// The branch of a state.
+    fn branch_of(&self, s: Self::State) -> SummitBranch;
+    /// The load in state `s` at approach `delta` (None where the solver failed).
+    fn load_in(&self, s: Self::State, delta: f64) -> Option<f64>;
+    /// The approaches where the load jumps or folds at the flat's separation, and those at the
+    /// smallest separation that matter on the retract.
+    fn marks(&self) -> Vec<f64>;
+    /// The approaches where the retract's state changes with the deepest approach.
+    fn retract_marks(&self) -> Vec<f64>;
+    /// How far beyond its height a summit feels the flat, on the approach or the retract.
+    fn reach(&self) -> f64;
+    /// The single summit's load-controlled pull-off.
+    fn smooth_pulloff(&self) -> f64;
+    /// The mean of A^2 over all summits of heights N(0, sigma^2) at separation `d`.
+    fn mean_area(&self, sigma: f64, leg: Leg, d: f64) -> Result<f64, RoughError>;
+    /// The energy lost per summit in a cycle from `d_max` down to `d_min` and back.
+    fn hysteresis(&self, sigma: f64, d_min: f64, d_max: f64) -> Result<f64, RoughError>;
+}
+
+impl SummitLaw for Summit {
+    type State = SummitBranch;
+
+    fn lambda(&self) -> f64 {
+        self.lambda
+    }
+
+    fn approach_state(&self, delta: f64) -> SummitBranch {
+        self.approach_branch(delta)
+    }
+
+    fn retract_state(&self, delta: f64, delta_max: f64) -> SummitBranch {
+        self.retract_branch(delta, delta_max)
+    }
+
+    fn branch_of(&self, s: SummitBranch) -> SummitBranch {
+        s
+    }
+
+    fn load_in(&self, s: SummitBranch, delta: f64) -> Option<f64> {
+        self.load(s, delta)
+    }
+
+    fn marks(&self) -> Vec<f64> {
+        Summit::marks(self)
+    }
+
+    fn retract_marks(&self) -> Vec<f64> {
+        vec![self.delta_in, -self.h0]
+    }
+
+    fn reach(&self) -> f64 {
+        [self.h0, -self.delta_out, -self.delta_nc.unwrap_or(0.0)]
+            .into_iter()
+            .fold(0.0, f64::max)
+    }
+
+    fn smooth_pulloff(&self) -> f64 {
+        Summit::smooth_pulloff(self)
+    }
+
+    fn mean_area(&self, sigma: f64, leg: Leg, d: f64) -> Result<f64, RoughError> {
+        let s = sigma;
+        let failed = Cell::new(false);
+        let mut total = 0.0;
+        for w in cuts(self, sigma, leg, d).windows(2) {
+            let (t0, t1) = (w[0], w[1]);
+            if state_at(self, leg, 0.5 * (t0 + t1) * s, d) != SummitBranch::Contact {
+                continue;
+            }
+            let f = |t: f64| {
+                let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
+                match self.contact(t * s - d) {
+                    Some((_, a)) => g * a * a,
+                    None => {
+                        failed.set(true);
+                        0.0
+                    }
+                }
+            };
+            total += integrate(&f, t0, t1).0;
+        }
+        if failed.get() {
+            return Err(RoughError::Failed(d, self.lambda));
+        }
+        Ok(total)
+    }
+
+    fn hysteresis(&self, sigma: f64, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
+        dry_hysteresis(self, sigma, d_min, d_max)
+    }
+}
+
+/// The state of the summit of height `z` at separation `d`.
+fn state_at<S: SummitLaw>(summit: &S, leg: Leg, z: f64, d: f64) -> S::State {
+    match leg {
+        Leg::Approach => summit.approach_state(z - d),
+        Leg::Retract { d_min } => summit.retract_state(z - d, z - d_min),
+    }
+}
+
+/// The heights (in sigma) where the summits' load at separation `d` jumps or folds, within
+/// the Gaussian's kept range, sorted.
+fn cuts<S: SummitLaw>(summit: &S, sigma: f64, leg: Leg, d: f64) -> Vec<f64> {
+    let s = sigma;
+    let mut z: Vec<f64> = summit.marks().iter().map(|m| (d + m) / s).collect();
+    if let Leg::Retract { d_min } = leg {
+        z.extend(summit.retract_marks().iter().map(|m| (d_min + m) / s));
+    }
+    z.push(-Z_CUT);
+    z.push(Z_CUT);
+    z.retain(|x| x.is_finite() && x.abs() <= Z_CUT);
+    z.sort_by(f64::total_cmp);
+    z.dedup();
+    z
+}
+
 /// Standard normal upper tail, to full relative precision far out.
 pub(crate) fn upper_tail(x: f64) -> f64 {
     0.5 * libm::erfc(x / std::f64::consts::SQRT_2)
 }
 
-/// A rough surface: one lambda for every summit, summit heights N(0, sigma^2).
-pub struct Rough {
+/// A rough surface: one law for every summit (by default the dry Maugis-Dugdale summit of one
+/// lambda), summit heights N(0, sigma^2).
+pub struct Rough<S = Summit> {
     /// Every summit's law and branches.
-    pub summit: Summit,
+    pub summit: S,
     /// The heights' standard deviation (approach units).
     pub sigma: f64,
 }
@@ -374,7 +507,7 @@ pub(crate) fn domain(
     }
 }
 
-impl Rough {
+impl Rough<Summit> {
     /// A rough surface of summit parameter `lambda` and height spread `sigma` (> 0, at most 1e4
     /// approach units).
     pub fn new(lambda: f64, sigma: f64) -> Result<Rough, RoughError> {
@@ -392,34 +525,11 @@ impl Rough {
             sigma,
         })
     }
+}
 
-    /// The branch of the summit of height `z` at separation `d`.
-    fn branch(&self, leg: Leg, z: f64, d: f64) -> SummitBranch {
-        match leg {
-            Leg::Approach => self.summit.approach_branch(z - d),
-            Leg::Retract { d_min } => self.summit.retract_branch(z - d, z - d_min),
-        }
-    }
-
-    /// The heights (in sigma) where the summits' load at separation `d` jumps or folds, within
-    /// the Gaussian's kept range, sorted.
-    fn pieces(&self, leg: Leg, d: f64) -> Vec<f64> {
-        let s = self.sigma;
-        let mut z: Vec<f64> = self.summit.marks().iter().map(|m| (d + m) / s).collect();
-        if let Leg::Retract { d_min } = leg {
-            z.push((d_min + self.summit.delta_in) / s);
-            z.push((d_min - self.summit.h0) / s);
-        }
-        z.push(-Z_CUT);
-        z.push(Z_CUT);
-        z.retain(|x| x.is_finite() && x.abs() <= Z_CUT);
-        z.sort_by(f64::total_cmp);
-        z.dedup();
-        z
-    }
-
+impl<S: SummitLaw> Rough<S> {
     /// The mean state of an explicit ensemble of summits of heights `z` (approach units), all of
-    /// this surface's lambda, at separation `d`: each summit on its own branch.
+    /// this surface's law, at separation `d`: each summit on its own branch.
     pub fn ensemble_mean(&self, leg: Leg, z: &[f64], d: f64) -> Result<Mean, RoughError> {
         crate::interrupt::checkpoint();
         // A NaN separation would leave every summit free: a load of 0, not an answer.
@@ -430,13 +540,13 @@ impl Rough {
         let (mut load, mut contact, mut noncontact) = (0.0, 0.0, 0.0);
         let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for &zi in z {
-            let b = self.branch(leg, zi, d);
+            let k = state_at(&self.summit, leg, zi, d);
             let p = self
                 .summit
-                .load(b, zi - d)
-                .ok_or(RoughError::Failed(d, self.summit.lambda))?;
+                .load_in(k, zi - d)
+                .ok_or(RoughError::Failed(d, self.summit.lambda()))?;
             load += p;
-            match b {
+            match self.summit.branch_of(k) {
                 SummitBranch::Contact => {
                     (contact, contact_load) = (contact + 1.0, contact_load + p)
                 }
@@ -461,43 +571,21 @@ impl Rough {
     /// The mean of A^2 over all summits (those not in contact count 0) at separation `d`: the
     /// real contact area per summit is pi times it in units of the summit's radius unit squared.
     pub fn mean_area(&self, leg: Leg, d: f64) -> Result<f64, RoughError> {
-        let s = self.sigma;
-        let failed = Cell::new(false);
-        let mut total = 0.0;
-        for w in self.pieces(leg, d).windows(2) {
-            let (t0, t1) = (w[0], w[1]);
-            if self.branch(leg, 0.5 * (t0 + t1) * s, d) != SummitBranch::Contact {
-                continue;
-            }
-            let f = |t: f64| {
-                let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
-                match self.summit.contact(t * s - d) {
-                    Some((_, a)) => g * a * a,
-                    None => {
-                        failed.set(true);
-                        0.0
-                    }
-                }
-            };
-            total += integrate(&f, t0, t1).0;
-        }
-        if failed.get() {
-            return Err(RoughError::Failed(d, self.summit.lambda));
-        }
-        Ok(total)
+        self.summit.mean_area(self.sigma, leg, d)
     }
 
     /// The mean load and branch fractions at separation `d`.
     pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
         crate::interrupt::checkpoint();
         let s = self.sigma;
-        let cuts = self.pieces(leg, d);
+        let cuts = cuts(&self.summit, s, leg, d);
         let failed = Cell::new(false);
         let (mut load, mut contact, mut noncontact, mut error) = (0.0, 0.0, 0.0, 0.0);
         let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
         for w in cuts.windows(2) {
             let (t0, t1) = (w[0], w[1]);
-            let branch = self.branch(leg, 0.5 * (t0 + t1) * s, d);
+            let k = state_at(&self.summit, leg, 0.5 * (t0 + t1) * s, d);
+            let branch = self.summit.branch_of(k);
             let mass = upper_tail(t0) - upper_tail(t1);
             match branch {
                 SummitBranch::Free => continue,
@@ -507,7 +595,7 @@ impl Rough {
             // The load integrand in t = z / sigma: the density times the summit's load.
             let f = |t: f64| {
                 let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
-                match self.summit.load(branch, t * s - d) {
+                match self.summit.load_in(k, t * s - d) {
                     Some(p) => g * p,
                     None => {
                         failed.set(true);
@@ -524,7 +612,7 @@ impl Rough {
             }
         }
         if failed.get() {
-            return Err(RoughError::Failed(d, self.summit.lambda));
+            return Err(RoughError::Failed(d, self.summit.lambda()));
         }
         Ok(Mean {
             separation: d,
@@ -721,16 +809,12 @@ pub struct RoughCycle {
     pub warnings: Vec<Message>,
 }
 
-impl Rough {
+impl<S: SummitLaw> Rough<S> {
     /// The separation beyond which no summit within the kept range feels the flat, on the
     /// approach or on the retract (which holds on beyond the Dugdale range: down to the
     /// jump-out, or to the end of the non-contact branch).
     pub fn free_separation(&self) -> f64 {
-        let sm = &self.summit;
-        let reach = [sm.h0, -sm.delta_out, -sm.delta_nc.unwrap_or(0.0)]
-            .into_iter()
-            .fold(0.0, f64::max);
-        Z_FREE * self.sigma + reach
+        Z_FREE * self.sigma + self.summit.reach()
     }
 
     /// The cycle from `d_max` (default [`Rough::free_separation`]) down to `d_min` and back,
@@ -752,7 +836,7 @@ impl Rough {
             retract_pulloff(&retract, d_min, d_max, PULLOFF_SAMPLES, &|leg, d| {
                 self.mean(leg, d)
             })?;
-        let hysteresis = self.hysteresis(d_min, d_max)?;
+        let hysteresis = self.summit.hysteresis(self.sigma, d_min, d_max)?;
         let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
         let quadrature_error = approach
             .iter()
@@ -760,12 +844,12 @@ impl Rough {
             .map(|m| m.quadrature_error)
             .fold(at_pulloff, f64::max);
         Ok(RoughCycle {
-            lambda: self.summit.lambda,
+            lambda: self.summit.lambda(),
             sigma: self.sigma,
             pulloff_load,
             pulloff_separation,
             hysteresis,
-            smooth_pulloff: self.summit.ctx.load_pulloff.load,
+            smooth_pulloff: self.summit.smooth_pulloff(),
             fuller_tabor_parameter: 0.75 * PI * self.sigma.powf(1.5),
             quadrature_error,
             warnings: cycle_warnings(
@@ -788,84 +872,82 @@ impl Rough {
             self.mean(leg, d)
         })
     }
+}
 
-    /// Integral of P_approach - P_retract over [d_min, d_max]. Swapping the order of integration,
-    /// it is the Gaussian mean of each summit's own loop area over its window of approaches
-    /// `[z - d_max, z - d_min]` (docs/PHYSICS.md section 9): a constant for every summit that
-    /// touched (or, below lambda_D, reached only the non-contact branch) and was free again at
-    /// d_max, and a single-summit integral clipped at `z - d_max` for the others.
-    fn hysteresis(&self, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
-        let sm = &self.summit;
-        let s = self.sigma;
-        let failed = Cell::new(false);
-        let load = |b: SummitBranch, delta: f64| {
-            sm.load(b, delta).unwrap_or_else(|| {
-                failed.set(true);
-                0.0
-            })
+/// Integral of P_approach - P_retract over [d_min, d_max]. Swapping the order of integration,
+/// it is the Gaussian mean of each summit's own loop area over its window of approaches
+/// `[z - d_max, z - d_min]` (docs/PHYSICS.md section 9): a constant for every summit that
+/// touched (or, below lambda_D, reached only the non-contact branch) and was free again at
+/// d_max, and a single-summit integral clipped at `z - d_max` for the others.
+fn dry_hysteresis(sm: &Summit, s: f64, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
+    let failed = Cell::new(false);
+    let load = |b: SummitBranch, delta: f64| {
+        sm.load(b, delta).unwrap_or_else(|| {
+            failed.set(true);
+            0.0
+        })
+    };
+    // A touched summit's loop: approach minus retract, nonzero only below delta_in.
+    let lo_touch = sm.delta_nc.unwrap_or(sm.delta_out).min(sm.delta_out);
+    let touched = |from: f64| -> f64 {
+        let f = |delta: f64| {
+            load(sm.approach_branch(delta), delta)
+                - load(sm.retract_branch(delta, f64::INFINITY), delta)
         };
-        // A touched summit's loop: approach minus retract, nonzero only below delta_in.
-        let lo_touch = sm.delta_nc.unwrap_or(sm.delta_out).min(sm.delta_out);
-        let touched = |from: f64| -> f64 {
-            let f = |delta: f64| {
-                load(sm.approach_branch(delta), delta)
-                    - load(sm.retract_branch(delta, f64::INFINITY), delta)
-            };
-            let mut cuts: Vec<f64> = sm.marks();
-            cuts.push(from.max(lo_touch));
-            cuts.retain(|c| *c >= from.max(lo_touch) && *c <= sm.delta_in);
-            cuts.sort_by(f64::total_cmp);
-            cuts.dedup();
-            cuts.windows(2).map(|w| integrate(&f, w[0], w[1]).0).sum()
-        };
-        // A summit that reached only the non-contact branch: -(its load) over [delta_nc, -h0].
-        let reached = |from: f64| -> f64 {
-            match sm.delta_nc {
-                Some(lo) => integrate(&|delta| -sm.non_contact(delta), from.max(lo), -sm.h0).0,
-                None => 0.0,
-            }
-        };
-        let mass = |t0: f64, t1: f64| upper_tail(t0) - upper_tail(t1);
-        let clip = |t: f64| t.clamp(-Z_CUT, Z_CUT);
-        let mut total = 0.0;
-        // (heights from, to, the loop's lower end, its loop area)
-        type HistoryClass<'a> = (f64, f64, f64, &'a dyn Fn(f64) -> f64);
-        let regions: [HistoryClass; 2] = [
-            (d_min + sm.delta_in, f64::INFINITY, lo_touch, &touched),
-            (
-                d_min - sm.h0,
-                d_min + sm.delta_in,
-                sm.delta_nc.unwrap_or(0.0),
-                &reached,
-            ),
-        ];
-        for (z0, z1, lo, area) in regions {
-            if !(z1 > z0) {
-                continue;
-            }
-            // Below z = d_max + lo the whole loop lies in the window: a constant area.
-            let split = d_max + lo;
-            let (t0, t1, ts) = (clip(z0 / s), clip(z1 / s), clip(split / s));
-            if ts > t0 {
-                total += area(f64::NEG_INFINITY) * mass(t0, ts.min(t1));
-            }
-            if t1 > ts.max(t0) {
-                let f = |t: f64| (-0.5 * t * t).exp() / (2.0 * PI).sqrt() * area(t * s - d_max);
-                total += integrate(&f, ts.max(t0), t1).0;
-            }
+        let mut cuts: Vec<f64> = sm.marks();
+        cuts.push(from.max(lo_touch));
+        cuts.retain(|c| *c >= from.max(lo_touch) && *c <= sm.delta_in);
+        cuts.sort_by(f64::total_cmp);
+        cuts.dedup();
+        cuts.windows(2).map(|w| integrate(&f, w[0], w[1]).0).sum()
+    };
+    // A summit that reached only the non-contact branch: -(its load) over [delta_nc, -h0].
+    let reached = |from: f64| -> f64 {
+        match sm.delta_nc {
+            Some(lo) => integrate(&|delta| -sm.non_contact(delta), from.max(lo), -sm.h0).0,
+            None => 0.0,
         }
-        if failed.get() {
-            return Err(RoughError::Failed(d_min, sm.lambda));
+    };
+    let mass = |t0: f64, t1: f64| upper_tail(t0) - upper_tail(t1);
+    let clip = |t: f64| t.clamp(-Z_CUT, Z_CUT);
+    let mut total = 0.0;
+    // (heights from, to, the loop's lower end, its loop area)
+    type HistoryClass<'a> = (f64, f64, f64, &'a dyn Fn(f64) -> f64);
+    let regions: [HistoryClass; 2] = [
+        (d_min + sm.delta_in, f64::INFINITY, lo_touch, &touched),
+        (
+            d_min - sm.h0,
+            d_min + sm.delta_in,
+            sm.delta_nc.unwrap_or(0.0),
+            &reached,
+        ),
+    ];
+    for (z0, z1, lo, area) in regions {
+        if !(z1 > z0) {
+            continue;
         }
-        // Each summit's loop encloses a non-negative area: a negative sum is rounding.
-        Ok(
-            if total < 0.0 && total >= -1e-12 * sm.ctx.load_pulloff.load.abs() * s {
-                0.0
-            } else {
-                total
-            },
-        )
+        // Below z = d_max + lo the whole loop lies in the window: a constant area.
+        let split = d_max + lo;
+        let (t0, t1, ts) = (clip(z0 / s), clip(z1 / s), clip(split / s));
+        if ts > t0 {
+            total += area(f64::NEG_INFINITY) * mass(t0, ts.min(t1));
+        }
+        if t1 > ts.max(t0) {
+            let f = |t: f64| (-0.5 * t * t).exp() / (2.0 * PI).sqrt() * area(t * s - d_max);
+            total += integrate(&f, ts.max(t0), t1).0;
+        }
     }
+    if failed.get() {
+        return Err(RoughError::Failed(d_min, sm.lambda));
+    }
+    // Each summit's loop encloses a non-negative area: a negative sum is rounding.
+    Ok(
+        if total < 0.0 && total >= -1e-12 * sm.ctx.load_pulloff.load.abs() * s {
+            0.0
+        } else {
+            total
+        },
+    )
 }
 
 /// Pull-off against roughness for one lambda (Fuller and Tabor's figure).

@@ -15,7 +15,7 @@
 //! in `pi w R`, separations and sigma in `(pi^2 w^2 R / K^2)^(1/3)`.
 
 use super::{domain, integrate, upper_tail, Leg, Mean, Rough, RoughCycle, RoughError};
-use super::{legs, separations, SummitBranch, Z_CUT, Z_FREE};
+use super::{SummitBranch, SummitLaw, Z_CUT};
 use crate::error::Message;
 use crate::law::{ContactLaw, Md, TwoZones};
 use crate::physics::two_zone::{non_contact_both, non_contact_single, Shape, Zones};
@@ -498,17 +498,96 @@ impl WetSummit {
 }
 
 /// A rough surface of wet summits, or (one range: `rho = 0`, `eta = 0` or `eta = 1`) the dry
-/// model of section 9 with the single zone's lambda.
+/// model of section 9 with the single zone's lambda: the one rough model ([`Rough`]) over
+/// either summit law.
 pub enum WetRough {
     /// One zone: the dry model.
     Dry(Rough),
     /// Two zones of different ranges.
-    Wet {
-        /// Every summit's law and stretches.
-        summit: WetSummit,
-        /// The heights' standard deviation (approach units of the total w).
-        sigma: f64,
-    },
+    Wet(Rough<WetSummit>),
+}
+
+impl SummitLaw for WetSummit {
+    type State = usize;
+
+    fn lambda(&self) -> f64 {
+        self.ctx.zones.lambda[0]
+    }
+
+    fn approach_state(&self, delta: f64) -> usize {
+        self.approach_stretch(delta)
+    }
+
+    fn retract_state(&self, delta: f64, delta_max: f64) -> usize {
+        self.retract_stretch(delta, delta_max)
+    }
+
+    fn branch_of(&self, k: usize) -> SummitBranch {
+        self.stretches[k].branch()
+    }
+
+    fn load_in(&self, k: usize, delta: f64) -> Option<f64> {
+        self.load(k, delta)
+    }
+
+    fn marks(&self) -> Vec<f64> {
+        WetSummit::marks(self)
+    }
+
+    fn retract_marks(&self) -> Vec<f64> {
+        WetSummit::marks(self)
+    }
+
+    fn reach(&self) -> f64 {
+        self.stretches
+            .iter()
+            .flat_map(|s| [-s.lo, -s.hi])
+            .filter(|x| x.is_finite())
+            .fold(0.0, f64::max)
+    }
+
+    fn smooth_pulloff(&self) -> f64 {
+        self.ctx.load_pulloff.load
+    }
+
+    fn mean_area(&self, s: f64, leg: Leg, d: f64) -> Result<f64, RoughError> {
+        let last = self.stretches.len() - 1;
+        let lo = self.stretches[last].lo;
+        // Summits in contact: on the approach above the jump into it, on the retract those whose
+        // deepest approach reached it and that have not left it.
+        let t_in = (d + self.approach_enter()) / s;
+        let t0 = match leg {
+            Leg::Approach => t_in,
+            Leg::Retract { d_min } => {
+                // Heights whose deepest approach z - d_min reached contact, still above lo.
+                ((d_min + self.approach_enter()) / s).max((d + lo) / s)
+            }
+        }
+        .max(-Z_CUT);
+        if t0 >= Z_CUT {
+            return Ok(0.0);
+        }
+        let failed = Cell::new(false);
+        let f = |t: f64| {
+            let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
+            match self.contact_radius(t * s - d) {
+                Some(a) => g * a * a,
+                None => {
+                    failed.set(true);
+                    0.0
+                }
+            }
+        };
+        let v = integrate(&f, t0, Z_CUT).0;
+        if failed.get() {
+            return Err(RoughError::Failed(d, self.ctx.zones.lambda[0]));
+        }
+        Ok(v)
+    }
+
+    fn hysteresis(&self, sigma: f64, d_min: f64, d_max: f64) -> Result<f64, RoughError> {
+        WetSummit::hysteresis(self, sigma, d_min, d_max)
+    }
 }
 
 impl WetRough {
@@ -557,10 +636,10 @@ impl WetRough {
             Shape::Two { .. } => {
                 // The roughness's check first, as for the dry model.
                 let _ = Rough::new(lambda_s, sigma)?;
-                Ok(WetRough::Wet {
+                Ok(WetRough::Wet(Rough {
                     summit: WetSummit::new(zones, Some(15.0 * sigma + 5.0))?,
                     sigma,
-                })
+                }))
             }
         }
     }
@@ -569,159 +648,47 @@ impl WetRough {
     pub fn smooth_pulloff(&self) -> f64 {
         match self {
             WetRough::Dry(r) => r.summit.smooth_pulloff(),
-            WetRough::Wet { summit, .. } => summit.ctx.load_pulloff.load,
-        }
-    }
-
-    /// The stretch of the summit of height `z` at separation `d`.
-    fn stretch(summit: &WetSummit, leg: Leg, z: f64, d: f64) -> usize {
-        match leg {
-            Leg::Approach => summit.approach_stretch(z - d),
-            Leg::Retract { d_min } => summit.retract_stretch(z - d, z - d_min),
+            WetRough::Wet(r) => r.summit.smooth_pulloff(),
         }
     }
 
     /// The mean load and branch fractions at separation `d`.
     pub fn mean(&self, leg: Leg, d: f64) -> Result<Mean, RoughError> {
-        crate::interrupt::checkpoint();
-        let (summit, s) = match self {
-            WetRough::Dry(r) => return r.mean(leg, d),
-            WetRough::Wet { summit, sigma } => (summit, *sigma),
-        };
-        let marks = summit.marks();
-        let mut cuts: Vec<f64> = marks.iter().map(|m| (d + m) / s).collect();
-        if let Leg::Retract { d_min } = leg {
-            cuts.extend(marks.iter().map(|m| (d_min + m) / s));
+        match self {
+            WetRough::Dry(r) => r.mean(leg, d),
+            WetRough::Wet(r) => r.mean(leg, d),
         }
-        cuts.push(-Z_CUT);
-        cuts.push(Z_CUT);
-        cuts.retain(|x| x.is_finite() && x.abs() <= Z_CUT);
-        cuts.sort_by(f64::total_cmp);
-        cuts.dedup();
-        let failed = Cell::new(false);
-        let (mut load, mut contact, mut noncontact, mut error) = (0.0, 0.0, 0.0, 0.0);
-        let (mut contact_load, mut noncontact_load) = (0.0, 0.0);
-        for w in cuts.windows(2) {
-            let (t0, t1) = (w[0], w[1]);
-            let k = Self::stretch(summit, leg, 0.5 * (t0 + t1) * s, d);
-            let mass = upper_tail(t0) - upper_tail(t1);
-            match summit.stretches[k].branch() {
-                SummitBranch::Free => continue,
-                SummitBranch::Contact => contact += mass,
-                SummitBranch::NonContact => noncontact += mass,
-            }
-            let f = |t: f64| {
-                let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
-                match summit.load(k, t * s - d) {
-                    Some(p) => g * p,
-                    None => {
-                        failed.set(true);
-                        0.0
-                    }
-                }
-            };
-            let (v, e) = integrate(&f, t0, t1);
-            load += v;
-            error += e;
-            match summit.stretches[k].branch() {
-                SummitBranch::Contact => contact_load += v,
-                _ => noncontact_load += v,
-            }
-        }
-        if failed.get() {
-            return Err(RoughError::Failed(d, summit.ctx.zones.lambda[0]));
-        }
-        Ok(Mean {
-            separation: d,
-            load,
-            contact_fraction: contact,
-            noncontact_fraction: noncontact,
-            contact_load,
-            noncontact_load,
-            quadrature_error: error,
-        })
     }
 
     /// The mean of A^2 over all summits (those not in contact count 0) at separation `d`.
     pub fn mean_area(&self, leg: Leg, d: f64) -> Result<f64, RoughError> {
-        let (summit, s) = match self {
-            WetRough::Dry(r) => return r.mean_area(leg, d),
-            WetRough::Wet { summit, sigma } => (summit, *sigma),
-        };
-        let last = summit.stretches.len() - 1;
-        let lo = summit.stretches[last].lo;
-        // Summits in contact: on the approach above the jump into it, on the retract those whose
-        // deepest approach reached it and that have not left it.
-        let t_in = (d + summit.approach_enter()) / s;
-        let t0 = match leg {
-            Leg::Approach => t_in,
-            Leg::Retract { d_min } => {
-                // Heights whose deepest approach z - d_min reached contact, still above lo.
-                ((d_min + summit.approach_enter()) / s).max((d + lo) / s)
-            }
+        match self {
+            WetRough::Dry(r) => r.mean_area(leg, d),
+            WetRough::Wet(r) => r.mean_area(leg, d),
         }
-        .max(-Z_CUT);
-        if t0 >= Z_CUT {
-            return Ok(0.0);
-        }
-        let failed = Cell::new(false);
-        let f = |t: f64| {
-            let g = (-0.5 * t * t).exp() / (2.0 * PI).sqrt();
-            match summit.contact_radius(t * s - d) {
-                Some(a) => g * a * a,
-                None => {
-                    failed.set(true);
-                    0.0
-                }
-            }
-        };
-        let v = integrate(&f, t0, Z_CUT).0;
-        if failed.get() {
-            return Err(RoughError::Failed(d, summit.ctx.zones.lambda[0]));
-        }
-        Ok(v)
     }
 
     /// The separation beyond which no summit within the kept range feels the flat.
     pub fn free_separation(&self) -> f64 {
         match self {
             WetRough::Dry(r) => r.free_separation(),
-            WetRough::Wet { summit, sigma } => {
-                let reach = summit
-                    .stretches
-                    .iter()
-                    .flat_map(|s| [-s.lo, -s.hi])
-                    .filter(|x| x.is_finite())
-                    .fold(0.0, f64::max);
-                Z_FREE * sigma + reach
-            }
+            WetRough::Wet(r) => r.free_separation(),
         }
     }
 
     /// The mean load of an explicit ensemble of summits of heights `z` at separation `d`, each
     /// on its own stretch.
     pub fn ensemble_load(&self, leg: Leg, z: &[f64], d: f64) -> Result<f64, RoughError> {
-        match self {
-            WetRough::Dry(r) => Ok(r.ensemble_mean(leg, z, d)?.load),
-            WetRough::Wet { summit, .. } => {
-                super::separation_in_range("the separation", d)?;
-                if let Leg::Retract { d_min } = leg {
-                    super::separation_in_range("the smallest separation", d_min)?;
-                }
-                let mut total = 0.0;
-                for &zi in z {
-                    let k = Self::stretch(summit, leg, zi, d);
-                    total += summit
-                        .load(k, zi - d)
-                        .ok_or(RoughError::Failed(d, summit.ctx.zones.lambda[0]))?;
-                }
-                Ok(total / z.len().max(1) as f64)
-            }
+        Ok(match self {
+            WetRough::Dry(r) => r.ensemble_mean(leg, z, d)?,
+            WetRough::Wet(r) => r.ensemble_mean(leg, z, d)?,
         }
+        .load)
     }
 
-    /// The cycle from `d_max` (default [`WetRough::free_separation`]) down to `d_min` and back;
-    /// its pull-off and energy loss are found exactly, whatever the number of separations.
+    /// The cycle from `d_max` (default [`WetRough::free_separation`]) down to `d_min` and back,
+    /// reported with the solid's lambda `lambda_s`; its pull-off and energy loss are found
+    /// exactly, whatever the number of separations.
     pub fn cycle(
         &self,
         lambda_s: f64,
@@ -729,58 +696,20 @@ impl WetRough {
         d_max: Option<f64>,
         points: usize,
     ) -> Result<RoughCycle, RoughError> {
-        let (summit, sigma) = match self {
-            WetRough::Dry(r) => {
-                let mut c = r.cycle(d_min, d_max, points)?;
-                c.lambda = lambda_s;
-                return Ok(c);
-            }
-            WetRough::Wet { summit, sigma } => (summit, *sigma),
+        let mut c = match self {
+            WetRough::Dry(r) => r.cycle(d_min, d_max, points)?,
+            WetRough::Wet(r) => r.cycle(d_min, d_max, points)?,
         };
-        let d_max = match d_max {
-            Some(d) => d,
-            None => super::free_d_max(self.free_separation(), d_min)?,
-        };
-        let seps = separations(d_min, d_max, points)?;
-        let (approach, retract) = legs(&seps, d_min, |l, d| self.mean(l, d))?;
-        let leg = Leg::Retract { d_min };
-        let (pulloff_separation, pulloff_load) =
-            super::retract_pulloff(&retract, d_min, d_max, super::PULLOFF_SAMPLES, &|leg, d| {
-                self.mean(leg, d)
-            })?;
-        let hysteresis = summit.hysteresis(sigma, d_min, d_max)?;
-        let at_pulloff = self.mean(leg, pulloff_separation)?.quadrature_error;
-        let quadrature_error = approach
-            .iter()
-            .chain(&retract)
-            .map(|m| m.quadrature_error)
-            .fold(at_pulloff, f64::max);
-        Ok(RoughCycle {
-            lambda: lambda_s,
-            sigma,
-            pulloff_load,
-            pulloff_separation,
-            hysteresis,
-            smooth_pulloff: summit.ctx.load_pulloff.load,
-            fuller_tabor_parameter: 0.75 * PI * sigma.powf(1.5),
-            quadrature_error,
-            warnings: super::cycle_warnings(
-                sigma,
-                self.free_separation() - Z_FREE * sigma,
-                d_max,
-                &retract,
-                (pulloff_separation, pulloff_load),
-            ),
-            approach,
-            retract,
-        })
+        c.lambda = lambda_s;
+        Ok(c)
     }
 
     /// The pull-off per summit after pressing to `d_min`: the retract sampled at `samples`
     /// separations up to where every summit is free again, then refined.
     pub fn pulloff_after(&self, d_min: f64, samples: usize) -> Result<(f64, f64), RoughError> {
-        super::pulloff_after(self.free_separation(), d_min, samples, &|leg, d| {
-            self.mean(leg, d)
-        })
+        match self {
+            WetRough::Dry(r) => r.pulloff_after(d_min, samples),
+            WetRough::Wet(r) => r.pulloff_after(d_min, samples),
+        }
     }
 }

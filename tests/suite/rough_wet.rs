@@ -443,7 +443,7 @@ fn the_contact_table_matches_the_solver() {
         (1.0, 0.05, 10.0),
     ] {
         let w = WetRough::new(lambda, rho, eta, 0.3).unwrap();
-        let WetRough::Wet { summit, .. } = &w else {
+        let WetRough::Wet(Rough { summit, .. }) = &w else {
             panic!("two ranges")
         };
         let k = summit.stretches.len() - 1;
