@@ -169,8 +169,6 @@ fn py_named(c: &(dyn std::error::Error + 'static), names: tabor::error::Names) -
     None
 }
 
-/// The fit's advice (results' messages and warnings, not errors) names the approach or retract
-/// segment in words; Python adds its argument.
 fn backend_of(s: &str) -> PyResult<Backend> {
     match s {
         "cpu" => Ok(Backend::Cpu),

@@ -217,14 +217,17 @@ pub(super) struct Problem<'a> {
     pub(super) crawl: RefCell<Option<Crawl>>,
 }
 
-/// A fit at fixed lambda (a profile point) is stopped where it crawls: where the misfit's
+/// A Maugis-Dugdale fit at fixed lambda (a profile point, an interval's crossing) is stopped
+/// where it crawls: where the misfit's
 /// steps (the jump crossing points) keep Levenberg-Marquardt's trust region small, it can
 /// spend its whole budget gaining a tenth of chi^2 per hundred evaluations (the brain tissue of
 /// bench/jpk_curves.py: 0.4 s of its 0.47). A profile point places Delta chi^2 against levels
 /// of 1 to 9, so the fit ends once a window of [`CRAWL_WINDOW`] evaluations per parameter gains
-/// less than [`CRAWL_CHI2`] in chi^2 (`s^2 = RSS / (m - n)`), at the best parameters met.
-/// (Free fits are not watched: a free fit's slow valley can still carry w by a few half-widths
-/// of its interval.)
+/// less than [`CRAWL_CHI2`] in chi^2, at the best parameters met. (Its s^2 is the point's own,
+/// `RSS / (m - n)`: far from the minimum the cut is looser than the profile's chi^2, whose s^2
+/// is the free fit's, by the ratio of their RSS.) Free fits are not watched: a free fit's slow
+/// valley can still carry w by a few half-widths of its interval; nor the humid fit's shape
+/// points, which keep only converged fits.
 pub(super) struct Crawl {
     /// Evaluations of the residuals so far.
     evaluations: usize,
@@ -1019,7 +1022,7 @@ pub(super) fn fit_model_tol(
         .filter(|h| h.len() == d.force.len())
         .map(<[_]>::to_vec);
     let scout = patience == SCOUT_PATIENCE;
-    if fixed_lambda.is_some() {
+    if model == Model::Md && fixed_lambda.is_some() {
         *prob.crawl.borrow_mut() = Some(Crawl {
             evaluations: 0,
             best: f64::INFINITY,
@@ -1034,9 +1037,11 @@ pub(super) fn fit_model_tol(
     }
     let mut crawled = false;
     let (mut prob, mut report) = lm.minimize(prob);
-    // Ended where it crawled: at the best parameters met, stopped as by the iteration limit.
+    // Ended where it crawled: at the best parameters met, stopped as by the iteration limit
+    // (their states located afresh, not from the last trial's).
     if let Some(c) = prob.crawl.take().filter(|c| c.stalled) {
         prob.set_params(&c.best_x);
+        *prob.hints.borrow_mut() = None;
         report.termination = TerminationReason::LostPatience;
         crawled = true;
     }
@@ -1095,7 +1100,7 @@ pub(super) fn fit_model_tol(
         pulloff_force_model_n: pulloff,
         iterations,
         stop: if crawled {
-            format!("iteration limit reached (less than {CRAWL_CHI2} in chi^2 gained over the last {CRAWL_WINDOW} evaluations per parameter)")
+            format!("stopped crawling: less than {CRAWL_CHI2} in chi^2 gained over the last {CRAWL_WINDOW} evaluations per parameter (as at the iteration limit)")
         } else {
             stop_text(&report.termination)
         },

@@ -179,10 +179,10 @@ pub trait SummitLaw: Sync {
     fn branch_of(&self, s: Self::State) -> SummitBranch;
     /// The load in state `s` at approach `delta` (None where the solver failed).
     fn load_in(&self, s: Self::State, delta: f64) -> Option<f64>;
-    /// The approaches where the load jumps or folds at the flat's separation, and those at the
-    /// smallest separation that matter on the retract.
+    /// The approaches where the load jumps or folds (placed at the flat's separation).
     fn marks(&self) -> Vec<f64>;
-    /// The approaches where the retract's state changes with the deepest approach.
+    /// The approaches where the retract's state changes with the deepest approach (placed at
+    /// the smallest separation).
     fn retract_marks(&self) -> Vec<f64>;
     /// How far beyond its height a summit feels the flat, on the approach or the retract.
     fn reach(&self) -> f64;
