@@ -218,10 +218,9 @@ pub(super) struct Problem<'a> {
 }
 
 /// A Maugis-Dugdale fit at fixed lambda (a profile point, an interval's crossing) is stopped
-/// where it crawls: where the misfit's
-/// steps (the jump crossing points) keep Levenberg-Marquardt's trust region small, it can
-/// spend its whole budget gaining a tenth of chi^2 per hundred evaluations (the brain tissue of
-/// bench/jpk_curves.py: 0.4 s of its 0.47). A profile point places Delta chi^2 against levels
+/// where it crawls: where the misfit's steps (the jump crossing points) keep
+/// Levenberg-Marquardt's trust region small, it can spend its whole budget gaining a tenth of
+/// chi^2 per hundred evaluations (the brain tissue of bench/jpk_curves.py: 0.4 s of its 0.47). A profile point places Delta chi^2 against levels
 /// of 1 to 9, so the fit ends once a window of [`CRAWL_WINDOW`] evaluations per parameter gains
 /// less than [`CRAWL_CHI2`] in chi^2, at the best parameters met. (Its s^2 is the point's own,
 /// `RSS / (m - n)`: far from the minimum the cut is looser than the profile's chi^2, whose s^2
