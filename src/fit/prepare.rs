@@ -45,30 +45,28 @@ pub const MIN_CONTACT_POINTS: usize = 10;
 
 /// Checks a curve and removes its baseline.
 pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, Message)> {
-    let bad = |m: Message| Err((FitStatus::InvalidInput, m));
     // The options' one check (the spring constant and the radius among them).
     if let Err(e) = opt.validate() {
-        return bad(e.message.into());
+        return refused(e.message);
     }
     for (i, (&h, &f)) in curve.height.iter().zip(&curve.force).enumerate() {
         if !h.is_finite() || !f.is_finite() {
-            return bad(format!(
+            return refused(format!(
                 "point {} has height_m = {h} and force_n = {f}: remove or repair non-finite values",
                 i + 1
-            )
-            .into());
+            ));
         }
     }
     if let Some(m) = &curve.refused {
-        return bad(m.clone().into());
+        return refused(m.clone());
     }
     let mut notes = curve.notes.clone();
     if let Err(m) = check_cycles(curve) {
-        return bad(m.into());
+        return refused(m);
     }
     for d in [Direction::Approach, Direction::Retract] {
         match check_order(curve, d) {
-            Err(m) => return bad(m.into()),
+            Err(m) => return refused(m),
             Ok(Some(note)) => notes.push(note),
             Ok(None) => {}
         }
@@ -101,25 +99,13 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         .filter(|&i| segments.takes(curve.segment[i]))
         .collect();
     if fitted.is_empty() {
-        let which = match segments {
-            Segments::Retract => Message::new()
-                .text("no retract segment: fit ")
-                .then(the_other(Direction::Approach))
-                .text(", or check the segment column (approach/retract or 0/1)"),
-            Segments::Approach => Message::new()
-                .text("no approach segment: fit ")
-                .then(the_other(Direction::Retract))
-                .text(", or check the segment column"),
-            Segments::Both => "no points".into(),
-        };
-        return bad(which);
+        return refused(no_segment(segments));
     }
     if fitted.len() < MIN_POINTS {
-        return bad(format!(
+        return refused(format!(
             "only {} points in the fitted segments: at least {MIN_POINTS} are needed",
             fitted.len()
-        )
-        .into());
+        ));
     }
     let height: Vec<f64> = fitted.iter().map(|&i| curve.height[i]).collect();
     let force: Vec<f64> = fitted
@@ -161,16 +147,31 @@ fn scales_of(force: &[f64], height: &[f64]) -> (f64, f64) {
 /// The advice to fit the segment `d` instead, keyed by the segment option's choice
 /// (`segments=approach`: Python adds its argument).
 fn the_other(d: Direction) -> Message {
-    Message::new().phrase(
-        match d {
-            Direction::Approach => "segments=approach",
-            Direction::Retract => "segments=retract",
-        },
-        match d {
-            Direction::Approach => "the approach segment instead",
-            Direction::Retract => "the retract segment instead",
-        },
-    )
+    let (key, words) = match d {
+        Direction::Approach => ("segments=approach", "the approach segment instead"),
+        Direction::Retract => ("segments=retract", "the retract segment instead"),
+    };
+    Message::new().phrase(key, words)
+}
+
+/// Why a curve without the segments to fit is refused.
+fn no_segment(segments: Segments) -> Message {
+    match segments {
+        Segments::Retract => Message::new()
+            .text("no retract segment: fit ")
+            .then(the_other(Direction::Approach))
+            .text(", or check the segment column (approach/retract or 0/1)"),
+        Segments::Approach => Message::new()
+            .text("no approach segment: fit ")
+            .then(the_other(Direction::Retract))
+            .text(", or check the segment column"),
+        Segments::Both => "no points".into(),
+    }
+}
+
+/// A curve refused as invalid input, with why.
+fn refused<T>(why: impl Into<Message>) -> Result<T, (FitStatus, Message)> {
+    Err((FitStatus::InvalidInput, why.into()))
 }
 
 /// Whether a segment's forces (baseline removed) rise above the baseline: beyond five times

@@ -244,7 +244,36 @@ const CRAWL_WINDOW: usize = 20;
 /// The least gain in chi^2 over a window of [`Crawl`] for a fit to go on.
 const CRAWL_CHI2: f64 = 0.2;
 
+impl Crawl {
+    /// A watch from the start `x`.
+    fn new(x: &DVector<f64>) -> Crawl {
+        Crawl {
+            evaluations: 0,
+            best: f64::INFINITY,
+            best_x: x.clone(),
+            window_start: f64::INFINITY,
+            stalled: false,
+        }
+    }
+
+    /// The stop of a fit that ended crawling.
+    fn stop_text() -> String {
+        format!("stopped crawling: less than {CRAWL_CHI2} in chi^2 gained over the last {CRAWL_WINDOW} evaluations per parameter (as at the iteration limit)")
+    }
+}
+
 impl Problem<'_> {
+    /// Ends the watch; where the fit crawled, puts it at the best parameters met (their states
+    /// located afresh, not from the last trial's) and says so.
+    fn end_crawl(&mut self) -> bool {
+        let Some(c) = self.crawl.take().filter(|c| c.stalled) else {
+            return false;
+        };
+        self.set_params(&c.best_x);
+        *self.hints.borrow_mut() = None;
+        true
+    }
+
     /// Counts an evaluation of the residuals `r` at the current parameters; false where the
     /// fit crawls and is to end.
     fn watch(&self, r: &DVector<f64>) -> bool {
@@ -1022,27 +1051,16 @@ pub(super) fn fit_model_tol(
         .map(<[_]>::to_vec);
     let scout = patience == SCOUT_PATIENCE;
     if model == Model::Md && fixed_lambda.is_some() {
-        *prob.crawl.borrow_mut() = Some(Crawl {
-            evaluations: 0,
-            best: f64::INFINITY,
-            best_x: prob.x.clone(),
-            window_start: f64::INFINITY,
-            stalled: false,
-        });
+        *prob.crawl.borrow_mut() = Some(Crawl::new(&prob.x));
     }
     let mut lm = LevenbergMarquardt::new().with_patience(patience);
     if let Some(t) = tol {
         lm = lm.with_ftol(t).with_xtol(t);
     }
-    let mut crawled = false;
     let (mut prob, mut report) = lm.minimize(prob);
-    // Ended where it crawled: at the best parameters met, stopped as by the iteration limit
-    // (their states located afresh, not from the last trial's).
-    if let Some(c) = prob.crawl.take().filter(|c| c.stalled) {
-        prob.set_params(&c.best_x);
-        *prob.hints.borrow_mut() = None;
+    let crawled = prob.end_crawl();
+    if crawled {
         report.termination = TerminationReason::LostPatience;
-        crawled = true;
     }
     let x = prob.x.clone();
     let p = prob.params(&x);
@@ -1099,7 +1117,7 @@ pub(super) fn fit_model_tol(
         pulloff_force_model_n: pulloff,
         iterations,
         stop: if crawled {
-            format!("stopped crawling: less than {CRAWL_CHI2} in chi^2 gained over the last {CRAWL_WINDOW} evaluations per parameter (as at the iteration limit)")
+            Crawl::stop_text()
         } else {
             stop_text(&report.termination)
         },
