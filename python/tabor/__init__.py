@@ -1214,7 +1214,7 @@ def fit_curves(height_m, force_n, segment, curve=None, *, radius_m=None, spring_
     >>> f = tabor.fit_curves(height, force, segment, radius_m=R, spring_n_m=k)[0]
     >>> f["status"], f["adequate_model"]
     ('ok', 'md')
-    >>> print(f"{f['e_star_pa']:.4g} {f['work_of_adhesion_j_m2']:.4g} {f['lambda']:.4g}")
+    >>> print(f"{f['e_star_pa']:.3g} {f['work_of_adhesion_j_m2']:.3g} {f['lambda']:.3g}")
     2e+09 0.04 0.3
     """
     h = _c(_numbers(height_m, "height_m").ravel())
@@ -1324,8 +1324,10 @@ def fit_curve(height_m, force_n, segment, **options):
     >>> E, w, lam, R, k = 2e9, 0.04, 0.3, 20e-9, 40.0
     >>> unit = (np.pi**2 * w**2 * R / (4 / 3 * E)**2) ** (1 / 3)
     >>> c = tabor.cycle(lam, drive="spring", stiffness=k * unit / (np.pi * w * R))
-    >>> f = tabor.fit_curve(-c["control"] * unit, c["load"] * np.pi * w * R,
-    ...                     np.where(c["phase"] == "approach", 0, 1), radius_m=R, spring_n_m=k)
+    >>> s = ~c["jump"]  # one force per height: a jump's landing shares its fold's
+    >>> noise = np.random.default_rng(0).normal(0, 1e-11, s.sum())  # 0.2% of the pull-off
+    >>> f = tabor.fit_curve(-c["control"][s] * unit, c["load"][s] * np.pi * w * R + noise,
+    ...                     np.where(c["phase"][s] == "approach", 0, 1), radius_m=R, spring_n_m=k)
     >>> lo, hi = f["work_of_adhesion_j_m2_interval_95"]
     >>> bool(lo < 0.04 < hi)
     True
@@ -1483,7 +1485,7 @@ def cycle(lam, drive="grips", stiffness=None, max_load=2.0, stress_ratio=None,
     >>> round(c.metadata["hysteresis"], 6)
     0.496319
     >>> [round(j["from"]["load"], 6) for j in c.metadata["jumps"]]
-    [-0.0, -0.891741]
+    [0.0, -0.891741]
     """
     opt = lambda v, n: None if v is None else _real(v, n)
     c = _tabor.cycle(_real(lam, "lam"), drive, opt(stiffness, "stiffness"),

@@ -12,8 +12,13 @@
 //! lost per cycle is the loop's area `W = closed integral of Pbar dDelta = closed integral of
 //! Pbar dDbar` (the spring's stored energy is a state function), in units of pi w R times the
 //! approach unit.
+//!
+//! The drive's path is the fits' follower's ([`DrivenPath`]: folds, jumps and landings exact);
+//! the law's sampled path is what a figure draws and where the steps between them lie.
 
-use crate::law::path::{control_of, free_landing};
+use crate::law::follow::{Direction, DrivenPath, Segment};
+use crate::law::md::CYCLE_POINTS;
+use crate::law::path::{control_of, free_before};
 use crate::law::stretch::Stretches;
 use crate::law::{Law, LawError, Md, Piece};
 use serde::Serialize;
@@ -82,31 +87,6 @@ pub struct Cycle {
     pub hysteresis: Option<f64>,
 }
 
-/// Where the path first comes back to `level` on a rising stretch, after index `from`.
-fn landing_forward(u: &[f64], from: usize, level: f64) -> Option<(usize, f64)> {
-    (from + 1..u.len() - 1)
-        .find(|&j| u[j] < u[j + 1] && u[j] <= level && level <= u[j + 1])
-        .map(|j| (j, (level - u[j]) / (u[j + 1] - u[j])))
-}
-
-fn landing_backward(u: &[f64], from: usize, level: f64) -> Option<(usize, f64)> {
-    (0..from.saturating_sub(1))
-        .rev()
-        .find(|&j| u[j] < u[j + 1] && u[j] <= level && level <= u[j + 1])
-        .map(|j| (j, (level - u[j]) / (u[j + 1] - u[j])))
-}
-
-fn lerp(a: &PathPoint, b: &PathPoint, t: f64) -> PathPoint {
-    let l = |x: f64, y: f64| x + (y - x) * t;
-    PathPoint {
-        branch: if t < 0.5 { a.branch } else { b.branch },
-        approach: l(a.approach, b.approach),
-        load: l(a.load, b.load),
-        a: l(a.a, b.a),
-        c: l(a.c, b.c),
-    }
-}
-
 /// The Maugis-Dugdale cycle up to the load `max_load` (0 < max_load <= 1e12) for lambda in the
 /// solver's domain ([`run`] of [`Md`]).
 pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
@@ -114,89 +94,216 @@ pub fn cycle(lambda: f64, drive: Drive, max_load: f64) -> Result<Cycle, CycleErr
 }
 
 /// The cycle of any law under `drive` up to the load `max_load`, after the law's and the
-/// drive's checks (each one line naming the value): the drive's steps, jumps and loop on the
-/// law's sampled path, each retract jump from the contact branch put at the law's exact fold
-/// (the samples only bracket it; a landing on the free branch moves with it). Under rigid grips
-/// the loop is the exact one of the law's stretches ([`Stretches::loop_area`], the DEM law's):
-/// the samples' trapezoids fall short where a piece bends between them (1.7% for the two-zone
-/// law (0.01, 5, 0.3)); the trapezoids stand where the stretches are not found.
-pub fn run<L: Law + ?Sized>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
-    let path = law.cycle_path(drive, max_load)?;
-    let f = follow(&path, drive);
-    let mut jumps = f.jumps;
-    for j in jumps.iter_mut().filter(|j| j.phase == Phase::Retract) {
-        // A landing on the free surfaces moves with the fold (off the zone alone the sampled
-        // landing there carries no load, whatever its label; a landing elsewhere is left
-        // sampled).
-        let (exact, lands_free) = match j.from.branch {
-            Branch::Contact => (
-                law.fold(drive, &j.from),
-                j.to.is_some_and(|t| t.branch == Branch::Free),
-            ),
-            Branch::NonContact if j.to.is_none_or(|t| t.load == 0.0) => {
-                (non_contact_fold(law, drive, &j.from), true)
-            }
-            _ => (None, false),
-        };
-        if let Some(p) = exact {
-            if let Some(to) = j.to.as_mut().filter(|_| lands_free) {
-                to.approach = free_landing(&p, drive);
-            }
-            j.from = p;
-        }
-    }
-    let hysteresis = f.hysteresis.map(|sampled| match (drive, path.last()) {
-        (Drive::RigidGrips, Some(top)) => Stretches::of(law, top.approach)
+/// drive's checks (each one line naming the value): the law's path sampled for drawing, and the
+/// path the drive follows on it, exactly ([`DrivenPath`], the fits' follower: rigid grips at
+/// kbar = infinity, a dead load at kbar = 0), its jumps from the exact folds to the exact
+/// landings. The steps are the samples on the followed stretches and the stretches' ends. Under
+/// rigid grips the loop is the exact one of the law's stretches ([`Stretches::loop_area`], the
+/// DEM law's); otherwise the trapezoids over the steps.
+pub fn run<L: Law + Clone>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle, CycleError> {
+    let mut ts = law.cycle_path(drive, max_load)?;
+    let mut path: Vec<PathPoint> = ts.iter().map(|&(p, t)| law.point(p, t)).collect();
+    let (Some(first), Some(top)) = (path.first().copied(), path.last().copied()) else {
+        return Err(LawError::Unsupported {
+            model: law.model(),
+            what: "sampled path for this cycle",
+        });
+    };
+    let free = free_before(&path, first.approach, CYCLE_POINTS);
+    ts.splice(0..0, free.iter().map(|p| (Piece::Free, p.approach)));
+    path.splice(0..0, free);
+    let kbar = match drive {
+        Drive::RigidGrips => f64::INFINITY,
+        Drive::DeadLoad => 0.0,
+        Drive::Spring(k) => k,
+    };
+    let follower = DrivenPath::to_radius(law.clone(), kbar, top.a);
+    let walk = Walk {
+        law,
+        drive,
+        ts: &ts,
+        path: &path,
+    };
+    let mut steps = Vec::new();
+    let mut jumps = Vec::new();
+    walk.approach(
+        follower.segments(Direction::Approach),
+        &mut steps,
+        &mut jumps,
+    );
+    let separated = walk.retract(
+        follower.segments(Direction::Retract),
+        &mut steps,
+        &mut jumps,
+    );
+    let hysteresis = (!separated).then(|| match drive {
+        Drive::RigidGrips => Stretches::of(law, top.approach)
             .ok()
             .and_then(|s| s.loop_area(law, top.approach))
-            .map_or(sampled, |w| w.max(0.0)),
-        _ => sampled,
+            .map_or_else(|| trapezoid_loop(&steps), |w| w.max(0.0)),
+        _ => trapezoid_loop(&steps),
     });
+    let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
+    let n = path.len();
+    let stable = (0..n)
+        .map(|i| {
+            if i + 1 < n {
+                u[i + 1] >= u[i]
+            } else {
+                u[i] >= u[i - 1]
+            }
+        })
+        .collect();
     Ok(Cycle {
         lambda: law.lambda().unwrap_or(f64::NAN),
         drive,
         path,
-        stable: f.stable,
-        steps: f.steps,
+        stable,
+        steps,
         jumps,
         hysteresis,
     })
 }
 
-/// The fold of the non-contact piece (the zone alone, t = C) under `drive` near the sampled
-/// jump `near`: where the control's slope along the piece changes sign, from negative below to
-/// positive above, bracketed outward from the sample and bisected. None where no sign change
-/// lies within 25% of its C (the samples are sparse there at small lambda: 4% off at 0.1).
-fn non_contact_fold<L: Law + ?Sized>(law: &L, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
-    let slope = |t: f64| {
-        let p = law.state(Piece::NonContact, t);
-        match drive {
-            Drive::RigidGrips => p.dapproach,
-            Drive::Spring(k) => p.dapproach + p.dload / k,
-            Drive::DeadLoad => p.dload,
+/// A stretch's end as a step, unless it is the state before it to rounding: near the contact
+/// piece's A -> 0 end its control is flat to rounding, and the follower's stretches there end at
+/// folds of noise.
+fn push_end(steps: &mut Vec<Step>, s: Step) {
+    let same = |x: f64, y: f64| (x - y).abs() <= 1e-12 * (1.0 + x.abs());
+    if let Some(last) = steps.last() {
+        if last.phase == s.phase
+            && last.point.branch == s.point.branch
+            && same(last.point.load, s.point.load)
+            && same(last.point.approach, s.point.approach)
+        {
+            return;
         }
-    };
-    let t = near.c;
-    if !(t > 0.0) {
-        return None;
     }
-    let mut h = 1e-4 * t;
-    while h <= 0.25 * t {
-        let (lo, hi) = ((t - h).max(0.0), t + h);
-        if slope(lo) < 0.0 && slope(hi) > 0.0 {
-            let c = crate::numeric::root::bisect_sign(slope, lo, hi);
-            let p = law.state(Piece::NonContact, c);
-            return Some(PathPoint {
-                branch: Branch::NonContact,
-                approach: p.approach,
-                load: p.load,
-                a: 0.0,
-                c,
+    steps.push(s);
+}
+
+/// The followed stretches turned into a cycle's steps and jumps: the path's samples on each
+/// stretch, and its exact ends.
+struct Walk<'a, L: Law + ?Sized> {
+    law: &'a L,
+    drive: Drive,
+    /// Each sample's piece and parameter.
+    ts: &'a [(Piece, f64)],
+    path: &'a [PathPoint],
+}
+
+impl<L: Law + ?Sized> Walk<'_, L> {
+    fn step(&self, phase: Phase, point: PathPoint, jump: bool) -> Step {
+        Step {
+            phase,
+            point,
+            control: control_of(&point, self.drive),
+            jump,
+        }
+    }
+
+    /// The samples strictly inside (lo, hi) of `piece`, in the path's order.
+    fn inside(
+        &self,
+        piece: Piece,
+        lo: f64,
+        hi: f64,
+    ) -> impl DoubleEndedIterator<Item = usize> + '_ {
+        (0..self.ts.len())
+            .filter(move |&i| self.ts[i].0 == piece && self.ts[i].1 > lo && self.ts[i].1 < hi)
+    }
+
+    /// A jump from `from` to the start of the next stretch `to`, or a continuation (the loads
+    /// agree: a piece's end meeting the next piece's start).
+    fn joins(
+        &self,
+        phase: Phase,
+        from: PathPoint,
+        to: PathPoint,
+        steps: &mut Vec<Step>,
+        jumps: &mut Vec<Jump>,
+    ) {
+        let scale = from.load.abs().max(to.load.abs()).max(1e-3);
+        if (from.load - to.load).abs() > 1e-6 * scale {
+            jumps.push(Jump {
+                phase,
+                from,
+                to: Some(to),
             });
+            steps.push(self.step(phase, to, true));
         }
-        h *= 2.0;
     }
-    None
+
+    /// The approach: from the first sample up each stretch to its fold, a jump to the next,
+    /// up to the top sample.
+    fn approach(&self, segs: &[Segment], steps: &mut Vec<Step>, jumps: &mut Vec<Jump>) {
+        let phase = Phase::Approach;
+        let (top_i, top) = (self.ts.len() - 1, self.ts[self.ts.len() - 1].1);
+        let mut last: Option<PathPoint> = None;
+        for (k, seg) in segs.iter().enumerate() {
+            if let Some(from) = last {
+                self.joins(
+                    phase,
+                    from,
+                    self.law.point(seg.piece, seg.t_lo),
+                    steps,
+                    jumps,
+                );
+            }
+            let end = k + 1 == segs.len() || (seg.piece == Piece::Contact && seg.t_hi >= top);
+            let hi = if end { top } else { seg.t_hi };
+            for i in self.inside(seg.piece, seg.t_lo, hi) {
+                steps.push(self.step(phase, self.path[i], false));
+            }
+            if end {
+                steps.push(self.step(phase, self.path[top_i], false));
+                return;
+            }
+            let p = self.law.point(seg.piece, seg.t_hi);
+            push_end(steps, self.step(phase, p, false));
+            last = Some(p);
+        }
+    }
+
+    /// The retract: from the top sample down each stretch to its fold, a jump to the next,
+    /// down to the first sample; under a dead load a jump onto the free piece separates the
+    /// surfaces for good. Returns whether they separated.
+    fn retract(&self, segs: &[Segment], steps: &mut Vec<Step>, jumps: &mut Vec<Jump>) -> bool {
+        let phase = Phase::Retract;
+        let top = self.ts[self.ts.len() - 1].1;
+        steps.push(self.step(phase, self.path[self.ts.len() - 1], false));
+        let mut last: Option<PathPoint> = None;
+        for (k, seg) in segs.iter().enumerate() {
+            if let Some(from) = last {
+                if seg.piece == Piece::Free && self.drive == Drive::DeadLoad && from.load != 0.0 {
+                    jumps.push(Jump {
+                        phase,
+                        from,
+                        to: None,
+                    });
+                    return true;
+                }
+                self.joins(
+                    phase,
+                    from,
+                    self.law.point(seg.piece, seg.t_hi),
+                    steps,
+                    jumps,
+                );
+            }
+            let hi = if k == 0 { top } else { seg.t_hi };
+            for i in self.inside(seg.piece, seg.t_lo, hi).rev() {
+                steps.push(self.step(phase, self.path[i], false));
+            }
+            if !seg.t_lo.is_finite() {
+                return false;
+            }
+            let p = self.law.point(seg.piece, seg.t_lo);
+            push_end(steps, self.step(phase, p, false));
+            last = Some(p);
+        }
+        false
+    }
 }
 
 /// Why a cycle was not computed: a bad law, drive or load (the message names the quantity, the
@@ -223,110 +330,6 @@ impl CycleSpec {
     }
 }
 
-/// What a drive makes of an equilibrium path (any contact law's): the steps followed, the jumps
-/// at the folds of the control, the loop's area and each point's stability.
-struct Followed {
-    steps: Vec<Step>,
-    jumps: Vec<Jump>,
-    hysteresis: Option<f64>,
-    stable: Vec<bool>,
-}
-
-/// The approach: follow the path while the control rises (flat counts, as on the free segment
-/// under dead load); at a fold, jump forward to where the control is reached again.
-fn follow_approach(path: &[PathPoint], u: &[f64], steps: &mut Vec<Step>, jumps: &mut Vec<Jump>) {
-    let n = path.len();
-    let mut i = 0;
-    let mut jumped = false;
-    loop {
-        steps.push(Step {
-            phase: Phase::Approach,
-            point: path[i],
-            control: u[i],
-            jump: jumped,
-        });
-        jumped = false;
-        if i + 1 >= n {
-            break;
-        }
-        if u[i + 1] >= u[i] {
-            i += 1;
-            continue;
-        }
-        match landing_forward(u, i, u[i]) {
-            Some((j, t)) => {
-                let to = lerp(&path[j], &path[j + 1], t);
-                jumps.push(Jump {
-                    phase: Phase::Approach,
-                    from: path[i],
-                    to: Some(to),
-                });
-                steps.push(Step {
-                    phase: Phase::Approach,
-                    point: to,
-                    control: u[i],
-                    jump: true,
-                });
-                i = j + 1;
-            }
-            None => break,
-        }
-    }
-}
-
-/// The retract: back down the path while the control falls; at a fold, jump back. Returns
-/// whether the surfaces separated for good.
-fn follow_retract(
-    path: &[PathPoint],
-    u: &[f64],
-    steps: &mut Vec<Step>,
-    jumps: &mut Vec<Jump>,
-) -> bool {
-    let mut i = path.len() - 1;
-    let mut jumped = false;
-    loop {
-        steps.push(Step {
-            phase: Phase::Retract,
-            point: path[i],
-            control: u[i],
-            jump: jumped,
-        });
-        jumped = false;
-        if i == 0 {
-            return false;
-        }
-        if u[i - 1] <= u[i] {
-            i -= 1;
-            continue;
-        }
-        match landing_backward(u, i, u[i]) {
-            Some((j, t)) => {
-                let to = lerp(&path[j], &path[j + 1], t);
-                jumps.push(Jump {
-                    phase: Phase::Retract,
-                    from: path[i],
-                    to: Some(to),
-                });
-                steps.push(Step {
-                    phase: Phase::Retract,
-                    point: to,
-                    control: u[i],
-                    jump: true,
-                });
-                i = j;
-            }
-            None => {
-                jumps.push(Jump {
-                    phase: Phase::Retract,
-                    from: path[i],
-                    to: None,
-                });
-                return true;
-            }
-        }
-    }
-}
-
 /// The loop area, integral of P dD along approach then retract (trapezoids over the samples;
 /// under rigid grips [`run`] replaces it by the exact stretches' loop, which this measures
 /// independently). The stretches followed both ways cancel exactly, but at large loads their
@@ -346,32 +349,6 @@ pub fn trapezoid_loop(steps: &[Step]) -> f64 {
         sum = next;
     }
     (sum + comp).max(0.0)
-}
-
-/// The shared part of every law's cycle: the path followed under `drive`.
-fn follow(path: &[PathPoint], drive: Drive) -> Followed {
-    let u: Vec<f64> = path.iter().map(|p| control_of(p, drive)).collect();
-    let n = path.len();
-    let mut steps = Vec::new();
-    let mut jumps = Vec::new();
-    follow_approach(path, &u, &mut steps, &mut jumps);
-    let separated = follow_retract(path, &u, &mut steps, &mut jumps);
-    let hysteresis = (!separated).then(|| trapezoid_loop(&steps));
-    let stable = (0..n)
-        .map(|i| {
-            if i + 1 < n {
-                u[i + 1] >= u[i]
-            } else {
-                u[i] >= u[i - 1]
-            }
-        })
-        .collect();
-    Followed {
-        steps,
-        jumps,
-        hysteresis,
-        stable,
-    }
 }
 
 /// The normalised spring stiffness: k (N/m) times the approach unit over the force unit.
@@ -396,7 +373,6 @@ pub fn kbar_text(kbar: f64, wet: bool) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::law::md::equilibrium_path;
     use crate::solver::LambdaContext;
 
     fn retract_jump(c: &Cycle) -> &Jump {
@@ -476,7 +452,7 @@ mod tests {
     #[test]
     fn branches_meet_at_zero_radius() {
         let lambda = 0.3;
-        let path = equilibrium_path(lambda, 1.0, 100);
+        let path = cycle(lambda, Drive::RigidGrips, 1.0).unwrap().path;
         let k = path
             .iter()
             .position(|p| p.branch == Branch::Contact)

@@ -26,7 +26,7 @@ mod summary;
 pub mod synthetic;
 mod tip;
 
-pub use crate::law::follow::{Direction, SpringPath};
+pub use crate::law::follow::{Direction, DrivenPath};
 pub use data::{read_curves, Curve, CurveSet, DataError};
 pub use map_summary::*;
 pub use model::Model;

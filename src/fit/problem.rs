@@ -53,7 +53,7 @@ pub fn z0_from_lambda(e_star: f64, w: f64, radius: f64, lambda: f64) -> f64 {
 }
 
 /// Model forces (N), contact radii (m), the states and the path they lie on.
-pub type Evaluated = (Vec<f64>, Vec<f64>, Vec<PathState>, SpringPath);
+pub type Evaluated = (Vec<f64>, Vec<f64>, Vec<PathState>, DrivenPath);
 
 /// The model force (N, without offset) and contact radius (m) at each height, and the state,
 /// on the tip `tip` (a radius is a sphere's).
@@ -111,7 +111,7 @@ pub(super) fn forces_on(
     }
     let deltas: Vec<f64> = height.iter().map(|h| (zc - h) / u.approach).collect();
     let top = deltas.iter().cloned().fold(1.0, f64::max);
-    let path = SpringPath::of(law, u.kbar, top);
+    let path = DrivenPath::of(law, u.kbar, top);
     let states: Vec<PathState> = deltas
         .iter()
         .zip(dir)
@@ -465,15 +465,15 @@ impl Problem<'_> {
             .iter()
             .map(|h| (p.zc - h) / u.approach)
             .fold(1.0, f64::max);
-        let mut full: Option<SpringPath> = None;
+        let mut full: Option<DrivenPath> = None;
         rows.map(|i| {
             let s = &base[i];
             let delta = (p.zc - d.height[i]) / u.approach;
             (!s.clamped)
-                .then(|| path::near(law, u.kbar, delta, s.piece, s.t))
+                .then(|| path::near(&law, u.kbar, delta, s.piece, s.t))
                 .flatten()
                 .unwrap_or_else(|| {
-                    full.get_or_insert_with(|| SpringPath::of(law, u.kbar, top))
+                    full.get_or_insert_with(|| DrivenPath::of(law, u.kbar, top))
                         .at_side(delta, d.dir[i], d.side[i])
                 })
         })
@@ -1187,5 +1187,5 @@ pub(super) fn model_pulloff(
     } else {
         Direction::Retract
     };
-    -SpringPath::of(law, u.kbar, top).min_load(dir).0 * u.force
+    -DrivenPath::of(law, u.kbar, top).min_load(dir).0 * u.force
 }

@@ -5,7 +5,7 @@ use super::data::Curve;
 use super::problem::{forces_on, law_units};
 use super::Model;
 use super::{Geometry, Params};
-use crate::law::follow::{Direction, SpringPath};
+use crate::law::follow::{Direction, DrivenPath};
 use crate::law::ContactLaw;
 use rand::SeedableRng;
 use rand_distr::{Distribution, Normal};
@@ -130,7 +130,7 @@ fn out_of_domain(lambda: f64) -> String {
 /// The curve of `s` on the path of `law` in its units `u`, with its noise.
 fn noisy(s: &Synthetic, law: ContactLaw, u: &super::Units) -> Result<Curve, String> {
     let p = s.params;
-    let path = SpringPath::of(law, u.kbar, s.depth);
+    let path = DrivenPath::of(law, u.kbar, s.depth);
     let reach = path.force_reach().min(0.0);
     // Delta from `low` (free) to `depth`: the force begins at `reach`.
     let span = s.depth - reach;

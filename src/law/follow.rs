@@ -1,16 +1,18 @@
-//! The force a cantilever measures: the equilibrium path of a contact model (Maugis-Dugdale,
-//! Hertz, DMT, JKR) followed under a spring on the way in or out, evaluated exactly at any base
-//! displacement (normalised units, docs/PHYSICS.md sections 1 and 4).
+//! The one path follower: the equilibrium path of a contact law followed under a drive on the
+//! way in or out, evaluated exactly at any value of the drive's control (normalised units,
+//! docs/PHYSICS.md sections 1 and 4). A spring of normalised stiffness kbar (the force a
+//! cantilever measures: the fits) controls the base displacement `Delta = Dbar + Pbar/kbar`;
+//! rigid grips are kbar = infinity (Delta the approach), a dead load kbar = 0 (the control the
+//! load itself). The cycles take their folds, jumps and landings from it.
 //!
 //! The path is cut into pieces (the law's, [`Law::pieces`], which holds every law-specific
 //! equation), each parametrised by t with the state an explicit function of t:
-//! the free piece (no force, t = Dbar), Maugis-Dugdale's non-contact piece (t = C) and the
-//! contact piece (t = -ln mu for Maugis-Dugdale, t = A for the closed forms). Under a spring of
-//! normalised stiffness kbar the base displacement is `Delta = Dbar + Pbar/kbar`, and a state is
-//! stable while `dDelta/dt > 0`. Retracting, the state goes down the contact piece until a fold
+//! the free piece (no force, t = Dbar), the non-contact piece (t = C) and the contact piece
+//! (t = -ln mu for Maugis-Dugdale, t = A for the closed forms). A state is stable while
+//! `dDelta/dt > 0`. Retracting, the state goes down the contact piece until a fold
 //! (`dDelta/dt = 0`) or the piece's end, then jumps at constant Delta to the next stable stretch
 //! below; approaching, the same upwards. Each followed stretch is a segment on which Delta rises
-//! with t, so a measured Delta maps to one state, found by a safeguarded Newton iteration on the
+//! with t, so a given Delta maps to one state, found by a safeguarded Newton iteration on the
 //! exact curve: the nodes only bracket it.
 
 use super::{nodes, ContactLaw, Law, Piece, Pt};
@@ -111,22 +113,53 @@ struct Node {
 /// units). A genuine fold's bracket between nodes has a slope far above it at one end at least.
 const SLOPE_ROUNDING: f64 = 1e-13;
 
-/// One followed stretch: Delta rises with t over [t_lo, t_hi].
+/// One followed stretch: Delta rises with t over [t_lo, t_hi] of its piece (the free piece's
+/// parameter is the approach; infinite ends: the stretch goes on).
 #[derive(Clone, Copy, Debug)]
-struct Segment {
-    piece: Piece,
-    t_lo: f64,
-    t_hi: f64,
-    delta_lo: f64,
-    delta_hi: f64,
+pub struct Segment {
+    /// The piece.
+    pub piece: Piece,
+    /// Its parameter where the stretch starts.
+    pub t_lo: f64,
+    /// Where it ends.
+    pub t_hi: f64,
+    /// Delta at `t_lo`.
+    pub delta_lo: f64,
+    /// Delta at `t_hi`.
+    pub delta_hi: f64,
 }
 
-/// The path of one model at one lambda under one spring, up to base displacement `delta_max`.
+/// The drive's control at a state and its slope in t: the base `Delta = Dbar + Pbar/kbar`
+/// under a spring (kbar = infinity: rigid grips, Delta the approach), the load itself under a
+/// dead load (kbar = 0).
+fn control(kbar: f64, p: &Pt) -> (f64, f64) {
+    if kbar == 0.0 {
+        (p.load, p.dload)
+    } else {
+        (p.approach + p.load / kbar, p.dapproach + p.dload / kbar)
+    }
+}
+
+/// The sizes of the terms the control and its slope are sums of: their rounding's scale.
+fn control_terms(kbar: f64, p: &Pt) -> (f64, f64) {
+    if kbar == 0.0 {
+        (p.load.abs(), p.dload.abs())
+    } else {
+        (
+            p.approach.abs() + (p.load / kbar).abs(),
+            p.dapproach.abs() + (p.dload / kbar).abs(),
+        )
+    }
+}
+
+/// The path of one law under one drive, up to base displacement `delta_max`: a spring of
+/// normalised stiffness kbar (the fits, a cantilever's cycle), rigid grips (kbar = infinity) or a
+/// dead load (kbar = 0, Delta the load).
 #[derive(Clone, Debug)]
-pub struct SpringPath {
+pub struct DrivenPath<L = ContactLaw> {
     /// The law followed.
-    pub law: ContactLaw,
-    /// The normalised spring stiffness kbar.
+    pub law: L,
+    /// The normalised spring stiffness kbar (infinity: rigid grips; 0: a dead load).
     pub kbar: f64,
     pieces: Vec<(Piece, Vec<Node>)>,
     /// Retract segments from the top down, and the retract's first jump (the last segment
@@ -137,27 +170,11 @@ pub struct SpringPath {
     approach: std::cell::OnceCell<(Vec<Segment>, Option<usize>)>,
 }
 
-impl SpringPath {
+impl<L: Law + Clone> DrivenPath<L> {
     /// The path of `law` (a lambda in the solver's domain) under a spring of normalised
     /// stiffness `kbar > 0`, up to the largest base displacement it must reach.
-    pub fn of(law: ContactLaw, kbar: f64, delta_max: f64) -> SpringPath {
-        let delta_of = |piece, t| {
-            let p = law.state(piece, t);
-            p.approach + p.load / kbar
-        };
-        // The states at the nodes do not depend on the spring: a fit of a one-zone law at
-        // fixed lambda (the profile, the intervals) evaluates them once and only rescales
-        // Delta with kbar (the two-zone law's nodes move with E* and w).
-        let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
-            nodes(&law, piece, t0, t1)
-                .iter()
-                .map(|&(t, p)| Node {
-                    t,
-                    delta: p.approach + p.load / kbar,
-                    slope: p.dapproach + p.dload / kbar,
-                })
-                .collect()
-        };
+    pub fn of(law: L, kbar: f64, delta_max: f64) -> DrivenPath<L> {
+        let delta_of = |piece, t| control(kbar, &law.state(piece, t)).0;
         // The contact piece's top: the radius whose Delta passes delta_max (doubling).
         let mut a_max = 2.0;
         while delta_of(Piece::Contact, law.t_of_radius(a_max)) < delta_max.max(1.0) * 1.05
@@ -165,12 +182,46 @@ impl SpringPath {
         {
             a_max *= 2.0;
         }
+        DrivenPath::to_radius(law, kbar, a_max)
+    }
+
+    /// The path of `law` under the drive of stiffness `kbar` (infinity: rigid grips; 0: a dead
+    /// load), its contact piece followed up to radius `a_max`.
+    pub fn to_radius(law: L, kbar: f64, a_max: f64) -> DrivenPath<L> {
+        // The states at the nodes do not depend on the spring: a fit of a one-zone law at
+        // fixed lambda (the profile, the intervals) evaluates them once and only rescales
+        // Delta with kbar (the two-zone law's nodes move with E* and w).
+        let node = |t: f64, p: &Pt| {
+            let (delta, slope) = control(kbar, p);
+            Node { t, delta, slope }
+        };
+        let nodes = |piece, t0: f64, t1: f64| -> Vec<Node> {
+            let mut n: Vec<Node> = nodes(&law, piece, t0, t1)
+                .iter()
+                .map(|(t, p)| node(*t, p))
+                .collect();
+            // Where the piece's formula changes (a law's breaks) its slope may jump: a node on
+            // either side, so that no window between nodes straddles the jump (its end slopes
+            // would hide a crossing inside it, and a fold there is the break).
+            for b in law.breaks(piece).into_iter().filter(|&b| b > t0 && b < t1) {
+                let after = b + 1e-9 * b.abs().max(1.0);
+                let at = n.partition_point(|x| x.t < b);
+                n.splice(
+                    at..at,
+                    [
+                        node(b, &law.state(piece, b)),
+                        node(after, &law.state(piece, after)),
+                    ],
+                );
+            }
+            n
+        };
         let pieces = law
             .pieces(a_max)
             .into_iter()
             .map(|(piece, t0, t1)| (piece, nodes(piece, t0, t1)))
             .collect();
-        let mut path = SpringPath {
+        let mut path = DrivenPath {
             law,
             kbar,
             pieces,
@@ -197,11 +248,8 @@ impl SpringPath {
 
     fn eval(&self, piece: Piece, t: f64) -> (Pt, f64, f64) {
         let p = self.law.state(piece, t);
-        (
-            p,
-            p.approach + p.load / self.kbar,
-            p.dapproach + p.dload / self.kbar,
-        )
+        let (delta, slope) = control(self.kbar, &p);
+        (p, delta, slope)
     }
 
     fn slope(&self, piece: Piece, t: f64) -> f64 {
@@ -227,10 +275,7 @@ impl SpringPath {
         // far end, A -> 0 as t -> -inf, where the curve's slopes in t vanish), Delta is flat to
         // rounding across the bracket and any point of it is the fold: the secant would bisect
         // noise to the last bit.
-        let terms = |t: f64| {
-            let p = self.eval(piece, t).0;
-            p.dapproach.abs() + (p.dload / self.kbar).abs()
-        };
+        let terms = |t: f64| control_terms(self.kbar, &self.eval(piece, t).0).1;
         if s_lo.abs().max(s_hi.abs()) <= SLOPE_ROUNDING
             && terms(lo).max(terms(hi)) <= SLOPE_ROUNDING
         {
@@ -292,7 +337,7 @@ impl SpringPath {
         for _ in 0..100 {
             let (p, d, s) = self.eval(piece, t);
             let r = d - target;
-            let tol = 1e-15 * (p.approach.abs() + (p.load / self.kbar).abs()).max(1.0);
+            let tol = 1e-15 * control_terms(self.kbar, &p).0.max(1.0);
             if r.abs() <= tol {
                 return (p, t);
             }
@@ -380,13 +425,14 @@ impl SpringPath {
     fn follow_approach(&self) -> Vec<Segment> {
         let mut segs = Vec::new();
         // Free up to its end, then jump up.
-        let mut delta_lo = self.law.free_end();
+        // The free piece's control at its end: its approach (a spring, rigid grips), or no load.
+        let mut delta_lo = self.delta(Piece::Free, self.law.free_end());
         segs.push(Segment {
             piece: Piece::Free,
             t_lo: f64::NEG_INFINITY,
             t_hi: self.law.free_end(),
             delta_lo: f64::NEG_INFINITY,
-            delta_hi: self.law.free_end(),
+            delta_hi: delta_lo,
         });
         let (mut k, mut t_from) = (0usize, f64::NEG_INFINITY);
         loop {
@@ -496,7 +542,9 @@ impl SpringPath {
         self.at_side_from(delta, dir, Side::Any, None)
     }
 
-    fn segments(&self, dir: Direction) -> &[Segment] {
+    /// The stretches followed in a direction, in the order met (approach: from the free piece
+    /// up; retract: from the top down), each ending in a fold, a jump or a piece's end.
+    pub fn segments(&self, dir: Direction) -> &[Segment] {
         &self.followed(dir).0
     }
 
@@ -571,7 +619,7 @@ impl SpringPath {
             return s;
         }
         let t = if retract { seg.t_hi } else { seg.t_lo };
-        near(self.law, self.kbar, delta, seg.piece, t)
+        near(&self.law, self.kbar, delta, seg.piece, t)
             .unwrap_or_else(|| self.state_at(seg, t, true))
     }
 
@@ -583,7 +631,7 @@ impl SpringPath {
                 && h.t >= seg.t_lo
                 && h.t <= seg.t_hi
             {
-                if let Some(s) = near(self.law, self.kbar, delta, seg.piece, h.t) {
+                if let Some(s) = near(&self.law, self.kbar, delta, seg.piece, h.t) {
                     if s.t >= seg.t_lo && s.t <= seg.t_hi {
                         return s;
                     }
@@ -729,7 +777,13 @@ fn containing(segs: &[Segment], delta: f64) -> Option<&Segment> {
 
 /// The state on a given piece near parameter `t`: Newton steps from there. The Jacobian of a fit
 /// keeps each point on its branch this way, so that a finite difference never straddles a jump.
-pub fn near(law: ContactLaw, kbar: f64, delta: f64, piece: Piece, t: f64) -> Option<PathState> {
+pub fn near<L: Law + ?Sized>(
+    law: &L,
+    kbar: f64,
+    delta: f64,
+    piece: Piece,
+    t: f64,
+) -> Option<PathState> {
     if piece == Piece::Free {
         return Some(PathState {
             piece,

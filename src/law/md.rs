@@ -2,9 +2,7 @@
 //! range `h0`. Its path: the free piece, the non-contact piece (the zone alone, t = C, a
 //! quadratic in C), the contact piece (t = -ln mu, mu = m - 1 + ... by `physics::md`).
 
-use super::path::{
-    check_drive, contact_radii, free_before, non_contact_path, Branch, Drive, PathPoint,
-};
+use super::path::{check_drive, contact_radii, non_contact_ts, point_of, Branch, Drive, PathPoint};
 use super::{cache, Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::physics::md::{curve_point, curve_point_dlambda, non_contact_point, zero_radius_end};
 use crate::physics::model::ContactModel;
@@ -105,11 +103,18 @@ impl Law for Md {
     fn key(&self) -> LawKey {
         (ContactModel::Md, [self.lambda.to_bits(), 0, 0, 0])
     }
-    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+    /// The contact piece's zone radius is m A.
+    fn point(&self, piece: Piece, t: f64) -> PathPoint {
+        if piece != Piece::Contact {
+            return point_of(piece, t, &self.state(piece, t));
+        }
+        contact_at_mu(self.lambda, (-t).exp())
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<(Piece, f64)>, LawError> {
         crate::solver::domain::check_lambda(self.lambda)
             .map_err(crate::solver::SolveError::from)?;
         check_drive(drive, max_load)?;
-        Ok(equilibrium_path(self.lambda, max_load, CYCLE_POINTS))
+        Ok(cycle_samples(self.lambda, max_load, CYCLE_POINTS))
     }
     fn check(&self) -> Result<(), LawError> {
         crate::solver::domain::check_lambda(self.lambda)
@@ -152,7 +157,12 @@ impl Law for Md {
 
 /// The contact branch's state at radius `a`.
 fn contact_point(lambda: f64, a: f64) -> PathPoint {
-    let p = curve_point(lambda, x_at_radius(lambda, a).exp());
+    contact_at_mu(lambda, x_at_radius(lambda, a).exp())
+}
+
+/// The contact branch's state at `mu`.
+fn contact_at_mu(lambda: f64, mu: f64) -> PathPoint {
+    let p = curve_point(lambda, mu);
     PathPoint {
         branch: Branch::Contact,
         approach: p.approach,
@@ -162,12 +172,12 @@ fn contact_point(lambda: f64, a: f64) -> PathPoint {
     }
 }
 
-/// The complete equilibrium path up to load `max_load`, `n` points per stretch: free,
-/// non-contact, contact. `lambda` must be in the solver's domain.
-pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> {
+/// Where a cycle samples the path up to load `max_load`, `n` points per stretch: the
+/// non-contact piece evenly in C, the contact piece at [`contact_radii`]. `lambda` must be in
+/// the solver's domain.
+pub fn cycle_samples(lambda: f64, max_load: f64, n: usize) -> Vec<(Piece, f64)> {
     let end = zero_radius_end(lambda);
-    let (_, d0) = non_contact_point(lambda, 0.0);
-    let mut path = non_contact_path(&Md { lambda }, end.c, n);
+    let mut path = non_contact_ts(end.c, n);
     let Ok(ctx) = LambdaContext::new(lambda) else {
         return Vec::new();
     };
@@ -176,8 +186,7 @@ pub fn equilibrium_path(lambda: f64, max_load: f64, n: usize) -> Vec<PathPoint> 
     path.extend(
         contact_radii(a_mid, a_max, n)
             .into_iter()
-            .map(|a| contact_point(lambda, a)),
+            .map(|a| (Piece::Contact, -x_at_radius(lambda, a))),
     );
-    let free = free_before(&path, d0, n);
-    free.into_iter().chain(path).collect()
+    path
 }

@@ -2,9 +2,10 @@
 //! [`ContactLaw`], the serialisable value the front ends build, whose `impl` is the one place
 //! that matches on the law. A law's equilibrium path is a list of pieces after the free one,
 //! each state an explicit function of its piece's parameter t with its slopes in t (and in
-//! lambda where the law has one); its exact folds come from the law too. The followers are
-//! generic over it: [`follow::SpringPath`] (a path under a spring, evaluated at any base
-//! displacement: the fits) and `cycle` (the sampled path and its jumps under any drive).
+//! lambda where the law has one); its exact folds come from the law too. The one follower
+//! is generic over it: [`follow::DrivenPath`], the path under any drive (a spring, rigid grips,
+//! a dead load) with its folds, jumps and landings, evaluated at any control: the fits' force
+//! and the cycles' steps.
 //!
 //! A new law is a file here implementing [`Law`], one [`ContactLaw`] variant with its arm in
 //! [`ContactLaw::law`], and its run of the conformance suite (`tests/suite/law.rs`).
@@ -50,6 +51,17 @@ pub enum Piece {
     NonContact,
     /// In contact: t = -ln mu for Maugis-Dugdale, t = A for the closed forms.
     Contact,
+}
+
+impl Piece {
+    /// The branch of the path the piece is.
+    pub fn branch(self) -> Branch {
+        match self {
+            Piece::Free => Branch::Free,
+            Piece::NonContact => Branch::NonContact,
+            Piece::Contact => Branch::Contact,
+        }
+    }
 }
 
 /// A state and its slopes with respect to the piece's parameter.
@@ -178,10 +190,17 @@ pub trait Law {
     }
     /// The cache's key of the law (its model and bits): equal keys, equal states.
     fn key(&self) -> LawKey;
-    /// The complete equilibrium path up to `max_load`, sampled for a cycle under `drive` (free,
-    /// non-contact, contact; its parameter rising along it), after the law's and the drive's
-    /// checks.
-    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+    /// The state at parameter `t` of `piece` as a path point, with its zone's outer radius
+    /// (`PathPoint::c`: by default t on the non-contact piece and the contact radius in contact,
+    /// where a closed form has no zone).
+    fn point(&self, piece: Piece, t: f64) -> PathPoint {
+        path::point_of(piece, t, &self.state(piece, t))
+    }
+    /// Where a cycle samples the equilibrium path after the free piece, up to `max_load`: each
+    /// sample's piece and parameter (non-contact, then contact; the parameter rising along
+    /// each), after the law's and the drive's checks. The cycle adds the free piece and
+    /// follows the path exactly ([`follow::DrivenPath`]); the samples are what it draws.
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<(Piece, f64)>, LawError> {
         let _ = (drive, max_load);
         Err(LawError::Unsupported {
             model: self.model(),
@@ -193,9 +212,10 @@ pub trait Law {
     fn check(&self) -> Result<(), LawError> {
         self.cycle_path(Drive::RigidGrips, 1.0).map(|_| ())
     }
-    /// The exact fold of the contact branch under `drive` near the sampled one `near` (rigid
-    /// grips: the displacement-controlled pull-off; dead load: the load-controlled one; a
-    /// spring: where dPbar/dDbar = -kbar), where the law has it.
+    /// The exact fold of the contact branch under `drive` near the state `near`, from the law's
+    /// own solver (rigid grips: the displacement-controlled pull-off; dead load: the
+    /// load-controlled one; a spring: where dPbar/dDbar = -kbar), where the law has it: the
+    /// conformance suite's reference for the follower's folds.
     fn fold(&self, drive: Drive, near: &PathPoint) -> Option<PathPoint> {
         let _ = (drive, near);
         None
@@ -345,7 +365,10 @@ impl Law for ContactLaw {
     fn key(&self) -> LawKey {
         self.law().key()
     }
-    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+    fn point(&self, piece: Piece, t: f64) -> PathPoint {
+        self.law().point(piece, t)
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<(Piece, f64)>, LawError> {
         self.law().cycle_path(drive, max_load)
     }
     fn check(&self) -> Result<(), LawError> {

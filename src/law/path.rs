@@ -91,24 +91,26 @@ pub fn check_drive(drive: Drive, max_load: f64) -> Result<(), crate::solver::Sol
     Ok(())
 }
 
-/// The non-contact piece sampled for a cycle: `n` points from C = 0 to `c_end`.
-pub(crate) fn non_contact_path<L: super::Law + ?Sized>(
-    law: &L,
-    c_end: f64,
-    n: usize,
-) -> Vec<PathPoint> {
+/// The state `p` at parameter `t` of `piece` as a path point, its zone's outer radius t on the
+/// non-contact piece and the contact radius in contact ([`super::Law::point`]'s default).
+pub fn point_of(piece: super::Piece, t: f64, p: &super::Pt) -> PathPoint {
+    PathPoint {
+        branch: piece.branch(),
+        approach: p.approach,
+        load: p.load,
+        a: p.a,
+        c: match piece {
+            super::Piece::Free => 0.0,
+            super::Piece::NonContact => t,
+            super::Piece::Contact => p.a,
+        },
+    }
+}
+
+/// The non-contact piece sampled for a cycle: `n` parameters from C = 0 to `c_end`.
+pub(crate) fn non_contact_ts(c_end: f64, n: usize) -> Vec<(super::Piece, f64)> {
     (0..n)
-        .map(|i| {
-            let c = c_end * i as f64 / (n - 1) as f64;
-            let p = law.state(super::Piece::NonContact, c);
-            PathPoint {
-                branch: Branch::NonContact,
-                approach: p.approach,
-                load: p.load,
-                a: 0.0,
-                c,
-            }
-        })
+        .map(|i| (super::Piece::NonContact, c_end * i as f64 / (n - 1) as f64))
         .collect()
 }
 
@@ -143,13 +145,4 @@ pub(crate) fn contact_radii(a_mid: f64, a_max: f64, n: usize) -> Vec<f64> {
         radii.extend((1..=n).map(|i| a_mid * (a_max / a_mid).powf(i as f64 / n as f64)));
     }
     radii
-}
-
-/// The landing of a jump on the free branch, at the control of the fold it leaves (a spring's
-/// base; else the fold's approach).
-pub fn free_landing(from: &PathPoint, drive: Drive) -> f64 {
-    match drive {
-        Drive::Spring(_) => control_of(from, drive),
-        _ => from.approach,
-    }
 }

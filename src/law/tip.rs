@@ -3,9 +3,7 @@
 //! normalised units. Its path: the free piece, the non-contact piece (the zone alone, t = C),
 //! the contact piece (t = ln A, mu the root of equation (1t) at each A).
 
-use super::path::{
-    check_drive, contact_radii, free_before, non_contact_path, Branch, Drive, PathPoint,
-};
+use super::path::{check_drive, contact_radii, non_contact_ts, point_of, Branch, Drive, PathPoint};
 use super::{Given, Law, LawError, LawKey, Piece, Pt, A_START};
 use crate::numeric::root::{bisect_sign, newton_bracketed};
 use crate::physics::model::ContactModel;
@@ -134,11 +132,11 @@ impl Tip {
 
     /// The contact branch's state at radius `a`, with its zone radius.
     pub fn at_radius(&self, a: f64) -> PathPoint {
-        self.point(a.ln())
+        self.contact_point(a.ln())
     }
 
     /// The contact branch's point at parameter t = ln A.
-    fn point(&self, t: f64) -> PathPoint {
+    fn contact_point(&self, t: f64) -> PathPoint {
         let c = self.contact_at(t.exp());
         PathPoint {
             branch: Branch::Contact,
@@ -188,7 +186,7 @@ impl Tip {
     /// contact branch, or its A -> 0 end where the branch has no fold.
     pub fn pulloff_state(&self, drive: Drive) -> PathPoint {
         match self.extreme(drive) {
-            Some(t) => self.point(t),
+            Some(t) => self.contact_point(t),
             None => {
                 let c = self.zone_end();
                 let (load, approach) = (
@@ -237,7 +235,7 @@ impl Tip {
             }
         }
         let t = newton_bracketed(f, lo, hi, 0.5 * (lo + hi));
-        Some(self.point(t))
+        Some(self.contact_point(t))
     }
 
     /// The state stable under `drive` at `value` of its control ([`Tip::stable_at`] from that
@@ -275,9 +273,9 @@ impl Tip {
         let zone = |c: f64| self.state(Piece::NonContact, c);
         if dbar >= zone(c_end).approach {
             // Between the zone's end and the contact piece's first node (A = 1e-9): its start.
-            return self
-                .stable_at(Drive::RigidGrips, t0, dbar)
-                .or_else(|| (dbar < self.point(t0).approach).then(|| self.point(t0)));
+            return self.stable_at(Drive::RigidGrips, t0, dbar).or_else(|| {
+                (dbar < self.contact_point(t0).approach).then(|| self.contact_point(t0))
+            });
         }
         // The non-contact piece's approach falls from the free end while fbar' < 8 lambda /
         // (3 pi), then rises to its end: the root on the rising part.
@@ -431,11 +429,18 @@ impl Law for Tip {
         Tip::new(self.shape, self.lambda)?;
         Ok(())
     }
-    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+    /// The contact piece's zone radius is m A.
+    fn point(&self, piece: Piece, t: f64) -> PathPoint {
+        match piece {
+            Piece::Contact => self.contact_point(t),
+            _ => point_of(piece, t, &self.state(piece, t)),
+        }
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<(Piece, f64)>, LawError> {
         Tip::new(self.shape, self.lambda)?;
         check_drive(drive, max_load)?;
         let n = super::md::CYCLE_POINTS;
-        let mut path = non_contact_path(self, self.zone_end(), n);
+        let mut path = non_contact_ts(self.zone_end(), n);
         let t0 = self.stable_from(Drive::DeadLoad);
         let radius_at = |p: f64| self.at_load_above(t0, p).map_or(f64::NAN, |s| s.a);
         let a_max = radius_at(max_load);
@@ -449,11 +454,9 @@ impl Law for Tip {
         path.extend(
             contact_radii(a_mid, a_max, n)
                 .into_iter()
-                .map(|a| self.point(self.t_of_radius(a))),
+                .map(|a| (Piece::Contact, self.t_of_radius(a))),
         );
-        let d0 = self.free_end();
-        let free = free_before(&path, d0, n);
-        Ok(free.into_iter().chain(path).collect())
+        Ok(path)
     }
     /// The fold nearest the sampled one: under dead load or rigid grips the retract's fold
     /// ([`Tip::pulloff_state`]'s), under a spring the sign change of its control's slope in the
@@ -464,7 +467,7 @@ impl Law for Tip {
             return None;
         }
         if !matches!(drive, Drive::Spring(_)) {
-            return self.extreme(drive).map(|t| self.point(t));
+            return self.extreme(drive).map(|t| self.contact_point(t));
         }
         let slope = |t: f64| self.control_slope(drive, t).0;
         let h = 0.01;
@@ -473,7 +476,7 @@ impl Law for Tip {
             for k in [k0 + d, k0 - d - 1] {
                 let (lo, hi) = (k as f64 * h, (k + 1) as f64 * h);
                 if slope(lo) < 0.0 && slope(hi) > 0.0 {
-                    return Some(self.point(bisect_sign(slope, lo, hi)));
+                    return Some(self.contact_point(bisect_sign(slope, lo, hi)));
                 }
             }
         }

@@ -6,7 +6,7 @@
 //! contact curve (t = -ln mu_L). A single zone, or two zones of one range, is Maugis-Dugdale at
 //! the summed lambda and takes its path.
 
-use super::path::{check_drive, contact_radii, free_before};
+use super::path::{check_drive, contact_radii, point_of};
 use super::path::{Branch, Drive, PathPoint};
 use super::{cache, md, Given, Law, LawError, LawKey, Md, Piece, Pt, A_START};
 use crate::error::Message;
@@ -216,7 +216,26 @@ impl Law for TwoZones {
         )
     }
     /// `PathPoint::c` is the outer radius of the longer-range zone.
-    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<PathPoint>, LawError> {
+    fn point(&self, piece: Piece, t: f64) -> PathPoint {
+        let (z, long, (c_l, c_s)) = match self.zoned() {
+            Zoned::One(l) => return l.point(piece, t),
+            Zoned::Two(z, long, ends) if piece != Piece::Free => (z, long, ends),
+            _ => return point_of(piece, t, &self.state(piece, t)),
+        };
+        let nan = || point_of(piece, t, &Pt::nan());
+        match piece {
+            Piece::Contact => point(&z, -t).map_or_else(nan, |p| PathPoint {
+                branch: Branch::Contact,
+                approach: p.approach,
+                load: p.load,
+                a: p.a,
+                c: p.c[long],
+            }),
+            _ if t <= c_l => nc_point(&non_contact_single(&z, t.max(0.0)), long),
+            _ => non_contact_both(&z, (t - c_l).min(c_s)).map_or_else(nan, |p| nc_point(&p, long)),
+        }
+    }
+    fn cycle_path(&self, drive: Drive, max_load: f64) -> Result<Vec<(Piece, f64)>, LawError> {
         let err = |e: crate::solver::SolveError| ZonesError(e.message());
         let zones = self.zones()?;
         crate::solver::domain::check_lambda(self.lambda).map_err(|e| err(e.into()))?;
@@ -224,11 +243,11 @@ impl Law for TwoZones {
         match zones.shape() {
             Shape::Single { lambda } => {
                 crate::solver::domain::check_lambda(lambda).map_err(|e| err(e.into()))?;
-                Ok(md::equilibrium_path(lambda, max_load, md::CYCLE_POINTS))
+                Ok(md::cycle_samples(lambda, max_load, md::CYCLE_POINTS))
             }
-            Shape::Two { long } => {
+            Shape::Two { .. } => {
                 let ctx = TwoZoneContext::new(zones).map_err(|s| failed("its pull-offs", s))?;
-                Ok(two_zone_path(&ctx, long, max_load)?)
+                Ok(two_zone_samples(&ctx, max_load)?)
             }
         }
     }
@@ -329,44 +348,21 @@ fn nc_point(p: &NonContactPoint, long: usize) -> PathPoint {
     }
 }
 
-fn contact_point(s: &TwoZoneState, long: usize) -> PathPoint {
-    PathPoint {
-        branch: Branch::Contact,
-        approach: s.approach,
-        load: s.load,
-        a: s.a,
-        c: s.c[long],
-    }
-}
-
 /// The ends of the non-contact branch's two stretches ([`non_contact_ends`] of its zones).
 pub(crate) fn non_contact_ends_of(ctx: &TwoZoneContext) -> Result<(f64, f64), ZonesError> {
     non_contact_ends(&ctx.zones).ok_or_else(|| failed("the discs", Status::NotConverged))
 }
 
-/// The non-contact branch: the longer zone's disc alone, then both discs.
-fn non_contact_path(ctx: &TwoZoneContext, long: usize) -> Result<Vec<PathPoint>, ZonesError> {
+/// Where a cycle samples the two-zone path (two ranges) up to `max_load`: the non-contact
+/// piece's two stretches evenly (the longer zone's disc alone, then both discs), the contact
+/// piece at [`contact_radii`].
+fn two_zone_samples(ctx: &TwoZoneContext, max_load: f64) -> Result<Vec<(Piece, f64)>, ZonesError> {
     const N: usize = md::CYCLE_POINTS;
-    let z = &ctx.zones;
     let (c1, c2) = non_contact_ends_of(ctx)?;
-    let mut path: Vec<PathPoint> = (0..N)
-        .map(|i| nc_point(&non_contact_single(z, c1 * i as f64 / (N - 1) as f64), long))
+    let mut path: Vec<(Piece, f64)> = (0..N)
+        .map(|i| (Piece::NonContact, c1 * i as f64 / (N - 1) as f64))
+        .chain((1..N).map(|i| (Piece::NonContact, c1 + c2 * i as f64 / (N - 1) as f64)))
         .collect();
-    for i in 1..N {
-        let p = non_contact_both(z, c2 * i as f64 / (N - 1) as f64)
-            .ok_or_else(|| failed("the two discs", Status::NotConverged))?;
-        path.push(nc_point(&p, long));
-    }
-    Ok(path)
-}
-
-/// The complete two-zone path (two ranges): free, non-contact, contact up to `max_load`.
-fn two_zone_path(
-    ctx: &TwoZoneContext,
-    long: usize,
-    max_load: f64,
-) -> Result<Vec<PathPoint>, ZonesError> {
-    let mut path = non_contact_path(ctx, long)?;
     let radius_at = |p: f64| {
         let s = ctx.state_at_load(p);
         (s.status == Status::Ok)
@@ -375,14 +371,15 @@ fn two_zone_path(
     };
     let a_max = radius_at(max_load)?;
     let a_mid = a_max.min(radius_at(10.0)?);
-    for a in contact_radii(a_mid, a_max, md::CYCLE_POINTS) {
-        let s = ctx.state_at_radius(a);
-        if s.status != Status::Ok {
-            return Err(failed(&format!("the contact radius {a}"), s.status));
+    for a in contact_radii(a_mid, a_max, N) {
+        let x = x_at_radius(&ctx.zones, a);
+        if !point(&ctx.zones, x).is_some_and(|p| (p.a / a - 1.0).abs() <= 1e-9) {
+            return Err(failed(
+                &format!("the contact radius {a}"),
+                Status::NotConverged,
+            ));
         }
-        path.push(contact_point(&s, long));
+        path.push((Piece::Contact, -x));
     }
-    let d0 = path[0].approach;
-    let free = free_before(&path, d0, md::CYCLE_POINTS);
-    Ok(free.into_iter().chain(path).collect())
+    Ok(path)
 }

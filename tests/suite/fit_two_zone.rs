@@ -8,7 +8,7 @@ use std::process::Command;
 use tabor::cycle::{Drive, Phase};
 use tabor::fit::synthetic::{try_synthetic_wet, Synthetic};
 use tabor::fit::Direction;
-use tabor::fit::{fit_curve, Curve, FitOptions, Model, Params, SpringPath};
+use tabor::fit::{fit_curve, Curve, DrivenPath, FitOptions, Model, Params};
 use tabor::law::{ContactLaw, Piece};
 use tabor::physics::two_zone::Zones;
 use tabor::scene::humidity::HumidityInput;
@@ -30,7 +30,7 @@ fn the_path_under_a_spring_is_the_solvers_states_and_jumps_at_its_fold() {
         let ctx = TwoZoneContext::new(Zones::from_ratios(lambda, rho, eta).unwrap()).unwrap();
         for kbar in [0.5, 2.0] {
             let at = format!("lambda {lambda}, ratios {rho} {eta}, kbar {kbar}");
-            let path = SpringPath::of(ContactLaw::solid_and_meniscus(lambda, rho, eta), kbar, 8.0);
+            let path = DrivenPath::of(ContactLaw::solid_and_meniscus(lambda, rho, eta), kbar, 8.0);
             let cycle = tabor::cycle::run(
                 &ContactLaw::solid_and_meniscus(lambda, rho, eta),
                 Drive::Spring(kbar),
@@ -96,7 +96,7 @@ fn retract_landings_are_the_cycles() {
     let mut landed_on_the_meniscus = 0;
     for (law, kbar) in laws {
         let at = format!("{law:?}, kbar {kbar}");
-        let path = SpringPath::of(law, kbar, 8.0);
+        let path = DrivenPath::of(law, kbar, 8.0);
         let cycle = tabor::cycle::run(&law, Drive::Spring(kbar), 30.0).unwrap();
         for j in cycle.jumps.iter().filter(|j| j.phase == Phase::Retract) {
             if j.from.branch != tabor::cycle::Branch::Contact {
@@ -118,7 +118,7 @@ fn retract_landings_are_the_cycles() {
     assert!(landed_on_the_meniscus >= 2, "{landed_on_the_meniscus}");
     // Maugis-Dugdale at lambda 0.5 under kbar 50: no fold on the contact branch.
     let (lambda, kbar) = (0.5, 50.0);
-    let path = SpringPath::of(ContactLaw::md(lambda), kbar, 8.0);
+    let path = DrivenPath::of(ContactLaw::md(lambda), kbar, 8.0);
     let pi = std::f64::consts::PI;
     let (a2, a1, a0) = (
         0.5 - pi * lambda / (2.0 * kbar),
