@@ -213,8 +213,11 @@ impl<L: Law + ?Sized> Walk<'_, L> {
             .filter(move |&i| self.ts[i].0 == piece && self.ts[i].1 > lo && self.ts[i].1 < hi)
     }
 
-    /// A jump from `from` to the start of the next stretch `to`, or a continuation (the loads
-    /// agree: a piece's end meeting the next piece's start).
+    /// A jump from `from` to the start of the next stretch `to`, or a continuation: a piece's
+    /// end meeting the next piece's start, the same state (the pieces join within 1e-4 in the
+    /// approach: the contact piece starts at A = 1e-9). A jump changes the load (rigid grips,
+    /// a spring) or the approach (a dead load) by far more. A continuation onto another branch
+    /// is a step, so that the branch changes between equal states.
     fn joins(
         &self,
         phase: Phase,
@@ -223,14 +226,18 @@ impl<L: Law + ?Sized> Walk<'_, L> {
         steps: &mut Vec<Step>,
         jumps: &mut Vec<Jump>,
     ) {
-        let scale = from.load.abs().max(to.load.abs()).max(1e-3);
-        if (from.load - to.load).abs() > 1e-6 * scale {
+        let load_scale = from.load.abs().max(to.load.abs()).max(1e-3);
+        let jumped = (from.load - to.load).abs() > 1e-6 * load_scale
+            || (from.approach - to.approach).abs() > 1e-3 * (1.0 + from.approach.abs());
+        if jumped {
             jumps.push(Jump {
                 phase,
                 from,
                 to: Some(to),
             });
-            steps.push(self.step(phase, to, true));
+        }
+        if jumped || from.branch != to.branch {
+            steps.push(self.step(phase, to, jumped));
         }
     }
 

@@ -204,16 +204,12 @@ impl<L: Law + Clone> DrivenPath<L> {
             // either side, so that no window between nodes straddles the jump (its end slopes
             // would hide a crossing inside it, and a fold there is the break).
             for b in law.breaks(piece).into_iter().filter(|&b| b > t0 && b < t1) {
-                let after = b + 1e-9 * b.abs().max(1.0);
-                let at = n.partition_point(|x| x.t < b);
-                n.splice(
-                    at..at,
-                    [
-                        node(b, &law.state(piece, b)),
-                        node(after, &law.state(piece, after)),
-                    ],
-                );
+                let after = (b + 1e-9 * b.abs().max(1.0)).min(t1);
+                n.push(node(b, &law.state(piece, b)));
+                n.push(node(after, &law.state(piece, after)));
             }
+            n.sort_by(|x, y| x.t.total_cmp(&y.t));
+            n.dedup_by(|x, y| x.t == y.t);
             n
         };
         let pieces = law
@@ -489,16 +485,27 @@ impl<L: Law + Clone> DrivenPath<L> {
     fn land(&self, delta: f64, k: usize, t_from: f64, dir: Direction) -> Option<(usize, f64)> {
         let tol = 1e-9 * delta.abs().max(1.0);
         let crosses = |piece: Piece, a: &Node, b: &Node| -> Option<f64> {
-            if !(a.slope > 0.0 && b.slope > 0.0) {
-                return None;
-            }
-            if a.delta <= delta && delta <= b.delta {
-                let (na, nb) = (Some((a.delta, a.slope)), Some((b.delta, b.slope)));
-                Some(self.solve_between(piece, delta, (a.t, na), (b.t, nb)).1)
-            } else if (a.delta - delta).abs() <= tol {
-                Some(a.t)
-            } else if (b.delta - delta).abs() <= tol {
-                Some(b.t)
+            // A window with a fold inside (end slopes of both signs) is searched on its stable
+            // part: from the fold up to the stable node above, or from the stable node below
+            // up to the fold. (Small lambda: Maugis-Dugdale's snap onto the zone alone lands
+            // in the non-contact piece's first window, which also holds its fold.)
+            let node = |n: &Node| (n.t, Some((n.delta, n.slope)));
+            let fold = || self.fold(piece, (a.t, Some(a.slope)), (b.t, Some(b.slope)));
+            let (lo, hi) = match (a.slope > 0.0, b.slope > 0.0) {
+                (true, true) => (node(a), node(b)),
+                (false, true) => ((fold(), None), node(b)),
+                (true, false) => (node(a), (fold(), None)),
+                (false, false) => return None,
+            };
+            let delta_at =
+                |(t, n): (f64, Option<(f64, f64)>)| n.map_or_else(|| self.delta(piece, t), |n| n.0);
+            let (d_lo, d_hi) = (delta_at(lo), delta_at(hi));
+            if d_lo <= delta && delta <= d_hi {
+                Some(self.solve_between(piece, delta, lo, hi).1)
+            } else if (d_lo - delta).abs() <= tol {
+                Some(lo.0)
+            } else if (d_hi - delta).abs() <= tol {
+                Some(hi.0)
             } else {
                 None
             }
@@ -537,7 +544,8 @@ impl<L: Law + Clone> DrivenPath<L> {
         }
     }
 
-    /// The state at base displacement `delta` on the way in or out.
+    /// The state at base displacement `delta` on the way in or out (a spring or rigid grips,
+    /// kbar > 0: under a dead load the free piece's control, no load, does not fix its state).
     pub fn at(&self, delta: f64, dir: Direction) -> PathState {
         self.at_side_from(delta, dir, Side::Any, None)
     }

@@ -361,8 +361,14 @@ fn two_zone_samples(ctx: &TwoZoneContext, max_load: f64) -> Result<Vec<(Piece, f
     let (c1, c2) = non_contact_ends_of(ctx)?;
     let mut path: Vec<(Piece, f64)> = (0..N)
         .map(|i| (Piece::NonContact, c1 * i as f64 / (N - 1) as f64))
-        .chain((1..N).map(|i| (Piece::NonContact, c1 + c2 * i as f64 / (N - 1) as f64)))
         .collect();
+    for i in 1..N {
+        let c_short = c2 * i as f64 / (N - 1) as f64;
+        if non_contact_both(&ctx.zones, c_short).is_none() {
+            return Err(failed("the two discs", Status::NotConverged));
+        }
+        path.push((Piece::NonContact, c1 + c_short));
+    }
     let radius_at = |p: f64| {
         let s = ctx.state_at_load(p);
         (s.status == Status::Ok)

@@ -311,7 +311,8 @@ fn cycles_jump_at_the_laws_folds_or_are_refused() {
 /// turns back (rising on the approach, falling on the retract, the same across a jump), and
 /// each jump off the contact branch leaves it at a fold of that control (its slope along the
 /// branch zero: under a spring dPbar/dDbar = -kbar, taken from the law's states) or at its
-/// A -> 0 end; under a dead load the retract's jump separates the surfaces for good.
+/// A -> 0 end; the branch changes only between equal states or by a jump; under a dead load
+/// the retract's jump separates the surfaces for good.
 #[test]
 fn cycles_follow_their_drive() {
     let drives = [
@@ -320,10 +321,37 @@ fn cycles_follow_their_drive() {
         Drive::Spring(0.5),
         Drive::Spring(20.0),
     ];
-    for law in laws().into_iter().filter(|l| l.lambda().is_some()) {
+    // With MD far on the DMT side, where the snap onto the zone alone is shorter than the
+    // nodes' spacing (C = 16 lambda / (3 pi)).
+    let small = [0.01, 1e-3].map(ContactLaw::md);
+    for law in laws()
+        .into_iter()
+        .filter(|l| l.lambda().is_some())
+        .chain(small)
+    {
         for drive in drives {
             let at = format!("{law:?} {drive:?}");
             let c = cycle::run(&law, drive, 2.0).unwrap();
+            // The branch changes between equal states (the pieces join within 1e-4), unless by
+            // a jump, and each jump's landing is the step after its fold.
+            let near = |x: f64, y: f64| (x - y).abs() <= 1e-4 * (1.0 + x.abs());
+            for w in c
+                .steps
+                .windows(2)
+                .filter(|w| w[0].phase == w[1].phase && !w[1].jump)
+            {
+                let (a, b) = (w[0].point, w[1].point);
+                assert!(
+                    a.branch == b.branch || (near(a.load, b.load) && near(a.approach, b.approach)),
+                    "{at}: {a:?} to {b:?} without a jump"
+                );
+            }
+            let landings = c.steps.iter().filter(|s| s.jump).count();
+            assert_eq!(
+                landings,
+                c.jumps.iter().filter(|j| j.to.is_some()).count(),
+                "{at}"
+            );
             let u = |p: &cycle::PathPoint| tabor::law::path::control_of(p, drive);
             for w in c.steps.windows(2).filter(|w| w[0].phase == w[1].phase) {
                 let (a, b) = (u(&w[0].point), u(&w[1].point));

@@ -122,7 +122,10 @@ fn pulloffs_are_the_solvers() {
                 .rposition(|s| s.phase == Phase::Retract && s.jump)
                 .unwrap_or(c.steps.len());
             let last = c.steps[k - 1].point;
-            assert_eq!(last.load, j.from.load, "{l} {rho} {eta} {d:?}");
+            assert!(
+                close(last.load, j.from.load, 1e-12),
+                "{l} {rho} {eta} {d:?}"
+            );
             if d == Drive::DeadLoad {
                 assert!(j.to.is_none() && c.hysteresis.is_none());
             }
