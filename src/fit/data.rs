@@ -25,7 +25,7 @@ pub struct Curve {
     pub notes: Vec<String>,
     /// Why the curve cannot be fitted as read (approach and retract not separated), if so:
     /// it gets the status invalid_input and the others go on.
-    pub refused: Option<String>,
+    pub refused: Option<super::CurveError>,
     /// The dwell between approach and retract, left out of the points (stress relaxation,
     /// creep), if the curve had one: the fit reports it, and fits the approach where the force
     /// relaxed during it.

@@ -12,6 +12,7 @@
 
 mod bins;
 pub mod data;
+mod error;
 pub mod humidity;
 pub mod interval;
 mod map_summary;
@@ -28,6 +29,7 @@ mod tip;
 
 pub use crate::law::follow::{Direction, DrivenPath};
 pub use data::{read_curves, Curve, CurveSet, DataError};
+pub use error::{CurveError, SyntheticError};
 pub use map_summary::*;
 pub use model::Model;
 pub use options::*;

@@ -90,19 +90,14 @@ impl From<Model> for ContactModel {
 }
 
 impl TryFrom<ContactModel> for Model {
-    type Error = String;
+    type Error = super::CurveError;
 
     /// The ladder's model of a contact model; the rigid and two-zone ones are not on it (the
     /// two-zone law is fitted beside it, with a humidity).
-    fn try_from(m: ContactModel) -> Result<Model, String> {
+    fn try_from(m: ContactModel) -> Result<Model, super::CurveError> {
         Model::ALL
             .into_iter()
             .find(|f| f.contact_model() == m)
-            .ok_or_else(|| {
-                format!(
-                    "the {} model is not fitted to force curves: use hertz, dmt, jkr or md",
-                    m.label()
-                )
-            })
+            .ok_or(super::CurveError::NotFitted(m))
     }
 }

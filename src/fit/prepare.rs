@@ -58,15 +58,15 @@ pub fn prepare(curve: &Curve, opt: &FitOptions) -> Result<Prepared, (FitStatus, 
         }
     }
     if let Some(m) = &curve.refused {
-        return refused(m.clone());
+        return refused(m.to_string());
     }
     let mut notes = curve.notes.clone();
     if let Err(m) = check_cycles(curve) {
-        return refused(m);
+        return refused(m.to_string());
     }
     for d in [Direction::Approach, Direction::Retract] {
         match check_order(curve, d) {
-            Err(m) => return refused(m),
+            Err(m) => return refused(m.to_string()),
             Ok(Some(note)) => notes.push(note),
             Ok(None) => {}
         }
@@ -315,19 +315,18 @@ pub(super) fn seg_name(d: Direction) -> &'static str {
 
 /// One approach and one retract at most: a curve whose segment goes back to one it has left
 /// holds several cycles (repeated cycles, or curves with the same id or pixel merged).
-pub(super) fn check_cycles(curve: &Curve) -> Result<(), String> {
+pub(super) fn check_cycles(curve: &Curve) -> Result<(), CurveError> {
     let changes: Vec<usize> = (1..curve.len())
         .filter(|&i| curve.segment[i] != curve.segment[i - 1])
         .collect();
     if changes.len() >= 2 {
         let at = changes[1];
-        return Err(format!(
-            "the curve holds {} approach-retract cycles: its segment goes back from {} to {} at point {} (a repeated cycle, or two curves with the same id or pixel x, y merged); give each cycle its own curve id",
-            (changes.len() + 1).div_ceil(2),
-            seg_name(curve.segment[at - 1]),
-            seg_name(curve.segment[at]),
-            at + 1
-        ));
+        return Err(CurveError::Cycles {
+            cycles: (changes.len() + 1).div_ceil(2),
+            from: seg_name(curve.segment[at - 1]),
+            to: seg_name(curve.segment[at]),
+            point: at + 1,
+        });
     }
     Ok(())
 }
@@ -336,18 +335,13 @@ pub(super) fn check_cycles(curve: &Curve) -> Result<(), String> {
 /// Measured heights jitter, by more than their step where the sampling is dense: what is
 /// refused is a segment that runs the wrong way overall or goes back by a large part of its
 /// span (a restart, or points out of time order); jitter is a note.
-pub(super) fn check_order(curve: &Curve, d: Direction) -> Result<Option<String>, String> {
+pub(super) fn check_order(curve: &Curve, d: Direction) -> Result<Option<String>, CurveError> {
     let idx = segment_points(curve, d);
     if idx.len() < 3 {
         return Ok(None);
     }
     let sign = if d == Direction::Approach { -1.0 } else { 1.0 };
     let name = seg_name(d);
-    let way = if d == Direction::Approach {
-        "decrease"
-    } else {
-        "increase"
-    };
     let h = |k: usize| curve.height[idx[k]];
     let n = idx.len();
     let (first, last) = (h(0), h(n - 1));
@@ -355,11 +349,11 @@ pub(super) fn check_order(curve: &Curve, d: Direction) -> Result<Option<String>,
     let hi = (0..n).map(h).fold(f64::NEG_INFINITY, f64::max);
     let span = hi - lo;
     if !(sign * (last - first) > 0.0) {
-        return Err(format!(
-            "the {name} heights are not in order: they go from {} m at its first point to {} m at its last, and the {name} must {way} the height; check the segment column (approach and retract swapped?) and that height_m grows away from the sample",
-            crate::physics::domain::short(first),
-            crate::physics::domain::short(last)
-        ));
+        return Err(CurveError::Order {
+            segment: name,
+            first,
+            last,
+        });
     }
     // The largest way back: progress sign*h should grow; its largest fall below its running
     // maximum, and where.
@@ -373,12 +367,12 @@ pub(super) fn check_order(curve: &Curve, d: Direction) -> Result<Option<String>,
         }
     }
     if back > 0.25 * span {
-        return Err(format!(
-            "the {name} heights go back by {} m (their span is {} m) at point {}: the {name} restarts there (two cycles in one curve?) or its points are out of time order; give each cycle its own curve id, in the order measured",
-            crate::physics::domain::short(back),
-            crate::physics::domain::short(span),
-            idx[at] + 1
-        ));
+        return Err(CurveError::GoesBack {
+            segment: name,
+            back,
+            span,
+            point: idx[at] + 1,
+        });
     }
     let wrong = (1..n).filter(|&k| sign * (h(k) - h(k - 1)) < 0.0).count();
     Ok((wrong * 4 > n).then(|| {

@@ -311,19 +311,21 @@ pub const MAP_PIXELS_MAX: usize = 1 << 24;
 /// [`MAP_PIXELS_MAX`] pixels.
 pub fn map_size<'a>(
     cells: impl Iterator<Item = (Option<i64>, Option<i64>, &'a str)>,
-) -> Result<(usize, usize), String> {
+) -> Result<(usize, usize), CurveError> {
     let (mut nx, mut ny, mut n) = (0usize, 0usize, 0usize);
     for (x, y, name) in cells {
         let (Some(x), Some(y)) = (x, y) else {
-            return Err(format!(
-                "curve {name} has no pixel indices (x, y): force maps need x and y columns with indices 0..99999"
-            ));
+            return Err(CurveError::NoPixel {
+                curve: name.to_string(),
+            });
         };
         for (column, v) in [("x", x), ("y", y)] {
             if !(0..100_000).contains(&v) {
-                return Err(format!(
-                    "curve {name} has pixel index {column} = {v}, outside 0..99999: give the {column} column as pixel indices from 0 (a force map holds at most 4096 x 4096 pixels)"
-                ));
+                return Err(CurveError::Pixel {
+                    curve: name.to_string(),
+                    column,
+                    value: v,
+                });
             }
         }
         nx = nx.max(x as usize + 1);
@@ -331,17 +333,14 @@ pub fn map_size<'a>(
         n += 1;
     }
     if nx * ny > MAP_PIXELS_MAX {
-        return Err(format!(
-            "the pixel indices span a {nx} x {ny} grid ({} pixels for {n} curves): a force map holds at most 4096 x 4096 pixels; check the x and y columns (indices from 0)",
-            nx * ny
-        ));
+        return Err(CurveError::Grid { nx, ny, curves: n });
     }
     Ok((nx, ny))
 }
 
 /// The pixel grid of a force map: its size and, per pixel (row-major, row 0 at y = 0), the
 /// index of its curve. Every curve needs x and y.
-pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), String> {
+pub fn map_grid(results: &[CurveFit]) -> Result<(usize, usize, Vec<Option<usize>>), CurveError> {
     let (nx, ny) = map_size(results.iter().map(|r| (r.x, r.y, r.curve.as_str())))?;
     let mut grid = vec![None; nx * ny];
     for (i, r) in results.iter().enumerate() {

@@ -3,6 +3,7 @@
 //! stress relaxation or creep, a pause after the retract), and some files keep the whole cycle
 //! in one segment.
 
+use super::CurveError;
 use crate::law::follow::Direction;
 use crate::physics::domain::short;
 
@@ -26,19 +27,18 @@ pub struct SegmentPlan {
 /// lowest height when that is a clear turning point (the base goes down and back up by at least
 /// half the heights' range each way); otherwise the message says that approach and retract are
 /// not separated.
-pub fn plan_segments(height: &[f64], segment: &[i64]) -> Result<SegmentPlan, String> {
+pub fn plan_segments(height: &[f64], segment: &[i64]) -> Result<SegmentPlan, CurveError> {
     if height.len() != segment.len() {
-        return Err(format!(
-            "{} heights but {} segment values: give one segment value per point",
-            height.len(),
-            segment.len()
-        ));
+        return Err(CurveError::SegmentCount {
+            heights: height.len(),
+            segments: segment.len(),
+        });
     }
     if let Some(i) = height.iter().position(|h| !h.is_finite()) {
-        return Err(format!(
-            "height {} at point {i} is not a finite number",
-            height[i]
-        ));
+        return Err(CurveError::Height {
+            value: height[i],
+            point: i,
+        });
     }
     let runs = runs(segment);
     if runs.len() == 1 {
@@ -140,7 +140,7 @@ fn runs(segment: &[i64]) -> Vec<(usize, usize)> {
 }
 
 /// One run: approach to the lowest height, retract after it, where that is a clear turn.
-fn split_single(height: &[f64]) -> Result<SegmentPlan, String> {
+fn split_single(height: &[f64]) -> Result<SegmentPlan, CurveError> {
     let n = height.len();
     let (lo, hi) = height
         .iter()
@@ -155,12 +155,7 @@ fn split_single(height: &[f64]) -> Result<SegmentPlan, String> {
     let range = hi - lo;
     let (down, up) = (height[0] - lo, height[n.max(1) - 1] - lo);
     if n < 4 || !(range > 0.0) || down < 0.5 * range || up < 0.5 * range {
-        return Err(format!(
-            "approach and retract are not separated: the curve is one segment and its heights have no clear turning point (the base goes down by {} m and back up by {} m of a {} m range); give the segment of each point (0 approach, 1 retract)",
-            short(down),
-            short(up),
-            short(range)
-        ));
+        return Err(CurveError::NotSeparated { down, up, range });
     }
     let mut direction = vec![Some(Direction::Approach); n];
     direction[turn + 1..].fill(Some(Direction::Retract));
@@ -264,10 +259,16 @@ mod tests {
         assert!(p.notes[0].contains("point 3 of 6"));
         let e = plan_segments(&[5.0, 4.0, 3.0, 2.0, 1.0], &[0; 5]).unwrap_err();
         assert!(
-            e.starts_with("approach and retract are not separated"),
+            matches!(e, super::CurveError::NotSeparated { up, .. } if up == 0.0)
+                && e.to_string()
+                    .starts_with("approach and retract are not separated"),
             "{e}"
         );
         let e = plan_segments(&[1.0, f64::NAN], &[0, 1]).unwrap_err();
-        assert!(e.contains("point 1"), "{e}");
+        assert!(
+            matches!(e, super::CurveError::Height { point: 1, .. })
+                && e.to_string().contains("point 1"),
+            "{e}"
+        );
     }
 }

@@ -4,7 +4,7 @@
 use super::data::Curve;
 use super::problem::{forces_on, law_units};
 use super::Model;
-use super::{Geometry, Params};
+use super::{Geometry, Params, SyntheticError};
 use crate::law::follow::{Direction, DrivenPath};
 use crate::law::ContactLaw;
 use rand::SeedableRng;
@@ -64,31 +64,32 @@ pub fn synthetic(s: &Synthetic) -> Curve {
 }
 
 /// [`synthetic`], or why the parameters give no curve.
-pub fn try_synthetic(s: &Synthetic) -> Result<Curve, String> {
+pub fn try_synthetic(s: &Synthetic) -> Result<Curve, SyntheticError> {
     made(s, None, Geometry::Sphere(s.radius))
 }
 
 /// [`try_synthetic`] on the tip `tip` (its `radius` ignored): the curve of the tip's law of
 /// `s.model` (Sneddon's punch for Hertz, the JKR-type law, its Maugis-Dugdale).
-pub fn try_synthetic_on(s: &Synthetic, tip: Geometry) -> Result<Curve, String> {
+pub fn try_synthetic_on(s: &Synthetic, tip: Geometry) -> Result<Curve, SyntheticError> {
     made(s, None, tip)
 }
 
 /// A curve of the two-zone law (`s.model` [`Model::SolidAndMeniscus`], `s.params` the solid's
 /// E*, w and lambda) in a meniscus of stress `s2` (Pa) and range `h2` (m): what the two-zone
 /// shape fit is tested on.
-pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, String> {
+pub fn try_synthetic_wet(s: &Synthetic, meniscus: (f64, f64)) -> Result<Curve, SyntheticError> {
     if s.model != Model::SolidAndMeniscus {
-        return Err(format!(
-            "a wet synthetic curve is of the two-zone law, not {}",
-            s.model.name()
-        ));
+        return Err(SyntheticError::WetModel(s.model.name()));
     }
     made(s, Some(meniscus), Geometry::Sphere(s.radius))
 }
 
 /// The curve of `s` (with the two-zone law's `meniscus`), or why its numbers give none.
-fn made(s: &Synthetic, meniscus: Option<(f64, f64)>, tip: Geometry) -> Result<Curve, String> {
+fn made(
+    s: &Synthetic,
+    meniscus: Option<(f64, f64)>,
+    tip: Geometry,
+) -> Result<Curve, SyntheticError> {
     let p = s.params;
     let radius = tip.radius().unwrap_or(1.0);
     let finite = [
@@ -96,39 +97,29 @@ fn made(s: &Synthetic, meniscus: Option<(f64, f64)>, tip: Geometry) -> Result<Cu
     ];
     let positive = [p.e_star, p.w, radius, s.spring, s.depth];
     if !(finite.iter().all(|v| v.is_finite()) && positive.iter().all(|&v| v > 0.0)) {
-        return Err(format!(
-            "E* ({} Pa), w ({} J/m^2), the radius ({} m), the spring constant ({} N/m) and the depth ({}) must be positive and finite, lambda, the contact point and the offset finite",
-            p.e_star, p.w, s.radius, s.spring, s.depth
-        ));
+        return Err(SyntheticError::Numbers {
+            e_star: p.e_star,
+            w: p.w,
+            radius: s.radius,
+            spring: s.spring,
+            depth: s.depth,
+        });
     }
     if !(s.noise >= 0.0 && s.noise.is_finite()) {
-        return Err(format!(
-            "force noise {} N: must be finite and not negative",
-            s.noise
-        ));
+        return Err(SyntheticError::Noise(s.noise));
     }
     if !tip.fits(s.model) {
-        return Err(format!(
-            "a tip has no {} law: give hertz, jkr or md (a tip's DMT-type force needs the range)",
-            s.model.name()
-        ));
+        return Err(SyntheticError::TipLaw(s.model.name()));
     }
     if s.model.has_lambda() && !tip.admits_lambda(p.lambda) {
-        return Err(out_of_domain(p.lambda));
+        return Err(SyntheticError::Lambda(p.lambda));
     }
     let (law, u) = law_units(s.model, &p, tip, s.spring, meniscus);
     noisy(s, law, &u)
 }
 
-fn out_of_domain(lambda: f64) -> String {
-    format!(
-        "lambda {} is outside the models' domain 1e-26..1e26, or the units overflow",
-        crate::physics::domain::short(lambda)
-    )
-}
-
 /// The curve of `s` on the path of `law` in its units `u`, with its noise.
-fn noisy(s: &Synthetic, law: ContactLaw, u: &super::Units) -> Result<Curve, String> {
+fn noisy(s: &Synthetic, law: ContactLaw, u: &super::Units) -> Result<Curve, SyntheticError> {
     let p = s.params;
     let path = DrivenPath::of(law, u.kbar, s.depth);
     let reach = path.force_reach().min(0.0);
@@ -145,16 +136,16 @@ fn noisy(s: &Synthetic, law: ContactLaw, u: &super::Units) -> Result<Curve, Stri
     let mut segment = vec![Direction::Approach; n];
     segment.extend(vec![Direction::Retract; n]);
     let (f, _, _, _) = forces_on(law, u, p.zc, &height, &segment, None, None)
-        .ok_or_else(|| out_of_domain(p.lambda))?;
+        .ok_or(SyntheticError::Lambda(p.lambda))?;
     if let Some(i) = f.iter().position(|f| !f.is_finite()) {
-        return Err(format!(
-            "the {} path could not be solved at lambda {} (point {i}): use a lambda in the solver's domain",
-            s.model.label(),
-            crate::physics::domain::short(p.lambda)
-        ));
+        return Err(SyntheticError::Unsolved {
+            model: s.model.label(),
+            lambda: p.lambda,
+            point: i,
+        });
     }
     let mut rng = rand::rngs::StdRng::seed_from_u64(s.seed);
-    let normal = Normal::new(0.0, s.noise).map_err(|e| format!("force noise: {e}"))?;
+    let normal = Normal::new(0.0, s.noise).map_err(|_| SyntheticError::Noise(s.noise))?;
     let force = f
         .iter()
         .map(|f| {

@@ -203,7 +203,10 @@ fn a_tip_with_a_fixed_range_and_a_spherical_tip() {
     );
     // A tip's DMT-type curve is refused (its force needs the range).
     let (s, _) = case(&tip, Model::Dmt, 1e6, 1.0, 0.5, 0.0, 200);
-    assert!(try_synthetic_on(&s, g).unwrap_err().contains("no dmt law"));
+    assert!(try_synthetic_on(&s, g)
+        .unwrap_err()
+        .to_string()
+        .contains("no dmt law"));
     // A sphere given as a tip (or a power law of exponent 2) is fitted as the sphere.
     let (s, _) = case(&tip, Model::Md, 1e6, 1.0, 0.5, 0.0, 200);
     let c = try_synthetic_on(&s, g).unwrap();

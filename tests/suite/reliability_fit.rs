@@ -422,6 +422,7 @@ fn csv_of(curves: &[(&str, &Curve)]) -> String {
 #[test]
 fn the_generator_says_why_parameters_give_no_curve() {
     use tabor::fit::synthetic::try_synthetic;
+    use tabor::fit::SyntheticError;
     let s = Synthetic {
         model: Model::Md,
         params: Params {
@@ -441,15 +442,22 @@ fn the_generator_says_why_parameters_give_no_curve() {
     assert_eq!(try_synthetic(&s).unwrap().len(), 100);
     let mut nan = s.clone();
     nan.noise = f64::NAN;
-    assert!(try_synthetic(&nan).unwrap_err().contains("force noise NaN"));
+    let e = try_synthetic(&nan).unwrap_err();
+    assert!(
+        matches!(e, SyntheticError::Noise(n) if n.is_nan())
+            && e.to_string().contains("force noise NaN")
+    );
     let mut far = s.clone();
     far.params.lambda = 1e30;
-    assert!(try_synthetic(&far).unwrap_err().contains("lambda 1e30"));
+    let e = try_synthetic(&far).unwrap_err();
+    assert!(e == SyntheticError::Lambda(1e30) && e.to_string().contains("lambda 1e30"));
     let mut soft = s.clone();
     soft.params.e_star = -1.0;
-    assert!(try_synthetic(&soft)
-        .unwrap_err()
-        .contains("must be positive"));
+    let e = try_synthetic(&soft).unwrap_err();
+    assert!(
+        matches!(e, SyntheticError::Numbers { e_star, .. } if e_star == -1.0)
+            && e.to_string().contains("must be positive")
+    );
 }
 
 /// "No contact" only where no segment of the curve shows contact: a retract that never rises
