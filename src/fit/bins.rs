@@ -15,7 +15,8 @@
 //! stays hidden in the noise still moves a bin's mean from the model's mean over it: bins are
 //! kept short (16 points) and the line test strict (one standard deviation), which keeps the
 //! 95% intervals' coverage over long synthetic curves (`fit::binned_long_curves_keep_their_
-//! coverage`), and each fit found on the bins is finished on the points.
+//! coverage`), and each fit found on the bins is finished on the points, its intervals moved
+//! from the bins' minimum to it (`interval::recentre`).
 
 use super::Prepared;
 

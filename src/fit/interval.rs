@@ -515,6 +515,61 @@ fn set_95(pts: &[Point], o: &[usize], hull: Interval) -> Vec<Interval> {
     set
 }
 
+/// Each interval moved from the fit found on the bins, `bins`, to the fit finished on the
+/// points, `points`, where lambda's 95% set is one bounded interval (one basin, the same for
+/// both fits). A bin's mean moves from the model's by the model's bend within it: the bins'
+/// minimum lies beside the points' while the profile's shape about it is the points'. Where
+/// the noise is small against that bend the move exceeds the statistical error (a cycle's own
+/// curve with 0.2% noise over 1538 points: the 95% interval for w held the truth in 4 of 6
+/// draws, ending at the estimate, against 8 of 8 on 769 points, unbinned: the bins' minimum
+/// was two half-widths away). A quantity's move is made only where it is within four of its
+/// 95% interval's half-widths (a larger one is not a bend's: [`hold`] then widens the interval
+/// instead); in ratios for the quantities whose intervals are built in logarithms, in metres
+/// for the contact point.
+pub fn recentre(iv: &mut Intervals, bins: &ModelFit, points: &ModelFit, tip: super::Geometry) {
+    let one_basin = matches!(iv.lambda_set_95.as_slice(), [[Some(_), Some(_)]]);
+    let (Some(lb), Some(lp), true) = (bins.lambda, points.lambda, one_basin) else {
+        return;
+    };
+    let z0 = |m: &ModelFit, l: f64| tip.z0_from_lambda(m.e_star_pa, m.work_of_adhesion_j_m2, l);
+    let e = (bins.e_star_pa, points.e_star_pa);
+    let w = (bins.work_of_adhesion_j_m2, points.work_of_adhesion_j_m2);
+    let zc = (bins.contact_point_m, points.contact_point_m);
+    let z = (z0(bins, lb), z0(points, lp));
+    move_by(&mut iv.e_star_pa, &mut [], e, true);
+    move_by(&mut iv.work_of_adhesion_j_m2, &mut [], w, true);
+    move_by(&mut iv.lambda, &mut iv.lambda_set_95, (lb, lp), true);
+    move_by(&mut iv.contact_point_m, &mut [], zc, false);
+    move_by(&mut iv.z0_m, &mut [], z, true);
+}
+
+/// [`recentre`]'s move of one quantity's intervals (and of `also`, lambda's 95% set) from
+/// `from` to `to`, where it is within four of its 95% interval's half-widths.
+fn move_by(
+    q: &mut [Option<Interval>; 2],
+    also: &mut [Interval],
+    (from, to): (f64, f64),
+    log: bool,
+) {
+    let Some([Some(lo), Some(hi)]) = q[1] else {
+        return;
+    };
+    let ok = from.is_finite() && to.is_finite() && (!log || (from > 0.0 && to > 0.0));
+    let (shift, half) = if log {
+        ((to / from).ln(), 0.5 * (hi / lo).ln())
+    } else {
+        (to - from, 0.5 * (hi - lo))
+    };
+    if !(ok && shift.abs() <= 4.0 * half) {
+        return;
+    }
+    let moved = |v: f64| if log { v * shift.exp() } else { v + shift };
+    for [a, b] in q.iter_mut().flatten().chain(also.iter_mut()) {
+        *a = a.map(moved);
+        *b = b.map(moved);
+    }
+}
+
 /// Each interval widened to hold the fit `md`'s value (on the tip `tip`): a fit
 /// finished on a curve's points after its profile was taken on the curve's bins lies within
 /// about a Delta chi^2 of 1 of the bins' minimum, which the intervals are centred on.

@@ -407,7 +407,9 @@ fn fit_prepared(curve: &Curve, opt: &FitOptions, raw: &Prepared) -> CurveFit {
     let (md, iv) = match binned {
         Some(_) => {
             let mut iv = iv;
-            let md = keep_spread(finish_on_points(md.clone(), raw, opt, w_ref), &md);
+            let points = keep_spread(finish_on_points(md.clone(), raw, opt, w_ref), &md);
+            interval::recentre(&mut iv, &md, &points, tip);
+            let md = points;
             interval::hold(&mut iv, &md, tip);
             (md, iv)
         }

@@ -173,7 +173,7 @@ fn contact_at_mu(lambda: f64, mu: f64) -> PathPoint {
 }
 
 /// Where a cycle samples the path up to load `max_load`, `n` points per stretch: the
-/// non-contact piece evenly in C, the contact piece at [`contact_radii`]. `lambda` must be in
+/// non-contact piece evenly in C, the contact piece at `contact_radii`. `lambda` must be in
 /// the solver's domain.
 pub fn cycle_samples(lambda: f64, max_load: f64, n: usize) -> Vec<(Piece, f64)> {
     let end = zero_radius_end(lambda);

@@ -355,7 +355,7 @@ pub(crate) fn non_contact_ends_of(ctx: &TwoZoneContext) -> Result<(f64, f64), Zo
 
 /// Where a cycle samples the two-zone path (two ranges) up to `max_load`: the non-contact
 /// piece's two stretches evenly (the longer zone's disc alone, then both discs), the contact
-/// piece at [`contact_radii`].
+/// piece at `contact_radii`.
 fn two_zone_samples(ctx: &TwoZoneContext, max_load: f64) -> Result<Vec<(Piece, f64)>, ZonesError> {
     const N: usize = md::CYCLE_POINTS;
     let (c1, c2) = non_contact_ends_of(ctx)?;
