@@ -203,7 +203,11 @@ impl<L: Law + Clone> DrivenPath<L> {
             // Where the piece's formula changes (a law's breaks) its slope may jump: a node on
             // either side, so that no window between nodes straddles the jump (its end slopes
             // would hide a crossing inside it, and a fold there is the break).
-            for b in law.breaks(piece).into_iter().filter(|&b| b > t0 && b < t1) {
+            let breaks = law.breaks(piece);
+            if breaks.is_empty() {
+                return n;
+            }
+            for b in breaks.into_iter().filter(|&b| b > t0 && b < t1) {
                 let after = (b + 1e-9 * b.abs().max(1.0)).min(t1);
                 n.push(node(b, &law.state(piece, b)));
                 n.push(node(after, &law.state(piece, after)));
