@@ -112,12 +112,7 @@ pub fn run<L: Law + Clone>(law: &L, drive: Drive, max_load: f64) -> Result<Cycle
     let free = free_before(&path, first.approach, CYCLE_POINTS);
     ts.splice(0..0, free.iter().map(|p| (Piece::Free, p.approach)));
     path.splice(0..0, free);
-    let kbar = match drive {
-        Drive::RigidGrips => f64::INFINITY,
-        Drive::DeadLoad => 0.0,
-        Drive::Spring(k) => k,
-    };
-    let follower = DrivenPath::to_radius(law.clone(), kbar, top.a);
+    let follower = DrivenPath::to_radius(law.clone(), drive.kbar(), top.a);
     let walk = Walk {
         law,
         drive,

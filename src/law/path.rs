@@ -15,6 +15,17 @@ pub enum Drive {
     Spring(f64),
 }
 
+impl Drive {
+    /// The drive as the follower's stiffness: infinity for rigid grips, 0 for a dead load.
+    pub fn kbar(self) -> f64 {
+        match self {
+            Drive::RigidGrips => f64::INFINITY,
+            Drive::DeadLoad => 0.0,
+            Drive::Spring(k) => k,
+        }
+    }
+}
+
 /// Which part of the equilibrium path a point is on (the codes 0, 1, 2 of the DEM law's C ABI).
 #[repr(u8)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Serialize)]
