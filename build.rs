@@ -33,6 +33,7 @@ fn main() {
         "shaders/solve.wgsl",
         "shaders/curve64.wgsl",
         "shaders/polish64.wgsl",
+        "shaders/classify.wgsl",
         "src/physics/tolerances.rs",
         "src/kernel/prelude.rs",
     ] {
@@ -47,6 +48,9 @@ fn main() {
         &md,
         Capabilities::default(),
     );
+    // A map's classification on the device.
+    let classify = prelude.clone() + &read("shaders/classify.wgsl");
+    validate("shaders/classify.wgsl", &classify, Capabilities::default());
     // The f64 refinement: the f64 curve point, then its entry point.
     let polish64 = prelude + &read("shaders/curve64.wgsl") + "\n" + &read("shaders/polish64.wgsl");
     validate(

@@ -195,6 +195,92 @@ impl Engine {
     ) -> Result<Vec<State>, GpuError> {
         self.solver().solve_grid_with(ctx, lambdas, values, control)
     }
+
+    /// Whether [`Engine::classify_grid`] runs here: a GPU with the f32 kernels alone (with the
+    /// f64 refinement the states come back whole) and the bindings the classification needs.
+    pub fn classifies(&self) -> bool {
+        matches!(self, Engine::Gpu(g) if g.classifies && !g.refine_f64)
+    }
+
+    /// Solves the grid lambdas x loads (row-major, one row per load) and classifies it on the
+    /// device with tolerance `tol` (see `shaders/classify.wgsl`): a byte a point, and the whole
+    /// states of the points `picks` (ascending). Only where [`Engine::classifies`].
+    pub fn classify_grid(
+        &self,
+        ctx: &[Option<LambdaContext>],
+        lambdas: &[f64],
+        loads: &[f64],
+        tol: f64,
+        picks: &[usize],
+    ) -> Result<ClassifiedGrid, GpuError> {
+        match self {
+            Engine::Gpu(g) if self.classifies() => {
+                classify_on_gpu(g, ctx, lambdas, loads, tol, picks)
+            }
+            _ => Err(GpuError::Runtime(
+                "classify_grid needs a GPU engine with the f32 kernels".into(),
+            )),
+        }
+    }
+}
+
+/// A grid classified on the device ([`Engine::classify_grid`]).
+pub struct ClassifiedGrid {
+    /// The kernel's byte of each point: the region in bits 0-2, the adequate models above.
+    /// Points in `on_cpu` have no byte of the kernel's (their slot holds 6, failed).
+    pub marks: Vec<u8>,
+    /// The states of the picked points, in the order asked.
+    pub picked: Vec<State>,
+    /// Points outside the kernels' lambda domain, solved on the CPU in f64: (index, state).
+    pub on_cpu: Vec<(usize, State)>,
+}
+
+fn classify_on_gpu(
+    g: &Gpu,
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+    loads: &[f64],
+    tol: f64,
+    picks: &[usize],
+) -> Result<ClassifiedGrid, GpuError> {
+    let rows: Vec<(f32, f32)> = loads.iter().map(|&v| split(v)).collect();
+    let started = if wants_starts(g) {
+        solver::with_starts(ctx, loads, Control::Load)
+    } else {
+        std::borrow::Cow::Borrowed(ctx)
+    };
+    let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
+    let starts = Starts::new(&started, &prepared);
+    let c = g.grid_classified(&prepared, &starts, &rows, tol, picks)?;
+    let nx = lambdas.len();
+    // Lambdas outside the kernels' domain are solved on the CPU in f64, as `finish` does.
+    let cpu = |i: usize| {
+        let (l, p) = (lambdas[i % nx], loads[i / nx]);
+        match &ctx[i % nx] {
+            Some(c) => solver::solve_with(c, p, Control::Load),
+            None => solver::solve_one(l, p, Control::Load),
+        }
+    };
+    let outside: Vec<usize> = (0..nx).filter(|&ix| !kernel_lambda(lambdas[ix])).collect();
+    let on_cpu = (0..loads.len())
+        .flat_map(|iy| outside.iter().map(move |&ix| iy * nx + ix))
+        .collect::<Vec<_>>()
+        .into_par_iter()
+        .map(|i| (i, cpu(i)))
+        .collect();
+    let picked = picks
+        .par_iter()
+        .zip(&c.picked)
+        .map(|(&i, o)| match kernel_lambda(lambdas[i % nx]) {
+            true => to_state(lambdas[i % nx], loads[i / nx], o, Control::Load),
+            false => cpu(i),
+        })
+        .collect();
+    Ok(ClassifiedGrid {
+        marks: c.marks,
+        picked,
+        on_cpu,
+    })
 }
 
 /// What a backend does; [`Engine`] dispatches to one of its two implementations.

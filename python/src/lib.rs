@@ -106,6 +106,8 @@ fn outcome<T>(r: std::thread::Result<anyhow::Result<T>>) -> PyResult<T> {
 const PY_NAMES: &[(&str, &str)] = &[
     ("load_axis=linear", "load_axis=\"linear\""),
     ("keep_exact", "NPY files or save_json(full=True)"),
+    // Python's maps keep every point's values: no map of regions alone.
+    ("regions_alone", ""),
     ("precision=f32", "precision=\"f32\""),
     ("backend=cpu", "backend=\"cpu\""),
     ("segment", "fit_segment"),
@@ -1056,6 +1058,7 @@ impl AdhesionMap {
             let opts = tabor::map::ComputeOptions {
                 keep_exact: true,
                 check,
+                records: true,
             };
             let data = match shape {
                 Some(shape) => tabor::map::tip::compute_tip(&spec, shape, opts.keep_exact)?,

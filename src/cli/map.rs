@@ -118,7 +118,16 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
     }
     let spec = a.spec();
-    spec.validate()
+    // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
+    // on a sample of points against the f64 solver as they are solved.
+    let opts = crate::map::ComputeOptions {
+        keep_exact: a.json_full || a.npy.is_some(),
+        check: a.gpu.check.0,
+        // A sphere's map of regions keeps a byte a point (and is classified on a GPU's
+        // device); a map of a quantity colours every point, a tip's keeps them all.
+        records: a.quantity.is_some() || a.tip.is_some(),
+    };
+    spec.validate_with(&opts)
         .map_err(|e| super::in_flags(&e, super::MAP_FLAGS))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;
     let print = a.figure.print("map")?;
@@ -140,12 +149,6 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         .context("--json")?;
     let mut npy = super::open_npy(a.npy.as_deref(), &NPY_FILES)?;
     let engine = super::basic::engine_for(a.backend, BackendArg::Auto, &a.gpu)?;
-    // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
-    // on a sample of points against the f64 solver as they are solved.
-    let opts = crate::map::ComputeOptions {
-        keep_exact: a.json_full || a.npy.is_some(),
-        check: a.gpu.check.0,
-    };
     let mut data = match a.tip.as_deref() {
         Some(t) => crate::map::tip::compute_tip(&spec, super::tip_shape(t)?, opts.keep_exact)?,
         None => crate::map::compute_with(&spec, &engine, opts)?,

@@ -412,6 +412,10 @@ pub(crate) const MAP_FLAGS: &[(&str, &str)] = &[
     ("strength_ratio", "--strength-ratio"),
     ("load_axis=linear", "--load-axis linear"),
     ("keep_exact", "--npy or --json-full"),
+    (
+        "regions_alone",
+        ", a map of regions alone (without --quantity, --npy or --json-full) up to 16384 x 16384",
+    ),
 ];
 
 /// A figure's size as flags.

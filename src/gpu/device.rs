@@ -10,6 +10,8 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
+mod classify;
+
 #[derive(Debug, thiserror::Error)]
 /// Why the GPU path could not run; the caller falls back to the CPU or says so.
 #[non_exhaustive]
@@ -245,6 +247,20 @@ pub struct Gpu {
     /// The lambdas (their bits) of the last grid and the kernel's preparation of each: a map's
     /// bands share them, and preparing is a pull-off search and tables per lambda.
     prepared: Mutex<Option<Prepared>>,
+    /// The map's classification (`shaders/classify.wgsl`): its bindings and pipeline, built on
+    /// first use.
+    classify: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
+    /// The device binds the five storage buffers the classification needs.
+    pub classifies: bool,
+}
+
+/// A band of a map from the device: a byte a point (`shaders/classify.wgsl`) and the whole
+/// results of the points asked for.
+pub struct Classified {
+    /// Region (bits 0-2) and adequate models (bits 3-6) of each point.
+    pub marks: Vec<u8>,
+    /// The kernel's results at the picked points, in the order asked.
+    pub picked: Vec<Out>,
 }
 
 /// A grid's lambdas (their bits) and the kernel's preparation of each.
@@ -253,7 +269,34 @@ type Prepared = (Vec<u64>, Arc<Vec<GpuLambda>>);
 /// The kernels' bindings: the parameters (uniform), the lambdas and the input (read-only) and
 /// the output.
 fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
-    let storage = |binding, read_only| wgpu::BindGroupLayoutEntry {
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+        label: Some("md"),
+        entries: &[
+            uniform(0),
+            storage(1, true),
+            storage(2, true),
+            storage(3, false),
+        ],
+    })
+}
+
+/// A compute shader's uniform binding.
+fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        },
+        count: None,
+    }
+}
+
+/// A compute shader's storage binding.
+fn storage(binding: u32, read_only: bool) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
         binding,
         visibility: wgpu::ShaderStages::COMPUTE,
         ty: wgpu::BindingType::Buffer {
@@ -262,25 +305,7 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
             min_binding_size: None,
         },
         count: None,
-    };
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some("md"),
-        entries: &[
-            wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
-            },
-            storage(1, true),
-            storage(2, true),
-            storage(3, false),
-        ],
-    })
+    }
 }
 
 const WORKGROUP: usize = crate::kernel::prelude::WORKGROUP_SIZE;
@@ -314,6 +339,9 @@ impl Gpu {
             required_limits: wgpu::Limits {
                 max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
                 max_buffer_size: limits.max_buffer_size,
+                // The map's classification binds five storage buffers.
+                max_storage_buffers_per_shader_stage:
+                    limits.max_storage_buffers_per_shader_stage.clamp(4, 8),
                 ..wgpu::Limits::downlevel_defaults()
             },
             ..Default::default()
@@ -351,6 +379,7 @@ impl Gpu {
         // The device's limit, not the adapter's: the device was asked for the defaults.
         let by_workgroups =
             device.limits().max_compute_workgroups_per_dimension as usize * WORKGROUP;
+        let device_limits_storage = device.limits().max_storage_buffers_per_shader_stage;
         let gpu = Gpu {
             adapter: AdapterSummary::of(&info),
             device,
@@ -368,6 +397,8 @@ impl Gpu {
             max_buffer,
             error,
             prepared: Mutex::new(None),
+            classify: std::sync::OnceLock::new(),
+            classifies: device_limits_storage >= 5,
         };
         gpu.check()?;
         if trace() {
@@ -612,25 +643,10 @@ impl Gpu {
         max_iter: u32,
     ) -> Result<Vec<T>, GpuError> {
         let out_bytes = std::mem::size_of::<T>();
-        let lam_bytes = std::mem::size_of_val(lambdas) as u64;
-        if lam_bytes > self.max_binding {
-            return Err(GpuError::TooLarge(format!(
-                "{} distinct lambda values need {lam_bytes} bytes, more than this adapter binds ({}); split the input",
-                lambdas.len(),
-                self.max_binding
-            )));
-        }
         if total == 0 {
             return Ok(Vec::new());
         }
-        // Checked here: wgpu would otherwise fail inside buffer creation.
-        let in_bytes = (input.len() * 4) as u64;
-        if in_bytes > self.max_buffer {
-            return Err(GpuError::TooLarge(format!(
-                "{total} points need {in_bytes} bytes of input, more than this adapter's largest buffer ({}); split the input into smaller files",
-                self.max_buffer
-            )));
-        }
+        self.fits(lambdas, input.len() * 4, total)?;
         let t0 = std::time::Instant::now();
         let pipeline = self.pipeline(variant)?;
         let t_pipeline = t0.elapsed().as_secs_f64();
@@ -692,6 +708,26 @@ impl Gpu {
             );
         }
         Ok(result)
+    }
+
+    /// Checked before a run (wgpu would otherwise fail inside buffer creation): the lambdas fit
+    /// one binding, the input one buffer.
+    fn fits<L>(&self, lambdas: &[L], in_bytes: usize, total: usize) -> Result<(), GpuError> {
+        let lam_bytes = std::mem::size_of_val(lambdas);
+        if lam_bytes as u64 > self.max_binding {
+            return Err(GpuError::TooLarge(format!(
+                "{} distinct lambda values need {lam_bytes} bytes, more than this adapter binds ({}); split the input",
+                lambdas.len(),
+                self.max_binding
+            )));
+        }
+        if in_bytes as u64 > self.max_buffer {
+            return Err(GpuError::TooLarge(format!(
+                "{total} points need {in_bytes} bytes of input, more than this adapter's largest buffer ({}); split the input into smaller files",
+                self.max_buffer
+            )));
+        }
+        Ok(())
     }
 
     /// Points per dispatch of a run of `total`: within the workgroup limit, the binding size of

@@ -67,6 +67,33 @@ pub struct Params {
     pub max_iter: u32,
 }
 
+/// Per-dispatch parameters of the map's classification (`shaders/classify.wgsl`). WGSL twin:
+/// `struct Params` there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct ClassifyParams {
+    /// Grid columns.
+    pub nx: u32,
+    /// The dispatch's first point (a multiple of 4: four marks to a word).
+    pub offset: u32,
+    /// Points in this dispatch.
+    pub count: u32,
+    /// Words per lambda record ([`GpuLambda`]); its first word is lambda.
+    pub lambda_words: u32,
+    /// Results to copy out whole.
+    pub picks: u32,
+    /// Words of marks in the output; the picked results follow.
+    pub marks_words: u32,
+    /// (1 - tol)^3.
+    pub cube_lo: f32,
+    /// (1 + tol)^3.
+    pub cube_hi: f32,
+    /// The tolerance.
+    pub tol: f32,
+    /// Padding to 16 bytes.
+    pub _pad: [u32; 3],
+}
+
 /// The kernel variants that benchmarks compare with the shipped one.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct KernelFlags {

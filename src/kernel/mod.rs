@@ -31,6 +31,12 @@ pub fn shader_source() -> String {
         + include_str!("../../shaders/solve.wgsl")
 }
 
+/// The WGSL source of a map's classification on the device (its own module: its bindings are
+/// not the solvers').
+pub fn classify_source() -> String {
+    prelude::wgsl_prelude() + include_str!("../../shaders/classify.wgsl")
+}
+
 /// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64), after the
 /// same prelude.
 pub fn polish64_source() -> String {

@@ -96,6 +96,10 @@ impl Region {
         Region::Md,
         Region::Failed,
     ];
+    /// The region of a code (`self as u8`; bits above 2 ignored, 7 is failed).
+    pub fn from_code(c: u8) -> Region {
+        Region::ALL[((c & 7) as usize).min(6)]
+    }
     /// The contact model of a model's region; None for no contact and failed points.
     pub fn model(self) -> Option<ContactModel> {
         match self {
@@ -166,6 +170,12 @@ pub fn classify(s: &State, tol: f64) -> Region {
         3 => Region::Jkr,
         _ => Region::Md,
     }
+}
+
+/// A state's byte as the device's classification gives it (`shaders/classify.wgsl`): the
+/// region in bits 0-2, the adequate models in bits 3-6.
+pub fn mark(s: &State, tol: f64) -> u8 {
+    classify(s, tol) as u8 | (adequate(s, tol) << 3)
 }
 
 /// The models adequate at a solved state, one bit each (0 Hertz, 1 rigid, 2 DMT, 3 JKR); none
@@ -243,8 +253,10 @@ pub struct MapData {
     pub tip: Option<crate::physics::tip::Shape>,
 }
 
-/// Per-point records for classification and drawing: single precision is ample for colours
-/// and contour lines (the regions themselves are classified from the f64 states).
+/// Per-point records for drawing: single precision is ample for colours and contour lines (the
+/// regions themselves are classified from the states as solved). Every point's, or where no
+/// figure needs them all only those of the contour grid (every `stride`-th row and column,
+/// [`trace_stride`]): a map of regions alone then holds a byte a point.
 #[derive(Default)]
 pub struct Points {
     /// Contact radius A.
@@ -255,47 +267,83 @@ pub struct Points {
     pub m_minus_1: Vec<f32>,
     /// [`Status`] codes.
     pub status: Vec<u8>,
+    /// Every `stride`-th row and column is kept (1: all).
+    pub stride: usize,
+    /// Kept columns per row.
+    cols: usize,
 }
 
 impl Points {
-    fn with_capacity(n: usize) -> Points {
+    pub(crate) fn new(nx: usize, ny: usize, stride: usize) -> Points {
+        let cols = (nx - 1) / stride + 1;
+        let n = cols * ((ny - 1) / stride + 1);
         Points {
             a: Vec::with_capacity(n),
             approach: Vec::with_capacity(n),
             m_minus_1: Vec::with_capacity(n),
             status: Vec::with_capacity(n),
+            stride,
+            cols,
         }
     }
 
-    /// Appends the compact (f32) records of `states`.
-    fn extend(&mut self, states: &[State]) {
-        self.a.extend(states.iter().map(|s| s.a as f32));
-        self.approach
-            .extend(states.iter().map(|s| s.approach as f32));
-        self.m_minus_1
-            .extend(states.iter().map(|s| s.m_minus_1 as f32));
-        self.status.extend(states.iter().map(|s| s.status as u8));
+    /// Whether point (ix, iy) has a record.
+    fn keeps(&self, ix: usize, iy: usize) -> bool {
+        ix % self.stride == 0 && iy % self.stride == 0
     }
+
+    /// The record of point `i` of a grid of `nx` columns: its own where kept, else the one of
+    /// the contour grid's point below and left of it.
+    fn slot(&self, i: usize, nx: usize) -> usize {
+        (i / nx / self.stride) * self.cols + (i % nx) / self.stride
+    }
+
+    fn push(&mut self, s: &State) {
+        self.a.push(s.a as f32);
+        self.approach.push(s.approach as f32);
+        self.m_minus_1.push(s.m_minus_1 as f32);
+        self.status.push(s.status as u8);
+    }
+
+    /// Appends the records kept of `states`, the points from `first` of a grid of `nx` columns.
+    fn extend(&mut self, states: &[State], first: usize, nx: usize) {
+        for (k, s) in states.iter().enumerate() {
+            let i = first + k;
+            if self.keeps(i % nx, i / nx) {
+                self.push(s);
+            }
+        }
+    }
+}
+
+/// The stride of the grid on which figures trace their contour lines (about 800 points a
+/// side: finer lines would not show).
+pub fn trace_stride(nx: usize, ny: usize) -> usize {
+    nx.max(ny).div_ceil(800).max(1)
 }
 
 /// The top run of adequate rows per column and model, carried row by row from the bottom:
 /// `from[ix][m]` is the lowest row of the unbroken run of rows, up to the last one seen, where
-/// model m is adequate (None where the last row is not). `marks` are whole rows starting at
-/// row `first_row`.
-fn extend_adequate_runs(from: &mut [[Option<u32>; 4]], marks: &[(Region, u8)], first_row: usize) {
+/// model m is adequate (None where the last row is not). `marks` are whole rows of [`mark`]
+/// bytes starting at row `first_row`; columns are carried in parallel.
+fn extend_adequate_runs(from: &mut [[Option<u32>; 4]], marks: &[u8], first_row: usize) {
     let nx = from.len();
-    for (k, row) in marks.chunks(nx).enumerate() {
-        let iy = (first_row + k) as u32;
-        for (ix, &(_, bits)) in row.iter().enumerate() {
-            for (m, f) in from[ix].iter_mut().enumerate() {
-                *f = if bits & (1 << m) != 0 {
-                    f.or(Some(iy))
-                } else {
-                    None
-                };
+    const COLS: usize = 256;
+    from.par_chunks_mut(COLS).enumerate().for_each(|(c, cols)| {
+        for (k, row) in marks.chunks(nx).enumerate() {
+            let iy = (first_row + k) as u32;
+            for (j, f) in cols.iter_mut().enumerate() {
+                let bits = row[c * COLS + j] >> 3;
+                for (m, f) in f.iter_mut().enumerate() {
+                    *f = if bits & (1 << m) != 0 {
+                        f.or(Some(iy))
+                    } else {
+                        None
+                    };
+                }
             }
         }
-    }
+    });
 }
 
 /// What [`compute_with`] keeps besides the compact records.
@@ -305,6 +353,17 @@ pub struct ComputeOptions {
     pub keep_exact: bool,
     /// GPU maps: re-solve this many evenly spread points with the f64 solver.
     pub check: usize,
+    /// Keep every point's compact record (maps of a quantity, [`MapData::drawn`] at any
+    /// point); else only the contour grid's, and on a GPU the map is classified on the device
+    /// (a byte a point read back). Kept anyway with `keep_exact`.
+    pub records: bool,
+}
+
+impl ComputeOptions {
+    /// Whether every point's values are held (the size limit [`MAX_MAP_POINTS`] applies).
+    pub fn holds_values(&self) -> bool {
+        self.records || self.keep_exact
+    }
 }
 
 impl Default for ComputeOptions {
@@ -312,6 +371,7 @@ impl Default for ComputeOptions {
         ComputeOptions {
             keep_exact: true,
             check: 1000,
+            records: true,
         }
     }
 }
@@ -379,8 +439,15 @@ impl MapSpec {
         serde_json::from_value(v).map_err(bad)
     }
 
-    /// One clear line for a bad value, naming the quantity.
+    /// One clear line for a bad value, naming the quantity; a map that holds every point's
+    /// values (as the default [`ComputeOptions`] do) at most [`MAX_MAP_POINTS`] points.
     pub fn validate(&self) -> Result<(), MapError> {
+        self.validate_with(&ComputeOptions::default())
+    }
+
+    /// As [`MapSpec::validate`], for a map computed with `opts`: one of regions alone
+    /// ([`ComputeOptions::holds_values`] false) takes up to 16384 x 16384 points.
+    pub fn validate_with(&self, opts: &ComputeOptions) -> Result<(), MapError> {
         use crate::physics::domain::{check_lambda_range, short, LOAD_MAX};
         let bad = |m: Message| Err(MapError::Spec(m));
         check_lambda_range(self.lambda_min, self.lambda_max).map_err(MapError::Spec)?;
@@ -394,7 +461,7 @@ impl MapSpec {
                     self.nx, self.ny
                 )));
         }
-        if self.nx * self.ny > MAX_MAP_POINTS {
+        if opts.holds_values() && self.nx * self.ny > MAX_MAP_POINTS {
             return bad(Message::new()
                 .key("nx")
                 .text(format!(" {} x ", self.nx))
@@ -405,7 +472,12 @@ impl MapSpec {
                     self.nx * self.ny
                 ))
                 .phrase("keep_exact", "the f64 values kept as NPY files or full JSON")
-                .text("); use fewer points, or split the range into several maps"));
+                .text(")")
+                .phrase(
+                    "regions_alone",
+                    ", a map of regions alone (records and keep_exact off) up to 16384 x 16384",
+                )
+                .text("; use fewer points, or split the range into several maps"));
         }
         let (load_min, load_max) = (short(self.load_min), short(self.load_max));
         if !(self.load_max > self.load_min
@@ -487,69 +559,68 @@ pub fn compute(spec: &MapSpec, engine: &Engine) -> Result<MapData, MapError> {
 
 /// Solves and classifies a map in bands of rows: each band's states are classified (regions,
 /// model thresholds, the GPU cross-check sample) and packed into compact records, so memory is
-/// the records plus one band, whatever the grid.
+/// the records plus one band, whatever the grid. On a GPU, a map that needs no record of every
+/// point is solved and classified on the device, which sends back a byte a point and the
+/// states of the contour grid and the cross-check's sample.
 pub fn compute_with(
     spec: &MapSpec,
     engine: &Engine,
     opts: ComputeOptions,
 ) -> Result<MapData, MapError> {
-    spec.validate()?;
+    spec.validate_with(&opts)?;
     let t0 = std::time::Instant::now();
     let (nx, ny) = (spec.nx, spec.ny);
     let (lambdas, rows) = spec.axes();
     let ctx = crate::engine::contexts(&lambdas);
-    let solve = |rows: &[f64]| match spec.load_axis {
-        LoadAxis::AbovePulloff => engine.solve_grid_gaps_with(&ctx, &lambdas, rows),
-        _ => engine.solve_grid_with(&ctx, &lambdas, rows, crate::solver::Control::Load),
-    };
     let n = nx * ny;
-    let mut points = Points::with_capacity(n);
-    let mut regions = Vec::with_capacity(n);
-    let mut exact = opts.keep_exact.then(|| Vec::with_capacity(n));
-    let mut adequate_from = vec![[None; 4]; nx];
+    let on_device =
+        !opts.holds_values() && spec.load_axis != LoadAxis::AbovePulloff && engine.classifies();
     let is_gpu = !matches!(engine, Engine::Cpu);
     let checks = if is_gpu { opts.check.min(n) } else { 0 };
-    let (mut sample_points, mut sample_states) = (Vec::new(), Vec::new());
-    let mut next_check = 0;
+    let stride = if opts.holds_values() {
+        1
+    } else {
+        trace_stride(nx, ny)
+    };
+    let mut acc = Bands {
+        points: Points::new(nx, ny, stride),
+        regions: Vec::with_capacity(n),
+        exact: opts.keep_exact.then(|| Vec::with_capacity(n)),
+        adequate_from: vec![[None; 4]; nx],
+        check_at: (0..checks).map(|k| k * n / checks).collect(),
+        sample: Vec::new(),
+    };
+    let grid = Grid {
+        spec,
+        engine,
+        ctx: &ctx,
+        lambdas: &lambdas,
+    };
     // Bands of about 2^18 points on the CPU (a progress bar), 2^20 on a GPU (fewer dispatches).
     let band = (if is_gpu { 1 << 20 } else { 1 << 18 }) / nx + 1;
     let mut progress = crate::progress::Progress::new("solving", n as u64, "points");
     let (mut solve_s, mut classify_s) = (t0.elapsed().as_secs_f64(), 0.0);
     for (b, r) in rows.chunks(band).enumerate() {
         crate::interrupt::checkpoint();
-        let t = std::time::Instant::now();
-        let states = solve(r)?;
-        solve_s += t.elapsed().as_secs_f64();
-        let t = std::time::Instant::now();
         let first = b * band * nx;
-        // Per point, on all cores: its region and which models are adequate (one bit each).
-        let tol = spec.tolerance;
-        let marks: Vec<(Region, u8)> = states
-            .par_iter()
-            .map(|s| (classify(s, tol), adequate(s, tol)))
-            .collect();
-        regions.extend(marks.iter().map(|m| m.0));
-        points.extend(&states);
-        if let Some(e) = exact.as_mut() {
-            e.extend(states.iter().map(|s| [s.a, s.approach, s.m_minus_1]));
-        }
-        while next_check < checks && next_check * n / checks < first + states.len() {
-            let s = states[next_check * n / checks - first];
-            sample_points.push((s.lambda, s.load));
-            sample_states.push(s);
-            next_check += 1;
-        }
-        extend_adequate_runs(&mut adequate_from, &marks, b * band);
-        classify_s += t.elapsed().as_secs_f64();
-        progress.inc(states.len() as u64);
+        let (ds, dc) = if on_device {
+            grid.band_on_device(r, first, &mut acc)?
+        } else {
+            grid.band_of_states(r, first, &mut acc)?
+        };
+        solve_s += ds;
+        classify_s += dc;
+        progress.inc((r.len() * nx) as u64);
     }
     progress.finish();
     let check = is_gpu.then(|| {
+        let (points, states): (Vec<_>, Vec<_>) =
+            acc.sample.iter().map(|s| ((s.lambda, s.load), *s)).unzip();
         crate::engine::cross_check(
-            &sample_points,
-            &sample_states,
+            &points,
+            &states,
             crate::solver::Control::Load,
-            sample_points.len(),
+            points.len(),
             crate::engine::GPU_TOLERANCE,
         )
     });
@@ -561,10 +632,10 @@ pub fn compute_with(
         lambdas,
         rows,
         pulloff,
-        points,
-        regions,
-        exact,
-        adequate_from,
+        points: acc.points,
+        regions: acc.regions,
+        exact: acc.exact,
+        adequate_from: acc.adequate_from,
         check,
         large_deformation,
         timings: Timings {
@@ -574,6 +645,117 @@ pub fn compute_with(
         },
         tip: None,
     })
+}
+
+/// What a map's bands build up.
+struct Bands {
+    points: Points,
+    regions: Vec<Region>,
+    exact: Option<Vec<[f64; 3]>>,
+    adequate_from: Vec<[Option<u32>; 4]>,
+    /// The points of the GPU's cross-check sample (ascending), and their states as solved.
+    check_at: Vec<usize>,
+    sample: Vec<State>,
+}
+
+impl Bands {
+    /// The regions and adequate runs of whole rows of marks from point `first`.
+    fn take(&mut self, marks: &[u8], first: usize) {
+        let nx = self.adequate_from.len();
+        self.regions
+            .par_extend(marks.par_iter().map(|&m| Region::from_code(m)));
+        extend_adequate_runs(&mut self.adequate_from, marks, first / nx);
+    }
+
+    /// The cross-check's points among `first..first + len`.
+    fn checks_in(&self, first: usize, len: usize) -> &[usize] {
+        let lo = self.check_at.partition_point(|&i| i < first);
+        let hi = self.check_at.partition_point(|&i| i < first + len);
+        &self.check_at[lo..hi]
+    }
+}
+
+/// A map's grid and where it is solved.
+struct Grid<'a> {
+    spec: &'a MapSpec,
+    engine: &'a Engine,
+    ctx: &'a [Option<LambdaContext>],
+    lambdas: &'a [f64],
+}
+
+impl Grid<'_> {
+    /// One band of rows solved into whole states, classified on the CPU; (solve, classify) s.
+    fn band_of_states(
+        &self,
+        rows: &[f64],
+        first: usize,
+        acc: &mut Bands,
+    ) -> Result<(f64, f64), MapError> {
+        let (e, nx) = (self.engine, self.lambdas.len());
+        let t = std::time::Instant::now();
+        let states = match self.spec.load_axis {
+            LoadAxis::AbovePulloff => e.solve_grid_gaps_with(self.ctx, self.lambdas, rows),
+            _ => e.solve_grid_with(self.ctx, self.lambdas, rows, crate::solver::Control::Load),
+        }?;
+        let solve_s = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let tol = self.spec.tolerance;
+        let marks: Vec<u8> = states.par_iter().map(|s| mark(s, tol)).collect();
+        acc.take(&marks, first);
+        acc.points.extend(&states, first, nx);
+        if let Some(x) = acc.exact.as_mut() {
+            x.extend(states.iter().map(|s| [s.a, s.approach, s.m_minus_1]));
+        }
+        let sample: Vec<State> = acc
+            .checks_in(first, states.len())
+            .iter()
+            .map(|&i| states[i - first])
+            .collect();
+        acc.sample.extend(sample);
+        Ok((solve_s, t.elapsed().as_secs_f64()))
+    }
+
+    /// One band of rows solved and classified on the device: a byte a point, and the states of
+    /// the contour grid's points and the cross-check's; (solve, classify) s.
+    fn band_on_device(
+        &self,
+        rows: &[f64],
+        first: usize,
+        acc: &mut Bands,
+    ) -> Result<(f64, f64), MapError> {
+        let (nx, len) = (self.lambdas.len(), rows.len() * self.lambdas.len());
+        let k = acc.points.stride;
+        let first_row = first / nx;
+        let mut picks: Vec<usize> = (0..rows.len())
+            .filter(|r| (first_row + r) % k == 0)
+            .flat_map(|r| (0..nx).step_by(k).map(move |ix| r * nx + ix))
+            .chain(acc.checks_in(first, len).iter().map(|&i| i - first))
+            .collect();
+        picks.sort_unstable();
+        picks.dedup();
+        let t = std::time::Instant::now();
+        let tol = self.spec.tolerance;
+        let g = self
+            .engine
+            .classify_grid(self.ctx, self.lambdas, rows, tol, &picks)?;
+        let solve_s = t.elapsed().as_secs_f64();
+        let t = std::time::Instant::now();
+        let mut marks = g.marks;
+        for (i, s) in &g.on_cpu {
+            marks[*i] = mark(s, tol);
+        }
+        acc.take(&marks, first);
+        for (&p, s) in picks.iter().zip(&g.picked) {
+            let i = first + p;
+            if acc.points.keeps(i % nx, i / nx) {
+                acc.points.push(s);
+            }
+            if acc.check_at.binary_search(&i).is_ok() {
+                acc.sample.push(*s);
+            }
+        }
+        Ok((solve_s, t.elapsed().as_secs_f64()))
+    }
 }
 
 /// a/R = 2 A (s0/K) / lambda = 0.1, i.e. A = 0.05 lambda / (s0/K), on the stable branch.
@@ -649,10 +831,11 @@ impl MapData {
     /// The state at point `i` from the compact records, as figures draw it (the same figure
     /// whether or not the f64 values were kept).
     pub fn drawn(&self, i: usize) -> State {
+        let j = self.points.slot(i, self.spec.nx);
         let (a, approach, m_minus_1) = (
-            self.points.a[i] as f64,
-            self.points.approach[i] as f64,
-            self.points.m_minus_1[i] as f64,
+            self.points.a[j] as f64,
+            self.points.approach[j] as f64,
+            self.points.m_minus_1[j] as f64,
         );
         State {
             lambda: self.lambdas[i % self.spec.nx],
@@ -660,7 +843,7 @@ impl MapData {
             approach,
             a,
             m_minus_1,
-            status: Status::from_code(self.points.status[i] as u32),
+            status: Status::from_code(self.points.status[j] as u32),
             iterations: 0,
         }
     }

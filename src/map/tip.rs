@@ -110,7 +110,7 @@ pub fn compute_tip(spec: &MapSpec, shape: Shape, keep_exact: bool) -> Result<Map
     let solve_s = t0.elapsed().as_secs_f64();
     // Row-major, row 0 the lowest load, as the sphere's map.
     let n = nx * ny;
-    let mut points = Points::with_capacity(n);
+    let mut points = Points::new(nx, ny, 1);
     let mut regions = Vec::with_capacity(n);
     let mut exact = keep_exact.then(|| Vec::with_capacity(n));
     let mut marks = Vec::with_capacity(n);
@@ -129,7 +129,7 @@ pub fn compute_tip(spec: &MapSpec, shape: Shape, keep_exact: bool) -> Result<Map
             points.m_minus_1.push(q.m_minus_1 as f32);
             points.status.push(q.status as u8);
             regions.push(q.region);
-            marks.push((q.region, q.bits));
+            marks.push(q.region as u8 | (q.bits << 3));
             if let Some(e) = exact.as_mut() {
                 e.push([q.a, q.approach, q.m_minus_1]);
             }

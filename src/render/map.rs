@@ -156,7 +156,7 @@ const CRITERIA: [&str; 4] = ["Hertz", "Bradley (rigid)", "DMT", "JKR"];
 fn trace(d: &MapData) -> Traced {
     let sp = &d.spec;
     let (nx, ny) = (sp.nx, sp.ny);
-    let k = nx.max(ny).div_ceil(800).max(1);
+    let k = crate::map::trace_stride(nx, ny);
     let (mx, my) = ((nx - 1) / k + 1, (ny - 1) / k + 1);
     let fields: Vec<[f64; 5]> = (0..mx * my)
         .into_par_iter()

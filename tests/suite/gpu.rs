@@ -821,3 +821,108 @@ fn grids_on_one_engine_reuse_only_their_own_preparation() {
     assert_eq!(other, fresh);
     assert_ne!(first, other);
 }
+
+/// A map's classification on the device (`shaders/classify.wgsl`) against its CPU mirror on
+/// the kernel's own results: every byte on lavapipe (nearly every one where multiply-adds fuse),
+/// the picked results bit for bit, over dispatches split within the grid. The mirror's f32
+/// bytes differ from the f64 classification of the same states (`map::mark`) only at ties of
+/// the tolerance test, none here.
+#[test]
+fn classified_grid_matches_its_mirror() {
+    use tabor::kernel::cpu::classify::{mark, params};
+    use tabor::kernel::start::Starts;
+    let Some(g) = gpu() else { return };
+    let lambdas = logspace(-4.0, 4.0, 37);
+    let prepared = prepare_all(&lambdas);
+    let loads: Vec<f64> = (0..61)
+        .map(|k| -2.0 + 0.2 * k as f64)
+        .chain(logspace(-3.0, 3.0, 40))
+        .collect();
+    let rows: Vec<(f32, f32)> = loads.iter().map(|&v| split(v)).collect();
+    let (tol, nx, n) = (0.05, lambdas.len(), lambdas.len() * rows.len());
+    let picks: Vec<usize> = (0..n).step_by(7).collect();
+    let f = KernelFlags::SHIPPED;
+    let plain = g.grid(&prepared, &rows, Control::Load, false, f).unwrap();
+    g.limit_dispatch(1000); // 37 x 101 = 3737 points: 4 dispatches, the last one partial
+    let c = g
+        .grid_classified(&prepared, &Starts::default(), &rows, tol, &picks)
+        .unwrap();
+    g.limit_dispatch(0);
+    assert_eq!(c.marks.len(), n);
+    let picked: Vec<_> = picks.iter().map(|&i| plain[i]).collect();
+    assert_eq!(
+        bytemuck::cast_slice::<_, u32>(&c.picked),
+        bytemuck::cast_slice::<_, u32>(&picked)
+    );
+    let p = params(tol);
+    let (mut apart, mut ties) = (0, 0);
+    for (i, (&m, o)) in c.marks.iter().zip(&plain).enumerate() {
+        let (ix, iy) = (i % nx, i / nx);
+        let mirror = mark(o, prepared[ix].lambda, rows[iy].0, &p);
+        apart += (m != mirror) as usize;
+        let s = tabor::engine::to_state(lambdas[ix], loads[iy], o, Control::Load);
+        ties += (mirror != tabor::map::mark(&s, tol)) as usize;
+    }
+    eprintln!("classified grid: {apart} of {n} bytes apart from the mirror, {ties} f32/f64 ties");
+    if bit_exact(&g) {
+        assert_eq!(apart, 0);
+    } else {
+        assert!(apart * 1000 <= n, "{apart} of {n}");
+    }
+    assert_eq!(ties, 0);
+    let regions: std::collections::BTreeSet<u8> = c.marks.iter().map(|m| m & 7).collect();
+    assert_eq!(regions.into_iter().collect::<Vec<_>>(), [0, 1, 2, 3, 4, 5]);
+}
+
+/// A map classified on the device is the map of the same kernel's states classified on the
+/// host: the same regions and thresholds, the same records on the contour grid (every third
+/// point here), the same cross-check; the columns below the kernels' lambda domain (1e-8) are
+/// solved on the CPU in both.
+#[test]
+fn a_map_classified_on_the_device_is_the_map_of_its_states() {
+    use tabor::map::{compute_with, ComputeOptions, LoadAxis, MapSpec};
+    let Some(g) = gpu() else { return };
+    let engine = Engine::Gpu(Box::new(g));
+    assert!(engine.classifies());
+    let spec = MapSpec {
+        lambda_min: 1e-9,
+        lambda_max: 1e4,
+        nx: 1700,
+        load_axis: LoadAxis::Linear,
+        load_min: -2.0,
+        load_max: 10.0,
+        ny: 45,
+        tolerance: 0.05,
+        strength_ratios: vec![],
+    };
+    let opts = |records| ComputeOptions {
+        keep_exact: false,
+        check: 300,
+        records,
+    };
+    let host = compute_with(&spec, &engine, opts(true)).unwrap();
+    let device = compute_with(&spec, &engine, opts(false)).unwrap();
+    assert_eq!(device.points.stride, 3);
+    let apart = host
+        .regions
+        .iter()
+        .zip(&device.regions)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(apart, 0, "{apart} regions apart");
+    assert_eq!(host.thresholds(), device.thresholds());
+    for iy in (0..spec.ny).step_by(3) {
+        for ix in (0..spec.nx).step_by(3) {
+            let i = iy * spec.nx + ix;
+            let (a, b) = (host.drawn(i), device.drawn(i));
+            assert_eq!(
+                (a.a.to_bits(), a.status),
+                (b.a.to_bits(), b.status),
+                "{ix}, {iy}"
+            );
+        }
+    }
+    let (h, d) = (host.check.unwrap(), device.check.unwrap());
+    assert_eq!((h.checked, h.max_rel_err_a), (d.checked, d.max_rel_err_a));
+    assert_eq!(d.over_tolerance, 0);
+}

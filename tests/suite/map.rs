@@ -166,6 +166,7 @@ fn compact_records_and_kept_values_agree_with_direct_solves() {
         let opts = |keep_exact| ComputeOptions {
             keep_exact,
             check: 0,
+            records: true,
         };
         let full = compute_with(&s, &Engine::Cpu, opts(true)).unwrap();
         let lean = compute_with(&s, &Engine::Cpu, opts(false)).unwrap();
@@ -199,4 +200,68 @@ fn compact_records_and_kept_values_agree_with_direct_solves() {
         let e = tabor::export::write_map_json(&mut sink, &lean, &Engine::Cpu, None, true, false);
         assert!(e.unwrap_err().to_string().contains("f64 values"));
     }
+}
+
+/// A map of regions alone keeps the records of the contour grid only (every third row and
+/// column here), and is otherwise the map that keeps them all: the same regions, thresholds and
+/// checks, and at the contour grid's points the same records.
+#[test]
+fn a_map_of_regions_alone_keeps_the_contour_grid() {
+    use tabor::map::{compute_with, trace_stride, ComputeOptions};
+    let s = MapSpec {
+        load_axis: LoadAxis::Linear,
+        load_min: -2.0,
+        load_max: 10.0,
+        ..spec(1700, 40, LoadAxis::Linear)
+    };
+    let opts = |records| ComputeOptions {
+        keep_exact: false,
+        check: 0,
+        records,
+    };
+    let all = compute_with(&s, &Engine::Cpu, opts(true)).unwrap();
+    let alone = compute_with(&s, &Engine::Cpu, opts(false)).unwrap();
+    let k = trace_stride(s.nx, s.ny);
+    assert_eq!(k, 3);
+    assert_eq!((all.points.stride, alone.points.stride), (1, k));
+    assert_eq!(alone.points.a.len(), 567 * 14);
+    assert_eq!(all.points.a.len(), 1700 * 40);
+    assert!(all.regions == alone.regions);
+    assert_eq!(all.thresholds(), alone.thresholds());
+    for iy in (0..s.ny).step_by(k) {
+        for ix in (0..s.nx).step_by(k) {
+            let i = iy * s.nx + ix;
+            let (a, b) = (all.drawn(i), alone.drawn(i));
+            assert_eq!(
+                (a.a.to_bits(), a.approach.to_bits(), a.status),
+                (b.a.to_bits(), b.approach.to_bits(), b.status),
+                "point {ix}, {iy}"
+            );
+        }
+    }
+    // Every region of the linear axis is there, no contact below the pull-offs included.
+    for r in [Region::NoContact, Region::Dmt, Region::Jkr, Region::Md] {
+        assert!(alone.regions.contains(&r), "{r:?}");
+    }
+}
+
+/// Without every point's values a map may exceed 4096 x 4096 points (up to 16384 a side);
+/// with them it may not.
+#[test]
+fn only_a_map_of_values_is_held_to_4096_squared() {
+    use tabor::map::ComputeOptions;
+    let s = spec(5000, 5000, LoadAxis::Log);
+    let regions = ComputeOptions {
+        keep_exact: false,
+        check: 0,
+        records: false,
+    };
+    assert!(s.validate_with(&regions).is_ok());
+    let e = s.validate().unwrap_err().to_string();
+    assert!(e.contains("25000000 points, more than the 16777216"), "{e}");
+    let values = ComputeOptions {
+        records: true,
+        ..regions
+    };
+    assert!(s.validate_with(&values).is_err());
 }

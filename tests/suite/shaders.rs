@@ -2,7 +2,9 @@
 //! WGSL layouts byte for byte.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use tabor::kernel::layout::{Branch, GpuLambda, Lambda64, Out, Out64, Params, Point64};
+use tabor::kernel::layout::{
+    Branch, ClassifyParams, GpuLambda, Lambda64, Out, Out64, Params, Point64,
+};
 
 fn parse(src: &str) -> naga::Module {
     naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)))
@@ -88,6 +90,19 @@ fn f64_module_validates_and_matches_rust_layout() {
     assert_eq!(size_of("Point64"), std::mem::size_of::<Point64>());
     assert_eq!(size_of("Out64"), std::mem::size_of::<Out64>());
     assert_eq!(size_of("Params"), std::mem::size_of::<Params>());
+}
+
+/// The map's classification validates, and its parameters match the Rust struct.
+#[test]
+fn classify_module_validates_and_matches_rust_layout() {
+    let m = parse(&tabor::kernel::classify_source());
+    Validator::new(ValidationFlags::all(), Capabilities::default())
+        .validate(&m)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    assert_eq!(
+        wgsl_size(&m, "Params"),
+        std::mem::size_of::<ClassifyParams>()
+    );
 }
 
 /// The value of a named WGSL `const` of `m` (a scalar literal).

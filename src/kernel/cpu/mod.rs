@@ -1,4 +1,5 @@
 //! CPU mirrors of the WGSL kernels, one file per kernel.
 
+pub mod classify;
 pub mod md;
 pub mod polish64;
