@@ -243,6 +243,7 @@ fn classify_on_gpu(
     tol: f64,
     picks: &[usize],
 ) -> Result<ClassifiedGrid, GpuError> {
+    let t0 = std::time::Instant::now();
     let rows: Vec<(f32, f32)> = loads.iter().map(|&v| split(v)).collect();
     let started = if wants_starts(g) {
         solver::with_starts(ctx, loads, Control::Load)
@@ -251,6 +252,7 @@ fn classify_on_gpu(
     };
     let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
     let starts = Starts::new(&started, &prepared);
+    let t_starts = t0.elapsed().as_secs_f64();
     let c = g.grid_classified(&prepared, &starts, &rows, tol, picks)?;
     let nx = lambdas.len();
     // Lambdas outside the kernels' domain are solved on the CPU in f64, as `finish` does.
@@ -276,6 +278,13 @@ fn classify_on_gpu(
             false => cpu(i),
         })
         .collect();
+    if crate::gpu::device::trace() {
+        eprintln!(
+            "gpu trace: grid classified, {} points: starts and contexts {t_starts:.4} s, all {:.4} s",
+            c.marks.len(),
+            t0.elapsed().as_secs_f64()
+        );
+    }
     Ok(ClassifiedGrid {
         marks: c.marks,
         picked,

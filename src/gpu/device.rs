@@ -11,6 +11,7 @@ use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
 mod classify;
+mod timer;
 
 #[derive(Debug, thiserror::Error)]
 /// Why the GPU path could not run; the caller falls back to the CPU or says so.
@@ -252,6 +253,8 @@ pub struct Gpu {
     classify: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
     /// The device binds the five storage buffers the classification needs.
     pub classifies: bool,
+    /// Traced runs time their passes by timestamp queries (the adapter has them).
+    timestamps: bool,
 }
 
 /// A band of a map from the device: a byte a point (`shaders/classify.wgsl`) and the whole
@@ -329,12 +332,15 @@ impl Gpu {
         let info = adapter.get_info();
         let limits = adapter.limits();
         let f64_ok = adapter.features().contains(wgpu::Features::SHADER_F64);
+        // Kernel time by timestamps only when traced: queries are not free.
+        let timestamps = trace() && adapter.features().contains(wgpu::Features::TIMESTAMP_QUERY);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("tabor"),
-            required_features: if f64_ok {
-                wgpu::Features::SHADER_F64
-            } else {
-                wgpu::Features::empty()
+            required_features: {
+                let mut f = wgpu::Features::empty();
+                f.set(wgpu::Features::SHADER_F64, f64_ok);
+                f.set(wgpu::Features::TIMESTAMP_QUERY, timestamps);
+                f
             },
             required_limits: wgpu::Limits {
                 max_storage_buffer_binding_size: limits.max_storage_buffer_binding_size,
@@ -399,6 +405,7 @@ impl Gpu {
             prepared: Mutex::new(None),
             classify: std::sync::OnceLock::new(),
             classifies: device_limits_storage >= 5,
+            timestamps,
         };
         gpu.check()?;
         if trace() {
@@ -805,14 +812,18 @@ impl Gpu {
         });
         let mut enc =
             d.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("md") });
+        let timer = self.timestamps.then(|| timer::Timer::new(d, 1));
         {
             let mut pass = enc.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("md"),
-                timestamp_writes: None,
+                timestamp_writes: timer.as_ref().map(|t| t.writes(0)),
             });
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &bind, &[]);
             pass.dispatch_workgroups((p.count as usize).div_ceil(WORKGROUP) as u32, 1, 1);
+        }
+        if let Some(t) = &timer {
+            t.resolve(&mut enc);
         }
         let bytes = (p.count as usize * out_bytes) as u64;
         enc.copy_buffer_to_buffer(bufs.out, 0, bufs.staging, 0, bytes);
@@ -821,10 +832,12 @@ impl Gpu {
         let t_wait = self.read_back(bufs.staging, bytes, t0, result)?;
         bufs.staging.unmap();
         if trace() {
+            let secs = timer.and_then(|t| t.seconds(d, self.queue.get_timestamp_period()));
             eprintln!(
-                "gpu trace:   dispatch of {}: compute and copy {t_wait:.4} s, read back {:.4} s",
+                "gpu trace:   dispatch of {}: compute and copy {t_wait:.4} s, read back {:.4} s{}",
                 p.count,
-                t0.elapsed().as_secs_f64() - t_wait
+                t0.elapsed().as_secs_f64() - t_wait,
+                timer::shown(secs.as_deref())
             );
         }
         self.check()

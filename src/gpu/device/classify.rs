@@ -2,7 +2,9 @@
 //! `shaders/classify.wgsl` over its results in the same submission. A byte a point comes back
 //! (16 for a whole result), and the whole results of the few points the host asks for.
 
-use super::{storage, trace, uniform, Classified, Entry, Gpu, GpuError, Variant, WORKGROUP};
+use super::{
+    storage, timer, trace, uniform, Classified, Entry, Gpu, GpuError, Variant, WORKGROUP,
+};
 use crate::kernel::layout::{ClassifyParams, GpuLambda, Out, Params};
 use crate::kernel::start::Starts;
 use crate::solver::Control;
@@ -223,18 +225,26 @@ impl Gpu {
         let mut enc = d.create_command_encoder(&wgpu::CommandEncoderDescriptor {
             label: Some("classify"),
         });
+        let timer = self.timestamps.then(|| timer::Timer::new(d, 2));
+        let desc = |k| wgpu::ComputePassDescriptor {
+            label: Some("classify"),
+            timestamp_writes: timer.as_ref().map(|t| t.writes(k)),
+        };
         {
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let mut pass = enc.begin_compute_pass(&desc(0));
             pass.set_pipeline(solve);
             pass.set_bind_group(0, &solve_group, &[]);
             pass.dispatch_workgroups(n.div_ceil(WORKGROUP) as u32, 1, 1);
         }
         {
-            let mut pass = enc.begin_compute_pass(&Default::default());
+            let mut pass = enc.begin_compute_pass(&desc(1));
             pass.set_pipeline(classify);
             pass.set_bind_group(0, &classify_group, &[]);
             let threads = n.div_ceil(4).max(local.len());
             pass.dispatch_workgroups(threads.div_ceil(WORKGROUP) as u32, 1, 1);
+        }
+        if let Some(t) = &timer {
+            t.resolve(&mut enc);
         }
         let marks_bytes = p.marks_words as usize * 4;
         let bytes = (marks_bytes + 16 * local.len()) as u64;
@@ -248,9 +258,11 @@ impl Gpu {
         res.picked
             .extend(bytemuck::pod_collect_to_vec::<u8, Out>(&raw[marks_bytes..]));
         if trace() {
+            let secs = timer.and_then(|t| t.seconds(d, self.queue.get_timestamp_period()));
             eprintln!(
-                "gpu trace:   classified dispatch of {n}: compute and copy {t_wait:.4} s, read back {:.4} s ({bytes} bytes)",
-                t0.elapsed().as_secs_f64() - t_wait
+                "gpu trace:   classified dispatch of {n}: compute and copy {t_wait:.4} s, read back {:.4} s ({bytes} bytes){}",
+                t0.elapsed().as_secs_f64() - t_wait,
+                timer::shown(secs.as_deref())
             );
         }
         self.check()
