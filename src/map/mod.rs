@@ -596,8 +596,14 @@ pub fn compute_with(
         ctx: &ctx,
         lambdas: &lambdas,
     };
-    // Bands of about 2^18 points on the CPU (a progress bar), 2^20 on a GPU (fewer dispatches).
-    let band = (if is_gpu { 1 << 20 } else { 1 << 18 }) / nx + 1;
+    // Bands of about 2^18 points on the CPU (a progress bar), 2^20 on a GPU (fewer dispatches),
+    // 2^24 classified on the device (a byte a point comes back: 16 MB a band).
+    let band = match (is_gpu, on_device) {
+        (_, true) => 1 << 24,
+        (true, false) => 1 << 20,
+        (false, _) => 1 << 18,
+    } / nx
+        + 1;
     let mut progress = crate::progress::Progress::new("solving", n as u64, "points");
     let (mut solve_s, mut classify_s) = (t0.elapsed().as_secs_f64(), 0.0);
     for (b, r) in rows.chunks(band).enumerate() {
