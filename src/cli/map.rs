@@ -117,6 +117,7 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
     if a.timings && a.json.is_none() {
         anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
     }
+    let t_run = Instant::now();
     let spec = a.spec();
     // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
     // on a sample of points against the f64 solver as they are solved.
@@ -194,6 +195,16 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         o.commit()?;
     }
     report(&a, &spec, &data);
+    if crate::gpu::device::trace() {
+        // The driver's teardown is part of the command's time too.
+        let t = Instant::now();
+        drop(engine);
+        eprintln!(
+            "gpu trace: map command {:.4} s, then the device closed in {:.4} s",
+            t_run.elapsed().as_secs_f64() - t.elapsed().as_secs_f64(),
+            t.elapsed().as_secs_f64()
+        );
+    }
     Ok(())
 }
 

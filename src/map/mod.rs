@@ -307,10 +307,10 @@ impl Points {
 
     /// Appends the records kept of `states`, the points from `first` of a grid of `nx` columns.
     fn extend(&mut self, states: &[State], first: usize, nx: usize) {
-        for (k, s) in states.iter().enumerate() {
-            let i = first + k;
-            if self.keeps(i % nx, i / nx) {
-                self.push(s);
+        debug_assert_eq!(first % nx, 0);
+        for (r, row) in states.chunks(nx).enumerate() {
+            if (first / nx + r) % self.stride == 0 {
+                row.iter().step_by(self.stride).for_each(|s| self.push(s));
             }
         }
     }

@@ -196,9 +196,20 @@ fn trace(d: &MapData) -> Traced {
     };
     let contact: Vec<f64> = fields.iter().map(|f| f[4]).collect();
     let has_edge = contact.contains(&0.0) && contact.contains(&1.0);
+    // The five lines are traced at once.
+    let mut lines: Vec<Vec<Vec<(f64, f64)>>> = (0..5)
+        .into_par_iter()
+        .map(|c| match c {
+            4 if !has_edge => Vec::new(),
+            4 => paths(4, 0.5),
+            _ => paths(c, sp.tolerance),
+        })
+        .collect();
+    let pulloff = lines.pop().unwrap_or_default();
+    let mut lines = lines.into_iter();
     Traced {
-        criteria: [0, 1, 2, 3].map(|c| paths(c, sp.tolerance)),
-        pulloff: if has_edge { paths(4, 0.5) } else { Vec::new() },
+        criteria: [(); 4].map(|_| lines.next().unwrap_or_default()),
+        pulloff,
     }
 }
 
@@ -389,18 +400,19 @@ fn raster(d: &MapData, q: Option<Quantity>, w: u32, h: u32) -> Vec<u8> {
 pub(crate) fn pixels(
     (nx, ny): (usize, usize),
     (w, h): (u32, u32),
-    colour: impl Fn(usize) -> RGBColor,
+    colour: impl Fn(usize) -> RGBColor + Sync,
 ) -> Vec<u8> {
     let mut buf = vec![0u8; (w * h * 3) as usize];
-    for r in 0..h {
-        let iy = ((1.0 - (r as f64 + 0.5) / h as f64) * (ny - 1) as f64).round() as usize;
-        for c in 0..w {
-            let ix = (((c as f64 + 0.5) / w as f64) * (nx - 1) as f64).round() as usize;
-            let col = colour(iy * nx + ix);
-            let k = ((r * w + c) * 3) as usize;
-            buf[k..k + 3].copy_from_slice(&[col.0, col.1, col.2]);
-        }
-    }
+    buf.par_chunks_mut((w * 3) as usize)
+        .enumerate()
+        .for_each(|(r, row)| {
+            let iy = ((1.0 - (r as f64 + 0.5) / h as f64) * (ny - 1) as f64).round() as usize;
+            for (c, px) in row.chunks_exact_mut(3).enumerate() {
+                let ix = (((c as f64 + 0.5) / w as f64) * (nx - 1) as f64).round() as usize;
+                let col = colour(iy * nx + ix);
+                px.copy_from_slice(&[col.0, col.1, col.2]);
+            }
+        });
     buf
 }
 

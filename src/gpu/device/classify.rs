@@ -2,9 +2,7 @@
 //! `shaders/classify.wgsl` over its results in the same submission. A byte a point comes back
 //! (16 for a whole result), and the whole results of the few points the host asks for.
 
-use super::{
-    storage, timer, trace, uniform, Classified, Entry, Gpu, GpuError, Variant, WORKGROUP,
-};
+use super::{storage, timer, trace, uniform, Classified, Entry, Gpu, GpuError, Variant, WORKGROUP};
 use crate::kernel::layout::{ClassifyParams, GpuLambda, Out, Params};
 use crate::kernel::start::Starts;
 use crate::solver::Control;
