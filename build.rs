@@ -34,6 +34,7 @@ fn main() {
         "shaders/curve64.wgsl",
         "shaders/polish64.wgsl",
         "shaders/classify.wgsl",
+        "shaders/ensemble64.wgsl",
         "src/physics/tolerances.rs",
         "src/kernel/prelude.rs",
     ] {
@@ -51,6 +52,9 @@ fn main() {
     // A map's classification on the device.
     let classify = prelude.clone() + &read("shaders/classify.wgsl");
     validate("shaders/classify.wgsl", &classify, Capabilities::default());
+    // An explicit ensemble's stepping, in f64.
+    let ensemble = prelude.clone() + &read("shaders/ensemble64.wgsl");
+    validate("shaders/ensemble64.wgsl", &ensemble, Capabilities::FLOAT64);
     // The f64 refinement: the f64 curve point, then its entry point.
     let polish64 = prelude + &read("shaders/curve64.wgsl") + "\n" + &read("shaders/polish64.wgsl");
     validate(

@@ -196,6 +196,14 @@ impl Engine {
         self.solver().solve_grid_with(ctx, lambdas, values, control)
     }
 
+    /// The GPU where it runs f64 shaders (an explicit ensemble's stepping needs them).
+    pub fn gpu_f64(&self) -> Option<&Gpu> {
+        match self {
+            Engine::Gpu(g) if g.f64 => Some(g),
+            _ => None,
+        }
+    }
+
     /// Whether [`Engine::classify_grid`] runs here: a GPU with the f32 kernels alone (with the
     /// f64 refinement the states come back whole) and the bindings the classification needs.
     pub fn classifies(&self) -> bool {

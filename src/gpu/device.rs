@@ -11,7 +11,10 @@ use std::sync::{Arc, Mutex};
 use wgpu::util::DeviceExt;
 
 mod classify;
+mod ensemble;
 mod timer;
+
+pub use ensemble::{EnsembleSums, SummitBuffers};
 
 #[derive(Debug, thiserror::Error)]
 /// Why the GPU path could not run; the caller falls back to the CPU or says so.
@@ -255,6 +258,15 @@ pub struct Gpu {
     pub classifies: bool,
     /// Traced runs time their passes by timestamp queries (the adapter has them).
     timestamps: bool,
+    /// An ensemble's stepping (`shaders/ensemble64.wgsl`): bindings and pipelines, built on
+    /// first use.
+    ensemble: std::sync::OnceLock<(
+        wgpu::BindGroupLayout,
+        wgpu::ComputePipeline,
+        wgpu::ComputePipeline,
+    )>,
+    /// Storage buffers a shader stage may bind on this device.
+    storage_buffers: u32,
 }
 
 /// A band of a map from the device: a byte a point (`shaders/classify.wgsl`) and the whole
@@ -406,6 +418,8 @@ impl Gpu {
             classify: std::sync::OnceLock::new(),
             classifies: device_limits_storage >= 5,
             timestamps,
+            ensemble: std::sync::OnceLock::new(),
+            storage_buffers: device_limits_storage,
         };
         gpu.check()?;
         if trace() {

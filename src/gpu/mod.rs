@@ -2,4 +2,6 @@
 //! The byte layouts, the per-lambda preparation and the shader sources live in `kernel`.
 
 pub mod device;
-pub use device::{choose_summary, list_adapters, AdapterSummary, Gpu, GpuError};
+pub use device::{
+    choose_summary, list_adapters, AdapterSummary, EnsembleSums, Gpu, GpuError, SummitBuffers,
+};

@@ -94,6 +94,68 @@ pub struct ClassifyParams {
     pub _pad: [u32; 3],
 }
 
+/// One summit of an explicit ensemble for `shaders/ensemble64.wgsl`: what its stepping needs,
+/// prepared in f64 on the host (its own context gives the approaches where it jumps). WGSL twin:
+/// `struct Summit` there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct SummitRec {
+    /// Height above the reference plane (m).
+    pub height_m: f64,
+    /// The approach unit (m): delta = (height - separation) / unit.
+    pub unit: f64,
+    /// The force unit pi w R (N).
+    pub force: f64,
+    /// The contact radius unit (m).
+    pub radius: f64,
+    /// pi lambda / 2 (the non-contact branch's load factor).
+    pub half_pi_lambda: f64,
+    /// The Dugdale range 2 / (pi lambda).
+    pub h0: f64,
+    /// C* = 8 lambda / (3 pi).
+    pub c_star: f64,
+    /// C at the contact branch's A -> 0 end.
+    pub c_end: f64,
+    /// Entry into contact on the approach.
+    pub delta_in: f64,
+    /// The contact branch's lowest approach (the fold).
+    pub delta_out: f64,
+    /// The stable non-contact branch's lowest approach (used where `has_nc` is 1).
+    pub delta_nc: f64,
+    /// The deepest approach of the cycle.
+    pub delta_max: f64,
+    /// The Lagrange weights of its four table nodes.
+    pub w: [f64; 4],
+    /// The first of its four table nodes.
+    pub first: u32,
+    /// 1: the summit has a stable non-contact branch.
+    pub has_nc: u32,
+}
+
+/// An ensemble run's parameters (`shaders/ensemble64.wgsl`). WGSL twin: `struct Params` there.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct EnsembleParams {
+    /// Below this graded v the contact state is solved exactly on the host.
+    pub exact_below: f64,
+    /// 1 / the tables' step in v.
+    pub inv_h: f64,
+    /// 2 / U_S of the grading v(u).
+    pub two_over_us: f64,
+    /// Summits.
+    pub summits: u32,
+    /// Separations.
+    pub seps: u32,
+    /// Summits per chunk (one partial sum per chunk and separation).
+    pub chunk: u32,
+    /// Chunks.
+    pub chunks: u32,
+    /// 1: the retract alone.
+    pub retract_only: u32,
+    /// Room for flagged states.
+    pub flag_cap: u32,
+}
+
 /// The kernel variants that benchmarks compare with the shipped one.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct KernelFlags {

@@ -37,6 +37,12 @@ pub fn classify_source() -> String {
     prelude::wgsl_prelude() + include_str!("../../shaders/classify.wgsl")
 }
 
+/// The WGSL source of an explicit ensemble's stepping in f64 (`shaders/ensemble64.wgsl`; its
+/// own module, for adapters with SHADER_F64).
+pub fn ensemble64_source() -> String {
+    prelude::wgsl_prelude() + include_str!("../../shaders/ensemble64.wgsl")
+}
+
 /// The WGSL source of the f64 refinement (a separate module: it needs SHADER_F64), after the
 /// same prelude.
 pub fn polish64_source() -> String {

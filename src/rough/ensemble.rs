@@ -6,6 +6,8 @@
 //! Memory is the summits (two numbers each) and one accumulator per separation and thread: each
 //! summit is taken once, its own context built, and its load at every separation added in.
 
+mod device;
+
 use super::lambda_table::LambdaTables;
 use super::{RoughError, Summit, SummitBranch};
 use crate::engine::{CheckReport, Engine};
@@ -312,11 +314,9 @@ const REFINE_PASSES: usize = 6;
 /// so the minimum is often the limit just before a jump: the search closes in on it from the
 /// side where it is attained.
 fn pulloff(
-    asp: &[Asperity],
-    m: &Materials,
     retract: &EnsembleLeg,
     d_min: f64,
-    tables: Option<&LambdaTables>,
+    sum: &dyn Fn(&[f64], bool) -> Result<Sums, RoughError>,
 ) -> Result<(f64, f64), RoughError> {
     let mut pts: Vec<(f64, f64)> = retract
         .separation_m
@@ -344,7 +344,7 @@ fn pulloff(
         let seps: Vec<f64> = (0..REFINE_POINTS)
             .map(|k| lo + (hi - lo) * k as f64 / (REFINE_POINTS - 1) as f64)
             .collect();
-        let sums = sum_summits(asp, m, &seps, d_min, tables, true)?;
+        let sums = sum(&seps, true)?;
         pts = seps.into_iter().zip(sums.v.iter().map(|v| v[4])).collect();
     }
     Ok(best)
@@ -410,8 +410,53 @@ pub fn cycle_with(
         SummitSolver::Exact => None,
         SummitSolver::Tables => Some(tables_for(asp, m, d_min, engine)?),
     };
+    run_cycle(asp, m, d_min, &seps, tables, engine, t)
+}
+
+/// As [`cycle_with`] with tables, these tables (whose exact stretch next to each fold a test may
+/// widen); `engine` steps the summits where it is a GPU with f64 shaders.
+pub fn cycle_with_tables(
+    asp: &[Asperity],
+    m: &Materials,
+    (d_min, d_max): (f64, Option<f64>),
+    points: usize,
+    tables: LambdaTables,
+    engine: &Engine,
+) -> Result<EnsembleCycle, RoughError> {
+    check(asp)?;
+    let seps = separations(asp, m, d_min, d_max, points)?;
+    run_cycle(
+        asp,
+        m,
+        d_min,
+        &seps,
+        Some(tables),
+        engine,
+        std::time::Instant::now(),
+    )
+}
+
+/// The cycle at separations `seps`, with `tables` or exact, from `t`.
+fn run_cycle(
+    asp: &[Asperity],
+    m: &Materials,
+    d_min: f64,
+    seps: &[f64],
+    tables: Option<LambdaTables>,
+    engine: &Engine,
+    t: std::time::Instant,
+) -> Result<EnsembleCycle, RoughError> {
     let n = seps.len();
-    let sums = sum_summits(asp, m, &seps, d_min, tables.as_ref(), false)?;
+    // With tables on a GPU with f64 shaders the summits are stepped there.
+    let device = match (&tables, engine.gpu_f64()) {
+        (Some(t), Some(g)) => device::OnDevice::new(g, asp, m, d_min, t)?,
+        _ => None,
+    };
+    let sum = |seps: &[f64], retract_only| match &device {
+        Some(dev) => dev.sums(asp, m, seps, retract_only),
+        None => sum_summits(asp, m, seps, d_min, tables.as_ref(), retract_only),
+    };
+    let sums = sum(seps, false)?;
     let total = asp.len() as f64;
     let leg = |off: usize, order: &mut dyn Iterator<Item = usize>| {
         let mut l = EnsembleLeg::default();
@@ -427,8 +472,7 @@ pub fn cycle_with(
     };
     let approach = leg(0, &mut (0..n));
     let retract = leg(4, &mut (0..n).rev());
-    let (pulloff_separation_m, pulloff_force_n) =
-        pulloff(asp, m, &retract, d_min, tables.as_ref())?;
+    let (pulloff_separation_m, pulloff_force_n) = pulloff(&retract, d_min, &sum)?;
     Ok(EnsembleCycle {
         summits: asp.len(),
         pulloff_force_n,
@@ -436,9 +480,10 @@ pub fn cycle_with(
         approach,
         retract,
         summit_states: 2 * (asp.len() * n) as u64,
-        summit_solver: match &tables {
-            None => "exact".to_string(),
-            Some(t) => format!("tables ({})", t.backend),
+        summit_solver: match (&tables, &device) {
+            (None, _) => "exact".to_string(),
+            (Some(t), None) => format!("tables ({})", t.backend),
+            (Some(t), Some(_)) => format!("tables ({}), stepped on the gpu in f64", t.backend),
         },
         table_error: tables.as_ref().map(|t| t.error),
         table_check: tables.and_then(|t| t.check),

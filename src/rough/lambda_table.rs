@@ -31,8 +31,8 @@ const GPU_CHECKS: usize = 1000;
 /// A summit's place on the grid: the first of its four nodes and their Lagrange weights.
 #[derive(Clone, Copy, Debug)]
 pub struct Stencil {
-    first: usize,
-    w: [f64; 4],
+    pub(crate) first: usize,
+    pub(crate) w: [f64; 4],
 }
 
 /// Contact-branch tables (load and A) over a range of lambda.
@@ -41,8 +41,8 @@ pub struct LambdaTables {
     /// ln(lambda) of node 0, and the step.
     x0: f64,
     step: f64,
-    load: Vec<BranchTable>,
-    area: Vec<BranchTable>,
+    pub(crate) load: Vec<BranchTable>,
+    pub(crate) area: Vec<BranchTable>,
     /// Below this v a state is solved exactly (the widest exact stretch of the node tables).
     pub exact_below: f64,
     /// The largest interpolation error measured (in v and in ln lambda), relative to

@@ -45,8 +45,8 @@ const FOLD_REFINE: usize = 16;
 /// Table step in the graded variable v (u = v + v^2 / (2 U_S), u = sqrt(delta - delta_out)).
 pub(crate) const TABLE_H: f64 = 0.025;
 /// 1 / TABLE_H: the quadrature's inner loop multiplies rather than divides.
-const TABLE_INV_H: f64 = 40.0;
-const U_S: f64 = 4.0;
+pub(crate) const TABLE_INV_H: f64 = 40.0;
+pub(crate) const U_S: f64 = 4.0;
 /// The ratio contours drawn and exported.
 pub const CONTOURS: [f64; 3] = [0.5, 0.1, 0.01];
 
@@ -256,6 +256,11 @@ impl BranchTable {
         self.error = errs[first..].iter().fold(self.error, |a, &b| a.max(b));
         self.exact_below = first as f64 * h;
         self.fold = Some(fine);
+    }
+
+    /// The cubic's coefficients per interval in `s = v / TABLE_H - k`, lowest first.
+    pub(crate) fn coef(&self) -> &[[f64; 4]] {
+        &self.coef
     }
 
     /// The spline at `v` (the last interval's cubic beyond the table).

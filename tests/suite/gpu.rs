@@ -926,3 +926,152 @@ fn a_map_classified_on_the_device_is_the_map_of_its_states() {
     assert_eq!((h.checked, h.max_rel_err_a), (d.checked, d.max_rel_err_a));
     assert_eq!(d.over_tolerance, 0);
 }
+
+/// An explicit ensemble's stepping on the device (`shaders/ensemble64.wgsl`) against its CPU
+/// mirror, on made-up summits and tables whose graded v puts many contact states next to their
+/// folds: the same sums (bit for bit on lavapipe) and the same states flagged for the host,
+/// over several chunks of summits, for the whole cycle and for the retract alone.
+#[test]
+fn ensemble_stepping_matches_its_mirror() {
+    use tabor::kernel::cpu::ensemble64::sums;
+    use tabor::kernel::layout::SummitRec;
+    let Some(engine) = gpu_f64() else { return };
+    let g = engine.gpu_f64().expect("an f64 GPU");
+    let mut seed = 12345u64;
+    let mut rnd = move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (nodes_n, intervals) = (12usize, 20usize);
+    let coefs: Vec<[f64; 4]> = (0..2 * nodes_n * intervals)
+        .map(|_| [rnd() - 0.5, rnd() - 0.5, 0.1 * rnd(), 0.01 * rnd()])
+        .collect();
+    let nodes: Vec<[u32; 4]> = (0..nodes_n)
+        .map(|j| {
+            let (l, a) = (2 * j * intervals, (2 * j + 1) * intervals);
+            [l, intervals, a, intervals].map(|x| x as u32)
+        })
+        .collect();
+    let d_min = -1.2e-7;
+    let recs: Vec<SummitRec> = (0..2500)
+        .map(|i| {
+            let height_m = (rnd() - 0.5) * 2e-7;
+            let w0 = rnd() - 0.3;
+            SummitRec {
+                height_m,
+                unit: 1e-9 * (1.0 + rnd()),
+                force: 1e-6,
+                radius: 1e-7,
+                half_pi_lambda: 0.3 + rnd(),
+                h0: 1.0 + rnd(),
+                c_star: 0.4 * rnd(),
+                c_end: 1.5,
+                delta_in: -0.5 - rnd(),
+                delta_out: -2.0 - rnd(),
+                delta_nc: -3.0 - rnd(),
+                delta_max: (height_m - d_min) / 1.5e-9,
+                w: [w0, 0.6, 0.5 - w0, -0.1],
+                first: (i % (nodes_n - 3)) as u32,
+                has_nc: (i % 3 == 0) as u32,
+            }
+        })
+        .collect();
+    let seps: Vec<f64> = (0..37)
+        .map(|k| -1.2e-7 + 2.4e-7 * k as f64 / 36.0)
+        .collect();
+    let b = g
+        .summit_buffers(&recs, &coefs, &nodes, (0.9, 40.0, 0.5))
+        .unwrap();
+    for retract_only in [false, true] {
+        let r = g.summit_sums(&b, &seps, retract_only).unwrap();
+        assert!(r.params.chunks >= 2, "{:?}", r.params);
+        let (want, mut flags) = sums(&recs, &coefs, &nodes, &r.params, &seps);
+        let mut got_flags = r.flagged.clone();
+        got_flags.sort_unstable();
+        flags.sort_unstable();
+        assert!(flags.len() > 100, "{} states flagged", flags.len());
+        assert_eq!(got_flags, flags);
+        let top = want.iter().flatten().fold(0f64, |a, x| a.max(x.abs()));
+        for (k, (a, w)) in r.sums.iter().zip(&want).enumerate() {
+            for q in 0..8 {
+                if bit_exact(g) {
+                    assert_eq!(a[q].to_bits(), w[q].to_bits(), "separation {k}, sum {q}");
+                } else {
+                    assert!(
+                        (a[q] - w[q]).abs() <= 1e-12 * top,
+                        "{k} {q}: {} {}",
+                        a[q],
+                        w[q]
+                    );
+                }
+            }
+            if retract_only {
+                assert_eq!(&a[..4], &[0.0; 4]);
+            }
+        }
+        let contacts: f64 = r.sums.iter().map(|s| s[6]).sum();
+        eprintln!(
+            "ensemble stepping: {} states flagged, {contacts} retract contact states interpolated",
+            flags.len()
+        );
+        assert!(contacts > 1000.0);
+    }
+}
+
+/// The tables' exact stretch next to each fold widened (v below 0.5, where the tables leave
+/// the states to the exact solver): the device flags those states, the host solves them, and
+/// the cycle is the CPU's with the same tables.
+#[test]
+fn ensemble_states_next_to_their_folds_are_solved_on_the_host() {
+    use tabor::physics::params::{Contact, ForceRange};
+    use tabor::rough::ensemble::{cycle_with_tables, Asperity, Materials};
+    use tabor::rough::lambda_table::LambdaTables;
+    let Some(engine) = gpu_f64() else { return };
+    let m = Materials {
+        e_star_pa: 2.4e6,
+        work_of_adhesion_j_m2: 0.044,
+        range: ForceRange::LennardJones(0.3e-9),
+    };
+    let asp: Vec<Asperity> = (0..300)
+        .map(|i| Asperity {
+            height_m: ((i as f64 * 0.754878) % 1.0 - 0.5) * 0.4e-6,
+            radius_m: 2e-6 * 10f64.powf((i as f64 * 0.618034) % 1.0),
+        })
+        .collect();
+    let d_min = -0.2e-6;
+    let (mut lo, mut hi, mut deepest) = (f64::INFINITY, 0f64, f64::NEG_INFINITY);
+    for a in &asp {
+        let c = Contact::new(a.radius_m, m.e_star_pa, m.work_of_adhesion_j_m2, m.range).unwrap();
+        (lo, hi) = (lo.min(c.lambda()), hi.max(c.lambda()));
+        deepest = deepest.max((a.height_m - d_min) / c.approach_scale());
+    }
+    let tables = || {
+        let mut t = LambdaTables::new(lo, hi, deepest, &Engine::Cpu).unwrap();
+        t.exact_below = 0.5;
+        t
+    };
+    let run = |e: &Engine| cycle_with_tables(&asp, &m, (d_min, None), 50, tables(), e).unwrap();
+    let (cpu, gpu) = (run(&Engine::Cpu), run(&engine));
+    assert!(
+        gpu.summit_solver.contains("stepped on the gpu"),
+        "{}",
+        gpu.summit_solver
+    );
+    let top = cpu.retract.force_n.iter().fold(0f64, |a, f| a.max(f.abs()));
+    for (a, b) in [(&cpu.approach, &gpu.approach), (&cpu.retract, &gpu.retract)] {
+        assert_eq!(a.contact_fraction, b.contact_fraction);
+        assert_eq!(a.noncontact_fraction, b.noncontact_fraction);
+        for (x, y) in a.force_n.iter().zip(&b.force_n) {
+            assert!((x - y).abs() <= 1e-12 * top, "cpu {x}, gpu {y}");
+        }
+        for (x, y) in a.real_contact_area_m2.iter().zip(&b.real_contact_area_m2) {
+            assert!(
+                (x - y).abs() <= 1e-12 * x.abs().max(1e-30),
+                "cpu {x}, gpu {y}"
+            );
+        }
+    }
+    assert!((cpu.pulloff_force_n - gpu.pulloff_force_n).abs() <= 1e-12 * top);
+}
