@@ -99,15 +99,20 @@ def main():
             for _ in range(a.runs):
                 for b in bins:
                     for backend in ("gpu", "cpu"):
-                        w, rss, err = run([b, *args, "--backend", backend])
+                        w, rss, err = run([b, *args, "--backend", backend], fail_ok=True)
+                        if w is None:
+                            print(f"    {b} {backend} failed: {err.strip().splitlines()[-1:]}")
+                            continue
                         walls.setdefault((b, backend), []).append((w, rss, err))
             for b in bins:
                 tag = f"{os.path.basename(os.path.dirname(b)) or b}"
                 env = dict(os.environ, TABOR_GPU_TRACE="1")
-                _, _, trace = run([b, *args, "--backend", "gpu"], env)
+                _, _, trace = run([b, *args, "--backend", "gpu"], env, fail_ok=True)
                 safe = "".join(c if c.isalnum() else "-" for c in name)
                 with open(os.path.join(a.out, f"trace-{tag}-{safe}.txt"), "w") as f:
                     f.write(trace)
+                if (b, "gpu") not in walls or (b, "cpu") not in walls:
+                    continue
                 g, c = walls[(b, "gpu")], walls[(b, "cpu")]
                 gm = statistics.median(x[0] for x in g)
                 cm = statistics.median(x[0] for x in c)
