@@ -171,7 +171,7 @@ fn py_named(c: &(dyn std::error::Error + 'static), names: tabor::error::Names) -
     None
 }
 
-fn backend_of(s: &str) -> PyResult<Backend> {
+pub(crate) fn backend_of(s: &str) -> PyResult<Backend> {
     match s {
         "cpu" => Ok(Backend::Cpu),
         "gpu" => Ok(Backend::Gpu),

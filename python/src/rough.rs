@@ -233,10 +233,18 @@ fn ensemble_dict<'py>(
     Ok(d)
 }
 
+/// The engine of an ensemble's tables and stepping, as `tabor rough --backend` chooses it (f64
+/// where the adapter has it).
+fn table_engine(backend: tabor::engine::Backend) -> anyhow::Result<tabor::engine::Engine> {
+    let (mut e, _) = tabor::engine::Engine::select(backend, None)?;
+    let _ = e.set_precision(tabor::engine::Precision::F64);
+    Ok(e)
+}
+
 /// An explicit ensemble of summits in SI (heights and radii in m) with a rough scene's
-/// materials, as `tabor rough --asperities` computes it (tables or exact, on the CPU).
+/// materials, as `tabor rough --asperities` computes it (tables or exact; on `backend`).
 #[pyfunction]
-#[pyo3(signature = (heights_m, radii_m, scene_json, preset, min_separation_m, points, summits))]
+#[pyo3(signature = (heights_m, radii_m, scene_json, preset, min_separation_m, points, summits, backend))]
 #[allow(clippy::too_many_arguments)]
 pub fn rough_asperities<'py>(
     py: Python<'py>,
@@ -247,8 +255,10 @@ pub fn rough_asperities<'py>(
     min_separation_m: Option<f64>,
     points: usize,
     summits: String,
+    backend: String,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::rough::ensemble::{asperities, EnsembleSpec};
+    let backend = crate::backend_of(&backend)?;
     let c = run(py, move || {
         let scene = scene_of(scene_json, preset)?;
         let asp = asperities(&heights_m, &radii_m)?;
@@ -257,7 +267,7 @@ pub fn rough_asperities<'py>(
             points,
             solver: summits.parse()?,
         };
-        Ok(spec.run(&scene, &asp, &tabor::engine::Engine::Cpu)?)
+        Ok(spec.run(&scene, &asp, &table_engine(backend)?)?)
     })?;
     ensemble_dict(py, &c)
 }
@@ -265,7 +275,7 @@ pub fn rough_asperities<'py>(
 /// The summits of a measured height map (rows of `nx` heights in m, `pixel_m` apart) through
 /// the cycle, as `tabor rough --topography --pixel-m` computes it.
 #[pyfunction]
-#[pyo3(signature = (z, nx, pixel_m, scene_json, preset, min_separation_m, points, summits))]
+#[pyo3(signature = (z, nx, pixel_m, scene_json, preset, min_separation_m, points, summits, backend))]
 #[allow(clippy::too_many_arguments)]
 pub fn rough_topography<'py>(
     py: Python<'py>,
@@ -277,8 +287,10 @@ pub fn rough_topography<'py>(
     min_separation_m: Option<f64>,
     points: usize,
     summits: String,
+    backend: String,
 ) -> PyResult<Bound<'py, PyDict>> {
     use tabor::rough::ensemble::{topography_summits, EnsembleSpec};
+    let backend = crate::backend_of(&backend)?;
     let c = run(py, move || {
         let scene = scene_of(scene_json, preset)?;
         let asp = topography_summits(&z, nx, pixel_m)?;
@@ -287,7 +299,7 @@ pub fn rough_topography<'py>(
             points,
             solver: summits.parse()?,
         };
-        Ok(spec.run(&scene, &asp, &tabor::engine::Engine::Cpu)?)
+        Ok(spec.run(&scene, &asp, &table_engine(backend)?)?)
     })?;
     ensemble_dict(py, &c)
 }

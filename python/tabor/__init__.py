@@ -1743,7 +1743,7 @@ def rough_scene(scene=None, preset=None, points=400):
 
 
 def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation_m=None,
-                     points=400, summits="tables"):
+                     points=400, summits="tables", backend="cpu"):
     """An explicit ensemble of summits in SI units, as ``tabor rough --asperities`` computes
     it: each summit its own radius, lambda and history.
 
@@ -1765,6 +1765,9 @@ def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation
     summits : {"tables", "exact"}
         ``tables`` (default) takes the contact states from tables over the summits' lambdas
         with their error measured (``table_error``); ``exact`` solves every state.
+    backend : {"cpu", "gpu", "auto"}
+        Where the tables are solved and, on a GPU with f64 shaders, the summits stepped
+        (``tabor rough --backend``); ``cpu`` (default) is the f64 solver on all cores.
 
     Returns
     -------
@@ -1796,11 +1799,11 @@ def rough_asperities(heights_m, radii_m, scene=None, preset=None, min_separation
         raise ValueError(f"points = {points}: give a count >= 2")
     return _tabor.rough_asperities(h.tolist(), r.tolist(), text,
                                    None if preset is None else str(preset), d_min, int(points),
-                                   str(summits))
+                                   str(summits), str(backend))
 
 
 def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation_m=None,
-                     points=400, summits="tables"):
+                     points=400, summits="tables", backend="cpu"):
     """A measured height map as ``tabor rough --topography --pixel-m`` takes it: its summits are
     the pixels above their eight neighbours, with the radius from the mean curvature there (as
     Greenwood and Williamson did), then the cycle of :func:`rough_asperities`.
@@ -1811,7 +1814,7 @@ def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation
         A 2-D height map in m.
     pixel_m : float
         The pixel spacing in m.
-    scene, preset, min_separation_m, points, summits
+    scene, preset, min_separation_m, points, summits, backend
         As :func:`rough_asperities`.
 
     Returns
@@ -1842,7 +1845,7 @@ def rough_topography(heights_m, pixel_m, scene=None, preset=None, min_separation
     return _tabor.rough_topography(np.ascontiguousarray(z).ravel().tolist(), int(z.shape[1]),
                                    _real(pixel_m, "pixel_m"), text,
                                    None if preset is None else str(preset), d_min, int(points),
-                                   str(summits))
+                                   str(summits), str(backend))
 
 
 def rough_pulloff(lambdas=(0.01, 0.1, 1.0, 1000.0), sigma_min=0.01, sigma_max=10.0, points=24,

@@ -1,6 +1,7 @@
 """Rough surfaces from Python: the same numbers as the command line, and explicit ensembles."""
 
 import json
+import os
 import pathlib
 import subprocess
 
@@ -300,3 +301,28 @@ def test_a_rough_cycles_advice_names_its_own_arguments():
     assert "give a larger max_separation, or none" in r["warnings"][0]
     assert "give more points to draw it" in r["warnings"][1]
     assert not any("--" in w for w in r["warnings"])
+
+
+def test_asperities_stepped_on_the_gpu_are_the_cpu_ensemble():
+    # The summits stepped on the device (f64 shaders) give the CPU's cycle within 1e-12 of the
+    # largest force; without an adapter this skips (fails under TABOR_REQUIRE_GPU=1).
+    try:
+        tabor.solve(1.0, load=0.5, backend="gpu")
+    except ValueError as e:
+        if os.environ.get("TABOR_REQUIRE_GPU") == "1":
+            pytest.fail(f"TABOR_REQUIRE_GPU=1 but no GPU adapter: {e}")
+        pytest.skip(f"SKIPPED: no GPU adapter ({e}); set TABOR_REQUIRE_GPU=1 to make this a failure")
+    rng = np.random.default_rng(5)
+    h = rng.normal(0.0, 50e-9, 300)
+    r = 2e-6 * np.exp(rng.normal(0.0, 0.5, 300))
+    cpu = tabor.rough_asperities(h, r, preset="pdms-rough-glass", points=40)
+    gpu = tabor.rough_asperities(h, r, preset="pdms-rough-glass", points=40, backend="gpu")
+    assert "stepped on the gpu" in gpu["summit_solver"], gpu["summit_solver"]
+    top = np.abs(cpu["retract"]["force_n"]).max()
+    for leg in ["approach", "retract"]:
+        np.testing.assert_array_equal(gpu[leg]["contact_fraction"], cpu[leg]["contact_fraction"])
+        np.testing.assert_allclose(gpu[leg]["force_n"], cpu[leg]["force_n"], rtol=0,
+                                   atol=1e-12 * top)
+    assert gpu["pulloff_force_n"] == pytest.approx(cpu["pulloff_force_n"], rel=1e-12)
+    with pytest.raises(ValueError, match="backend"):
+        tabor.rough_asperities(h, r, preset="pdms-rough-glass", points=40, backend="tpu")

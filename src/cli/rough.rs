@@ -50,7 +50,7 @@ pub struct RoughArgs {
     #[arg(long, value_enum)]
     pub summits: Option<SummitsArg>,
     /// Where an ensemble's tables are solved [default: auto, or the environment variable
-    /// TABOR_BACKEND]; the summits are stepped on the CPU.
+    /// TABOR_BACKEND]; with tables on a GPU with f64 shaders its summits are stepped there too.
     #[arg(long, value_enum)]
     pub backend: Option<super::BackendArg>,
     /// Use the first adapter whose name contains this text (see `tabor info`).
