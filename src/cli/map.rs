@@ -204,6 +204,10 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
             t_run.elapsed().as_secs_f64() - t.elapsed().as_secs_f64(),
             t.elapsed().as_secs_f64()
         );
+    } else if matches!(engine, crate::engine::Engine::Gpu(_)) {
+        // The command ends here, every output committed: the process's exit frees the device,
+        // and closing it first cost an H200 system 0.057 s of a 0.5 s map (traced).
+        std::mem::forget(engine);
     }
     Ok(())
 }
