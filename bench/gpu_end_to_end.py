@@ -63,6 +63,7 @@ def workloads(d, scattered, grid, asp):
 
 def run(cmd, env=None, fail_ok=False):
     t = time.perf_counter()
+    # A file, not DEVNULL: builds before 2026-11-29 took a read-write /dev/null for a closed stdout.
     with tempfile.TemporaryFile() as out:
         p = subprocess.Popen(cmd, stdout=out, stderr=subprocess.PIPE, env=env)
         err = p.stderr.read().decode(errors="replace")

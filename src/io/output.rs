@@ -287,23 +287,37 @@ where
     Ok(())
 }
 
-/// True if the process was started with stdout closed (`tabor ... >&-`). The Rust runtime then
-/// puts /dev/null, opened read-write, on descriptor 1, and every result written there would be
-/// lost with exit status 0; a shell's `> /dev/null` opens it write-only. Linux only (elsewhere
-/// false).
+/// Whether descriptor 1 was closed when the process started, read before the Rust runtime
+/// puts /dev/null there (it does so in `main`'s set-up; `.init_array` functions run earlier).
+#[cfg(target_os = "linux")]
+static STDOUT_CLOSED_AT_START: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+#[cfg(target_os = "linux")]
+#[used]
+#[link_section = ".init_array"]
+static LOOK_AT_STDOUT: extern "C" fn() = {
+    extern "C" fn look() {
+        extern "C" {
+            fn fcntl(fd: i32, cmd: i32, ...) -> i32;
+        }
+        const F_GETFD: i32 = 1;
+        // SAFETY: F_GETFD reads a descriptor's flags and changes nothing.
+        if unsafe { fcntl(1, F_GETFD) } == -1 {
+            STDOUT_CLOSED_AT_START.store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+    }
+    look
+};
+
+/// True if the process was started with stdout closed (`tabor ... >&-`): every result written
+/// there would be lost with exit status 0. The descriptor is looked at before the Rust runtime
+/// puts /dev/null on it, so a /dev/null the caller gave (`> /dev/null`, or read-write as
+/// Python's `subprocess.DEVNULL`) is not mistaken for it. Linux only (elsewhere false).
 pub fn stdout_was_closed() -> bool {
     #[cfg(target_os = "linux")]
     {
-        let null = std::fs::read_link("/proc/self/fd/1").is_ok_and(|t| t == Path::new("/dev/null"));
-        // fdinfo's flags are octal; O_ACCMODE is 3 and O_RDWR 2.
-        let read_write = || {
-            let info = std::fs::read_to_string("/proc/self/fdinfo/1").unwrap_or_default();
-            info.lines()
-                .find_map(|l| l.strip_prefix("flags:"))
-                .and_then(|f| u32::from_str_radix(f.trim(), 8).ok())
-                .is_some_and(|f| f & 3 == 2)
-        };
-        null && read_write()
+        STDOUT_CLOSED_AT_START.load(std::sync::atomic::Ordering::Relaxed)
     }
     #[cfg(not(target_os = "linux"))]
     false

@@ -547,12 +547,18 @@ fn closed_pipes_end_quietly_and_full_disks_are_errors() {
 }
 
 /// `tabor solve ... >&-`: stdout closed before tabor starts. The results would vanish, so it
-/// must not exit 0; a plain `> /dev/null` is the user's choice and succeeds.
+/// must not exit 0; `/dev/null` given by the caller, write-only or read-write, is the user's
+/// choice and succeeds.
 #[cfg(target_os = "linux")]
 #[test]
 fn a_closed_stdout_is_an_error_and_dev_null_is_not() {
     let exe = env!("CARGO_BIN_EXE_tabor");
-    for (redirect, code) in [(">&-", Some(1)), ("> /dev/null", Some(0))] {
+    // `1<> /dev/null` is how a program's caller often discards it (Python's subprocess.DEVNULL).
+    for (redirect, code) in [
+        (">&-", Some(1)),
+        ("> /dev/null", Some(0)),
+        ("1<> /dev/null", Some(0)),
+    ] {
         let o = Command::new("sh")
             .arg("-c")
             .arg(format!(
@@ -575,7 +581,10 @@ fn a_closed_stdout_is_an_error_and_dev_null_is_not() {
 
 #[test]
 fn sizes_beyond_the_memory_bound_are_refused_up_front() {
-    refused(&["map", "--nx", "16384", "--ny", "16384"], "4096 x 4096");
+    refused(
+        &["map", "--nx", "16384", "--ny", "16384", "--quantity", "a"],
+        "4096 x 4096",
+    );
     refused(
         &["curve", "--lambda", "1", "--points", "100000000"],
         "--points",
