@@ -51,7 +51,7 @@ fn main() {
     );
     // A map's classification on the device.
     let classify = prelude.clone() + &read("shaders/classify.wgsl");
-    validate("shaders/classify.wgsl", &classify, Capabilities::default());
+    validate("shaders/classify.wgsl", &classify, Capabilities::FLOAT64);
     // An explicit ensemble's stepping, in f64.
     let ensemble = prelude.clone() + &read("shaders/ensemble64.wgsl");
     validate("shaders/ensemble64.wgsl", &ensemble, Capabilities::FLOAT64);

@@ -44,7 +44,8 @@ struct Params {
 
 struct Flags {
     count: atomic<u32>,
-    pad: u32,
+    // 1 once a state found no room: the host then steps the summits itself.
+    over: atomic<u32>,
     // (summit, separation | leg << 31), leg 1 the retract.
     entries: array<vec2<u32>>,
 }
@@ -93,6 +94,8 @@ fn add_state(acc: ptr<function, array<f64, 8>>, s: Summit, i: u32, k: u32, leg: 
             let at = atomicAdd(&flags.count, 1u);
             if at < params.flag_cap {
                 flags.entries[at] = vec2<u32>(i, k | (leg << 31u));
+            } else {
+                atomicMax(&flags.over, 1u);
             }
             return;
         }

@@ -205,7 +205,8 @@ impl Engine {
     }
 
     /// Whether [`Engine::classify_grid`] runs here: a GPU with the f32 kernels alone (with the
-    /// f64 refinement the states come back whole) and the bindings the classification needs.
+    /// f64 refinement the states come back whole), f64 shaders (the classification is the
+    /// host's, in f64) and the bindings it needs.
     pub fn classifies(&self) -> bool {
         matches!(self, Engine::Gpu(g) if g.classifies && !g.refine_f64)
     }
@@ -261,7 +262,7 @@ fn classify_on_gpu(
     let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
     let starts = Starts::new(&started, &prepared);
     let t_starts = t0.elapsed().as_secs_f64();
-    let c = g.grid_classified(&prepared, &starts, &rows, tol, picks)?;
+    let c = g.grid_classified(&prepared, &starts, &rows, (lambdas, loads), tol, picks)?;
     let nx = lambdas.len();
     // Lambdas outside the kernels' domain are solved on the CPU in f64, as `finish` does.
     let cpu = |i: usize| {

@@ -128,6 +128,15 @@ pub fn run(a: MapArgs) -> anyhow::Result<()> {
         // device); a map of a quantity colours every point, a tip's keeps them all.
         records: a.quantity.is_some() || a.tip.is_some(),
     };
+    let points = spec.nx * spec.ny;
+    if a.tip.is_some() && points > crate::map::MAX_MAP_POINTS {
+        anyhow::bail!(
+            "--nx {} x --ny {} is {points} points, more than the {} (4096 x 4096) a tip's map holds in memory (every point's values are kept); use fewer points, or split the range into several maps",
+            spec.nx,
+            spec.ny,
+            crate::map::MAX_MAP_POINTS
+        );
+    }
     spec.validate_with(&opts)
         .map_err(|e| super::in_flags(&e, super::MAP_FLAGS))?;
     let figure = a.figure.outputs(Some(&a.out), "--out")?;

@@ -254,7 +254,7 @@ pub struct Gpu {
     /// The map's classification (`shaders/classify.wgsl`): its bindings and pipeline, built on
     /// first use.
     classify: std::sync::OnceLock<(wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
-    /// The device binds the five storage buffers the classification needs.
+    /// The device runs the map's classification: f64 shaders, five storage buffers.
     pub classifies: bool,
     /// Traced runs time their passes by timestamp queries (the adapter has them).
     timestamps: bool,
@@ -416,7 +416,7 @@ impl Gpu {
             error,
             prepared: Mutex::new(None),
             classify: std::sync::OnceLock::new(),
-            classifies: device_limits_storage >= 5,
+            classifies: device_limits_storage >= 5 && f64_ok,
             timestamps,
             ensemble: std::sync::OnceLock::new(),
             storage_buffers: device_limits_storage,

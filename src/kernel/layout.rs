@@ -72,26 +72,24 @@ pub struct Params {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct ClassifyParams {
+    /// (1 - tol)^3.
+    pub cube_lo: f64,
+    /// (1 + tol)^3.
+    pub cube_hi: f64,
+    /// The tolerance.
+    pub tol: f64,
     /// Grid columns.
     pub nx: u32,
-    /// The dispatch's first point (a multiple of 4: four marks to a word).
+    /// The dispatch's first point.
     pub offset: u32,
     /// Points in this dispatch.
     pub count: u32,
-    /// Words per lambda record ([`GpuLambda`]); its first word is lambda.
-    pub lambda_words: u32,
     /// Results to copy out whole.
     pub picks: u32,
     /// Words of marks in the output; the picked results follow.
     pub marks_words: u32,
-    /// (1 - tol)^3.
-    pub cube_lo: f32,
-    /// (1 + tol)^3.
-    pub cube_hi: f32,
-    /// The tolerance.
-    pub tol: f32,
     /// Padding to 16 bytes.
-    pub _pad: [u32; 3],
+    pub _pad: u32,
 }
 
 /// One summit of an explicit ensemble for `shaders/ensemble64.wgsl`: what its stepping needs,

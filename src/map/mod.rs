@@ -835,7 +835,9 @@ impl MapData {
     }
 
     /// The state at point `i` from the compact records, as figures draw it (the same figure
-    /// whether or not the f64 values were kept).
+    /// whether or not the f64 values were kept). A map that kept the contour grid's records
+    /// alone (`points.stride > 1`) has them only at its points: elsewhere this is the state of
+    /// the grid point below and left of `i`, labelled with `i`'s lambda and load.
     pub fn drawn(&self, i: usize) -> State {
         let j = self.points.slot(i, self.spec.nx);
         let (a, approach, m_minus_1) = (

@@ -24,6 +24,10 @@ const REFUSALS: &[(&str, &str)] = &[
         r"--nx 5000 x --ny 5000 is 25000000 points, more than the 16777216 (4096 x 4096) a map holds in memory (about 300 MB, or 700 MB with --npy or --json-full), a map of regions alone (without --quantity, --npy or --json-full) up to 16384 x 16384; use fewer points, or split the range into several maps",
     ),
     (
+        r"map --nx 5000 --ny 5000 --tip cone --out o.png",
+        r"--nx 5000 x --ny 5000 is 25000000 points, more than the 16777216 (4096 x 4096) a tip's map holds in memory (every point's values are kept); use fewer points, or split the range into several maps",
+    ),
+    (
         r"map --load-min 5 --load-max 1 --out o.png",
         r"--load-min must be below --load-max, got 5 and 1",
     ),

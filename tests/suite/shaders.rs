@@ -3,7 +3,8 @@
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use tabor::kernel::layout::{
-    Branch, ClassifyParams, GpuLambda, Lambda64, Out, Out64, Params, Point64,
+    Branch, ClassifyParams, EnsembleParams, GpuLambda, Lambda64, Out, Out64, Params, Point64,
+    SummitRec,
 };
 
 fn parse(src: &str) -> naga::Module {
@@ -96,13 +97,26 @@ fn f64_module_validates_and_matches_rust_layout() {
 #[test]
 fn classify_module_validates_and_matches_rust_layout() {
     let m = parse(&tabor::kernel::classify_source());
-    Validator::new(ValidationFlags::all(), Capabilities::default())
+    Validator::new(ValidationFlags::all(), Capabilities::FLOAT64)
         .validate(&m)
         .unwrap_or_else(|e| panic!("{e:?}"));
     assert_eq!(
         wgsl_size(&m, "Params"),
         std::mem::size_of::<ClassifyParams>()
     );
+}
+
+/// An ensemble's stepping validates as an f64 module, and its structs match the Rust ones.
+#[test]
+fn ensemble_module_validates_and_matches_rust_layout() {
+    let m = f64_module(&tabor::kernel::ensemble64_source());
+    assert_eq!(wgsl_size(&m, "Summit"), std::mem::size_of::<SummitRec>());
+    assert_eq!(
+        wgsl_size(&m, "Params"),
+        std::mem::size_of::<EnsembleParams>()
+    );
+    let entries: Vec<_> = m.entry_points.iter().map(|e| e.name.as_str()).collect();
+    assert_eq!(entries, ["sum_chunks", "reduce"]);
 }
 
 /// The value of a named WGSL `const` of `m` (a scalar literal).

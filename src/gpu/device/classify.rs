@@ -8,11 +8,13 @@ use crate::kernel::start::Starts;
 use crate::solver::Control;
 use wgpu::util::DeviceExt;
 
-/// A dispatch's buffers: the solver's (lambdas, rows, results), the picks' indices, and the
-/// marks with the picked results, and their staging copy.
+/// A dispatch's buffers: the solver's (lambdas, rows, results), the f64 lambdas and loads, the
+/// picks' indices, and the marks with the picked results, and their staging copy.
 struct Bufs {
     lambdas: wgpu::Buffer,
     rows: wgpu::Buffer,
+    lambdas64: wgpu::Buffer,
+    loads64: wgpu::Buffer,
     states: wgpu::Buffer,
     pick: wgpu::Buffer,
     out: wgpu::Buffer,
@@ -57,16 +59,21 @@ impl Gpu {
     }
 
     /// Solves the grid `lambdas x rows` (row-major, one row per load; load control) and
-    /// classifies each point on the device with tolerance `tol`: returns a byte a point and
-    /// the kernel's results at `picks` (point indices, ascending).
+    /// classifies each point on the device with tolerance `tol`, on the f64 lambdas and loads
+    /// `grid64` (needs f64 shaders): returns a byte a point and the kernel's results at `picks`
+    /// (point indices, ascending).
     pub fn grid_classified(
         &self,
         lambdas: &[GpuLambda],
         starts: &Starts,
         rows: &[(f32, f32)],
+        grid64: (&[f64], &[f64]),
         tol: f64,
         picks: &[usize],
     ) -> Result<Classified, GpuError> {
+        if !self.classifies {
+            return Err(GpuError::NoF64(self.adapter.name.clone()));
+        }
         let t0 = std::time::Instant::now();
         let mut words: Vec<u32> = rows
             .iter()
@@ -96,10 +103,9 @@ impl Gpu {
         if chunk < total {
             chunk = (chunk / 4).max(1) * 4;
         }
-        let b = self.classify_buffers(&lambdas, &words, chunk, picks.len().min(chunk));
+        let b = self.classify_buffers(&lambdas, &words, grid64, chunk, picks.len().min(chunk));
         let base = ClassifyParams {
             nx: nx as u32,
-            lambda_words: (std::mem::size_of::<GpuLambda>() / 4) as u32,
             ..crate::kernel::cpu::classify::params(tol)
         };
         let (mut start, mut next_pick) = (0usize, 0usize);
@@ -136,6 +142,7 @@ impl Gpu {
         &self,
         lambdas: &[GpuLambda],
         rows: &[u32],
+        (lambdas64, loads64): (&[f64], &[f64]),
         chunk: usize,
         picks: usize,
     ) -> Bufs {
@@ -160,6 +167,8 @@ impl Gpu {
         Bufs {
             lambdas: init("lambdas", bytemuck::cast_slice(lambdas)),
             rows: init("rows", bytemuck::cast_slice(rows)),
+            lambdas64: init("lambdas64", bytemuck::cast_slice(lambdas64)),
+            loads64: init("loads64", bytemuck::cast_slice(loads64)),
             states: buffer("states", chunk * std::mem::size_of::<Out>(), U::STORAGE),
             pick: buffer("picks", picks.max(1) * 4, U::STORAGE | U::COPY_DST),
             out: buffer("marks", out_bytes, U::STORAGE | U::COPY_SRC),
@@ -213,7 +222,14 @@ impl Gpu {
         let solve_group = group(&self.layout, &[&sparams, &b.lambdas, &b.rows, &b.states]);
         let classify_group = group(
             layout,
-            &[&cparams, &b.lambdas, &b.rows, &b.states, &b.pick, &b.out],
+            &[
+                &cparams,
+                &b.lambdas64,
+                &b.loads64,
+                &b.states,
+                &b.pick,
+                &b.out,
+            ],
         );
         if !local.is_empty() {
             self.queue

@@ -140,6 +140,13 @@ impl Gpu {
             flag_cap: cap as u32,
             ..b.params
         };
+        let largest = (chunks * ns * 64).max(8 + cap * 8) as u64;
+        if largest > self.max_binding {
+            return Err(GpuError::TooLarge(format!(
+                "an ensemble's sums need {largest} bytes, more than this adapter binds ({})",
+                self.max_binding
+            )));
+        }
         let (layout, sum_chunks, reduce) = self.ensemble_pipelines();
         self.check()?;
         let d = &self.device;
@@ -208,8 +215,11 @@ impl Gpu {
         self.read_back(&staging, sum_bytes + 8, t0, &mut raw)?;
         staging.unmap();
         let out: Vec<f64> = bytemuck::pod_collect_to_vec(&raw[..sum_bytes as usize]);
-        let count = u32::from_le_bytes(raw[sum_bytes as usize..][..4].try_into().unwrap()) as usize;
-        if count > cap {
+        let word = |k: usize| {
+            u32::from_le_bytes(raw[sum_bytes as usize + 4 * k..][..4].try_into().unwrap())
+        };
+        let (count, over) = (word(0) as usize, word(1));
+        if over != 0 || count > cap {
             return Err(GpuError::TooLarge(format!(
                 "{count} summit states next to their folds, more than the {cap} the device keeps"
             )));

@@ -1,27 +1,27 @@
 //! The CPU mirror of `shaders/classify.wgsl`: a solved grid point's region and adequate models
-//! as one byte, in f32 as the kernel computes them. Read it side by side with the shader.
+//! as one byte, in f64 on the f32 state, as the kernel computes them. Read it side by side with
+//! the shader.
 
 use crate::kernel::layout::{ClassifyParams, Out};
 
-/// The kernel's parameters for a tolerance (the cubes in f64, then rounded, as the host does).
+/// The kernel's parameters for a tolerance.
 pub fn params(tol: f64) -> ClassifyParams {
     ClassifyParams {
+        cube_lo: (1.0 - tol).powi(3),
+        cube_hi: (1.0 + tol).powi(3),
+        tol,
         nx: 0,
         offset: 0,
         count: 0,
-        lambda_words: 0,
         picks: 0,
         marks_words: 0,
-        cube_lo: (1.0 - tol).powi(3) as f32,
-        cube_hi: (1.0 + tol).powi(3) as f32,
-        tol: tol as f32,
-        _pad: [0; 3],
+        _pad: 0,
     }
 }
 
-/// The byte of one result `o` at `lambda` and load `p` (the row's f32 load): the region in
-/// bits 0-2 (`map::Region` as u8) and the adequate models in bits 3-6 (Hertz, rigid, DMT, JKR).
-pub fn mark(o: &Out, lambda: f32, p: f32, c: &ClassifyParams) -> u8 {
+/// The byte of one result `o` at `lambda` and load `p`: the region in bits 0-2 (`map::Region`
+/// as u8) and the adequate models in bits 3-6 (Hertz, rigid, DMT, JKR).
+pub fn mark(o: &Out, lambda: f64, p: f64, c: &ClassifyParams) -> u8 {
     let status = o.code & 0xff;
     if status == 1 {
         return 0;
@@ -29,23 +29,22 @@ pub fn mark(o: &Out, lambda: f32, p: f32, c: &ClassifyParams) -> u8 {
     if status != 0 {
         return 6;
     }
-    let (a, approach) = (o.a, o.other);
+    let (a, approach) = (o.a as f64, o.other as f64);
     let a3 = a * a * a;
     let lo = c.cube_lo * a3;
     let hi = c.cube_hi * a3;
-    let within = |m3: f32| m3 >= lo && m3 <= hi;
+    let within = |m3: f64| m3 >= lo && m3 <= hi;
     let mut bits = 0u8;
     if p >= 0.0 && p >= lo && p <= hi {
         bits |= 1;
     }
-    if std::f32::consts::FRAC_PI_2 * lambda * (a * a).max(approach.abs()) <= c.tol {
+    if std::f64::consts::FRAC_PI_2 * lambda * (a * a).max(approach.abs()) <= c.tol {
         bits |= 2;
     }
     if within(p + 2.0) {
         bits |= 4;
     }
-    let jkr = p + 3.0 + (9.0 + 6.0 * p).max(0.0).sqrt();
-    if p >= -1.5 && within(jkr) {
+    if p >= -1.5 && within(p + 3.0 + (9.0 + 6.0 * p).max(0.0).sqrt()) {
         bits |= 8;
     }
     let region = if bits != 0 {

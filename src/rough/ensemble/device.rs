@@ -17,6 +17,8 @@ use std::f64::consts::PI;
 pub(super) struct OnDevice<'a> {
     gpu: &'a Gpu,
     bufs: SummitBuffers,
+    d_min: f64,
+    tables: &'a LambdaTables,
 }
 
 fn contact(a: &Asperity, m: &Materials) -> Result<Contact, RoughError> {
@@ -62,7 +64,7 @@ impl<'a> OnDevice<'a> {
         asp: &[Asperity],
         m: &Materials,
         d_min: f64,
-        t: &LambdaTables,
+        t: &'a LambdaTables,
     ) -> Result<Option<OnDevice<'a>>, RoughError> {
         let recs = asp
             .par_iter()
@@ -77,7 +79,12 @@ impl<'a> OnDevice<'a> {
         }
         let grading = (t.exact_below, TABLE_INV_H, 2.0 / U_S);
         match gpu.summit_buffers(&recs, &coefs, &nodes, grading) {
-            Ok(bufs) => Ok(Some(OnDevice { gpu, bufs })),
+            Ok(bufs) => Ok(Some(OnDevice {
+                gpu,
+                bufs,
+                d_min,
+                tables: t,
+            })),
             Err(GpuError::TooLarge(_) | GpuError::NoF64(_)) => Ok(None),
             Err(e) => Err(RoughError::Scene(e.to_string().into())),
         }
@@ -92,10 +99,22 @@ impl<'a> OnDevice<'a> {
         seps: &[f64],
         retract_only: bool,
     ) -> Result<Sums, RoughError> {
-        let r = self
-            .gpu
-            .summit_sums(&self.bufs, seps, retract_only)
-            .map_err(|e| RoughError::Scene(e.to_string().into()))?;
+        let r = match self.gpu.summit_sums(&self.bufs, seps, retract_only) {
+            Ok(r) => r,
+            // More states next to their folds than the device keeps, or sums larger than it
+            // binds: the CPU steps these separations.
+            Err(GpuError::TooLarge(_)) => {
+                return super::sum_summits(
+                    asp,
+                    m,
+                    seps,
+                    self.d_min,
+                    Some(self.tables),
+                    retract_only,
+                )
+            }
+            Err(e) => return Err(RoughError::Scene(e.to_string().into())),
+        };
         let mut sums = Sums { v: r.sums };
         // The flagged states by summit (sorted: the same sums whatever the device's order).
         let mut flagged = r.flagged;
