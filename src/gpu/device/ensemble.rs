@@ -71,6 +71,13 @@ impl Gpu {
         })
     }
 
+    /// Whether `summits` summits fit one binding (checked before their records are built).
+    pub fn holds_summits(&self, summits: usize) -> bool {
+        self.f64
+            && self.storage_buffers >= 8
+            && (summits * std::mem::size_of::<SummitRec>()) as u64 <= self.max_binding
+    }
+
     /// Uploads an ensemble: its summits, and per node table (load, then area) its cubic
     /// coefficients, `nodes` giving each node's (first, intervals) of its load and area tables.
     /// `exact_below`, `inv_h` and `two_over_us` as in [`EnsembleParams`]. Needs f64 shaders and

@@ -66,6 +66,9 @@ impl<'a> OnDevice<'a> {
         d_min: f64,
         t: &'a LambdaTables,
     ) -> Result<Option<OnDevice<'a>>, RoughError> {
+        if !gpu.holds_summits(asp.len()) {
+            return Ok(None);
+        }
         let recs = asp
             .par_iter()
             .map(|a| record(a, m, d_min, t))
