@@ -228,6 +228,7 @@ def rough_asperities(
     min_separation_m: Optional[float] = None,
     points: int = 400,
     summits: str = "tables",
+    backend: str = "cpu",
 ) -> Dict[str, Any]: ...
 def rough_topography(
     heights_m: ArrayLike,
@@ -237,6 +238,7 @@ def rough_topography(
     min_separation_m: Optional[float] = None,
     points: int = 400,
     summits: str = "tables",
+    backend: str = "cpu",
 ) -> Dict[str, Any]: ...
 def rough_pulloff(
     lambdas: Union[Sequence[float], npt.NDArray[np.float64]] = ...,
