@@ -227,7 +227,7 @@ impl Engine {
                 classify_on_gpu(g, ctx, lambdas, loads, tol, picks)
             }
             _ => Err(GpuError::Runtime(
-                "classify_grid needs a GPU engine with the f32 kernels".into(),
+                "classify_grid needs a GPU engine with the f32 kernels and f64 shaders".into(),
             )),
         }
     }
@@ -253,14 +253,7 @@ fn classify_on_gpu(
     picks: &[usize],
 ) -> Result<ClassifiedGrid, GpuError> {
     let t0 = std::time::Instant::now();
-    let rows: Vec<(f32, f32)> = loads.iter().map(|&v| split(v)).collect();
-    let started = if wants_starts(g) {
-        solver::with_starts(ctx, loads, Control::Load)
-    } else {
-        std::borrow::Cow::Borrowed(ctx)
-    };
-    let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
-    let starts = Starts::new(&started, &prepared);
+    let (rows, prepared, starts) = kernel_grid(g, ctx, lambdas, loads, Control::Load, false);
     let t_starts = t0.elapsed().as_secs_f64();
     let c = g.grid_classified(&prepared, &starts, &rows, (lambdas, loads), tol, picks)?;
     let nx = lambdas.len();
@@ -429,6 +422,34 @@ impl Solve for Gpu {
     }
 }
 
+/// The grid kernel's input for `lambdas x values`: the rows as hi/lo pairs, the lambdas'
+/// preparation and their dense starts.
+fn kernel_grid(
+    g: &Gpu,
+    ctx: &[Option<LambdaContext>],
+    lambdas: &[f64],
+    values: &[f64],
+    control: Control,
+    gaps: bool,
+) -> (
+    Vec<(f32, f32)>,
+    std::sync::Arc<Vec<crate::kernel::layout::GpuLambda>>,
+    Starts,
+) {
+    let rows = values.iter().map(|&v| split(v)).collect();
+    // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
+    // Only a software adapter wants them (see `wants_starts`).
+    let started = match (wants_starts(g), gaps) {
+        (false, _) => std::borrow::Cow::Borrowed(ctx),
+        (true, true) => solver::with_gap_starts(ctx, values),
+        (true, false) => solver::with_starts(ctx, values, control),
+    };
+    // Preparing a lambda does not use its start: the bands of a map share one preparation.
+    let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
+    let starts = Starts::new(&started, &prepared);
+    (rows, prepared, starts)
+}
+
 /// The grid `lambdas x values` (row-major, one row per value) by the grid kernel: the values
 /// are loads, approaches, or with `gaps` distances above the pull-off (load control).
 fn grid_on_gpu(
@@ -440,17 +461,7 @@ fn grid_on_gpu(
     gaps: bool,
 ) -> Result<Vec<State>, GpuError> {
     let t0 = std::time::Instant::now();
-    let rows: Vec<(f32, f32)> = values.iter().map(|&v| split(v)).collect();
-    // The dense starts, as on the CPU: the kernel then mostly stops at its first evaluation.
-    // Only a software adapter wants them (see `wants_starts`).
-    let started = match (wants_starts(g), gaps) {
-        (false, _) => std::borrow::Cow::Borrowed(ctx),
-        (true, true) => solver::with_gap_starts(ctx, values),
-        (true, false) => solver::with_starts(ctx, values, control),
-    };
-    // Preparing a lambda does not use its start: the bands of a map share one preparation.
-    let prepared = g.prepared_for(lambdas, || prepare_contexts(ctx, lambdas));
-    let starts = Starts::new(&started, &prepared);
+    let (rows, prepared, starts) = kernel_grid(g, ctx, lambdas, values, control, gaps);
     let t_starts = t0.elapsed().as_secs_f64();
     let out = g.grid_started(
         &prepared,

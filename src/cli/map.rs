@@ -113,29 +113,42 @@ pub fn check_extension(path: &Path, ext: &str, flag: &str) -> anyhow::Result<()>
     Ok(())
 }
 
-pub fn run(a: MapArgs) -> anyhow::Result<()> {
-    if a.timings && a.json.is_none() {
-        anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
-    }
-    let t_run = Instant::now();
-    let spec = a.spec();
+/// What the map keeps, from the outputs asked for.
+fn compute_options(a: &MapArgs) -> crate::map::ComputeOptions {
     // The f64 values are kept only for the exports that write them; GPU maps are cross-checked
     // on a sample of points against the f64 solver as they are solved.
-    let opts = crate::map::ComputeOptions {
+    crate::map::ComputeOptions {
         keep_exact: a.json_full || a.npy.is_some(),
         check: a.gpu.check.0,
         // A sphere's map of regions keeps a byte a point (and is classified on a GPU's
         // device); a map of a quantity colours every point, a tip's keeps them all.
         records: a.quantity.is_some() || a.tip.is_some(),
-    };
+    }
+}
+
+/// A tip's map keeps every point's values: at most [`crate::map::MAX_MAP_POINTS`] points.
+fn tip_map_fits(spec: &crate::map::MapSpec) -> anyhow::Result<()> {
     let points = spec.nx * spec.ny;
-    if a.tip.is_some() && points > crate::map::MAX_MAP_POINTS {
+    if points > crate::map::MAX_MAP_POINTS {
         anyhow::bail!(
             "--nx {} x --ny {} is {points} points, more than the {} (4096 x 4096) a tip's map holds in memory (every point's values are kept); use fewer points, or split the range into several maps",
             spec.nx,
             spec.ny,
             crate::map::MAX_MAP_POINTS
         );
+    }
+    Ok(())
+}
+
+pub fn run(a: MapArgs) -> anyhow::Result<()> {
+    if a.timings && a.json.is_none() {
+        anyhow::bail!("--timings puts the computing time into the JSON: give --json FILE too, or leave out --timings (the time is always printed on stderr)");
+    }
+    let t_run = Instant::now();
+    let spec = a.spec();
+    let opts = compute_options(&a);
+    if a.tip.is_some() {
+        tip_map_fits(&spec)?;
     }
     spec.validate_with(&opts)
         .map_err(|e| super::in_flags(&e, super::MAP_FLAGS))?;

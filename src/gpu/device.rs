@@ -295,6 +295,22 @@ fn bind_group_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
     })
 }
 
+/// The grid kernel's lambdas and input: each row's load as a hi/lo pair, then the lambdas'
+/// dense starts (each lambda told where its block begins).
+fn grid_input(
+    lambdas: &[GpuLambda],
+    starts: &Starts,
+    rows: &[(f32, f32)],
+) -> (Vec<GpuLambda>, Vec<u32>) {
+    let mut words: Vec<u32> = rows
+        .iter()
+        .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
+        .collect();
+    let lambdas = starts.placed(lambdas, words.len());
+    words.extend_from_slice(&starts.words);
+    (lambdas, words)
+}
+
 /// A compute shader's uniform binding.
 fn uniform(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
@@ -431,6 +447,77 @@ impl Gpu {
         Ok(gpu)
     }
 
+    /// A bind group of whole buffers, binding k the k-th of `bufs`.
+    fn bind_whole(
+        &self,
+        label: &'static str,
+        layout: &wgpu::BindGroupLayout,
+        bufs: &[&wgpu::Buffer],
+    ) -> wgpu::BindGroup {
+        let entries: Vec<_> = bufs
+            .iter()
+            .enumerate()
+            .map(|(i, buf)| wgpu::BindGroupEntry {
+                binding: i as u32,
+                resource: buf.as_entire_binding(),
+            })
+            .collect();
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some(label),
+            layout,
+            entries: &entries,
+        })
+    }
+
+    /// A uniform buffer holding `bytes`.
+    fn uniform_buffer(&self, bytes: &[u8]) -> wgpu::Buffer {
+        self.device
+            .create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("params"),
+                contents: bytes,
+                usage: wgpu::BufferUsages::UNIFORM,
+            })
+    }
+
+    /// A module of its own (`source`, labelled `label`) with the bindings `entries`: its
+    /// bind group layout and a pipeline for each of `entry_points`.
+    fn own_pipelines(
+        &self,
+        label: &'static str,
+        source: String,
+        entries: &[wgpu::BindGroupLayoutEntry],
+        entry_points: &[&'static str],
+    ) -> (wgpu::BindGroupLayout, Vec<wgpu::ComputePipeline>) {
+        let d = &self.device;
+        let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries,
+        });
+        let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some(label),
+            source: wgpu::ShaderSource::Wgsl(source.into()),
+        });
+        let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipelines = entry_points
+            .iter()
+            .map(|&entry| {
+                d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: Some(&pl),
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                })
+            })
+            .collect();
+        (layout, pipelines)
+    }
+
     /// The pipeline of a variant, compiled on first use: a software adapter spends tens of
     /// milliseconds on each, so only what a run needs is built.
     fn pipeline(&self, v: Variant) -> Result<wgpu::ComputePipeline, GpuError> {
@@ -542,12 +629,7 @@ impl Gpu {
         rows_are_gaps: bool,
         flags: KernelFlags,
     ) -> Result<Vec<Out>, GpuError> {
-        let mut words: Vec<u32> = rows
-            .iter()
-            .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
-            .collect();
-        let lambdas = starts.placed(lambdas, words.len());
-        words.extend_from_slice(&starts.words);
+        let (lambdas, words) = grid_input(lambdas, starts, rows);
         let lambdas = &lambdas[..];
         let total = lambdas.len() * rows.len();
         let v = Variant {

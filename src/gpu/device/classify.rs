@@ -25,36 +25,17 @@ impl Gpu {
     /// The classification's bindings and pipeline, built on first use.
     fn classify_pipeline(&self) -> &(wgpu::BindGroupLayout, wgpu::ComputePipeline) {
         self.classify.get_or_init(|| {
-            let d = &self.device;
-            let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("classify"),
-                entries: &[
-                    uniform(0),
-                    storage(1, true),
-                    storage(2, true),
-                    storage(3, true),
-                    storage(4, true),
-                    storage(5, false),
-                ],
-            });
-            let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("classify"),
-                source: wgpu::ShaderSource::Wgsl(crate::kernel::classify_source().into()),
-            });
-            let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("classify"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            let p = d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                label: Some("classify"),
-                layout: Some(&pl),
-                module: &module,
-                entry_point: Some("classify"),
-                compilation_options: Default::default(),
-                cache: None,
-            });
-            (layout, p)
+            let entries = [
+                uniform(0),
+                storage(1, true),
+                storage(2, true),
+                storage(3, true),
+                storage(4, true),
+                storage(5, false),
+            ];
+            let source = crate::kernel::classify_source();
+            let (layout, mut p) = self.own_pipelines("classify", source, &entries, &["classify"]);
+            (layout, p.remove(0))
         })
     }
 
@@ -75,12 +56,7 @@ impl Gpu {
             return Err(GpuError::NoF64(self.adapter.name.clone()));
         }
         let t0 = std::time::Instant::now();
-        let mut words: Vec<u32> = rows
-            .iter()
-            .flat_map(|&(h, l)| [h.to_bits(), l.to_bits()])
-            .collect();
-        let lambdas = starts.placed(lambdas, words.len());
-        words.extend_from_slice(&starts.words);
+        let (lambdas, words) = super::grid_input(lambdas, starts, rows);
         let (nx, total) = (lambdas.len(), lambdas.len() * rows.len());
         let mut res = Classified {
             marks: Vec::with_capacity(total),
@@ -187,38 +163,15 @@ impl Gpu {
         res: &mut Classified,
     ) -> Result<(), GpuError> {
         let d = &self.device;
-        let uniform = |bytes: &[u8]| {
-            d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("params"),
-                contents: bytes,
-                usage: wgpu::BufferUsages::UNIFORM,
-            })
-        };
         let sp = Params {
             nx: p.nx,
             offset: p.offset,
             count: p.count,
             max_iter: 0,
         };
-        let (sparams, cparams) = (
-            uniform(bytemuck::bytes_of(&sp)),
-            uniform(bytemuck::bytes_of(&p)),
-        );
-        let group = |layout, bufs: &[&wgpu::Buffer]| {
-            let entries: Vec<_> = bufs
-                .iter()
-                .enumerate()
-                .map(|(i, buf)| wgpu::BindGroupEntry {
-                    binding: i as u32,
-                    resource: buf.as_entire_binding(),
-                })
-                .collect();
-            d.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("classify"),
-                layout,
-                entries: &entries,
-            })
-        };
+        let sparams = self.uniform_buffer(bytemuck::bytes_of(&sp));
+        let cparams = self.uniform_buffer(bytemuck::bytes_of(&p));
+        let group = |layout, bufs: &[&wgpu::Buffer]| self.bind_whole("classify", layout, bufs);
         let solve_group = group(&self.layout, &[&sparams, &b.lambdas, &b.rows, &b.states]);
         let classify_group = group(
             layout,

@@ -40,34 +40,14 @@ impl Gpu {
         wgpu::ComputePipeline,
     ) {
         self.ensemble.get_or_init(|| {
-            let d = &self.device;
             let mut entries = vec![uniform(0)];
             entries.extend((1..5).map(|b| storage(b, true)));
             entries.extend((5..8).map(|b| storage(b, false)));
-            let layout = d.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-                label: Some("ensemble64"),
-                entries: &entries,
-            });
-            let module = d.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some("ensemble64"),
-                source: wgpu::ShaderSource::Wgsl(crate::kernel::ensemble64_source().into()),
-            });
-            let pl = d.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-                label: Some("ensemble64"),
-                bind_group_layouts: &[Some(&layout)],
-                immediate_size: 0,
-            });
-            let pipeline = |entry| {
-                d.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some(entry),
-                    layout: Some(&pl),
-                    module: &module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    cache: None,
-                })
-            };
-            (layout, pipeline("sum_chunks"), pipeline("reduce"))
+            let source = crate::kernel::ensemble64_source();
+            let (layout, mut p) =
+                self.own_pipelines("ensemble64", source, &entries, &["sum_chunks", "reduce"]);
+            let reduce = p.remove(1);
+            (layout, p.remove(0), reduce)
         })
     }
 
@@ -136,24 +116,8 @@ impl Gpu {
         retract_only: bool,
     ) -> Result<EnsembleSums, GpuError> {
         let t0 = std::time::Instant::now();
-        let ns = seps.len().max(1);
-        let chunks = b.n.div_ceil(1024).min((PARTIALS_MAX / ns).max(1));
-        let cap = (4 * b.n).clamp(1 << 16, 1 << 24);
-        let p = EnsembleParams {
-            seps: seps.len() as u32,
-            chunk: b.n.div_ceil(chunks) as u32,
-            chunks: chunks as u32,
-            retract_only: retract_only as u32,
-            flag_cap: cap as u32,
-            ..b.params
-        };
-        let largest = (chunks * ns * 64).max(8 + cap * 8) as u64;
-        if largest > self.max_binding {
-            return Err(GpuError::TooLarge(format!(
-                "an ensemble's sums need {largest} bytes, more than this adapter binds ({})",
-                self.max_binding
-            )));
-        }
+        let p = self.ensemble_params(b, seps, retract_only)?;
+        let (ns, chunks, cap) = (seps.len().max(1), p.chunks as usize, p.flag_cap as usize);
         let (layout, sum_chunks, reduce) = self.ensemble_pipelines();
         self.check()?;
         let d = &self.device;
@@ -166,11 +130,7 @@ impl Gpu {
                 mapped_at_creation: false,
             })
         };
-        let params = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("params"),
-            contents: bytemuck::bytes_of(&p),
-            usage: U::UNIFORM,
-        });
+        let params = self.uniform_buffer(bytemuck::bytes_of(&p));
         let seps_buf = d.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("separations"),
             contents: bytemuck::cast_slice(if seps.is_empty() { &[0.0] } else { seps }),
@@ -183,19 +143,7 @@ impl Gpu {
         let bufs = [
             &params, &b.summits, &b.coefs, &b.nodes, &seps_buf, &partials, &flags, &sums,
         ];
-        let entries: Vec<_> = bufs
-            .iter()
-            .enumerate()
-            .map(|(i, buf)| wgpu::BindGroupEntry {
-                binding: i as u32,
-                resource: buf.as_entire_binding(),
-            })
-            .collect();
-        let group = d.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ensemble64"),
-            layout,
-            entries: &entries,
-        });
+        let group = self.bind_whole("ensemble64", layout, &bufs);
         let mut enc = d.create_command_encoder(&Default::default());
         let timer = self.timestamps.then(|| timer::Timer::new(d, 2));
         for (k, (pipeline, threads)) in
@@ -247,6 +195,34 @@ impl Gpu {
             sums: out.chunks_exact(8).map(|c| c.try_into().unwrap()).collect(),
             flagged,
             params: p,
+        })
+    }
+
+    /// A run's parameters: chunks of summits (their partial sums bounded by [`PARTIALS_MAX`]) and
+    /// room for flagged states; TooLarge where those would not fit one binding.
+    fn ensemble_params(
+        &self,
+        b: &SummitBuffers,
+        seps: &[f64],
+        retract_only: bool,
+    ) -> Result<EnsembleParams, GpuError> {
+        let ns = seps.len().max(1);
+        let chunks = b.n.div_ceil(1024).min((PARTIALS_MAX / ns).max(1));
+        let cap = (4 * b.n).clamp(1 << 16, 1 << 24);
+        let largest = (chunks * ns * 64).max(8 + cap * 8) as u64;
+        if largest > self.max_binding {
+            return Err(GpuError::TooLarge(format!(
+                "an ensemble's sums need {largest} bytes, more than this adapter binds ({})",
+                self.max_binding
+            )));
+        }
+        Ok(EnsembleParams {
+            seps: seps.len() as u32,
+            chunk: b.n.div_ceil(chunks) as u32,
+            chunks: chunks as u32,
+            retract_only: retract_only as u32,
+            flag_cap: cap as u32,
+            ..b.params
         })
     }
 
